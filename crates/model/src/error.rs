@@ -1,0 +1,78 @@
+//! The one error type of the model crate.
+
+use thiserror::Error;
+
+/// Everything that can go wrong when a scene or a modulus is built or evaluated.
+///
+/// Parameters are checked when a model object is built, so the numerical code
+/// behind a validated object does not fail on bad input; the few variants that
+/// can arise during evaluation say which quantity left its valid range.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ModelError {
+    /// A scalar parameter is outside its physical range.
+    #[error("{name} = {value}: {requirement}")]
+    InvalidParameter {
+        /// Parameter name as used in scene files (e.g. `radius`).
+        name: String,
+        /// The offending value.
+        value: f64,
+        /// What the value must satisfy.
+        requirement: String,
+    },
+    /// A list or table is malformed (lengths, ordering, emptiness).
+    #[error("{name}: {problem}")]
+    InvalidTable {
+        /// Name of the list or table.
+        name: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// The evaluation cannot proceed for this combination of inputs.
+    #[error("{0}")]
+    Evaluation(String),
+}
+
+impl ModelError {
+    /// Shorthand for [`ModelError::InvalidParameter`].
+    pub fn parameter(name: &str, value: f64, requirement: &str) -> Self {
+        ModelError::InvalidParameter {
+            name: name.to_string(),
+            value,
+            requirement: requirement.to_string(),
+        }
+    }
+
+    /// Shorthand for [`ModelError::InvalidTable`].
+    pub fn table(name: &str, problem: impl Into<String>) -> Self {
+        ModelError::InvalidTable {
+            name: name.to_string(),
+            problem: problem.into(),
+        }
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub(crate) fn require_positive(name: &str, value: f64) -> Result<f64, ModelError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(ModelError::parameter(
+            name,
+            value,
+            "must be a finite number greater than zero",
+        ))
+    }
+}
+
+/// Checks that `value` is finite and not negative.
+pub(crate) fn require_non_negative(name: &str, value: f64) -> Result<f64, ModelError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(ModelError::parameter(
+            name,
+            value,
+            "must be a finite number, zero or greater",
+        ))
+    }
+}

@@ -1,0 +1,1 @@
+//! Universal kernels of the friction integrals. PLACEHOLDER while written.

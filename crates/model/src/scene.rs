@@ -1,0 +1,134 @@
+//! A validated rolling-contact scene: geometry, substrate, contact-size rule
+//! and material. Building one checks every parameter, so the friction code
+//! behind it never sees a negative radius, a Poisson ratio above ½ or a NaN.
+
+use crate::contact::{ContactSize, Shape, hertz_contact_size, mean_pressure};
+use crate::error::{ModelError, require_positive};
+use crate::modulus::ViscoelasticModulus;
+
+/// Default relative tolerance of the friction quadrature.
+pub const DEFAULT_TOLERANCE: f64 = 1e-6;
+
+/// Rolling body and load.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Geometry {
+    /// Sphere or cylinder.
+    pub shape: Shape,
+    /// Radius R of the body, m.
+    pub radius: f64,
+    /// Load: F_N in N (sphere) or f_N in N/m (cylinder).
+    pub load: f64,
+}
+
+/// The viscoelastic solid's elastic constants that are not in E*(ω).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Substrate {
+    /// Poisson's ratio ν, 0 ≤ ν ≤ ½, frequency-independent.
+    pub poisson: f64,
+    /// Thickness d (m) of a film bonded to a rigid base; `None` for a half-space.
+    pub film_thickness: Option<f64>,
+}
+
+/// A validated scene: everything μ(v) depends on.
+#[derive(Debug, Clone)]
+pub struct Scene<M> {
+    geometry: Geometry,
+    substrate: Substrate,
+    contact: ContactSize,
+    material: M,
+    tolerance: f64,
+}
+
+impl<M: ViscoelasticModulus> Scene<M> {
+    /// Checks every parameter and builds the scene with the default tolerance.
+    pub fn new(
+        geometry: Geometry,
+        substrate: Substrate,
+        contact: ContactSize,
+        material: M,
+    ) -> Result<Self, ModelError> {
+        require_positive("radius", geometry.radius)?;
+        require_positive("load", geometry.load)?;
+        let nu = substrate.poisson;
+        if !(nu.is_finite() && (0.0..=0.5).contains(&nu)) {
+            return Err(ModelError::parameter(
+                "poisson",
+                nu,
+                "must lie between 0 and 0.5",
+            ));
+        }
+        if let Some(d) = substrate.film_thickness {
+            require_positive("thickness", d)?;
+        }
+        let e0 = material.static_modulus();
+        require_positive("static modulus E(0)", e0)?;
+        Ok(Scene {
+            geometry,
+            substrate,
+            contact,
+            material,
+            tolerance: DEFAULT_TOLERANCE,
+        })
+    }
+
+    /// The same scene with another requested relative tolerance of μ
+    /// (between 1e-12 and 1e-2).
+    pub fn with_tolerance(mut self, tolerance: f64) -> Result<Self, ModelError> {
+        if !(tolerance.is_finite() && (1e-12..=1e-2).contains(&tolerance)) {
+            return Err(ModelError::parameter(
+                "tolerance",
+                tolerance,
+                "must lie between 1e-12 and 1e-2",
+            ));
+        }
+        self.tolerance = tolerance;
+        Ok(self)
+    }
+
+    /// Geometry (shape, radius, load).
+    pub fn geometry(&self) -> &Geometry {
+        &self.geometry
+    }
+
+    /// Substrate (Poisson's ratio, film thickness).
+    pub fn substrate(&self) -> &Substrate {
+        &self.substrate
+    }
+
+    /// Contact-size rule.
+    pub fn contact(&self) -> ContactSize {
+        self.contact
+    }
+
+    /// The material's complex modulus.
+    pub fn material(&self) -> &M {
+        &self.material
+    }
+
+    /// Requested relative tolerance of μ.
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// 1 − ν², the factor between Young's and the effective modulus.
+    pub fn plane_strain_factor(&self) -> f64 {
+        1.0 - self.substrate.poisson * self.substrate.poisson
+    }
+
+    /// Static effective modulus E_eff(0) = E(0)/(1 − ν²), Pa.
+    pub fn static_effective_modulus(&self) -> f64 {
+        self.material.static_modulus() / self.plane_strain_factor()
+    }
+
+    /// Static Hertz contact size (m): r0 for a sphere, a0 for a cylinder.
+    pub fn static_contact_size(&self) -> f64 {
+        let g = &self.geometry;
+        hertz_contact_size(g.shape, g.radius, g.load, self.static_effective_modulus())
+    }
+
+    /// Mean Hertz pressure p_a (Pa) of the static contact.
+    pub fn static_mean_pressure(&self) -> f64 {
+        let g = &self.geometry;
+        mean_pressure(g.shape, g.load, self.static_contact_size())
+    }
+}
