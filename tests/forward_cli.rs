@@ -1,1 +1,997 @@
+//! End-to-end tests of `rollfit forward`: the binary is run on the example
+//! scenes in data/ and on broken scenes written to a temporary folder.
+//!
+//! Every bad-input test checks the same promise: a non-zero exit, an error
+//! on stderr that names the file and the key or problem, and no panic.
 
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+// ---------------------------------------------------------------- helpers
+
+/// The workspace root (this test is registered in crates/cli).
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn data(name: &str) -> PathBuf {
+    workspace().join("data").join(name)
+}
+
+fn rollfit(args: &[&std::ffi::OsStr]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rollfit"))
+        .args(args)
+        .output()
+        .expect("cannot start the rollfit binary")
+}
+
+fn forward(scene: &Path, out: Option<&Path>) -> Output {
+    let mut args = vec![std::ffi::OsStr::new("forward"), scene.as_os_str()];
+    if let Some(out) = out {
+        args.push(std::ffi::OsStr::new("-o"));
+        args.push(out.as_os_str());
+    }
+    rollfit(&args)
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// A folder of its own under the system's temporary folder, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> TempDir {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let path = std::env::temp_dir().join(format!(
+            "rollfit-forward-cli-{}-{name}-{n}",
+            std::process::id()
+        ));
+        let _ = fs::remove_dir_all(&path);
+        fs::create_dir_all(&path).unwrap();
+        TempDir(path)
+    }
+
+    fn write(&self, name: &str, content: &str) -> PathBuf {
+        let path = self.0.join(name);
+        fs::write(&path, content).unwrap();
+        path
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A small valid scene; bad-input tests break one line of it.
+const SLS_SCENE: &str = r#"# test scene: paper sphere, few speeds
+[geometry]
+shape = "sphere"
+radius = 0.01
+load = 0.15
+
+[substrate]
+poisson = 0.0
+
+[contact]
+size = "dynamic"
+
+[material]
+model = "sls"
+E0 = 1e6
+E1 = 1e7
+tau = 1.0
+
+[sweep]
+v_min = 1e-6
+v_max = 1.0
+count = 7
+"#;
+
+/// The same as a Prony series (E1 = 10 MPa, E0 = 1 MPa).
+const PRONY_SCENE: &str = r#"[geometry]
+shape = "sphere"
+radius = 0.01
+load = 0.15
+
+[material]
+model = "prony"
+E1 = 1e7
+H = [4e6, 5e6]
+tau = [0.1, 1.0]
+
+[sweep]
+v_min = 1e-6
+v_max = 1.0
+count = 7
+"#;
+
+/// A table scene; the table file is written by each test.
+const TABLE_SCENE: &str = r#"[geometry]
+shape = "sphere"
+radius = 0.01
+load = 0.15
+
+[material]
+model = "table"
+file = "modulus.csv"
+
+[sweep]
+v_min = 1e-6
+v_max = 1.0
+count = 7
+"#;
+
+const GOOD_TABLE: &str = "# omega in rad/s, moduli in Pa\nomega,E_storage,E_loss\n0.1,1.0e6,1.0e5\n1,2.0e6,8.0e5\n10,6.0e6,2.0e6\n";
+
+/// `base` with `from` replaced by `to`; `from` must occur.
+fn edit(base: &str, from: &str, to: &str) -> String {
+    assert!(base.contains(from), "test scene has no {from:?}");
+    base.replacen(from, to, 1)
+}
+
+/// Runs forward on `scene` (written as `bad.toml` in a fresh folder, with
+/// optional extra files) and checks the failure report.
+fn assert_rejected(scene: &str, extra: &[(&str, &str)], expected: &[&str]) -> String {
+    let dir = TempDir::new("bad");
+    for (name, content) in extra {
+        dir.write(name, content);
+    }
+    let path = dir.write("bad.toml", scene);
+    let out = forward(&path, None);
+    assert_failure_names(&out, "bad.toml", expected)
+}
+
+fn assert_failure_names(out: &Output, file: &str, expected: &[&str]) -> String {
+    let stderr = text(&out.stderr);
+    assert!(
+        !out.status.success(),
+        "expected a failure, got success; stderr:\n{stderr}"
+    );
+    assert_eq!(out.status.code(), Some(1), "exit code; stderr:\n{stderr}");
+    assert!(!stderr.contains("panicked"), "panic:\n{stderr}");
+    assert!(
+        stderr.contains(file),
+        "stderr does not name {file}:\n{stderr}"
+    );
+    for fragment in expected {
+        assert!(
+            stderr.contains(fragment),
+            "stderr does not contain {fragment:?}:\n{stderr}"
+        );
+    }
+    assert!(out.stdout.is_empty(), "stdout not empty on failure");
+    stderr
+}
+
+/// A parsed forward CSV.
+struct Table {
+    header: Vec<String>,
+    rows: Vec<Vec<f64>>,
+}
+
+impl Table {
+    fn column(&self, name: &str) -> Vec<f64> {
+        let i = self
+            .header
+            .iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("no column {name}"));
+        self.rows.iter().map(|r| r[i]).collect()
+    }
+}
+
+fn parse_csv(csv: &str) -> Table {
+    let mut lines = csv.lines();
+    let header: Vec<String> = lines
+        .next()
+        .expect("empty CSV")
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| {
+            l.split(',')
+                .map(|x| {
+                    x.parse::<f64>()
+                        .unwrap_or_else(|_| panic!("bad number {x:?}"))
+                })
+                .collect()
+        })
+        .collect();
+    for row in &rows {
+        assert_eq!(row.len(), header.len());
+    }
+    Table { header, rows }
+}
+
+const HEADER: [&str; 7] = [
+    "v",
+    "mu",
+    "mu_low_speed",
+    "contact_size_static",
+    "mean_pressure_static",
+    "centroid_shift",
+    "gt_alpha",
+];
+
+/// Runs forward on a scene that must succeed and returns its CSV.
+fn run_ok(scene: &Path) -> Table {
+    let out = forward(scene, None);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "{}: {stderr}", scene.display());
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let table = parse_csv(&text(&out.stdout));
+    assert_eq!(table.header, HEADER);
+    table
+}
+
+fn assert_increasing(values: &[f64]) {
+    assert!(
+        values.windows(2).all(|w| w[0] < w[1]),
+        "not strictly increasing: {values:?}"
+    );
+}
+
+fn assert_close(actual: f64, expected: f64, rel: f64, what: &str) {
+    assert!(
+        (actual - expected).abs() <= rel * expected.abs(),
+        "{what}: {actual} vs {expected} (relative {:.2e}, allowed {rel:.0e})",
+        (actual - expected).abs() / expected.abs()
+    );
+}
+
+// ------------------------------------------------- example scenes (need μ)
+
+fn check_example(name: &str, count: usize, v_min: f64, v_max: f64, radius: f64) -> Table {
+    let table = run_ok(&data(name));
+    assert_eq!(table.rows.len(), count, "{name}");
+    let v = table.column("v");
+    assert_eq!((v[0], v[count - 1]), (v_min, v_max), "{name}");
+    assert_increasing(&v);
+    let mu = table.column("mu");
+    let shift = table.column("centroid_shift");
+    for (i, &m) in mu.iter().enumerate() {
+        assert!(m.is_finite() && m > 0.0, "{name}: mu[{i}] = {m}");
+        assert_close(shift[i], m * radius, 1e-12, "centroid shift = μR");
+    }
+    for column in [
+        "mu_low_speed",
+        "contact_size_static",
+        "mean_pressure_static",
+        "gt_alpha",
+    ] {
+        assert!(
+            table
+                .column(column)
+                .iter()
+                .all(|x| x.is_finite() && *x > 0.0),
+            "{name}: {column} not finite and positive"
+        );
+    }
+    table
+}
+
+#[test]
+fn paper_fig2_sphere_scene_runs() {
+    let t = check_example("paper-fig2-sphere.toml", 91, 1e-8, 10.0, 0.01);
+    // Hertz with E_eff = E0 = 1 MPa (ν = 0): r0 = (3 F R / 4E)^(1/3).
+    for r0 in t.column("contact_size_static") {
+        assert_close(r0, 1.0400419115259524e-3, 1e-12, "r0");
+    }
+    // The paper's Fig. 2 has its maximum near v ≈ r0/τ ≈ 1 mm/s.
+    let (v, mu) = (t.column("v"), t.column("mu"));
+    let i = (0..mu.len())
+        .max_by(|&a, &b| mu[a].total_cmp(&mu[b]))
+        .unwrap();
+    assert!((3e-4..3e-3).contains(&v[i]), "maximum at v = {}", v[i]);
+}
+
+#[test]
+fn paper_fig2_cylinder_scene_runs() {
+    let t = check_example("paper-fig2-cylinder.toml", 91, 1e-8, 10.0, 0.01);
+    // a0 = (4 f R / (π E))^(1/2) with E = 1 MPa.
+    for a0 in t.column("contact_size_static") {
+        assert_close(a0, 1.1283791670955127e-3, 1e-12, "a0");
+    }
+}
+
+#[test]
+fn example_sphere_scene_runs() {
+    let t = check_example("example-sphere.toml", 41, 1e-6, 1.0, 0.005);
+    // E_eff(0) = 2 MPa / (1 − 0.25).
+    let r0 = (3.0f64 * 1.0 * 0.005 / (4.0 * 2e6 / 0.75)).cbrt();
+    assert_close(t.column("contact_size_static")[0], r0, 1e-9, "r0");
+}
+
+/// μ of the paper's sphere at three speeds from the independent reference
+/// implementation (shared/reference/forward.json, accurate to about 1e-8).
+#[test]
+fn paper_sphere_matches_the_reference_implementation() {
+    let dir = TempDir::new("reference");
+    let points = [
+        (1.0400419115259525e-6, 9.354466258556675e-05),
+        (0.0010400419115259524, 0.0407284036469078),
+        (0.10400419115259524, 0.0015776490033637064),
+    ];
+    let list: Vec<String> = points.iter().map(|(v, _)| format!("{v:e}")).collect();
+    let scene = edit(
+        SLS_SCENE,
+        "v_min = 1e-6\nv_max = 1.0\ncount = 7\n",
+        &format!("v = [{}]\ntolerance = 1e-8\n", list.join(", ")),
+    );
+    let t = run_ok(&dir.write("scene.toml", &scene));
+    assert_eq!(t.column("v"), points.map(|p| p.0).to_vec());
+    for (mu, (v, expected)) in t.column("mu").into_iter().zip(points) {
+        assert_close(mu, expected, 1e-6, &format!("μ at v = {v}"));
+    }
+}
+
+// --------------------------------------------------- output file (need μ)
+
+#[test]
+fn output_file_is_written_atomically_into_new_folders() {
+    let dir = TempDir::new("output");
+    let out = dir.path().join("new").join("deeper").join("mu.csv");
+    let scene = data("paper-fig2-cylinder.toml");
+    let result = forward(&scene, Some(&out));
+    let stderr = text(&result.stderr);
+    assert!(result.status.success(), "{stderr}");
+    assert!(result.stdout.is_empty(), "with -o nothing goes to stdout");
+    // The one-line summary names the static contact.
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("a0 ="), "{stderr}");
+
+    let written = fs::read_to_string(&out).unwrap();
+    assert_eq!(
+        written,
+        text(&forward(&scene, None).stdout),
+        "file = stdout"
+    );
+    let names: Vec<String> = fs::read_dir(out.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, vec!["mu.csv".to_string()], "leftover files");
+
+    // Running again replaces the file, still without leftovers.
+    fs::write(&out, "old").unwrap();
+    assert!(forward(&scene, Some(&out)).status.success());
+    assert_eq!(fs::read_to_string(&out).unwrap(), written);
+    assert_eq!(fs::read_dir(out.parent().unwrap()).unwrap().count(), 1);
+}
+
+#[test]
+fn failure_leaves_an_existing_output_untouched() {
+    let dir = TempDir::new("keep");
+    let out = dir.write("mu.csv", "previous result\n");
+    let scene = dir.write(
+        "bad.toml",
+        &edit(SLS_SCENE, "radius = 0.01", "radius = -0.01"),
+    );
+    let result = forward(&scene, Some(&out));
+    assert_failure_names(&result, "bad.toml", &["radius"]);
+    assert_eq!(fs::read_to_string(&out).unwrap(), "previous result\n");
+    let mut names: Vec<String> = fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, vec!["bad.toml", "mu.csv"]);
+}
+
+#[test]
+fn failure_creates_no_output_file() {
+    let dir = TempDir::new("none");
+    let out = dir.path().join("sub").join("mu.csv");
+    let scene = dir.write("bad.toml", &edit(SLS_SCENE, "count = 7", "count = 0"));
+    assert_failure_names(&forward(&scene, Some(&out)), "bad.toml", &["count"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn output_path_that_is_a_folder_is_rejected() {
+    let dir = TempDir::new("outdir");
+    let scene = data("paper-fig2-sphere.toml");
+    let result = forward(&scene, Some(dir.path()));
+    let name = dir
+        .path()
+        .file_name()
+        .unwrap()
+        .to_string_lossy()
+        .into_owned();
+    assert_failure_names(&result, &name, &["is a folder"]);
+}
+
+// --------------------------------------------- materials and shifts (need μ)
+
+#[test]
+fn prony_scene_equals_the_equivalent_standard_linear_solid() {
+    // SLS(E0, E1, τ) is the one-term Prony series H = E1 − E0, τ_P = τ E0/E1.
+    let dir = TempDir::new("prony-sls");
+    let sls = run_ok(&dir.write("sls.toml", SLS_SCENE));
+    let prony = edit(
+        SLS_SCENE,
+        "model = \"sls\"\nE0 = 1e6\nE1 = 1e7\ntau = 1.0",
+        "model = \"prony\"\nE1 = 1e7\nH = [9e6]\ntau = [0.1]",
+    );
+    let prony = run_ok(&dir.write("prony.toml", &prony));
+    for (a, b) in sls.column("mu").into_iter().zip(prony.column("mu")) {
+        assert_close(b, a, 1e-9, "μ prony vs sls");
+    }
+}
+
+#[test]
+fn wlf_temperature_equals_a_scaled_relaxation_time() {
+    // E(ω, T) = E(ω a_T, T_ref): for a standard linear solid the same as τ → τ a_T.
+    let dir = TempDir::new("wlf");
+    let (t_ref, c1, c2, t) = (20.0, 8.86, 101.6, 35.0);
+    let log_at: f64 = -c1 * (t - t_ref) / (c2 + t - t_ref);
+    let shifted = edit(
+        SLS_SCENE,
+        "tau = 1.0\n",
+        &format!(
+            "tau = 1.0\n[material.shift]\nmodel = \"wlf\"\nT_ref = {t_ref:?}\nC1 = {c1}\nC2 = {c2}\n"
+        ),
+    ) + &format!("temperature = {t:?}\n");
+    let scaled = edit(
+        SLS_SCENE,
+        "tau = 1.0",
+        &format!("tau = {:e}", 10f64.powf(log_at)),
+    );
+    let a = run_ok(&dir.write("shifted.toml", &shifted));
+    let b = run_ok(&dir.write("scaled.toml", &scaled));
+    for (x, y) in a.column("mu").into_iter().zip(b.column("mu")) {
+        assert_close(x, y, 1e-6, "μ shifted vs scaled");
+    }
+}
+
+#[test]
+fn free_shift_temperature_equals_a_scaled_relaxation_time() {
+    let dir = TempDir::new("free");
+    let shifted = edit(
+        SLS_SCENE,
+        "tau = 1.0\n",
+        "tau = 1.0\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
+         log_aT = [{ T = 0.0, log_aT = 2.0 }, { T = 40.0, log_aT = -2.0 }]\n",
+    ) + "temperature = 30.0\n";
+    // Linear in T between 20 °C (0) and 40 °C (−2): log10 a_T(30 °C) = −1.
+    let scaled = edit(SLS_SCENE, "tau = 1.0", "tau = 0.1");
+    let a = run_ok(&dir.write("shifted.toml", &shifted));
+    let b = run_ok(&dir.write("scaled.toml", &scaled));
+    for (x, y) in a.column("mu").into_iter().zip(b.column("mu")) {
+        assert_close(x, y, 1e-6, "μ shifted vs scaled");
+    }
+}
+
+#[test]
+fn table_scene_follows_the_tabulated_solid() {
+    // A dense table of the standard linear solid (20 points per decade, Hz
+    // column) must give nearly the μ(v) of the solid itself.
+    let dir = TempDir::new("table");
+    let (e0, e1, tau) = (1e6f64, 1e7f64, 1.0f64);
+    let mut csv = String::from("# SLS E0 = 1 MPa, E1 = 10 MPa, tau = 1 s\nf,E_storage,E_loss\n");
+    for k in 0..=320 {
+        let omega = 10f64.powf(-8.0 + k as f64 / 20.0);
+        // E = E1 (1 + iωτ)/(E1/E0 + iωτ)
+        let (a, b) = (e1 / e0, omega * tau);
+        let den = a * a + b * b;
+        let storage = e1 * (a + b * b) / den;
+        let loss = e1 * b * (a - 1.0) / den;
+        csv += &format!(
+            "{:e},{storage:e},{loss:e}\n",
+            omega / (2.0 * std::f64::consts::PI)
+        );
+    }
+    dir.write("modulus.csv", &csv);
+    let table_scene = edit(
+        TABLE_SCENE,
+        "load = 0.15\n",
+        "load = 0.15\n[substrate]\npoisson = 0.0\n",
+    );
+    let t = run_ok(&dir.write("table.toml", &table_scene));
+    let s = run_ok(&dir.write("sls.toml", SLS_SCENE));
+    for (x, y) in t.column("mu").into_iter().zip(s.column("mu")) {
+        assert_close(x, y, 2e-2, "μ table vs sls");
+    }
+}
+
+#[test]
+fn explicit_speed_list_is_kept() {
+    let dir = TempDir::new("list");
+    let scene = edit(
+        PRONY_SCENE,
+        "v_min = 1e-6\nv_max = 1.0\ncount = 7",
+        "v = [1e-5, 3e-4, 2e-3]",
+    );
+    let t = run_ok(&dir.write("list.toml", &scene));
+    assert_eq!(t.column("v"), vec![1e-5, 3e-4, 2e-3]);
+}
+
+// ------------------------------------------- bad input: files and syntax
+
+#[test]
+fn missing_scene_file() {
+    let dir = TempDir::new("missing");
+    let out = forward(&dir.path().join("nothere.toml"), None);
+    assert_failure_names(&out, "nothere.toml", &["cannot read scene file"]);
+}
+
+#[test]
+fn malformed_toml_shows_line_and_column() {
+    let scene = edit(SLS_SCENE, "load = 0.15", "load = = 0.15");
+    assert_rejected(&scene, &[], &["line 5, column", "load = = 0.15"]);
+}
+
+#[test]
+fn unknown_key_is_named() {
+    let scene = edit(SLS_SCENE, "radius = 0.01", "radus = 0.01");
+    assert_rejected(&scene, &[], &["unknown field `radus`", "line 4"]);
+}
+
+#[test]
+fn unknown_section_is_named() {
+    let scene = edit(SLS_SCENE, "[sweep]", "[sweeps]");
+    assert_rejected(&scene, &[], &["unknown field `sweeps`"]);
+}
+
+#[test]
+fn unknown_key_in_fit_section_is_named() {
+    let scene = format!("{SLS_SCENE}[fit]\nE0 = 2e6\nlambda = 3\n");
+    assert_rejected(&scene, &[], &["unknown field `lambda`"]);
+}
+
+#[test]
+fn unknown_key_in_shift_section_is_named() {
+    let scene = edit(
+        SLS_SCENE,
+        "tau = 1.0\n",
+        "tau = 1.0\n[material.shift]\nmodel = \"wlf\"\nT_ref = 20.0\nC1 = 8.86\nC2 = 101.6\nC3 = 1\n",
+    );
+    assert_rejected(&scene, &[], &["unknown field `C3`"]);
+}
+
+#[test]
+fn key_of_another_material_model_is_named() {
+    let scene = edit(SLS_SCENE, "tau = 1.0", "tau = 1.0\nH = [1e6]");
+    assert_rejected(&scene, &[], &["key `H`", "\"sls\""]);
+}
+
+#[test]
+fn missing_material_key_is_named() {
+    let scene = edit(SLS_SCENE, "E1 = 1e7\n", "");
+    assert_rejected(&scene, &[], &["needs the key `E1`"]);
+}
+
+#[test]
+fn wrong_type_is_reported() {
+    let scene = edit(SLS_SCENE, "radius = 0.01", "radius = \"1 cm\"");
+    assert_rejected(&scene, &[], &["radius = \"1 cm\"", "invalid type: string"]);
+}
+
+#[test]
+fn wrong_type_of_count_is_reported() {
+    let scene = edit(SLS_SCENE, "count = 7", "count = 7.5");
+    assert_rejected(&scene, &[], &["count = 7.5", "invalid type"]);
+}
+
+#[test]
+fn unknown_shape_is_reported() {
+    let scene = edit(SLS_SCENE, "shape = \"sphere\"", "shape = \"cube\"");
+    assert_rejected(
+        &scene,
+        &[],
+        &["unknown variant `cube`", "sphere", "cylinder"],
+    );
+}
+
+#[test]
+fn nan_is_rejected_with_its_key() {
+    let scene = edit(SLS_SCENE, "radius = 0.01", "radius = nan");
+    assert_rejected(&scene, &[], &["radius = nan", "finite"]);
+}
+
+#[test]
+fn infinity_is_rejected_with_its_key() {
+    let scene = edit(SLS_SCENE, "load = 0.15", "load = +inf");
+    assert_rejected(&scene, &[], &["load = +inf", "finite"]);
+}
+
+#[test]
+fn nan_inside_an_array_is_rejected() {
+    let scene = edit(PRONY_SCENE, "H = [4e6, 5e6]", "H = [4e6, nan]");
+    assert_rejected(&scene, &[], &["H = [4e6, nan]", "finite"]);
+}
+
+// ------------------------------------------------ bad input: value ranges
+
+#[test]
+fn zero_radius_is_rejected() {
+    let scene = edit(SLS_SCENE, "radius = 0.01", "radius = 0.0");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[geometry]", "radius = 0", "greater than zero"],
+    );
+}
+
+#[test]
+fn negative_radius_is_rejected() {
+    let scene = edit(SLS_SCENE, "radius = 0.01", "radius = -0.01");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[geometry]", "radius = -0.01", "greater than zero"],
+    );
+}
+
+#[test]
+fn negative_load_is_rejected() {
+    let scene = edit(SLS_SCENE, "load = 0.15", "load = -0.15");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[geometry]", "load = -0.15", "greater than zero"],
+    );
+}
+
+#[test]
+fn zero_e0_is_rejected() {
+    let scene = edit(SLS_SCENE, "E0 = 1e6", "E0 = 0");
+    assert_rejected(&scene, &[], &["[material]", "E0 = 0", "greater than zero"]);
+}
+
+#[test]
+fn negative_e1_is_rejected() {
+    let scene = edit(PRONY_SCENE, "E1 = 1e7", "E1 = -1e7");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[material]", "E1 = -10000000", "greater than zero"],
+    );
+}
+
+#[test]
+fn zero_tau_is_rejected() {
+    let scene = edit(SLS_SCENE, "tau = 1.0", "tau = 0.0");
+    assert_rejected(&scene, &[], &["[material]", "tau = 0", "greater than zero"]);
+}
+
+#[test]
+fn negative_prony_tau_is_rejected() {
+    let scene = edit(PRONY_SCENE, "tau = [0.1, 1.0]", "tau = [0.1, -1.0]");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[material]", "tau[1] = -1", "greater than zero"],
+    );
+}
+
+#[test]
+fn negative_thickness_is_rejected() {
+    let scene = edit(
+        SLS_SCENE,
+        "poisson = 0.0",
+        "poisson = 0.0\nthickness = -1e-3",
+    );
+    assert_rejected(
+        &scene,
+        &[],
+        &["[substrate]", "thickness = -0.001", "greater than zero"],
+    );
+}
+
+#[test]
+fn zero_thickness_is_rejected() {
+    let scene = edit(SLS_SCENE, "poisson = 0.0", "poisson = 0.0\nthickness = 0.0");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[substrate]", "thickness = 0", "greater than zero"],
+    );
+}
+
+#[test]
+fn poisson_above_one_half_is_rejected() {
+    let scene = edit(SLS_SCENE, "poisson = 0.0", "poisson = 0.6");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[substrate]", "poisson = 0.6", "between 0 and 0.5"],
+    );
+}
+
+#[test]
+fn negative_poisson_is_rejected() {
+    let scene = edit(SLS_SCENE, "poisson = 0.0", "poisson = -0.1");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[substrate]", "poisson = -0.1", "between 0 and 0.5"],
+    );
+}
+
+#[test]
+fn prony_length_mismatch_is_rejected() {
+    let scene = edit(PRONY_SCENE, "H = [4e6, 5e6]", "H = [4e6, 5e6, 1e5]");
+    assert_rejected(&scene, &[], &["[material]", "H has 3", "tau has 2"]);
+}
+
+#[test]
+fn prony_without_static_modulus_is_rejected() {
+    let scene = edit(PRONY_SCENE, "H = [4e6, 5e6]", "H = [5e6, 5e6]");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[material]", "E0 = E1 - sum(H)", "greater than zero"],
+    );
+}
+
+#[test]
+fn sls_tau_array_is_rejected() {
+    let scene = edit(SLS_SCENE, "tau = 1.0", "tau = [1.0]");
+    assert_rejected(&scene, &[], &["[material]", "`tau` must be a number"]);
+}
+
+// --------------------------------------------------- bad input: the sweep
+
+#[test]
+fn v_min_not_below_v_max_is_rejected() {
+    let scene = edit(SLS_SCENE, "v_min = 1e-6", "v_min = 1.0");
+    assert_rejected(&scene, &[], &["[sweep]", "v_min = 1", "v_max = 1"]);
+}
+
+#[test]
+fn count_below_one_is_rejected() {
+    let scene = edit(SLS_SCENE, "count = 7", "count = 0");
+    assert_rejected(&scene, &[], &["[sweep]", "count = 0", "at least 1"]);
+}
+
+#[test]
+fn negative_count_is_rejected() {
+    let scene = edit(SLS_SCENE, "count = 7", "count = -5");
+    assert_rejected(&scene, &[], &["[sweep]", "count = -5"]);
+}
+
+#[test]
+fn non_positive_v_min_is_rejected() {
+    let scene = edit(SLS_SCENE, "v_min = 1e-6", "v_min = -1e-6");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[sweep]", "v_min = -0.000001", "greater than zero"],
+    );
+}
+
+#[test]
+fn non_positive_listed_speed_is_rejected() {
+    let scene = edit(
+        SLS_SCENE,
+        "v_min = 1e-6\nv_max = 1.0\ncount = 7",
+        "v = [1e-3, 0.0, 1.0]",
+    );
+    assert_rejected(&scene, &[], &["[sweep]", "v[1] = 0", "greater than zero"]);
+}
+
+#[test]
+fn unordered_speed_list_is_rejected() {
+    let scene = edit(
+        SLS_SCENE,
+        "v_min = 1e-6\nv_max = 1.0\ncount = 7",
+        "v = [1e-3, 1e-4]",
+    );
+    assert_rejected(&scene, &[], &["[sweep]", "increasing"]);
+}
+
+#[test]
+fn range_and_list_together_are_rejected() {
+    let scene = edit(SLS_SCENE, "count = 7", "count = 7\nv = [1e-3]");
+    assert_rejected(&scene, &[], &["[sweep]", "not both"]);
+}
+
+#[test]
+fn missing_sweep_is_rejected() {
+    let scene = SLS_SCENE.split("[sweep]").next().unwrap().to_string();
+    assert_rejected(&scene, &[], &["[sweep]"]);
+}
+
+#[test]
+fn missing_material_is_rejected() {
+    let scene = edit(
+        SLS_SCENE,
+        "[material]\nmodel = \"sls\"\nE0 = 1e6\nE1 = 1e7\ntau = 1.0\n",
+        "",
+    );
+    assert_rejected(&scene, &[], &["[material]"]);
+}
+
+#[test]
+fn tolerance_out_of_range_is_rejected() {
+    let scene = edit(SLS_SCENE, "count = 7", "count = 7\ntolerance = 0.5");
+    assert_rejected(&scene, &[], &["[sweep]", "tolerance = 0.5"]);
+}
+
+#[test]
+fn temperature_without_shift_is_rejected() {
+    let scene = edit(SLS_SCENE, "count = 7", "count = 7\ntemperature = 40.0");
+    assert_rejected(&scene, &[], &["temperature", "[material.shift]"]);
+}
+
+#[test]
+fn temperature_outside_a_free_shift_is_rejected() {
+    let scene = edit(
+        SLS_SCENE,
+        "tau = 1.0\n",
+        "tau = 1.0\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
+         log_aT = [{ T = 0.0, log_aT = 2.0 }, { T = 40.0, log_aT = -2.0 }]\n",
+    ) + "temperature = 80.0\n";
+    assert_rejected(&scene, &[], &["[material.shift]", "80", "outside"]);
+}
+
+#[test]
+fn wlf_shift_without_constants_is_rejected() {
+    let scene = edit(
+        SLS_SCENE,
+        "tau = 1.0\n",
+        "tau = 1.0\n[material.shift]\nmodel = \"wlf\"\nT_ref = 20.0\nC1 = 8.86\n",
+    );
+    assert_rejected(&scene, &[], &["[material.shift]", "`C2`"]);
+}
+
+// ------------------------------------------------------ bad input: [fit]
+
+#[test]
+fn fit_terms_must_be_positive() {
+    let scene = format!("{SLS_SCENE}[fit]\nterms = 0\n");
+    assert_rejected(&scene, &[], &["[fit]", "terms = 0"]);
+}
+
+#[test]
+fn fit_terms_must_be_a_number_or_auto() {
+    let scene = format!("{SLS_SCENE}[fit]\nterms = \"many\"\n");
+    assert_rejected(&scene, &[], &["terms = \"many\"", "auto"]);
+}
+
+#[test]
+fn fit_anchor_must_be_positive() {
+    let scene = format!("{SLS_SCENE}[fit]\nE_at = {{ omega = 1.0, E = -1e8 }}\n");
+    assert_rejected(&scene, &[], &["[fit]", "E_at.E"]);
+}
+
+#[test]
+fn fit_method_must_be_a_string() {
+    let scene = format!("{SLS_SCENE}[fit]\nmethod = 3\n");
+    assert_rejected(&scene, &[], &["method = 3", "invalid type"]);
+}
+
+// ----------------------------------------------- bad input: modulus tables
+
+#[test]
+fn missing_table_file() {
+    let stderr = assert_rejected(
+        TABLE_SCENE,
+        &[],
+        &["modulus.csv", "cannot open modulus table"],
+    );
+    assert!(stderr.contains("[material]"), "{stderr}");
+}
+
+#[test]
+fn malformed_table_value() {
+    let table = "omega,E_storage,E_loss\n0.1,1e6,1e5\n1,two,8e5\n";
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", table)],
+        &["modulus.csv", "line 3", "E_storage", "\"two\""],
+    );
+}
+
+#[test]
+fn malformed_table_row() {
+    let table = "omega,E_storage,E_loss\n0.1,1e6,1e5\n1,2e6\n";
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", table)],
+        &["modulus.csv", "line: 3"],
+    );
+}
+
+#[test]
+fn table_without_frequency_column() {
+    let table = "w,E_storage,E_loss\n0.1,1e6,1e5\n1,2e6,8e5\n";
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", table)],
+        &["modulus.csv", "`omega`", "`f`"],
+    );
+}
+
+#[test]
+fn table_without_loss_column() {
+    let table = "omega,E_storage\n0.1,1e6\n1,2e6\n";
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", table)],
+        &["modulus.csv", "`E_loss`"],
+    );
+}
+
+#[test]
+fn table_with_non_increasing_frequencies() {
+    let table = "omega,E_storage,E_loss\n0.1,1e6,1e5\n1,2e6,8e5\n1,3e6,9e5\n";
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", table)],
+        &["modulus.csv", "line 4", "increasing"],
+    );
+}
+
+#[test]
+fn empty_table() {
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", "")],
+        &["modulus.csv", "empty"],
+    );
+}
+
+#[test]
+fn table_with_header_only() {
+    let table = "# nothing measured yet\nomega,E_storage,E_loss\n";
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", table)],
+        &["modulus.csv", "0 data row"],
+    );
+}
+
+#[test]
+fn table_with_non_positive_modulus() {
+    let table = "omega,E_storage,E_loss\n0.1,1e6,1e5\n1,2e6,-8e5\n";
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", table)],
+        &["modulus.csv", "line 3", "E_loss", "greater than zero"],
+    );
+}
+
+#[test]
+fn table_with_nan_modulus() {
+    let table = "omega,E_storage,E_loss\n0.1,1e6,1e5\n1,NaN,8e5\n";
+    assert_rejected(
+        TABLE_SCENE,
+        &[("modulus.csv", table)],
+        &["modulus.csv", "line 3", "finite"],
+    );
+}
+
+#[test]
+fn good_table_is_read() {
+    // Reading and checking the table must not be what fails: any error left
+    // is the model's, never the table's.
+    let dir = TempDir::new("good-table");
+    dir.write("modulus.csv", GOOD_TABLE);
+    let out = forward(&dir.write("scene.toml", TABLE_SCENE), None);
+    let stderr = text(&out.stderr);
+    assert!(!stderr.contains("modulus table"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn command_line_errors_exit_non_zero() {
+    let out = rollfit(&[std::ffi::OsStr::new("forward")]);
+    assert!(!out.status.success());
+    assert!(text(&out.stderr).contains("SCENE"));
+    let out = rollfit(&[std::ffi::OsStr::new("frobnicate")]);
+    assert!(!out.status.success());
+}

@@ -1,1 +1,73 @@
-fn main() {}
+//! Speed of the forward model: one μ(v) for sphere and cylinder, μ with its
+//! 16 partial derivatives, and a 41-point sweep with its full Jacobian —
+//! 15-term Prony series, dynamic contact, default tolerance 1e-6, one core.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use rollfit_model::kernel::{KernelTable, step_for_tolerance};
+use rollfit_model::{ContactSize, Geometry, Prony, Scene, Shape, Substrate};
+use std::hint::black_box;
+
+fn prony15() -> Prony {
+    // One term per decade from 1e-9 s to 1e5 s, a broad rubber-like spectrum.
+    let tau: Vec<f64> = (0..15).map(|k| 10f64.powi(k - 9)).collect();
+    let h: Vec<f64> = (0..15)
+        .map(|k| 3e6 * (-(((k as f64) - 5.0) / 4.0).powi(2)).exp() * 20.0 + 1e5)
+        .collect();
+    let e1 = 2e6 + h.iter().sum::<f64>();
+    Prony::new(e1, h, tau).unwrap()
+}
+
+fn scene(shape: Shape) -> Scene<Prony> {
+    let load = if shape == Shape::Sphere { 1.0 } else { 200.0 };
+    Scene::new(
+        Geometry {
+            shape,
+            radius: 0.005,
+            load,
+        },
+        Substrate {
+            poisson: 0.5,
+            film_thickness: None,
+        },
+        ContactSize::Dynamic,
+        prony15(),
+    )
+    .unwrap()
+}
+
+fn benches(c: &mut Criterion) {
+    for shape in [Shape::Sphere, Shape::Cylinder] {
+        // Build the kernel tables outside the timed loops.
+        let _ = KernelTable::get(shape, step_for_tolerance(1e-6));
+    }
+    let sphere = scene(Shape::Sphere);
+    let cylinder = scene(Shape::Cylinder);
+    let v = 1e-3;
+    c.bench_function("mu_sphere", |b| {
+        b.iter(|| sphere.friction(black_box(v)).unwrap())
+    });
+    c.bench_function("mu_cylinder", |b| {
+        b.iter(|| cylinder.friction(black_box(v)).unwrap())
+    });
+    c.bench_function("mu_and_gradient_sphere", |b| {
+        b.iter(|| sphere.friction_with_gradient(black_box(&[v])).unwrap())
+    });
+    c.bench_function("mu_and_gradient_cylinder", |b| {
+        b.iter(|| cylinder.friction_with_gradient(black_box(&[v])).unwrap())
+    });
+    let speeds: Vec<f64> = (0..41)
+        .map(|i| 1e-6 * 10f64.powf(i as f64 * 6.0 / 40.0))
+        .collect();
+    c.bench_function("sweep41_jacobian_sphere", |b| {
+        b.iter(|| sphere.friction_with_gradient(black_box(&speeds)).unwrap())
+    });
+    c.bench_function("sweep41_jacobian_cylinder", |b| {
+        b.iter(|| cylinder.friction_with_gradient(black_box(&speeds)).unwrap())
+    });
+    c.bench_function("sweep41_sphere", |b| {
+        b.iter(|| sphere.friction_sweep(black_box(&speeds)).unwrap())
+    });
+}
+
+criterion_group!(forward, benches);
+criterion_main!(forward);

@@ -34,5 +34,7 @@ pub mod scene;
 pub use contact::{ContactSize, Shape};
 pub use error::ModelError;
 pub use friction::FrictionJacobian;
-pub use modulus::{Prony, Shifted, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus, Wlf};
+pub use modulus::{
+    Prony, Shifted, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus, Wlf,
+};
 pub use scene::{Geometry, Scene, Substrate};

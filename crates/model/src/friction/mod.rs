@@ -1,8 +1,42 @@
-//! μ(v). PLACEHOLDER while the quadrature is written; API fixed.
+//! The friction coefficient μ(v), Persson (2010) Eqs. (11) and (17), and its
+//! derivatives with respect to Prony parameters.
+//!
+//! Method (see [`crate::kernel::weights`] for the product integration and
+//! [`crate::kernel::window`] for the treatment of the oscillatory tails):
+//!
+//!   μ(v) = C Σ_j Φ_j W(σ_j − ln v),
+//!
+//! on a uniform grid σ_j = σ₀ + jh in σ = ln(ω r(ω)). The grid is shared by
+//! all speeds of a sweep, so the modulus is evaluated once per node, not once
+//! per node and speed. The sum is truncated where a rigorous bound of the
+//! remaining tail, κ Σ e^{σ_j} W(σ_j − ln v) with κ ≥ Φ e^{−σ} (for a Prony
+//! series L(ω) ≤ L′(0) ω), falls below the tolerance.
+//!
+//! Derivatives: with g_p = ∂E*/∂p (1 for E1, −1/(1 + iωτ_k) for H_k),
+//! ∂L/∂p = (1 − ν²) Im(g_p/E²), ∂ ln r/∂p = −(1/n) Re(g_p/E) and
+//!
+//!   ∂μ/∂p = C ∫ dσ (ds/dσ) [∂A/∂p k̃(σ − ln v) + A ∂σ/∂p k̃′(σ − ln v)],
+//!
+//! which the same grid integrates with W and W′.
+//!
+//! A film of thickness d under the cylinder multiplies L(ω) by 1/S(ωd/v);
+//! under the sphere the film factor depends on the direction of q and is
+//! integrated in [`film_sphere`].
 
+mod film_sphere;
+mod grid;
+mod setup;
+
+use num_complex::Complex64;
+
+use crate::contact::Shape;
 use crate::error::ModelError;
+use crate::film::film_factor;
+use crate::kernel::{KernelTable, step_for_tolerance};
 use crate::modulus::{Prony, ViscoelasticModulus};
 use crate::scene::Scene;
+use grid::{Grid, Node};
+use setup::Setup;
 
 /// μ at several speeds and its derivatives with respect to the Prony
 /// parameters p = (E1, H_1, …, H_n).
@@ -16,24 +50,223 @@ pub struct FrictionJacobian {
     pub parameter_count: usize,
 }
 
+fn check_speeds(speeds: &[f64]) -> Result<(), ModelError> {
+    for (i, &v) in speeds.iter().enumerate() {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(ModelError::parameter(
+                &format!("v[{i}]"),
+                v,
+                "a rolling speed must be a finite number greater than zero",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The nodes one speed uses: (node, W, W′).
+type Stencil = Vec<(i64, f64, f64)>;
+
+/// Sums μ for one speed over the shared grid, extending it as needed.
+fn one_speed<F: Fn(f64) -> (Complex64, Complex64)>(
+    grid: &mut Grid<'_, F>,
+    setup: &Setup,
+    table: &KernelTable,
+    tolerance: f64,
+    v: f64,
+    film: Option<(f64, f64)>,
+    mut record: Option<&mut Stencil>,
+) -> Result<f64, ModelError> {
+    let h = table.step();
+    let t = v.ln();
+    let j0 = ((t - grid.origin()) / h).round() as i64;
+    let eps = 0.02 * tolerance;
+    let film_weight = |node: &Node| -> f64 {
+        match film {
+            Some((d, nu)) => 1.0 / film_factor(node.s.exp() * d / v, nu),
+            None => 1.0,
+        }
+    };
+    let mut sum = 0.0;
+    let up_ratio = 1.0 / (1.0 - (-h).exp());
+    let mut j = j0;
+    loop {
+        let node = grid.node(j)?;
+        let tau = node.point.sigma - t;
+        let (w, dw) = table.evaluate(tau);
+        let f = film_weight(&node);
+        sum += node.phi * f * w;
+        if let Some(r) = record.as_deref_mut() {
+            r.push((j, w * f, dw * f));
+        }
+        let bound = setup.tail_bound * node.point.sigma.exp() * w.abs() * up_ratio;
+        if tau > 2.0 && bound <= eps * sum.abs() {
+            break;
+        }
+        j += 1;
+    }
+    let down_ratio = 1.0 / (1.0 - (-2.0 * h).exp());
+    let mut j = j0 - 1;
+    loop {
+        let node = grid.node(j)?;
+        let tau = node.point.sigma - t;
+        let (w, dw) = table.evaluate(tau);
+        let f = film_weight(&node);
+        sum += node.phi * f * w;
+        if let Some(r) = record.as_deref_mut() {
+            r.push((j, w * f, dw * f));
+        }
+        let bound = setup.tail_bound * node.point.sigma.exp() * w.abs() * down_ratio;
+        if tau < -2.0 && bound <= eps * sum.abs() {
+            break;
+        }
+        j -= 1;
+    }
+    Ok(setup.prefactor * sum)
+}
+
 impl<M: ViscoelasticModulus> Scene<M> {
-    /// The friction coefficient μ at rolling speed `v` (m/s).
+    /// The friction coefficient μ at rolling speed `v` (m/s), to the scene's
+    /// relative tolerance.
     pub fn friction(&self, v: f64) -> Result<f64, ModelError> {
-        Err(ModelError::Evaluation(format!("not yet available at v = {v}")))
+        Ok(self.friction_sweep(&[v])?[0])
     }
 
     /// μ at each of `speeds` (m/s), sharing the modulus evaluations.
     pub fn friction_sweep(&self, speeds: &[f64]) -> Result<Vec<f64>, ModelError> {
-        speeds.iter().map(|&v| self.friction(v)).collect()
+        check_speeds(speeds)?;
+        if speeds.is_empty() {
+            return Ok(Vec::new());
+        }
+        let setup = Setup::new(self)?;
+        if let (Shape::Sphere, Some(d)) = (setup.shape, self.substrate().film_thickness) {
+            return speeds
+                .iter()
+                .map(|&v| film_sphere::friction(self, &setup, v, d))
+                .collect();
+        }
+        let table = KernelTable::get(setup.shape, step_for_tolerance(self.tolerance()));
+        let material = self.material();
+        let mut grid = Grid::new(
+            &setup,
+            |omega| material.modulus_and_log_slope(omega),
+            speeds[0].ln(),
+            table.step(),
+        );
+        let film = self
+            .substrate()
+            .film_thickness
+            .map(|d| (d, self.substrate().poisson));
+        speeds
+            .iter()
+            .map(|&v| one_speed(&mut grid, &setup, table, self.tolerance(), v, film, None))
+            .collect()
     }
 }
 
 impl Scene<Prony> {
-    /// μ at each of `speeds` and ∂μ/∂(E1, H_1..H_n), computed in one pass.
+    /// μ at each of `speeds` and ∂μ/∂(E1, H_1..H_n), computed in one pass over
+    /// a shared grid. Not available for a film under a sphere.
     pub fn friction_with_gradient(&self, speeds: &[f64]) -> Result<FrictionJacobian, ModelError> {
-        Err(ModelError::Evaluation(format!(
-            "not yet available for {} speeds",
-            speeds.len()
-        )))
+        check_speeds(speeds)?;
+        let prony = self.material();
+        let np = prony.parameter_count();
+        if speeds.is_empty() {
+            return Ok(FrictionJacobian {
+                mu: Vec::new(),
+                jacobian: Vec::new(),
+                parameter_count: np,
+            });
+        }
+        let setup = Setup::new(self)?;
+        if let (Shape::Sphere, Some(_)) = (setup.shape, self.substrate().film_thickness) {
+            return Err(ModelError::Evaluation(
+                "derivatives of μ for a film under a sphere are not implemented".into(),
+            ));
+        }
+        let table = KernelTable::get(setup.shape, step_for_tolerance(self.tolerance()));
+        let mut grid = Grid::new(
+            &setup,
+            |omega| prony.modulus_and_log_slope(omega),
+            speeds[0].ln(),
+            table.step(),
+        );
+        let film = self
+            .substrate()
+            .film_thickness
+            .map(|d| (d, self.substrate().poisson));
+        let mut stencils = Vec::with_capacity(speeds.len());
+        let mut mu = Vec::with_capacity(speeds.len());
+        for &v in speeds {
+            let mut stencil = Stencil::new();
+            mu.push(one_speed(
+                &mut grid,
+                &setup,
+                table,
+                self.tolerance(),
+                v,
+                film,
+                Some(&mut stencil),
+            )?);
+            stencils.push(stencil);
+        }
+        // Per-node derivative data: (ds/dσ)·∂A/∂p and (ds/dσ)·A·∂σ/∂p.
+        let (j_min, j_max) = stencils
+            .iter()
+            .flatten()
+            .fold((i64::MAX, i64::MIN), |(lo, hi), &(j, _, _)| {
+                (lo.min(j), hi.max(j))
+            });
+        let span = (j_max - j_min + 1) as usize;
+        let mut d_a = vec![0.0; span * np];
+        let mut d_sigma = vec![0.0; span * np];
+        let mut factors = vec![Complex64::new(0.0, 0.0); prony.len()];
+        let e0 = setup.static_modulus;
+        let n = setup.n;
+        let m = setup.m;
+        for (idx, j) in (j_min..=j_max).enumerate() {
+            let node = grid.node(j)?;
+            let omega = node.s.exp();
+            let _ = prony.evaluate_with_factors(omega, &mut factors);
+            let p = node.point;
+            let inv2 = p.inv_e * p.inv_e;
+            let ds_dsigma = 1.0 / p.dsigma_ds;
+            let row_a = &mut d_a[idx * np..(idx + 1) * np];
+            let row_s = &mut d_sigma[idx * np..(idx + 1) * np];
+            for q in 0..np {
+                // g = ∂E*/∂p_q and ∂E0/∂p_q.
+                let (g, de0) = if q == 0 {
+                    (Complex64::new(1.0, 0.0), 1.0)
+                } else {
+                    (-factors[q - 1], -1.0)
+                };
+                let d_loss = setup.plane_strain * (g * inv2).im;
+                let d_ln_r = match setup.static_ln_size {
+                    Some(_) => -de0 / (n * e0),
+                    None => -(g * p.inv_e).re / n,
+                };
+                row_a[q] = ds_dsigma * (d_loss / p.size_m - m * p.a * d_ln_r);
+                row_s[q] = ds_dsigma * p.a * d_ln_r;
+            }
+        }
+        let mut jacobian = vec![0.0; speeds.len() * np];
+        for (i, stencil) in stencils.iter().enumerate() {
+            let row = &mut jacobian[i * np..(i + 1) * np];
+            for &(j, w, dw) in stencil {
+                let idx = (j - j_min) as usize;
+                let a = &d_a[idx * np..(idx + 1) * np];
+                let s = &d_sigma[idx * np..(idx + 1) * np];
+                for q in 0..np {
+                    row[q] += a[q] * w + s[q] * dw;
+                }
+            }
+            for value in row.iter_mut() {
+                *value *= setup.prefactor;
+            }
+        }
+        Ok(FrictionJacobian {
+            mu,
+            jacobian,
+            parameter_count: np,
+        })
     }
 }

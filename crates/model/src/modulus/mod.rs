@@ -29,7 +29,7 @@ mod sls;
 mod table;
 
 pub use prony::Prony;
-pub use shift::{Shifted, Wlf};
+pub use shift::{FreeShift, Shifted, Wlf};
 pub use sls::StandardLinearSolid;
 pub use table::TabulatedModulus;
 
@@ -56,6 +56,14 @@ pub trait ViscoelasticModulus: Send + Sync {
     /// (E′ ≈ const, E″ ∝ 1/ω) to within a small relative error. The friction
     /// quadrature uses it to decide where its tails begin.
     fn structure_range(&self) -> (f64, f64);
+
+    /// For a modulus with a positive relaxation spectrum (Prony series,
+    /// standard linear solid): its glassy modulus E1 = sup |E*|. Such a
+    /// solid also has L(ω) ≤ L′(0)·ω, which bounds the friction integrand
+    /// without sampling. `None` (the default) makes the friction code sample.
+    fn relaxation_bound(&self) -> Option<f64> {
+        None
+    }
 }
 
 impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for Box<M> {
@@ -74,6 +82,9 @@ impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for Box<M> {
     fn structure_range(&self) -> (f64, f64) {
         (**self).structure_range()
     }
+    fn relaxation_bound(&self) -> Option<f64> {
+        (**self).relaxation_bound()
+    }
 }
 
 impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for std::sync::Arc<M> {
@@ -91,6 +102,9 @@ impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for std::sync::Arc<M> 
     }
     fn structure_range(&self) -> (f64, f64) {
         (**self).structure_range()
+    }
+    fn relaxation_bound(&self) -> Option<f64> {
+        (**self).relaxation_bound()
     }
 }
 

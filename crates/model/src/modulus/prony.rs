@@ -43,7 +43,7 @@ impl Prony {
             require_positive(&format!("tau[{k}]"), tk)?;
         }
         let e0 = e1 - h.iter().sum::<f64>();
-        if !(e0 > 0.0) {
+        if e0.is_nan() || e0 <= 0.0 {
             return Err(ModelError::parameter(
                 "E0 = E1 - sum(H)",
                 e0,
@@ -164,6 +164,10 @@ impl ViscoelasticModulus for Prony {
             return (1.0, 1.0);
         }
         (1e-3 / hi, 1e3 / lo)
+    }
+
+    fn relaxation_bound(&self) -> Option<f64> {
+        Some(self.glassy_modulus)
     }
 }
 

@@ -1,9 +1,50 @@
-//! Time–temperature superposition. PLACEHOLDER: being written (helper task); API fixed.
+//! Time–temperature superposition: the modulus at temperature T is the
+//! reference master curve at a shifted frequency,
+//!
+//! E*(ω, T) = E*_ref(ω a_T),
+//!
+//! with the shift factor a_T (dimensionless, a_{T_ref} = 1). Convention:
+//! a_T < 1 (log10 a_T < 0) above T_ref, so a warmer solid is softer at a
+//! given frequency: its whole curve moves to higher frequencies by 1/a_T.
+//! Because μ(v) depends on the modulus only through E*(qv) (the dynamic
+//! contact size through |E*| as well, the static one through E(0), which a
+//! shift leaves alone), the friction curve moves the same way:
+//! μ(v, T) = μ_ref(v a_T). No vertical shift (the ρT/ρ_ref T_ref factor of
+//! Ferry) is applied.
+//!
+//! Shift factors:
+//! - Williams–Landel–Ferry, [`Wlf`]:
+//!   log10 a_T = −C1 (T − T_ref)/(C2 + T − T_ref),
+//!   C1 dimensionless, C2 in K, temperatures in °C. The form diverges at
+//!   T = T_ref − C2 and is meaningless below; evaluating there is an error.
+//!   With C1 = 8.86, C2 = 101.6 K (WLF's "universal" constants, meant for
+//!   T_ref ≈ T_g + 50 K) and T_ref = 20 °C, 10 K cooler gives
+//!   log10 a_T = 0.97 and 10 K warmer −0.79: the paper's remark that about
+//!   10 °C less moves μ(v) by about one decade.
+//! - free shifts, [`FreeShift`]: one log10 a_T per measured temperature, e.g.
+//!   fitted freely; defined only at the listed temperatures (and at T_ref).
+//!
+//! [`Shifted`] wraps a reference modulus with one shift factor:
+//! - E*(ω) = E*_ref(ω a_T);
+//! - dE*/d ln ω = (dE*_ref/d ln ω)(ω a_T): a frequency scaling does not change
+//!   log slopes;
+//! - E(0) unchanged; lim E″/ω = a_T · lim E″_ref/ω;
+//! - structure range [ω_lo/a_T, ω_hi/a_T];
+//! - relaxation bound (sup |E*| of a positive spectrum) unchanged.
+//!
+//! # References
+//! - M.L. Williams, R.F. Landel, J.D. Ferry, "The temperature dependence of
+//!   relaxation mechanisms in amorphous polymers and other glass-forming
+//!   liquids", J. Am. Chem. Soc. 77 (1955) 3701–3707.
+//! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley 1980,
+//!   Ch. 11.
+//! - B.N.J. Persson, "Rolling friction for hard cylinder and sphere on
+//!   viscoelastic solid", Eur. Phys. J. E 33 (2010) 327–333.
 
 use num_complex::Complex64;
 
 use super::ViscoelasticModulus;
-use crate::error::ModelError;
+use crate::error::{ModelError, require_positive};
 
 /// WLF shift: log10 a_T = −C1 (T − T_ref)/(C2 + T − T_ref); temperatures in °C.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -17,31 +58,205 @@ pub struct Wlf {
 }
 
 impl Wlf {
-    /// Validated WLF constants.
+    /// Validated WLF constants: `t_ref` (°C) finite, `c1` and `c2` (K)
+    /// finite and greater than zero.
     pub fn new(t_ref: f64, c1: f64, c2: f64) -> Result<Self, ModelError> {
+        if !t_ref.is_finite() {
+            return Err(ModelError::parameter(
+                "T_ref",
+                t_ref,
+                "must be a finite temperature in °C",
+            ));
+        }
+        require_positive("C1", c1)?;
+        require_positive("C2", c2)?;
         Ok(Wlf { t_ref, c1, c2 })
     }
 
-    /// log10 a_T at temperature `t` (°C).
+    /// log10 a_T at temperature `t` (°C). An error for a non-finite `t` and
+    /// for t ≤ T_ref − C2, where C2 + T − T_ref ≤ 0 and the WLF form diverges.
     pub fn log10_shift(&self, t: f64) -> Result<f64, ModelError> {
-        Ok(-self.c1 * (t - self.t_ref) / (self.c2 + t - self.t_ref))
+        if !t.is_finite() {
+            return Err(ModelError::parameter(
+                "T",
+                t,
+                "must be a finite temperature in °C",
+            ));
+        }
+        let dt = t - self.t_ref;
+        let denominator = self.c2 + dt;
+        // NaN only from a hand-built Wlf with non-finite fields.
+        if denominator.is_nan() || denominator <= 0.0 {
+            return Err(ModelError::Evaluation(format!(
+                "WLF shift at T = {t} °C: C2 + T - T_ref = {denominator} K is not positive \
+                 (C2 = {} K, T_ref = {} °C); the WLF form diverges at T = T_ref - C2 = {} °C \
+                 and does not apply at or below it",
+                self.c2,
+                self.t_ref,
+                self.t_ref - self.c2
+            )));
+        }
+        Ok(-self.c1 * dt / denominator)
     }
+}
+
+/// Free per-temperature shift factors: log10 a_T listed for each measured
+/// temperature (°C) relative to a reference temperature T_ref (°C).
+///
+/// Only listed temperatures (and T_ref, where log10 a_T = 0) can be asked
+/// for; there is deliberately no interpolation between them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeShift {
+    t_ref: f64,
+    entries: Vec<(f64, f64)>,
+}
+
+impl FreeShift {
+    /// Two temperatures closer than this (K) are the same temperature: it
+    /// absorbs decimal round-off (20.1 written as 20.099999999999998) while
+    /// being far below any temperature a measurement can distinguish.
+    pub const TEMPERATURE_TOLERANCE: f64 = 1e-9;
+
+    /// |log10 a_T| allowed at T_ref (round-off of a value meant to be 0).
+    const REFERENCE_TOLERANCE: f64 = 1e-12;
+
+    /// Builds a validated list from the reference temperature `t_ref` (°C)
+    /// and `(T, log10 a_T)` pairs (°C, decades). The list must not be empty,
+    /// every value must be finite, the temperatures distinct, and an entry
+    /// at T_ref, if present, must have log10 a_T = 0.
+    pub fn new(t_ref: f64, entries: Vec<(f64, f64)>) -> Result<Self, ModelError> {
+        const NAME: &str = "free shift";
+        if !t_ref.is_finite() {
+            return Err(ModelError::parameter(
+                "T_ref",
+                t_ref,
+                "must be a finite temperature in °C",
+            ));
+        }
+        if entries.is_empty() {
+            return Err(ModelError::table(NAME, "no temperatures listed"));
+        }
+        for (i, &(t, log_a)) in entries.iter().enumerate() {
+            if !t.is_finite() {
+                return Err(ModelError::table(
+                    NAME,
+                    format!("entry {i}: T = {t} is not a finite temperature"),
+                ));
+            }
+            if !log_a.is_finite() {
+                return Err(ModelError::table(
+                    NAME,
+                    format!("entry {i} (T = {t} °C): log10 a_T = {log_a} is not a finite number"),
+                ));
+            }
+            if let Some(j) = entries[..i]
+                .iter()
+                .position(|&(tj, _)| same_temperature(t, tj))
+            {
+                return Err(ModelError::table(
+                    NAME,
+                    format!(
+                        "entry {i}: T = {t} °C is listed before as entry {j} (T = {} °C); \
+                         each temperature may have only one shift",
+                        entries[j].0
+                    ),
+                ));
+            }
+            if same_temperature(t, t_ref) && log_a.abs() > Self::REFERENCE_TOLERANCE {
+                return Err(ModelError::table(
+                    NAME,
+                    format!(
+                        "entry {i}: T = {t} °C is the reference temperature, so log10 a_T \
+                         must be 0, not {log_a}"
+                    ),
+                ));
+            }
+        }
+        Ok(FreeShift { t_ref, entries })
+    }
+
+    /// The reference temperature, °C.
+    pub fn t_ref(&self) -> f64 {
+        self.t_ref
+    }
+
+    /// The `(T, log10 a_T)` pairs (°C, decades) in the order given.
+    pub fn entries(&self) -> &[(f64, f64)] {
+        &self.entries
+    }
+
+    /// log10 a_T at a listed temperature `t` (°C), 0 at T_ref; an error for
+    /// any other temperature.
+    pub fn log10_shift(&self, t: f64) -> Result<f64, ModelError> {
+        if let Some(&(_, log_a)) = self.entries.iter().find(|e| same_temperature(e.0, t)) {
+            return Ok(log_a);
+        }
+        if same_temperature(t, self.t_ref) {
+            return Ok(0.0);
+        }
+        let listed: Vec<String> = self.entries.iter().map(|e| e.0.to_string()).collect();
+        Err(ModelError::Evaluation(format!(
+            "no shift factor for T = {t} °C: the free shift lists only T = {} °C \
+             (T_ref = {} °C) and does not interpolate",
+            listed.join(", "),
+            self.t_ref
+        )))
+    }
+}
+
+/// Temperatures (°C) equal to within [`FreeShift::TEMPERATURE_TOLERANCE`].
+fn same_temperature(a: f64, b: f64) -> bool {
+    (a - b).abs() <= FreeShift::TEMPERATURE_TOLERANCE
 }
 
 /// E(ω, T) = E_ref(ω a_T): a modulus at reference temperature, shifted.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shifted<M> {
     inner: M,
+    log10_a_t: f64,
     shift_factor: f64,
 }
 
 impl<M: ViscoelasticModulus> Shifted<M> {
     /// Wraps `inner` (the modulus at T_ref) with shift factor 10^`log10_a_t`.
+    /// `log10_a_t` must be finite and 10^`log10_a_t` a normal binary64
+    /// number (|log10 a_T| below about 307).
     pub fn new(inner: M, log10_a_t: f64) -> Result<Self, ModelError> {
+        let shift_factor = 10f64.powf(log10_a_t);
+        if !log10_a_t.is_finite() {
+            return Err(ModelError::parameter(
+                "log10_aT",
+                log10_a_t,
+                "must be a finite number",
+            ));
+        }
+        if !shift_factor.is_normal() {
+            return Err(ModelError::parameter(
+                "log10_aT",
+                log10_a_t,
+                "must give a representable shift factor 10^log10_aT (|log10_aT| < 307)",
+            ));
+        }
         Ok(Shifted {
             inner,
-            shift_factor: 10f64.powf(log10_a_t),
+            log10_a_t,
+            shift_factor,
         })
+    }
+
+    /// The modulus at the reference temperature.
+    pub fn inner(&self) -> &M {
+        &self.inner
+    }
+
+    /// log10 a_T.
+    pub fn log10_shift(&self) -> f64 {
+        self.log10_a_t
+    }
+
+    /// The shift factor a_T.
+    pub fn shift_factor(&self) -> f64 {
+        self.shift_factor
     }
 }
 
@@ -61,5 +276,198 @@ impl<M: ViscoelasticModulus> ViscoelasticModulus for Shifted<M> {
     fn structure_range(&self) -> (f64, f64) {
         let (a, b) = self.inner.structure_range();
         (a / self.shift_factor, b / self.shift_factor)
+    }
+    fn relaxation_bound(&self) -> Option<f64> {
+        // Rescaling ω keeps sup |E*|, and L(ω) = L_ref(ω a_T) ≤ L′_ref(0) a_T ω
+        // = L′(0) ω: both parts of the bound carry over.
+        self.inner.relaxation_bound()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::modulus::{Prony, StandardLinearSolid, TabulatedModulus};
+
+    fn wlf() -> Wlf {
+        Wlf::new(20.0, 8.86, 101.6).unwrap()
+    }
+
+    #[test]
+    fn wlf_follows_its_formula_and_sign_convention() {
+        let w = wlf();
+        assert_eq!(w.log10_shift(20.0).unwrap(), 0.0);
+        let above = w.log10_shift(50.0).unwrap();
+        assert!((above - (-8.86 * 30.0 / 131.6)).abs() < 1e-15);
+        // Warmer: a_T < 1; cooler: a_T > 1.
+        assert!(above < 0.0);
+        assert!(w.log10_shift(0.0).unwrap() > 0.0);
+        // Far above T_ref the shift saturates at −C1.
+        assert!((w.log10_shift(1e9).unwrap() + 8.86).abs() < 1e-6);
+    }
+
+    #[test]
+    fn ten_kelvin_is_about_one_decade() {
+        // The paper: about 10 °C less shifts μ(v) by about one decade.
+        let w = wlf();
+        let cooler = w.log10_shift(10.0).unwrap();
+        let warmer = w.log10_shift(30.0).unwrap();
+        assert!((cooler - 0.967).abs() < 1e-3, "{cooler}");
+        assert!((warmer + 0.794).abs() < 1e-3, "{warmer}");
+        // The loss peak of a solid moves by the same amount: 10 K cooler puts
+        // it a decade lower in frequency (a stiffer, lossier solid at fixed ω).
+        let sls = StandardLinearSolid::new(1e6, 1e8, 1.0).unwrap();
+        let cold = Shifted::new(sls.clone(), cooler).unwrap();
+        let peak = |m: &dyn ViscoelasticModulus| {
+            (0..=6000)
+                .map(|i| 10f64.powf(-2.0 + i as f64 * 1e-3))
+                .max_by(|&a, &b| m.modulus(a).im.total_cmp(&m.modulus(b).im))
+                .unwrap()
+        };
+        let shift_decades = (peak(&sls) / peak(&cold)).log10();
+        assert!((shift_decades - cooler).abs() < 2e-3, "{shift_decades}");
+        assert!(cold.modulus(10.0).norm() > sls.modulus(10.0).norm());
+    }
+
+    #[test]
+    fn wlf_validation_and_divergence() {
+        assert!(Wlf::new(f64::NAN, 8.86, 101.6).is_err());
+        assert!(Wlf::new(f64::INFINITY, 8.86, 101.6).is_err());
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(matches!(
+                Wlf::new(20.0, bad, 101.6),
+                Err(ModelError::InvalidParameter { ref name, .. }) if name == "C1"
+            ));
+            assert!(matches!(
+                Wlf::new(20.0, 8.86, bad),
+                Err(ModelError::InvalidParameter { ref name, .. }) if name == "C2"
+            ));
+        }
+        let w = wlf();
+        // T_ref − C2 = −81.6 °C: the pole, and everything below it.
+        for t in [-81.6, -90.0, -300.0] {
+            match w.log10_shift(t) {
+                Err(ModelError::Evaluation(msg)) => {
+                    assert!(msg.contains(&format!("T = {t} °C")), "{msg}");
+                    assert!(msg.contains("C2"), "{msg}");
+                }
+                other => panic!("{t}: {other:?}"),
+            }
+        }
+        assert!(w.log10_shift(-81.5).unwrap() > 1000.0);
+        assert!(w.log10_shift(f64::NAN).is_err());
+    }
+
+    #[test]
+    fn free_shift_returns_listed_values_only() {
+        let f = FreeShift::new(20.0, vec![(0.0, 2.1), (20.0, 0.0), (40.0, -1.5)]).unwrap();
+        assert_eq!(f.log10_shift(0.0).unwrap(), 2.1);
+        assert_eq!(f.log10_shift(40.0).unwrap(), -1.5);
+        assert_eq!(f.log10_shift(20.0).unwrap(), 0.0);
+        // Round-off in a temperature is not a different temperature.
+        assert_eq!(f.log10_shift(0.1 + 0.2 + 39.7).unwrap(), -1.5);
+        match f.log10_shift(30.0) {
+            Err(ModelError::Evaluation(msg)) => {
+                assert!(
+                    msg.contains("T = 30 °C") && msg.contains("0, 20, 40"),
+                    "{msg}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+        // T_ref need not be listed.
+        let f = FreeShift::new(20.0, vec![(60.0, -3.0)]).unwrap();
+        assert_eq!(f.log10_shift(20.0).unwrap(), 0.0);
+        assert!(f.log10_shift(40.0).is_err());
+        assert_eq!(f.t_ref(), 20.0);
+        assert_eq!(f.entries(), &[(60.0, -3.0)]);
+    }
+
+    #[test]
+    fn free_shift_validation() {
+        let problem = |t_ref: f64, e: Vec<(f64, f64)>| match FreeShift::new(t_ref, e) {
+            Err(ModelError::InvalidTable { problem, .. }) => problem,
+            other => panic!("{other:?}"),
+        };
+        assert!(FreeShift::new(f64::NAN, vec![(0.0, 0.0)]).is_err());
+        assert!(problem(20.0, vec![]).contains("no temperatures"));
+        assert!(problem(20.0, vec![(0.0, 1.0), (f64::NAN, 0.0)]).starts_with("entry 1: T = NaN"));
+        assert!(problem(20.0, vec![(0.0, f64::INFINITY)]).starts_with("entry 0 (T = 0 °C)"));
+        let msg = problem(20.0, vec![(0.0, 1.0), (40.0, -1.0), (0.0, 1.2)]);
+        assert!(
+            msg.starts_with("entry 2: T = 0 °C is listed before as entry 0"),
+            "{msg}"
+        );
+        let msg = problem(20.0, vec![(0.0, 1.0), (20.0, 0.3)]);
+        assert!(
+            msg.starts_with("entry 1: T = 20 °C is the reference"),
+            "{msg}"
+        );
+    }
+
+    /// Every trait method of `Shifted` against the unshifted modulus.
+    fn check_shifted<M: ViscoelasticModulus + Clone>(reference: M, log10_a_t: f64) {
+        let a_t = 10f64.powf(log10_a_t);
+        let s = Shifted::new(reference.clone(), log10_a_t).unwrap();
+        assert_eq!(s.shift_factor(), a_t);
+        assert_eq!(s.log10_shift(), log10_a_t);
+        for &w in &[0.0, 1e-5, 3e-2, 1.0, 7.0, 2e3, 1e7] {
+            assert_eq!(s.modulus(w), reference.modulus(w * a_t));
+            let (e, slope) = s.modulus_and_log_slope(w);
+            let (e_ref, slope_ref) = reference.modulus_and_log_slope(w * a_t);
+            assert_eq!((e, slope), (e_ref, slope_ref));
+            if w > 0.0 {
+                // The log slope of the shifted curve, by finite differences.
+                let h = 1e-6f64;
+                let fd = (s.modulus(w * h.exp()) - s.modulus(w * (-h).exp())) / (2.0 * h);
+                assert!((fd - slope).norm() < 1e-6 * e.norm(), "{w}");
+            }
+        }
+        assert_eq!(s.static_modulus(), reference.static_modulus());
+        let slope0 = s.loss_slope_at_zero();
+        assert!((slope0 / (a_t * reference.loss_slope_at_zero()) - 1.0).abs() < 1e-15);
+        // lim E″/ω of the shifted curve, directly.
+        let w = 1e-9 * s.structure_range().0;
+        assert!((s.modulus(w).im / w / slope0 - 1.0).abs() < 1e-6);
+        let (lo, hi) = reference.structure_range();
+        assert_eq!(s.structure_range(), (lo / a_t, hi / a_t));
+        assert_eq!(s.relaxation_bound(), reference.relaxation_bound());
+    }
+
+    #[test]
+    fn shifted_is_the_reference_at_scaled_frequency() {
+        let sls = StandardLinearSolid::new(1e6, 1e8, 0.1).unwrap();
+        let prony = Prony::new(1e8, vec![5e7, 3e7, 1.5e7], vec![1e-4, 1e-2, 1.0]).unwrap();
+        let omega: Vec<f64> = (0..=50)
+            .map(|i| 10f64.powf(-4.0 + 0.2 * i as f64))
+            .collect();
+        let e: Vec<Complex64> = omega.iter().map(|&w| sls.modulus(w)).collect();
+        let table = TabulatedModulus::new(
+            omega,
+            e.iter().map(|z| z.re).collect(),
+            e.iter().map(|z| z.im).collect(),
+        )
+        .unwrap();
+        for log_a in [-2.5, 0.0, 0.967, 4.0] {
+            check_shifted(sls.clone(), log_a);
+            check_shifted(prony.clone(), log_a);
+            check_shifted(table.clone(), log_a);
+        }
+        // Zero shift is the identity.
+        let s = Shifted::new(sls.clone(), 0.0).unwrap();
+        assert_eq!(s.modulus(3.0), sls.modulus(3.0));
+        assert_eq!(s.inner(), &sls);
+    }
+
+    #[test]
+    fn shifted_validation() {
+        let sls = StandardLinearSolid::new(1e6, 1e8, 1.0).unwrap();
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 400.0, -400.0] {
+            assert!(matches!(
+                Shifted::new(sls.clone(), bad),
+                Err(ModelError::InvalidParameter { ref name, .. }) if name == "log10_aT"
+            ));
+        }
+        assert!(Shifted::new(sls, 300.0).is_ok());
     }
 }

@@ -81,6 +81,9 @@ impl ViscoelasticModulus for StandardLinearSolid {
     fn structure_range(&self) -> (f64, f64) {
         self.equivalent.structure_range()
     }
+    fn relaxation_bound(&self) -> Option<f64> {
+        Some(self.glassy_modulus)
+    }
 }
 
 #[cfg(test)]

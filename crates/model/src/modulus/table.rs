@@ -1,41 +1,746 @@
-//! Tabulated master curve (measured E′, E″ on a frequency grid).
-//! PLACEHOLDER: being written (helper task); API fixed.
+//! Tabulated master curve: measured storage and loss moduli E′(ω_i), E″(ω_i)
+//! on a frequency grid, interpolated in log–log.
+//!
+//! # Inside the table (ω_min ≤ ω ≤ ω_max)
+//!
+//! With u = ln ω, ln E′(u) and ln E″(u) are each a piecewise cubic Hermite
+//! interpolant: on [u_k, u_{k+1}], s = u − u_k,
+//!
+//! ln E(u) = ln E_k + s (b_k + s (c_k + s d_k)),
+//!
+//! fixed by the values at both knots and the slopes m_k, m_{k+1} there, so the
+//! curve goes through every table point and is C¹. Log–log because moduli span
+//! decades and their terminal and transition behaviour is close to power laws,
+//! which become straight lines. The value is evaluated as E_k·exp(…) so that
+//! table points are returned exactly, and the logarithmic slope is the exact
+//! derivative of the interpolant:
+//!
+//! dE*/d ln ω = E′ · d ln E′/du + i E″ · d ln E″/du.
+//!
+//! Slopes. Each slope starts from the three-point (parabola) estimate
+//! p_k = (h_k s_{k−1} + h_{k−1} s_k)/(h_{k−1} + h_k), s_k the secant of interval
+//! k and h_k its width (one-sided three-point estimate at the ends, the secant
+//! for a two-row table), which makes the interpolant third-order accurate on
+//! smooth data. It is then limited so that the curve keeps the shape of the
+//! data (after Fritsch & Carlson 1980, Hyman 1983, Steffen 1990):
+//! - an interval whose neighbours' secants do not have the opposite sign
+//!   (data monotone there) gets end slopes of its secant's sign and at most
+//!   three times its secant, which by Fritsch & Carlson's theorem makes the
+//!   cubic monotone: monotone data stay monotone and never overshoot;
+//! - a flat interval (equal values) stays exactly flat, unless it lies
+//!   between a rise and a fall: then it holds an extremum of the data (a
+//!   peak sampled symmetrically about its top) and is treated as below;
+//! - next to a strict local extremum of the data (a neighbour's secant has
+//!   the opposite sign) the three-point slope is kept, so the interpolant
+//!   has one extremum there, generally between the table points, where the
+//!   real curve has it. If both end slopes of such an interval have its
+//!   secant's sign, they are capped at three times the secant as above, so
+//!   no spurious wiggle appears.
+//!
+//! Why not plain PCHIP or Steffen: both set the slope to zero wherever the
+//! secants change sign, i.e. they flatten every extremum onto the nearest
+//! table point. For the loss peak of a standard linear solid sampled at 10
+//! points per decade that costs up to 0.66 % in E″ (with Steffen), against
+//! 0.016 % with the rule above; the friction peak sits on the loss peak.
+//!
+//! # Outside the table
+//!
+//! The terminal behaviour of a viscoelastic solid:
+//! - ω < ω_min: E′ = E′(ω_min), E″ = E″(ω_min) ω/ω_min (rubbery plateau,
+//!   loss ∝ ω);
+//! - ω > ω_max: E′ = E′(ω_max), E″ = E″(ω_max) ω_max/ω (glassy plateau,
+//!   loss ∝ 1/ω).
+//!
+//! Hence E(0) = E′(ω_min), lim E″/ω = E″(ω_min)/ω_min and the structure range
+//! is [ω_min, ω_max]. E* is continuous at the table ends, but its log slope
+//! jumps there from the interpolant's to the terminal one (0 for E′, ±1 for
+//! ln E″); at ω_min and ω_max themselves the right-hand slope is returned.
+//! A table that stops before the moduli reach their plateaus is extrapolated
+//! as if they did: that is an assumption about the material, not data.
+//!
+//! # References
+//! - F.N. Fritsch, R.E. Carlson, "Monotone piecewise cubic interpolation",
+//!   SIAM J. Numer. Anal. 17 (1980) 238–246.
+//! - J.M. Hyman, "Accurate monotonicity preserving cubic interpolation",
+//!   SIAM J. Sci. Stat. Comput. 4 (1983) 645–654.
+//! - M. Steffen, "A simple method for monotonic interpolation in one
+//!   dimension", Astron. Astrophys. 239 (1990) 443–450.
+//! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley 1980
+//!   (terminal and glassy behaviour of E′, E″).
 
 use num_complex::Complex64;
 
 use super::ViscoelasticModulus;
 use crate::error::ModelError;
 
-/// A measured master curve E′(ω), E″(ω), interpolated in log–log.
+/// Name under which table errors are reported.
+const TABLE: &str = "modulus table";
+
+/// Limit on an end slope relative to its interval's secant: the square
+/// [0, 3]² of Fritsch & Carlson's monotonicity region.
+const SLOPE_CAP: f64 = 3.0;
+
+/// The cubic ln E_k + s (b + s (c + s d)) on one interval, s = ln ω − ln ω_k.
+#[derive(Debug, Clone, PartialEq)]
+struct Cubic {
+    value: f64,
+    b: f64,
+    c: f64,
+    d: f64,
+}
+
+impl Cubic {
+    /// Hermite cubic from the interval width `h`, the end values of ln E
+    /// (`y0`, `y1`), the end slopes (`m0`, `m1`) and the table value `value`.
+    fn hermite(h: f64, y0: f64, y1: f64, m0: f64, m1: f64, value: f64) -> Self {
+        let secant = (y1 - y0) / h;
+        Cubic {
+            value,
+            b: m0,
+            c: (3.0 * secant - 2.0 * m0 - m1) / h,
+            d: (m0 + m1 - 2.0 * secant) / (h * h),
+        }
+    }
+
+    /// (E, d ln E/d ln ω) at offset `s` into the interval.
+    #[inline]
+    fn eval(&self, s: f64) -> (f64, f64) {
+        let log_ratio = s * (self.b + s * (self.c + s * self.d));
+        let log_slope = self.b + s * (2.0 * self.c + 3.0 * s * self.d);
+        (self.value * log_ratio.exp(), log_slope)
+    }
+}
+
+/// A measured master curve E′(ω), E″(ω), interpolated in log–log with a
+/// shape-preserving C¹ cubic and extrapolated with the terminal behaviour of a
+/// solid (see the module documentation). Frequencies in rad/s, moduli in Pa.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TabulatedModulus {
     omega: Vec<f64>,
     storage: Vec<f64>,
     loss: Vec<f64>,
+    /// ln ω_k, the knots searched at every evaluation.
+    knots: Vec<f64>,
+    /// Per interval k (n − 1 of them): the cubics for ln E′ and ln E″.
+    storage_cubics: Vec<Cubic>,
+    loss_cubics: Vec<Cubic>,
 }
 
 impl TabulatedModulus {
     /// Builds a validated table from angular frequencies (rad/s, strictly
     /// increasing), storage and loss moduli (Pa, positive).
+    ///
+    /// At least two rows are needed, all three columns of equal length and
+    /// every entry finite; errors name the offending row (counted from 0).
     pub fn new(omega: Vec<f64>, storage: Vec<f64>, loss: Vec<f64>) -> Result<Self, ModelError> {
-        Ok(TabulatedModulus { omega, storage, loss })
+        let n = omega.len();
+        if n != storage.len() || n != loss.len() {
+            return Err(ModelError::table(
+                TABLE,
+                format!(
+                    "omega has {n} rows, E_storage {} and E_loss {}: the columns must have the same length",
+                    storage.len(),
+                    loss.len()
+                ),
+            ));
+        }
+        if n == 0 {
+            return Err(ModelError::table(TABLE, "the table is empty"));
+        }
+        if n == 1 {
+            return Err(ModelError::table(
+                TABLE,
+                "the table has only one row; at least two are needed to interpolate",
+            ));
+        }
+        let knots: Vec<f64> = omega.iter().map(|w| w.ln()).collect();
+        for i in 0..n {
+            check_row_value(i, "omega", omega[i], "rad/s")?;
+            check_row_value(i, "E_storage", storage[i], "Pa")?;
+            check_row_value(i, "E_loss", loss[i], "Pa")?;
+            if i > 0 {
+                let (prev, w) = (omega[i - 1], omega[i]);
+                if w <= prev {
+                    return Err(ModelError::table(
+                        TABLE,
+                        format!(
+                            "row {i}: omega = {w} rad/s is not greater than row {}'s omega = {prev} rad/s; \
+                             frequencies must be strictly increasing",
+                            i - 1
+                        ),
+                    ));
+                }
+                // Adjacent binary64 frequencies can share a logarithm; the
+                // interpolant would then divide by a zero interval width.
+                if knots[i] <= knots[i - 1] {
+                    return Err(ModelError::table(
+                        TABLE,
+                        format!(
+                            "row {i}: omega = {w} rad/s is too close to row {}'s omega = {prev} rad/s \
+                             to be told apart on a logarithmic scale",
+                            i - 1
+                        ),
+                    ));
+                }
+            }
+        }
+        let storage_cubics = log_log_cubics(&knots, &storage);
+        let loss_cubics = log_log_cubics(&knots, &loss);
+        Ok(TabulatedModulus {
+            omega,
+            storage,
+            loss,
+            knots,
+            storage_cubics,
+            loss_cubics,
+        })
+    }
+
+    /// The table's angular frequencies ω_i, rad/s.
+    pub fn omega(&self) -> &[f64] {
+        &self.omega
+    }
+
+    /// The table's storage moduli E′(ω_i), Pa.
+    pub fn storage(&self) -> &[f64] {
+        &self.storage
+    }
+
+    /// The table's loss moduli E″(ω_i), Pa.
+    pub fn loss(&self) -> &[f64] {
+        &self.loss
+    }
+
+    /// E*(ω) and dE*/d ln ω (both Pa) for ω ≥ 0.
+    #[inline]
+    fn evaluate(&self, omega: f64) -> (Complex64, Complex64) {
+        let last = self.omega.len() - 1;
+        if omega < self.omega[0] {
+            let e_loss = self.loss[0] * (omega / self.omega[0]);
+            return (
+                Complex64::new(self.storage[0], e_loss),
+                Complex64::new(0.0, e_loss),
+            );
+        }
+        // ω_max itself goes here too: E″(ω_max) ω_max/ω_max is the table
+        // value exactly, which the last cubic at its right end is not.
+        if omega >= self.omega[last] {
+            let e_loss = self.loss[last] * (self.omega[last] / omega);
+            return (
+                Complex64::new(self.storage[last], e_loss),
+                Complex64::new(0.0, -e_loss),
+            );
+        }
+        let u = omega.ln();
+        // Clamped because ln need not be monotone to the last bit: a u that
+        // rounds just below its knot is evaluated at the end of the interval
+        // before, which is the same curve.
+        let k = self
+            .knots
+            .partition_point(|&knot| knot <= u)
+            .saturating_sub(1)
+            .min(last - 1);
+        let s = u - self.knots[k];
+        let (e_storage, slope_storage) = self.storage_cubics[k].eval(s);
+        let (e_loss, slope_loss) = self.loss_cubics[k].eval(s);
+        (
+            Complex64::new(e_storage, e_loss),
+            Complex64::new(e_storage * slope_storage, e_loss * slope_loss),
+        )
     }
 }
 
+/// Checks one entry of a row: finite and greater than zero.
+fn check_row_value(row: usize, column: &str, value: f64, unit: &str) -> Result<(), ModelError> {
+    if !value.is_finite() {
+        return Err(ModelError::table(
+            TABLE,
+            format!("row {row}: {column} = {value} is not a finite number"),
+        ));
+    }
+    if value <= 0.0 {
+        return Err(ModelError::table(
+            TABLE,
+            format!("row {row}: {column} = {value} {unit} must be greater than zero"),
+        ));
+    }
+    Ok(())
+}
+
+/// The Hermite cubics of ln `values` against the knots u = ln ω (n ≥ 2,
+/// strictly increasing), one per interval.
+fn log_log_cubics(knots: &[f64], values: &[f64]) -> Vec<Cubic> {
+    let y: Vec<f64> = values.iter().map(|v| v.ln()).collect();
+    let slopes = shape_preserving_slopes(knots, &y);
+    (0..knots.len() - 1)
+        .map(|k| {
+            Cubic::hermite(
+                knots[k + 1] - knots[k],
+                y[k],
+                y[k + 1],
+                slopes[k],
+                slopes[k + 1],
+                values[k],
+            )
+        })
+        .collect()
+}
+
+/// Knot slopes of a C¹ Hermite interpolant of (x, y) that keeps monotone
+/// stretches monotone, flat intervals flat and puts one extremum next to
+/// each strict extremum of the data (rules in the module documentation).
+fn shape_preserving_slopes(x: &[f64], y: &[f64]) -> Vec<f64> {
+    let n = x.len();
+    let h: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+    let secant: Vec<f64> = (0..n - 1).map(|k| (y[k + 1] - y[k]) / h[k]).collect();
+    if n == 2 {
+        return vec![secant[0]; 2];
+    }
+    // A flat interval between a rise and a fall (or a fall and a rise) holds
+    // an extremum of the data, like a peak sampled symmetrically about its
+    // top; a flat interval anywhere else is a plateau and stays flat.
+    let flat_extremum: Vec<bool> = (0..n - 1)
+        .map(|k| secant[k] == 0.0 && k > 0 && k < n - 2 && secant[k - 1] * secant[k + 1] < 0.0)
+        .collect();
+    // An interval is monotone unless a neighbouring secant has the opposite
+    // sign, i.e. unless one of its ends is a strict extremum of the data.
+    let monotone: Vec<bool> = (0..n - 1)
+        .map(|k| {
+            !flat_extremum[k]
+                && (k == 0 || secant[k - 1] * secant[k] >= 0.0)
+                && (k == n - 2 || secant[k] * secant[k + 1] >= 0.0)
+        })
+        .collect();
+
+    let mut m: Vec<f64> = (0..n)
+        .map(|i| {
+            if i == 0 {
+                one_sided_slope(h[0], h[1], secant[0], secant[1])
+            } else if i == n - 1 {
+                one_sided_slope(h[n - 2], h[n - 3], secant[n - 2], secant[n - 3])
+            } else {
+                (h[i] * secant[i - 1] + h[i - 1] * secant[i]) / (h[i - 1] + h[i])
+            }
+        })
+        .collect();
+
+    for (i, mi) in m.iter_mut().enumerate() {
+        for k in [i.wrapping_sub(1), i] {
+            if k >= n - 1 {
+                continue;
+            }
+            let s = secant[k];
+            if s == 0.0 && !flat_extremum[k] {
+                *mi = 0.0;
+            } else if monotone[k] {
+                if *mi * s < 0.0 {
+                    *mi = 0.0;
+                } else if mi.abs() > SLOPE_CAP * s.abs() {
+                    *mi = SLOPE_CAP * s;
+                }
+            }
+        }
+    }
+
+    // Intervals next to an extremum whose two end slopes both follow the
+    // secant must not wiggle either. Only magnitudes shrink here, so the
+    // conditions already met by the neighbouring intervals still hold.
+    for k in 0..n - 1 {
+        let s = secant[k];
+        if !monotone[k] && s != 0.0 && m[k] * s >= 0.0 && m[k + 1] * s >= 0.0 {
+            for mj in &mut m[k..=k + 1] {
+                if mj.abs() > SLOPE_CAP * s.abs() {
+                    *mj = SLOPE_CAP * s;
+                }
+            }
+        }
+    }
+    m
+}
+
+/// Slope at an end knot from the parabola through the first (or last) three
+/// points: `h0`, `s0` belong to the end interval, `h1`, `s1` to its neighbour.
+fn one_sided_slope(h0: f64, h1: f64, s0: f64, s1: f64) -> f64 {
+    s0 + (s0 - s1) * h0 / (h0 + h1)
+}
+
 impl ViscoelasticModulus for TabulatedModulus {
-    fn modulus(&self, _omega: f64) -> Complex64 {
-        Complex64::new(self.storage[0], self.loss[0])
+    fn modulus(&self, omega: f64) -> Complex64 {
+        self.evaluate(omega).0
     }
+
     fn modulus_and_log_slope(&self, omega: f64) -> (Complex64, Complex64) {
-        (self.modulus(omega), Complex64::new(0.0, 0.0))
+        self.evaluate(omega)
     }
+
     fn static_modulus(&self) -> f64 {
         self.storage[0]
     }
+
     fn loss_slope_at_zero(&self) -> f64 {
         self.loss[0] / self.omega[0]
     }
+
     fn structure_range(&self) -> (f64, f64) {
         (self.omega[0], self.omega[self.omega.len() - 1])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::modulus::StandardLinearSolid;
+
+    /// Log-spaced frequencies from 10^`lo` to 10^`hi`, `per_decade` per decade,
+    /// shifted by `offset` of a step.
+    fn log_grid(lo: f64, hi: f64, per_decade: usize, offset: f64) -> Vec<f64> {
+        let count = ((hi - lo) * per_decade as f64).round() as usize;
+        (0..=count)
+            .map(|i| 10f64.powf(lo + (i as f64 + offset) / per_decade as f64))
+            .collect()
+    }
+
+    fn sampled<M: ViscoelasticModulus>(m: &M, omega: &[f64]) -> TabulatedModulus {
+        let e: Vec<Complex64> = omega.iter().map(|&w| m.modulus(w)).collect();
+        TabulatedModulus::new(
+            omega.to_vec(),
+            e.iter().map(|z| z.re).collect(),
+            e.iter().map(|z| z.im).collect(),
+        )
+        .unwrap()
+    }
+
+    /// A non-smooth, strictly monotone storage modulus with a plateau, a
+    /// near-step and a peaked loss modulus.
+    fn rough_table() -> TabulatedModulus {
+        let omega = vec![1e-2, 1e-1, 1.0, 2.0, 10.0, 1e2, 1e3, 1.5e3, 1e4, 1e5, 1e6];
+        let storage = vec![
+            1e6,
+            1e6,
+            1.001e6,
+            2e6,
+            5e7,
+            5.1e7,
+            5.1e7,
+            1e8,
+            1e10,
+            1e10 + 1.0,
+            2e10,
+        ];
+        let loss = vec![1e3, 1e4, 1e5, 3e6, 4e7, 4e8, 3e8, 1e8, 3e8, 1e7, 1e6];
+        TabulatedModulus::new(omega, storage, loss).unwrap()
+    }
+
+    /// ln ω sampled densely inside each interval of the table (knots excluded).
+    fn inside_points(t: &TabulatedModulus, per_interval: usize) -> Vec<f64> {
+        t.omega()
+            .windows(2)
+            .flat_map(|w| {
+                let (a, b) = (w[0].ln(), w[1].ln());
+                (1..per_interval).map(move |j| (a + (b - a) * j as f64 / per_interval as f64).exp())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn reproduces_table_points_exactly() {
+        let t = rough_table();
+        for i in 0..t.omega().len() {
+            let e = t.modulus(t.omega()[i]);
+            assert_eq!(e.re, t.storage()[i], "row {i}");
+            assert_eq!(e.im, t.loss()[i], "row {i}");
+        }
+    }
+
+    #[test]
+    fn monotone_data_stay_monotone_and_flat_data_flat() {
+        let t = rough_table();
+        for w in t.omega().windows(2) {
+            let (e0, e1) = (t.modulus(w[0]).re, t.modulus(w[1]).re);
+            let mut prev = e0;
+            for j in 1..=400 {
+                let wj = w[0] * (w[1] / w[0]).powf(j as f64 / 400.0);
+                let e = t.modulus(wj).re;
+                // Rounding of exp(…) allows a few ulp of wobble.
+                let tol = 4.0 * f64::EPSILON * e;
+                assert!(e >= prev - tol, "E' decreases at {wj}");
+                assert!(e >= e0 - tol && e <= e1 + tol, "E' overshoots at {wj}");
+                if e0 == e1 {
+                    assert_eq!(e, e0, "flat interval not flat at {wj}");
+                }
+                prev = e;
+            }
+        }
+    }
+
+    #[test]
+    fn monotone_stretches_of_peaked_data_stay_monotone() {
+        // E″ of the rough table rises to row 5, falls to row 7, rises to row
+        // 8 and falls to the end. Intervals not touching an extremum (rows
+        // 0–4 and 9–10) must be monotone and within their end values.
+        let t = rough_table();
+        for k in [0, 1, 2, 3, 9] {
+            let (w0, w1) = (t.omega()[k], t.omega()[k + 1]);
+            let (l0, l1) = (t.loss()[k], t.loss()[k + 1]);
+            let mut prev = l0;
+            for j in 1..400 {
+                let e = t.modulus(w0 * (w1 / w0).powf(j as f64 / 400.0)).im;
+                let tol = 4.0 * f64::EPSILON * e;
+                assert!(
+                    e >= l0.min(l1) - tol && e <= l0.max(l1) + tol,
+                    "interval {k}"
+                );
+                if l1 > l0 {
+                    assert!(e >= prev - tol, "interval {k}");
+                } else {
+                    assert!(e <= prev + tol, "interval {k}");
+                }
+                prev = e;
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn random_monotone_data_give_a_monotone_curve(
+            steps in proptest::collection::vec((0.01f64..3.0, 0usize..4, 0.0f64..5.0), 1..12),
+            rising in proptest::bool::ANY,
+        ) {
+            // Frequencies a random 0.01–3 decades apart; ln E′ steps of 0 to 5
+            // (one in four flat) in one direction.
+            let (mut lw, mut le) = (0.0, 10.0);
+            let (mut omega, mut storage) = (vec![1.0], vec![10f64.exp()]);
+            for &(dw, flat, de) in &steps {
+                lw += dw * std::f64::consts::LN_10;
+                le += if flat == 0 { 0.0 } else if rising { de } else { -de };
+                omega.push(lw.exp());
+                storage.push(le.exp());
+            }
+            let n = omega.len();
+            let t = TabulatedModulus::new(omega, storage, vec![1.0; n]).unwrap();
+            let sign = if rising { 1.0 } else { -1.0 };
+            let mut prev = t.storage()[0];
+            for k in 0..n - 1 {
+                let (w0, w1) = (t.omega()[k], t.omega()[k + 1]);
+                let (e0, e1) = (t.storage()[k], t.storage()[k + 1]);
+                for j in 1..=64 {
+                    let e = t.modulus(w0 * (w1 / w0).powf(j as f64 / 64.0)).re;
+                    let tol = 8.0 * f64::EPSILON * e;
+                    proptest::prop_assert!(sign * (e - prev) >= -tol);
+                    proptest::prop_assert!(e >= e0.min(e1) - tol && e <= e0.max(e1) + tol);
+                    prev = e;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn plateaus_stay_flat_but_a_flat_top_is_a_peak() {
+        let omega = vec![1.0, 10.0, 100.0, 1e3, 1e4];
+        let mid =
+            |t: &TabulatedModulus, k: usize| t.modulus((t.omega()[k] * t.omega()[k + 1]).sqrt());
+        // Rising, flat, rising: the flat interval stays flat.
+        let t = TabulatedModulus::new(omega.clone(), vec![1.0, 2.0, 2.0, 3.0, 4.0], vec![1.0; 5])
+            .unwrap();
+        assert_eq!(mid(&t, 1).re, 2.0);
+        // Rising, flat, flat, falling: a plateau, flat.
+        let t = TabulatedModulus::new(omega.clone(), vec![1.0, 2.0, 2.0, 2.0, 1.0], vec![1.0; 5])
+            .unwrap();
+        assert_eq!(mid(&t, 1).re, 2.0);
+        assert_eq!(mid(&t, 2).re, 2.0);
+        // Rising, flat, falling: the peak lies between the two equal points.
+        let t = TabulatedModulus::new(omega, vec![1.0; 5], vec![1.0, 2.0, 2.0, 1.0, 0.5]).unwrap();
+        let top = mid(&t, 1).im;
+        assert!(top > 2.0 && top < 2.5, "{top}");
+        let (_, slope) = t.modulus_and_log_slope((10f64 * 100.0).sqrt());
+        assert!(slope.im.abs() < 1e-12);
+    }
+
+    #[test]
+    fn one_extremum_per_data_extremum() {
+        // Sign changes of d ln E″/d ln ω over the whole table: the data have
+        // a maximum (row 5), a minimum (row 7) and a maximum (row 8).
+        let t = rough_table();
+        let mut changes = 0;
+        let mut prev = t.modulus_and_log_slope(t.omega()[0]).1.im;
+        for w in inside_points(&t, 200) {
+            let slope = t.modulus_and_log_slope(w).1.im;
+            if slope * prev < 0.0 {
+                changes += 1;
+            }
+            prev = slope;
+        }
+        assert_eq!(changes, 3);
+    }
+
+    #[test]
+    fn log_slope_is_the_derivative_of_the_interpolant() {
+        let sls = StandardLinearSolid::new(1e6, 1e8, 1.0).unwrap();
+        for t in [rough_table(), sampled(&sls, &log_grid(-3.0, 4.0, 3, 0.0))] {
+            for w in inside_points(&t, 7) {
+                let (e, slope) = t.modulus_and_log_slope(w);
+                let eps = 1e-6f64;
+                let fd = (t.modulus(w * eps.exp()) - t.modulus(w * (-eps).exp())) / (2.0 * eps);
+                assert!(
+                    (slope.re - fd.re).abs() <= 1e-7 * e.re + 1e-9 * slope.re.abs(),
+                    "{w}"
+                );
+                assert!(
+                    (slope.im - fd.im).abs() <= 1e-7 * e.im + 1e-9 * slope.im.abs(),
+                    "{w}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn slope_is_continuous_at_interior_knots() {
+        let t = rough_table();
+        for &w in &t.omega()[1..t.omega().len() - 1] {
+            let (e, left) = t.modulus_and_log_slope(w * (1.0 - 1e-12));
+            let (_, right) = t.modulus_and_log_slope(w);
+            assert!((left.re - right.re).abs() <= 1e-9 * e.re, "{w}");
+            assert!((left.im - right.im).abs() <= 1e-9 * e.im, "{w}");
+        }
+    }
+
+    #[test]
+    fn extrapolates_with_terminal_behaviour() {
+        let t = rough_table();
+        let (w0, w1) = (1e-2, 1e6);
+        for &w in &[0.0, 1e-9, 1e-4, 0.5e-2] {
+            let (e, slope) = t.modulus_and_log_slope(w);
+            assert_eq!(e.re, 1e6);
+            assert!((e.im - 1e3 * w / w0).abs() <= 1e-15 * 1e3);
+            assert_eq!(slope.re, 0.0);
+            assert_eq!(slope.im, e.im);
+        }
+        for &w in &[2e6, 1e9, 1e20] {
+            let (e, slope) = t.modulus_and_log_slope(w);
+            assert_eq!(e.re, 2e10);
+            assert!((e.im / (1e6 * w1 / w) - 1.0).abs() < 1e-15);
+            assert_eq!(slope.re, 0.0);
+            assert_eq!(slope.im, -e.im);
+        }
+        assert_eq!(t.modulus(f64::INFINITY), Complex64::new(2e10, 0.0));
+        assert_eq!(t.static_modulus(), 1e6);
+        assert_eq!(t.loss_slope_at_zero(), 1e3 / 1e-2);
+        assert_eq!(t.structure_range(), (w0, w1));
+        // Continuous at both ends.
+        for (w, outward) in [(w0, -1.0), (w1, 1.0)] {
+            let inside = t.modulus(w * (1.0 - outward * 1e-12));
+            let outside = t.modulus(w * (1.0 + outward * 1e-12));
+            assert!((inside - outside).norm() < 1e-10 * inside.norm(), "{w}");
+        }
+    }
+
+    #[test]
+    fn two_rows_interpolate_as_power_laws() {
+        let t = TabulatedModulus::new(vec![1.0, 100.0], vec![1e6, 1e8], vec![1e5, 1e4]).unwrap();
+        let (e, slope) = t.modulus_and_log_slope(10.0);
+        assert!((e.re / 1e7 - 1.0).abs() < 1e-14);
+        assert!((e.im / (1e5 * 10f64.powf(-0.5)) - 1.0).abs() < 1e-14);
+        assert!((slope.re / e.re - 1.0).abs() < 1e-14);
+        assert!((slope.im / e.im + 0.5).abs() < 1e-14);
+    }
+
+    #[test]
+    fn reproduces_a_standard_linear_solid_between_points() {
+        // 10 points per decade over the whole transition, with the grid moved
+        // through one step so that the loss peak falls anywhere between points.
+        for ratio in [10.0, 1e3] {
+            let sls = StandardLinearSolid::new(1e6, 1e6 * ratio, 1.0).unwrap();
+            let mut worst = (0.0f64, 0.0f64, 0.0f64);
+            for step in 0..10 {
+                let t = sampled(
+                    &sls,
+                    &log_grid(-4.0, 4.0 + ratio.log10(), 10, step as f64 / 10.0),
+                );
+                for w in inside_points(&t, 16) {
+                    let (e, slope) = t.modulus_and_log_slope(w);
+                    let (exact, exact_slope) = sls.modulus_and_log_slope(w);
+                    worst.0 = worst.0.max((e.re / exact.re - 1.0).abs());
+                    worst.1 = worst.1.max((e.im / exact.im - 1.0).abs());
+                    // The slope is one order less accurate than the value:
+                    // 0.7 % of |E| next to the loss peak.
+                    worst.2 = worst.2.max((slope - exact_slope).norm() / exact.norm());
+                }
+            }
+            // Measured: E′ 3.2e-4, E″ 1.6e-4, slope 6.8e-3 (E1/E0 = 10).
+            assert!(
+                worst.0 < 1e-3 && worst.1 < 1e-3 && worst.2 < 1e-2,
+                "E1/E0 = {ratio}: {worst:?}"
+            );
+        }
+    }
+
+    fn table_error(omega: Vec<f64>, storage: Vec<f64>, loss: Vec<f64>) -> String {
+        match TabulatedModulus::new(omega, storage, loss) {
+            Err(ModelError::InvalidTable { name, problem }) => {
+                assert_eq!(name, TABLE);
+                problem
+            }
+            other => panic!("expected a table error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn rejects_malformed_tables_naming_the_row() {
+        let ok = || {
+            (
+                vec![1.0, 2.0, 3.0],
+                vec![1e6, 2e6, 3e6],
+                vec![1e5, 2e5, 1e5],
+            )
+        };
+        assert!(table_error(vec![], vec![], vec![]).contains("empty"));
+        assert!(table_error(vec![1.0], vec![1e6], vec![1e5]).contains("only one row"));
+        let msg = table_error(vec![1.0, 2.0], vec![1e6], vec![1e5, 1e5]);
+        assert!(
+            msg.contains("omega has 2 rows, E_storage 1 and E_loss 2"),
+            "{msg}"
+        );
+        let msg = table_error(vec![1.0, 2.0], vec![1e6, 1e6], vec![1e5]);
+        assert!(msg.contains("E_loss 1"), "{msg}");
+
+        type Column = fn(&mut (Vec<f64>, Vec<f64>, Vec<f64>)) -> &mut Vec<f64>;
+        let columns: [(&str, Column); 3] = [
+            ("omega", |t| &mut t.0),
+            ("E_storage", |t| &mut t.1),
+            ("E_loss", |t| &mut t.2),
+        ];
+        for (column, pick) in columns {
+            for (bad, what) in [
+                (f64::NAN, "not a finite number"),
+                (f64::INFINITY, "not a finite number"),
+                (0.0, "must be greater than zero"),
+                (-1.0, "must be greater than zero"),
+            ] {
+                let mut t = ok();
+                pick(&mut t)[2] = bad;
+                let msg = table_error(t.0, t.1, t.2);
+                assert!(
+                    msg.starts_with(&format!("row 2: {column} = {bad}")),
+                    "{msg}"
+                );
+                assert!(msg.contains(what), "{msg}");
+            }
+        }
+
+        let msg = table_error(vec![1.0, 3.0, 2.0], vec![1.0; 3], vec![1.0; 3]);
+        assert!(
+            msg.starts_with("row 2: omega = 2 rad/s is not greater than row 1"),
+            "{msg}"
+        );
+        assert!(msg.contains("strictly increasing"), "{msg}");
+        let msg = table_error(vec![1.0, 3.0, 3.0], vec![1.0; 3], vec![1.0; 3]);
+        assert!(msg.starts_with("row 2:"), "{msg}");
+        let w = 1e9f64;
+        let next = f64::from_bits(w.to_bits() + 1);
+        let msg = table_error(vec![w, next], vec![1.0; 2], vec![1.0; 2]);
+        assert!(
+            msg.starts_with("row 1:") && msg.contains("logarithmic"),
+            "{msg}"
+        );
     }
 }

@@ -1,0 +1,3 @@
+//! One module per `rollfit` subcommand.
+
+pub mod forward;
