@@ -87,39 +87,27 @@ fn one_speed<F: Fn(f64) -> (Complex64, Complex64)>(
         }
     };
     let mut sum = 0.0;
-    let up_ratio = 1.0 / (1.0 - (-h).exp());
-    let mut j = j0;
-    loop {
-        let node = grid.node(j)?;
-        let tau = node.point.sigma - t;
-        let (w, dw) = table.evaluate(tau);
-        let f = film_weight(&node);
-        sum += node.phi * f * w;
-        if let Some(r) = record.as_deref_mut() {
-            r.push((j, w * f, dw * f));
+    // March up from j0, then down from j0 − 1; each direction stops once the
+    // bounded remaining tail (geometric with the given ratio) is negligible.
+    let up = (1i64, j0, 1.0 / (1.0 - (-h).exp()));
+    let down = (-1i64, j0 - 1, 1.0 / (1.0 - (-2.0 * h).exp()));
+    for (direction, start, tail_ratio) in [up, down] {
+        let mut j = start;
+        loop {
+            let node = grid.node(j)?;
+            let tau = node.point.sigma - t;
+            let (w, dw) = table.evaluate(tau);
+            let f = film_weight(&node);
+            sum += node.phi * f * w;
+            if let Some(r) = record.as_deref_mut() {
+                r.push((j, w * f, dw * f));
+            }
+            let bound = setup.tail_bound * node.point.sigma.exp() * w.abs() * tail_ratio;
+            if direction as f64 * tau > 2.0 && bound <= eps * sum.abs() {
+                break;
+            }
+            j += direction;
         }
-        let bound = setup.tail_bound * node.point.sigma.exp() * w.abs() * up_ratio;
-        if tau > 2.0 && bound <= eps * sum.abs() {
-            break;
-        }
-        j += 1;
-    }
-    let down_ratio = 1.0 / (1.0 - (-2.0 * h).exp());
-    let mut j = j0 - 1;
-    loop {
-        let node = grid.node(j)?;
-        let tau = node.point.sigma - t;
-        let (w, dw) = table.evaluate(tau);
-        let f = film_weight(&node);
-        sum += node.phi * f * w;
-        if let Some(r) = record.as_deref_mut() {
-            r.push((j, w * f, dw * f));
-        }
-        let bound = setup.tail_bound * node.point.sigma.exp() * w.abs() * down_ratio;
-        if tau < -2.0 && bound <= eps * sum.abs() {
-            break;
-        }
-        j -= 1;
     }
     Ok(setup.prefactor * sum)
 }
