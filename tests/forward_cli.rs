@@ -4,10 +4,13 @@
 //! Every bad-input test checks the same promise: a non-zero exit, an error
 //! on stderr that names the file and the key or problem, and no panic.
 
+mod common;
+
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::process::Output;
+
+use common::{Table, TempDir, assert_failure, parse_csv, rollfit, text};
 
 // ---------------------------------------------------------------- helpers
 
@@ -20,13 +23,6 @@ fn data(name: &str) -> PathBuf {
     workspace().join("data").join(name)
 }
 
-fn rollfit(args: &[&std::ffi::OsStr]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rollfit"))
-        .args(args)
-        .output()
-        .expect("cannot start the rollfit binary")
-}
-
 fn forward(scene: &Path, out: Option<&Path>) -> Output {
     let mut args = vec![std::ffi::OsStr::new("forward"), scene.as_os_str()];
     if let Some(out) = out {
@@ -34,43 +30,6 @@ fn forward(scene: &Path, out: Option<&Path>) -> Output {
         args.push(out.as_os_str());
     }
     rollfit(&args)
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-/// A folder of its own under the system's temporary folder, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> TempDir {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let path = std::env::temp_dir().join(format!(
-            "rollfit-forward-cli-{}-{name}-{n}",
-            std::process::id()
-        ));
-        let _ = fs::remove_dir_all(&path);
-        fs::create_dir_all(&path).unwrap();
-        TempDir(path)
-    }
-
-    fn write(&self, name: &str, content: &str) -> PathBuf {
-        let path = self.0.join(name);
-        fs::write(&path, content).unwrap();
-        path
-    }
-
-    fn path(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.0);
-    }
 }
 
 /// A small valid scene; bad-input tests break one line of it.
@@ -153,66 +112,13 @@ fn assert_rejected(scene: &str, extra: &[(&str, &str)], expected: &[&str]) -> St
 }
 
 fn assert_failure_names(out: &Output, file: &str, expected: &[&str]) -> String {
-    let stderr = text(&out.stderr);
-    assert!(
-        !out.status.success(),
-        "expected a failure, got success; stderr:\n{stderr}"
-    );
+    let stderr = assert_failure(out, expected);
     assert_eq!(out.status.code(), Some(1), "exit code; stderr:\n{stderr}");
-    assert!(!stderr.contains("panicked"), "panic:\n{stderr}");
     assert!(
         stderr.contains(file),
         "stderr does not name {file}:\n{stderr}"
     );
-    for fragment in expected {
-        assert!(
-            stderr.contains(fragment),
-            "stderr does not contain {fragment:?}:\n{stderr}"
-        );
-    }
-    assert!(out.stdout.is_empty(), "stdout not empty on failure");
     stderr
-}
-
-/// A parsed forward CSV.
-struct Table {
-    header: Vec<String>,
-    rows: Vec<Vec<f64>>,
-}
-
-impl Table {
-    fn column(&self, name: &str) -> Vec<f64> {
-        let i = self
-            .header
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("no column {name}"));
-        self.rows.iter().map(|r| r[i]).collect()
-    }
-}
-
-fn parse_csv(csv: &str) -> Table {
-    let mut lines = csv.lines();
-    let header: Vec<String> = lines
-        .next()
-        .expect("empty CSV")
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| {
-            l.split(',')
-                .map(|x| {
-                    x.parse::<f64>()
-                        .unwrap_or_else(|_| panic!("bad number {x:?}"))
-                })
-                .collect()
-        })
-        .collect();
-    for row in &rows {
-        assert_eq!(row.len(), header.len());
-    }
-    Table { header, rows }
 }
 
 const HEADER: [&str; 7] = [
@@ -475,6 +381,28 @@ fn free_shift_temperature_equals_a_scaled_relaxation_time() {
 }
 
 #[test]
+fn free_shift_is_exact_at_listed_temperatures_and_knows_t_ref() {
+    // T_ref = 20 °C is not listed but counts as log10 a_T = 0: 30 °C lies
+    // between it and 40 °C (−2), so log10 a_T = −1; 40 °C itself gives −2.
+    let dir = TempDir::new("free-listed");
+    let base = edit(
+        SLS_SCENE,
+        "tau = 1.0\n",
+        "tau = 1.0\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
+         log_aT = [{ T = 40.0, log_aT = -2.0 }]\n",
+    );
+    for (t, tau) in [("30.0", "0.1"), ("40.0", "0.01")] {
+        let shifted = format!("{base}temperature = {t}\n");
+        let scaled = edit(SLS_SCENE, "tau = 1.0", &format!("tau = {tau}"));
+        let a = run_ok(&dir.write("shifted.toml", &shifted));
+        let b = run_ok(&dir.write("scaled.toml", &scaled));
+        for (x, y) in a.column("mu").into_iter().zip(b.column("mu")) {
+            assert_close(x, y, 1e-6, "μ shifted vs scaled");
+        }
+    }
+}
+
+#[test]
 fn table_scene_follows_the_tabulated_solid() {
     // A dense table of the standard linear solid (20 points per decade, Hz
     // column) must give nearly the μ(v) of the solid itself.
@@ -547,8 +475,8 @@ fn unknown_section_is_named() {
 
 #[test]
 fn unknown_key_in_fit_section_is_named() {
-    let scene = format!("{SLS_SCENE}[fit]\nE0 = 2e6\nlambda = 3\n");
-    assert_rejected(&scene, &[], &["unknown field `lambda`"]);
+    let scene = format!("{SLS_SCENE}[fit]\nE0 = 2e6\nsmoothness = 3\n");
+    assert_rejected(&scene, &[], &["unknown field `smoothness`"]);
 }
 
 #[test]
@@ -835,7 +763,54 @@ fn temperature_outside_a_free_shift_is_rejected() {
         "tau = 1.0\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
          log_aT = [{ T = 0.0, log_aT = 2.0 }, { T = 40.0, log_aT = -2.0 }]\n",
     ) + "temperature = 80.0\n";
-    assert_rejected(&scene, &[], &["[material.shift]", "80", "outside"]);
+    // The model's rule and message (temperature, listed range), with the
+    // section, key and file from the CLI.
+    assert_rejected(
+        &scene,
+        &[],
+        &[
+            "[material.shift] at [sweep] temperature = 80",
+            "T = 80 °C",
+            "outside",
+            "0 to 40 °C",
+            "`log_aT`",
+        ],
+    );
+    let below = edit(&scene, "temperature = 80.0", "temperature = -0.5");
+    assert_rejected(&below, &[], &["T = -0.5 °C", "outside", "0 to 40 °C"]);
+}
+
+#[test]
+fn free_shift_entries_are_checked_and_named() {
+    let with_entries = |entries: &str| {
+        edit(
+            SLS_SCENE,
+            "tau = 1.0\n",
+            &format!(
+                "tau = 1.0\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\nlog_aT = {entries}\n"
+            ),
+        )
+    };
+    assert_rejected(
+        &with_entries("[{ T = 0.0, log_aT = 2.0 }, { T = 0.0, log_aT = 2.5 }]"),
+        &[],
+        &[
+            "[material.shift]",
+            "`log_aT`",
+            "entry 1",
+            "listed before as entry 0",
+        ],
+    );
+    assert_rejected(
+        &with_entries("[{ T = 20.0, log_aT = 1.0 }]"),
+        &[],
+        &["[material.shift]", "`log_aT`", "reference temperature"],
+    );
+    assert_rejected(
+        &with_entries("[]"),
+        &[],
+        &["[material.shift]", "`log_aT`", "no temperatures"],
+    );
 }
 
 #[test]
@@ -994,4 +969,286 @@ fn command_line_errors_exit_non_zero() {
     assert!(text(&out.stderr).contains("SCENE"));
     let out = rollfit(&[std::ffi::OsStr::new("frobnicate")]);
     assert!(!out.status.success());
+}
+
+// ------------------------------- Havriliak–Negami and synthetic noise
+
+/// A Havriliak–Negami scene with α = β = 1, i.e. the standard linear solid
+/// of `SLS_SCENE` (paper τ = 1 s = τ_HN E1/E0).
+const HN_SCENE: &str = r#"[geometry]
+shape = "sphere"
+radius = 0.01
+load = 0.15
+
+[substrate]
+poisson = 0.0
+
+[material]
+model = "havriliak-negami"
+E0 = 1e6
+E1 = 1e7
+tau = 0.1
+alpha = 1.0
+beta = 1.0
+
+[sweep]
+v_min = 1e-6
+v_max = 1.0
+count = 7
+"#;
+
+const NOISY_HEADER: [&str; 9] = [
+    "v",
+    "mu",
+    "sigma",
+    "mu_exact",
+    "mu_low_speed",
+    "contact_size_static",
+    "mean_pressure_static",
+    "centroid_shift",
+    "gt_alpha",
+];
+
+/// Runs `rollfit forward SCENE extra..` and returns (stdout, stderr) after
+/// checking success.
+fn forward_with(scene: &Path, extra: &[&str]) -> (String, String) {
+    let mut args = vec![std::ffi::OsStr::new("forward"), scene.as_os_str()];
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
+    let out = rollfit(&args);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "{extra:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    (text(&out.stdout), stderr)
+}
+
+#[test]
+fn havriliak_negami_with_alpha_beta_one_is_the_standard_linear_solid() {
+    let dir = TempDir::new("hn-sls");
+    let sls = run_ok(&dir.write("sls.toml", SLS_SCENE));
+    for model in ["\"havriliak-negami\"", "\"hn\""] {
+        let scene = edit(HN_SCENE, "\"havriliak-negami\"", model);
+        let hn = run_ok(&dir.write("hn.toml", &scene));
+        for column in ["mu", "mu_low_speed", "gt_alpha"] {
+            for (a, b) in sls.column(column).into_iter().zip(hn.column(column)) {
+                // Different tail bounds (sampled for HN, exact for the
+                // solid) stop the sums at slightly different nodes.
+                assert_close(b, a, 1e-7, &format!("{model} {column} vs sls"));
+            }
+        }
+    }
+}
+
+#[test]
+fn hn_rubber_example_shows_rise_and_peak() {
+    let t = check_example("hn-rubber.toml", 41, 1e-8, 1.0, 0.005);
+    let (v, mu) = (t.column("v"), t.column("mu"));
+    assert!(v[40] / v[0] >= 1e6, "at least 6 decades");
+    let i = (0..mu.len())
+        .max_by(|&a, &b| mu[a].total_cmp(&mu[b]))
+        .unwrap();
+    assert!((5..36).contains(&i), "peak at index {i}, v = {}", v[i]);
+    // At the lowest speed μ follows the power-law asymptote μ ∝ v^0.55
+    // (E″ ∝ ω^α) to within its slowly vanishing correction.
+    let low = t.column("mu_low_speed");
+    assert_close(mu[0], low[0], 3e-2, "μ vs asymptote at the lowest speed");
+    assert_close(low[5] / low[0], (v[5] / v[0]).powf(0.55), 1e-9, "v^α");
+}
+
+#[test]
+fn hn_rubber_data_is_what_its_documented_command_makes() {
+    let dir = TempDir::new("hn-data");
+    let out = dir.path().join("hn-rubber.csv");
+    let scene = data("hn-rubber.toml");
+    let (_, _) = forward_with(
+        &scene,
+        &[
+            "--noise",
+            "0.01",
+            "--seed",
+            "1",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+    );
+    let made = parse_csv(&fs::read_to_string(&out).unwrap());
+    let stored = parse_csv(&fs::read_to_string(data("hn-rubber.csv")).unwrap());
+    assert_eq!(stored.header, NOISY_HEADER);
+    assert_eq!(made.header, stored.header);
+    assert_eq!(made.column("v"), stored.column("v"));
+    assert_eq!(stored.rows.len(), 41);
+    // Equal up to the quadrature tolerance (1e-6), so that a more accurate
+    // μ in a later version does not break the data set's provenance.
+    for name in ["mu", "sigma", "mu_exact"] {
+        for (a, b) in made.column(name).into_iter().zip(stored.column(name)) {
+            assert_close(a, b, 1e-5, name);
+        }
+    }
+    for (s, m) in stored
+        .column("sigma")
+        .into_iter()
+        .zip(stored.column("mu_exact"))
+    {
+        assert_close(s, 0.01 * m, 1e-12, "sigma = 1 % of μ");
+    }
+}
+
+#[test]
+fn noise_is_deterministic_for_a_seed() {
+    let dir = TempDir::new("noise-seed");
+    let scene = dir.write("scene.toml", SLS_SCENE);
+    let (a, _) = forward_with(&scene, &["--noise", "0.02", "--seed", "42"]);
+    let (b, _) = forward_with(&scene, &["--noise", "0.02", "--seed", "42"]);
+    assert_eq!(a, b, "same seed, same file");
+    let (c, _) = forward_with(&scene, &["--noise", "0.02", "--seed", "43"]);
+    assert_ne!(a, c, "another seed, other noise");
+    // --seed defaults to 0.
+    let (d, _) = forward_with(&scene, &["--noise", "0.02"]);
+    let (e, _) = forward_with(&scene, &["--noise", "0.02", "--seed", "0"]);
+    assert_eq!(d, e);
+    let (a, c) = (parse_csv(&a), parse_csv(&c));
+    assert_eq!(a.header, NOISY_HEADER);
+    assert_eq!(a.column("mu_exact"), c.column("mu_exact"));
+    assert!(
+        a.column("mu")
+            .iter()
+            .zip(c.column("mu"))
+            .all(|(x, y)| *x != y)
+    );
+}
+
+#[test]
+fn noise_columns_and_statistics_are_sane() {
+    let dir = TempDir::new("noise-stats");
+    let scene = dir.write("scene.toml", &edit(SLS_SCENE, "count = 7", "count = 400"));
+    let rel = 0.05;
+    let exact = run_ok(&scene);
+    let (noisy, _) = forward_with(&scene, &["--noise", "0.05", "--seed", "7"]);
+    let noisy = parse_csv(&noisy);
+    assert_eq!(noisy.header, NOISY_HEADER);
+    assert_eq!(noisy.column("v"), exact.column("v"));
+    assert_eq!(noisy.column("mu_exact"), exact.column("mu"));
+    // The model columns are the noiseless run's.
+    for name in &HEADER[2..] {
+        assert_eq!(noisy.column(name), exact.column(name), "{name}");
+    }
+    let (mu, sigma, mu_exact) = (
+        noisy.column("mu"),
+        noisy.column("sigma"),
+        noisy.column("mu_exact"),
+    );
+    let z: Vec<f64> = (0..mu.len())
+        .map(|i| {
+            assert_eq!(sigma[i], rel * mu_exact[i]);
+            (mu[i] - mu_exact[i]) / sigma[i]
+        })
+        .collect();
+    let n = z.len() as f64;
+    let mean = z.iter().sum::<f64>() / n;
+    let sd = (z.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    // 400 standard normal deviates: the mean is within 4 standard errors
+    // (0.2) of 0, the standard deviation within 15 % of 1, none beyond 6.
+    assert!(mean.abs() < 0.2, "mean of z = {mean}");
+    assert!((sd - 1.0).abs() < 0.15, "standard deviation of z = {sd}");
+    assert!(z.iter().all(|x| x.abs() < 6.0));
+    // No noise at all is the exact curve.
+    let (zero, _) = forward_with(&scene, &["--noise", "0"]);
+    let zero = parse_csv(&zero);
+    assert_eq!(zero.column("mu"), exact.column("mu"));
+    assert!(zero.column("sigma").iter().all(|s| *s == 0.0));
+}
+
+#[test]
+fn noise_file_output_equals_stdout() {
+    let dir = TempDir::new("noise-file");
+    let scene = dir.write("scene.toml", SLS_SCENE);
+    let out = dir.path().join("noisy.csv");
+    let (stdout, _) = forward_with(&scene, &["--noise", "0.01", "--seed", "3"]);
+    let (nothing, _) = forward_with(
+        &scene,
+        &[
+            "--noise",
+            "0.01",
+            "--seed",
+            "3",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert!(nothing.is_empty());
+    assert_eq!(fs::read_to_string(&out).unwrap(), stdout);
+}
+
+#[test]
+fn bad_noise_level_is_refused() {
+    let dir = TempDir::new("noise-bad");
+    let scene = dir.write("scene.toml", SLS_SCENE);
+    for bad in ["-0.01", "nan", "inf", "-inf", "1%", "lots"] {
+        let out = rollfit(&[
+            std::ffi::OsStr::new("forward"),
+            scene.as_os_str(),
+            std::ffi::OsStr::new("--noise"),
+            std::ffi::OsStr::new(bad),
+        ]);
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "--noise {bad} accepted");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        assert!(out.stdout.is_empty());
+        assert!(
+            stderr.contains("--noise") && stderr.contains(bad),
+            "--noise {bad}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn seed_without_noise_is_refused() {
+    let dir = TempDir::new("seed-alone");
+    let scene = dir.write("scene.toml", SLS_SCENE);
+    let out = rollfit(&[
+        std::ffi::OsStr::new("forward"),
+        scene.as_os_str(),
+        std::ffi::OsStr::new("--seed"),
+        std::ffi::OsStr::new("1"),
+    ]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success());
+    assert!(out.stdout.is_empty());
+    assert!(stderr.contains("--noise"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn havriliak_negami_missing_key_is_named() {
+    let scene = edit(HN_SCENE, "beta = 1.0\n", "");
+    assert_rejected(
+        &scene,
+        &[],
+        &["[material]", "\"havriliak-negami\"", "needs the key `beta`"],
+    );
+}
+
+#[test]
+fn havriliak_negami_exponent_out_of_range_is_rejected() {
+    let scene = edit(HN_SCENE, "alpha = 1.0", "alpha = 1.5");
+    assert_rejected(&scene, &[], &["[material]", "alpha = 1.5", "at most 1"]);
+    let scene = edit(HN_SCENE, "beta = 1.0", "beta = 0");
+    assert_rejected(&scene, &[], &["[material]", "beta = 0", "greater than 0"]);
+}
+
+#[test]
+fn havriliak_negami_glassy_below_rubbery_is_rejected() {
+    let scene = edit(HN_SCENE, "E1 = 1e7", "E1 = 1e5");
+    assert_rejected(&scene, &[], &["[material]", "E1 = 100000", "exceed E0"]);
+}
+
+#[test]
+fn havriliak_negami_foreign_and_array_keys_are_named() {
+    let scene = edit(HN_SCENE, "beta = 1.0", "beta = 1.0\nH = [1e6]");
+    assert_rejected(&scene, &[], &["key `H`", "\"havriliak-negami\""]);
+    let scene = edit(HN_SCENE, "tau = 0.1", "tau = [0.1]");
+    assert_rejected(&scene, &[], &["[material]", "`tau` must be a number"]);
+    let scene = edit(SLS_SCENE, "tau = 1.0", "tau = 1.0\nalpha = 0.5");
+    assert_rejected(&scene, &[], &["key `alpha`", "\"sls\""]);
+    let scene = edit(HN_SCENE, "alpha = 1.0", "alpha = \"wide\"");
+    assert_rejected(&scene, &[], &["alpha", "invalid type: string"]);
 }

@@ -3,6 +3,8 @@
 //! the scene file and the CSV columns other programs rely on.
 
 mod commands;
+mod csv_columns;
+mod data_file;
 mod output;
 mod scene_file;
 mod table_file;
@@ -26,14 +28,28 @@ enum Command {
     /// rolling speeds, as CSV.
     ///
     /// Columns: v (m/s), mu, mu_low_speed, contact_size_static (m),
-    /// mean_pressure_static (Pa), centroid_shift (m), gt_alpha.
+    /// mean_pressure_static (Pa), centroid_shift (m), gt_alpha. With
+    /// --noise REL (a synthetic measurement): v, mu (noisy), sigma,
+    /// mu_exact, then the same columns from mu_low_speed on.
     Forward(commands::forward::Args),
+    /// Recover the master curve E*(ω) from measured μ(v) (Persson 2010,
+    /// Appendix B).
+    ///
+    /// Reads the scene's [geometry], [substrate], [contact], optional
+    /// [material] (starting point) and [fit] (scale anchor, settings) and a
+    /// CSV with columns v (m/s), mu, optional sigma and T. Writes
+    /// DIR/fit.json, DIR/modulus.csv (omega, E_storage, E_loss, tan_delta,
+    /// abs_E and their 1σ bands, over the window the data determine) and
+    /// DIR/mu.csv (v, mu_measured, mu_fit, [sigma], residual). Exits
+    /// non-zero if the fit did not converge, unless --allow-unconverged.
+    Fit(commands::fit::Args),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Forward(args) => commands::forward::run(args),
+        Command::Fit(args) => commands::fit::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -14,9 +14,10 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail, ensure};
+use rollfit_fit::{FitParams, Lambda, Method, RollingSetup, ScaleAnchor, StartMaterial, TermRule};
 use rollfit_model::{
-    ContactSize, Geometry, ModelError, Prony, Scene, Shape, Shifted, StandardLinearSolid,
-    Substrate, TabulatedModulus, ViscoelasticModulus, Wlf,
+    ContactSize, Geometry, HavriliakNegami, ModelError, Prony, Scene, Shape, Shifted,
+    StandardLinearSolid, Substrate, TabulatedModulus, ViscoelasticModulus, Wlf,
 };
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -238,6 +239,9 @@ pub enum MaterialKind {
     Prony,
     /// Tabulated master curve: file.
     Table,
+    /// Havriliak–Negami: E0, E1, tau, alpha, beta.
+    #[serde(rename = "havriliak-negami", alias = "hn")]
+    HavriliakNegami,
 }
 
 impl MaterialKind {
@@ -246,6 +250,7 @@ impl MaterialKind {
             MaterialKind::Sls => "sls",
             MaterialKind::Prony => "prony",
             MaterialKind::Table => "table",
+            MaterialKind::HavriliakNegami => "havriliak-negami",
         }
     }
 
@@ -254,6 +259,7 @@ impl MaterialKind {
             MaterialKind::Sls => "E0, E1, tau",
             MaterialKind::Prony => "E1, H, tau",
             MaterialKind::Table => "file",
+            MaterialKind::HavriliakNegami => "E0, E1, tau, alpha, beta",
         }
     }
 }
@@ -266,16 +272,21 @@ impl MaterialKind {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSection {
-    /// "sls", "prony" or "table".
+    /// "sls", "prony", "table" or "havriliak-negami" ("hn").
     pub model: MaterialKind,
-    /// Rubbery (static) Young's modulus E0, Pa ("sls").
+    /// Rubbery (static) Young's modulus E0, Pa ("sls", "havriliak-negami").
     #[serde(rename = "E0")]
     pub e0: Option<Real>,
-    /// Glassy Young's modulus E1, Pa ("sls", "prony").
+    /// Glassy Young's modulus E1, Pa ("sls", "prony", "havriliak-negami").
     #[serde(rename = "E1")]
     pub e1: Option<Real>,
-    /// Time constant τ, s ("sls": one number; "prony": one per term).
+    /// Time constant τ, s ("sls", "havriliak-negami": one number; "prony":
+    /// one per term).
     pub tau: Option<RealOrList>,
+    /// Havriliak–Negami width exponent α, 0 < α ≤ 1 ("havriliak-negami").
+    pub alpha: Option<Real>,
+    /// Havriliak–Negami asymmetry exponent β, 0 < β ≤ 1 ("havriliak-negami").
+    pub beta: Option<Real>,
     /// Prony strengths H_k, Pa ("prony").
     #[serde(rename = "H")]
     pub h: Option<Vec<Real>>,
@@ -344,8 +355,60 @@ pub struct FitSection {
     pub e1_max: Option<Real>,
     /// Number of Prony terms or "auto".
     pub terms: Option<Terms>,
+    /// Relaxation times per decade of the τ grid (the default grid has 2).
+    pub terms_per_decade: Option<Real>,
+    /// Explicit relaxation times, s, strictly increasing.
+    pub tau: Option<Vec<Real>>,
     /// Solver name ("lbfgs", "nelder-mead", "auto", ...).
     pub method: Option<String>,
+    /// Smoothness weight λ ≥ 0 on ln H_k, or "auto" (data-driven).
+    pub lambda: Option<LambdaSetting>,
+    /// Seed of the multi-start perturbations.
+    pub seed: Option<u64>,
+    /// Number of starts.
+    pub starts: Option<usize>,
+    /// Budget of objective evaluations per solver run.
+    pub max_evaluations: Option<usize>,
+    /// Relative quadrature tolerance of the forward model during the fit.
+    pub tolerance: Option<Real>,
+}
+
+/// `[fit] lambda`: a fixed smoothness weight or `"auto"`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LambdaSetting {
+    /// Chosen from the data.
+    Auto,
+    /// This value (checked to be ≥ 0 after parsing).
+    Value(f64),
+}
+
+impl<'de> Deserialize<'de> for LambdaSetting {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct LambdaVisitor;
+        impl Visitor<'_> for LambdaVisitor {
+            type Value = LambdaSetting;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a finite number ≥ 0 or \"auto\"")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<LambdaSetting, E> {
+                finite(v).map(|r| LambdaSetting::Value(r.0))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<LambdaSetting, E> {
+                Ok(LambdaSetting::Value(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<LambdaSetting, E> {
+                Ok(LambdaSetting::Value(v as f64))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<LambdaSetting, E> {
+                if v == "auto" {
+                    Ok(LambdaSetting::Auto)
+                } else {
+                    Err(E::invalid_value(de::Unexpected::Str(v), &self))
+                }
+            }
+        }
+        deserializer.deserialize_any(LambdaVisitor)
+    }
 }
 
 /// `E_at = { omega, E }`.
@@ -459,9 +522,9 @@ impl SceneFile {
                 .shift
                 .as_ref()
                 .context(TEMPERATURE_WITHOUT_SHIFT)?;
-            let log10_a_t = section
-                .log10_shift(temperature)
-                .context("[material.shift]")?;
+            let log10_a_t = section.log10_shift(temperature).with_context(|| {
+                format!("[material.shift] at [sweep] temperature = {temperature} °C")
+            })?;
             material = Box::new(
                 Shifted::new(material, log10_a_t).map_err(|e| anyhow!("[material.shift]: {e}"))?,
             );
@@ -471,22 +534,11 @@ impl SceneFile {
             });
         }
 
-        let geometry = Geometry {
-            shape: match self.geometry.shape {
-                ShapeName::Sphere => Shape::Sphere,
-                ShapeName::Cylinder => Shape::Cylinder,
-            },
-            radius: self.geometry.radius.0,
-            load: self.geometry.load.0,
-        };
-        let substrate = Substrate {
-            poisson: self.substrate.poisson.map_or(DEFAULT_POISSON, |r| r.0),
-            film_thickness: self.substrate.thickness.map(|r| r.0),
-        };
-        let contact = match self.contact.size {
-            None | Some(ContactName::Dynamic) => ContactSize::Dynamic,
-            Some(ContactName::Static) => ContactSize::Static,
-        };
+        let RollingSetup {
+            geometry,
+            substrate,
+            contact,
+        } = self.rolling_setup();
         let mut scene = Scene::new(geometry, substrate, contact, material)
             .map_err(|e| anyhow!("{}{e}", section_of(&e)))?;
         if let Some(Real(tolerance)) = sweep.tolerance {
@@ -499,6 +551,53 @@ impl SceneFile {
             speeds,
             shift,
         })
+    }
+}
+
+impl SceneFile {
+    /// The body, substrate and contact rule of [geometry], [substrate] and
+    /// [contact] (values unchecked: `Scene::new` checks them).
+    pub fn rolling_setup(&self) -> RollingSetup {
+        RollingSetup {
+            geometry: Geometry {
+                shape: match self.geometry.shape {
+                    ShapeName::Sphere => Shape::Sphere,
+                    ShapeName::Cylinder => Shape::Cylinder,
+                },
+                radius: self.geometry.radius.0,
+                load: self.geometry.load.0,
+            },
+            substrate: Substrate {
+                poisson: self.substrate.poisson.map_or(DEFAULT_POISSON, |r| r.0),
+                film_thickness: self.substrate.thickness.map(|r| r.0),
+            },
+            contact: match self.contact.size {
+                None | Some(ContactName::Dynamic) => ContactSize::Dynamic,
+                Some(ContactName::Static) => ContactSize::Static,
+            },
+        }
+    }
+
+    /// Builds the inverse problem's settings: the rolling set-up (checked
+    /// by the model, errors prefixed with their section), the `[fit]`
+    /// table (defaults where absent) and, for an "sls" or "prony"
+    /// `[material]`, its E0 and E1 as the starting point. `[sweep]` is not
+    /// used. Ranges of the fit settings are checked later by
+    /// [`FitParams::check`].
+    pub fn fit_setup(&self) -> Result<(RollingSetup, FitParams)> {
+        let setup = self.rolling_setup();
+        // The model owns the ranges of the set-up; a placeholder material
+        // lets it check them before any fitting starts.
+        let placeholder = StandardLinearSolid::new(1.0, 2.0, 1.0).map_err(|e| anyhow!("{e}"))?;
+        let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, placeholder)
+            .map_err(|e| anyhow!("{}{e}", section_of(&e)))?;
+        let fit = self.fit.clone().unwrap_or_default();
+        let mut params = fit.params().context("[fit]")?;
+        scene
+            .with_tolerance(params.model_tolerance)
+            .map_err(|e| anyhow!("[fit]: {e}"))?;
+        params.start = self.material.as_ref().and_then(MaterialSection::start);
+        Ok((setup, params))
     }
 }
 
@@ -525,11 +624,14 @@ impl MaterialSection {
             ("tau", self.tau.is_some()),
             ("H", self.h.is_some()),
             ("file", self.file.is_some()),
+            ("alpha", self.alpha.is_some()),
+            ("beta", self.beta.is_some()),
         ];
         let needed: &[&str] = match kind {
             MaterialKind::Sls => &["E0", "E1", "tau"],
             MaterialKind::Prony => &["E1", "H", "tau"],
             MaterialKind::Table => &["file"],
+            MaterialKind::HavriliakNegami => &["E0", "E1", "tau", "alpha", "beta"],
         };
         for (key, is_present) in present {
             let wanted = needed.contains(&key);
@@ -554,9 +656,10 @@ impl MaterialSection {
             }
         }
         match (kind, &self.tau) {
-            (MaterialKind::Sls, Some(RealOrList::List(_))) => {
+            (MaterialKind::Sls | MaterialKind::HavriliakNegami, Some(RealOrList::List(_))) => {
                 bail!(
-                    "[material]: model \"sls\" takes one relaxation time: `tau` must be a number, not an array"
+                    "[material]: model \"{}\" takes one relaxation time: `tau` must be a number, not an array",
+                    kind.name()
                 )
             }
             (MaterialKind::Prony, Some(RealOrList::One(_))) => bail!(
@@ -590,6 +693,22 @@ impl MaterialSection {
                 let h = self.h.as_deref().map(reals).unwrap_or_default();
                 Box::new(Prony::new(value(self.e1), h, tau).map_err(model)?)
             }
+            MaterialKind::HavriliakNegami => {
+                let tau = match self.tau {
+                    Some(RealOrList::One(t)) => t,
+                    _ => f64::NAN,
+                };
+                Box::new(
+                    HavriliakNegami::new(
+                        value(self.e0),
+                        value(self.e1),
+                        tau,
+                        value(self.alpha),
+                        value(self.beta),
+                    )
+                    .map_err(model)?,
+                )
+            }
             MaterialKind::Table => {
                 let file = self.file.as_ref().context("model \"table\" needs `file`")?;
                 let path = base_dir.join(file);
@@ -603,10 +722,20 @@ impl MaterialSection {
     }
 }
 
+/// A validated time–temperature shift: the model's own objects, so that the
+/// rule for a free shift (exact at listed temperatures, linear in T between
+/// them, refused outside) lives in one place, `rollfit_model`.
+#[derive(Debug)]
+enum ShiftRule {
+    Wlf(Wlf),
+    Free(rollfit_model::modulus::FreeShift),
+}
+
 impl ShiftSection {
     /// Checks that exactly the keys of the chosen shift model are present
-    /// and that a free shift's temperatures are distinct.
-    fn check(&self) -> Result<()> {
+    /// and builds the model's shift from them; the model checks the values
+    /// (positive WLF constants, distinct and finite free-shift entries).
+    fn rule(&self) -> Result<ShiftRule> {
         match self.model {
             ShiftKind::Wlf => {
                 ensure!(
@@ -617,71 +746,45 @@ impl ShiftSection {
                     self.log_at.is_none(),
                     "key `log_aT` does not belong to model \"wlf\" (it takes T_ref, C1, C2)"
                 );
-                Wlf::new(self.t_ref.0, value_of(self.c1), value_of(self.c2))
+                // The model names the offending key (T_ref, C1 or C2).
+                let wlf = Wlf::new(self.t_ref.0, value_of(self.c1), value_of(self.c2))
                     .map_err(|e| anyhow!("{e}"))?;
+                Ok(ShiftRule::Wlf(wlf))
             }
             ShiftKind::Free => {
                 ensure!(
                     self.c1.is_none() && self.c2.is_none(),
                     "keys `C1` and `C2` do not belong to model \"free\" (it takes T_ref, log_aT)"
                 );
-                let points = self.free_points()?;
-                ensure!(
-                    points.len() >= 2,
-                    "model \"free\" needs `log_aT` entries at two or more temperatures, \
-                     e.g. log_aT = [{{ T = 0.0, log_aT = 2.1 }}, {{ T = 40.0, log_aT = -1.3 }}]"
-                );
+                let listed = self.log_at.as_deref().context(
+                    "model \"free\" needs the key `log_aT`, one entry per measured temperature, \
+                     e.g. log_aT = [{ T = 0.0, log_aT = 2.1 }, { T = 40.0, log_aT = -1.3 }]",
+                )?;
+                let entries = listed.iter().map(|p| (p.t.0, p.log_at.0)).collect();
+                // The model's "entry i" is the i-th element of `log_aT`.
+                let free = rollfit_model::modulus::FreeShift::new(self.t_ref.0, entries)
+                    .map_err(|e| anyhow!("`log_aT`: {e}"))?;
+                Ok(ShiftRule::Free(free))
             }
         }
-        Ok(())
     }
 
-    /// The free shift's (T, log10 a_T) pairs sorted by temperature, the
-    /// reference temperature included with log10 a_T = 0.
-    fn free_points(&self) -> Result<Vec<(f64, f64)>> {
-        let listed = self.log_at.as_deref().unwrap_or_default();
-        let t_ref = self.t_ref.0;
-        let mut points: Vec<(f64, f64)> = listed.iter().map(|p| (p.t.0, p.log_at.0)).collect();
-        if let Some(&(_, at_ref)) = points.iter().find(|(t, _)| *t == t_ref) {
-            ensure!(
-                at_ref == 0.0,
-                "log_aT = {at_ref} at T = T_ref = {t_ref}: the shift is 0 at the reference temperature by definition"
-            );
-        } else {
-            points.push((t_ref, 0.0));
-        }
-        points.sort_by(|a, b| a.0.total_cmp(&b.0));
-        if let Some(pair) = points.windows(2).find(|w| w[0].0 == w[1].0) {
-            bail!("log_aT lists the temperature T = {} twice", pair[0].0);
-        }
-        Ok(points)
+    /// Checks the section by building its shift.
+    fn check(&self) -> Result<()> {
+        self.rule().map(|_| ())
     }
 
-    /// log10 a_T at `temperature` (°C). A free shift is interpolated linearly
-    /// in T between its listed temperatures and never extrapolated: outside
-    /// them nothing is known about the material.
+    /// log10 a_T at `temperature` (°C), by the model's rule: WLF, or a free
+    /// shift interpolated linearly in T between its listed temperatures
+    /// (T_ref included) and never extrapolated beyond them.
     pub fn log10_shift(&self, temperature: f64) -> Result<f64> {
-        let shift = match self.model {
-            ShiftKind::Wlf => {
-                let wlf = Wlf::new(self.t_ref.0, value_of(self.c1), value_of(self.c2))
-                    .map_err(|e| anyhow!("{e}"))?;
-                wlf.log10_shift(temperature).map_err(|e| anyhow!("{e}"))?
-            }
-            ShiftKind::Free => {
-                let points = self.free_points()?;
-                let (first, last) = (points[0].0, points[points.len() - 1].0);
-                ensure!(
-                    (first..=last).contains(&temperature),
-                    "temperature {temperature} °C lies outside the temperatures of the free shift \
-                     ({first} … {last} °C); add a log_aT entry for it or use model = \"wlf\""
-                );
-                let i = points
-                    .windows(2)
-                    .position(|w| temperature <= w[1].0)
-                    .unwrap_or(points.len() - 2);
-                let ((t0, s0), (t1, s1)) = (points[i], points[i + 1]);
-                s0 + (s1 - s0) * (temperature - t0) / (t1 - t0)
-            }
+        let shift = match self.rule()? {
+            ShiftRule::Wlf(wlf) => wlf.log10_shift(temperature).map_err(|e| anyhow!("{e}"))?,
+            // The only refusal for a finite temperature is one outside the
+            // list, which the file can fix.
+            ShiftRule::Free(free) => free.log10_shift(temperature).map_err(|e| {
+                anyhow!("{e}; add a `log_aT` entry at or beyond it, or use model = \"wlf\"")
+            })?,
         };
         ensure!(
             shift.is_finite(),
@@ -698,6 +801,25 @@ fn value_of(r: Option<Real>) -> f64 {
 fn require_positive(key: &str, value: f64) -> Result<()> {
     ensure!(value > 0.0, "{key} = {value}: must be greater than zero");
     Ok(())
+}
+
+impl MaterialSection {
+    /// E0 and E1 of an "sls" or "prony" material, as the fit's starting
+    /// point (other models give none).
+    fn start(&self) -> Option<StartMaterial> {
+        let glassy_modulus = self.e1?.0;
+        let static_modulus = match self.model {
+            MaterialKind::Sls => self.e0?.0,
+            MaterialKind::Prony => {
+                glassy_modulus - self.h.as_deref()?.iter().map(|h| h.0).sum::<f64>()
+            }
+            _ => return None,
+        };
+        Some(StartMaterial {
+            static_modulus,
+            glassy_modulus,
+        })
+    }
 }
 
 impl FitSection {
@@ -722,16 +844,119 @@ impl FitSection {
                 );
             }
         }
+        let anchors: Vec<&str> = [
+            ("`E0`", self.e0.is_some()),
+            ("`E_at`", self.e_at.is_some()),
+            ("`contact_radius`", self.contact_radius.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(key, present)| present.then_some(key))
+        .collect();
+        ensure!(
+            anchors.len() <= 1,
+            "more than one scale anchor ({}): give at most one of E0, E_at and contact_radius",
+            anchors.join(", ")
+        );
         if let Some(Terms::Count(n)) = self.terms {
-            ensure!(n >= 1, "terms = {n}: must be at least 1 (or \"auto\")");
+            ensure!(n >= 2, "terms = {n}: must be at least 2 (or \"auto\")");
+        }
+        let grids: Vec<&str> = [
+            ("`terms`", self.terms.is_some()),
+            ("`terms_per_decade`", self.terms_per_decade.is_some()),
+            ("`tau`", self.tau.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(key, present)| present.then_some(key))
+        .collect();
+        ensure!(
+            grids.len() <= 1,
+            "{} each choose the relaxation times: give at most one of terms, \
+             terms_per_decade and tau",
+            grids.join(" and ")
+        );
+        if let Some(Real(d)) = self.terms_per_decade {
+            require_positive("terms_per_decade", d)?;
+        }
+        if let Some(tau) = &self.tau {
+            for (i, &Real(t)) in tau.iter().enumerate() {
+                require_positive(&format!("tau[{i}]"), t)?;
+            }
+        }
+        if let Some(LambdaSetting::Value(l)) = self.lambda {
+            ensure!(
+                l >= 0.0,
+                "lambda = {l}: must be zero or greater (or \"auto\")"
+            );
+        }
+        if let Some(Real(tolerance)) = self.tolerance {
+            require_positive("tolerance", tolerance)?;
         }
         if let Some(method) = &self.method {
             ensure!(
                 !method.trim().is_empty(),
                 "method is empty: name a solver such as \"lbfgs\", \"nelder-mead\" or \"auto\""
             );
+            Method::parse(method).map_err(|e| anyhow!("{e}"))?;
         }
         Ok(())
+    }
+
+    /// The fit settings the section asks for; what it leaves out keeps the
+    /// defaults of [`FitParams`]. Ranges are checked by
+    /// [`FitParams::check`], which names the key.
+    pub fn params(&self) -> Result<FitParams> {
+        let anchor = match (self.e0, self.e_at, self.contact_radius) {
+            (Some(Real(e0)), None, None) => Some(ScaleAnchor::StaticModulus(e0)),
+            (None, Some(a), None) => Some(ScaleAnchor::ModulusAt {
+                omega: a.omega.0,
+                modulus: a.e.0,
+            }),
+            (None, None, Some(a)) => Some(ScaleAnchor::ContactRadius {
+                speed: a.v.0,
+                radius: a.r.0,
+            }),
+            (None, None, None) => None,
+            _ => bail!("give at most one scale anchor (E0, E_at or contact_radius)"),
+        };
+        let mut params = FitParams {
+            anchor,
+            ..FitParams::default()
+        };
+        if let Some(Real(e1_max)) = self.e1_max {
+            params.e1_max = e1_max;
+        }
+        if let Some(terms) = self.terms {
+            params.terms = match terms {
+                Terms::Auto => TermRule::Auto,
+                Terms::Count(n) => TermRule::Count(usize::try_from(n).unwrap_or(0)),
+            };
+        } else if let Some(Real(d)) = self.terms_per_decade {
+            params.terms = TermRule::PerDecade(d);
+        } else if let Some(tau) = &self.tau {
+            params.terms = TermRule::Explicit(reals(tau));
+        }
+        if let Some(method) = &self.method {
+            params.method = Method::parse(method).map_err(|e| anyhow!("{e}"))?;
+        }
+        if let Some(lambda) = self.lambda {
+            params.lambda = match lambda {
+                LambdaSetting::Auto => Lambda::Auto,
+                LambdaSetting::Value(l) => Lambda::Fixed(l),
+            };
+        }
+        if let Some(seed) = self.seed {
+            params.seed = seed;
+        }
+        if let Some(starts) = self.starts {
+            params.starts = starts;
+        }
+        if let Some(budget) = self.max_evaluations {
+            params.max_evaluations = Some(budget);
+        }
+        if let Some(Real(tolerance)) = self.tolerance {
+            params.model_tolerance = tolerance;
+        }
+        Ok(params)
     }
 }
 
@@ -865,16 +1090,91 @@ count = 7
 
     #[test]
     fn fit_section_is_accepted() {
-        let text = format!(
-            "{SLS}[fit]\nE0 = 2e6\nE_at = {{ omega = 1.0, E = 1.2e8 }}\n\
-             contact_radius = {{ v = 1e-6, r = 1e-3 }}\nE1_max = 1e10\nterms = \"auto\"\nmethod = \"lbfgs\"\n"
-        );
-        let file = parse(&text).unwrap();
-        assert_eq!(file.fit.unwrap().terms, Some(Terms::Auto));
+        for anchor in [
+            "E0 = 2e6",
+            "E_at = { omega = 1.0, E = 1.2e8 }",
+            "contact_radius = { v = 1e-6, r = 1e-3 }",
+        ] {
+            let text = format!(
+                "{SLS}[fit]\n{anchor}\nE1_max = 1e10\nterms = \"auto\"\nmethod = \"lbfgs\"\n"
+            );
+            let file = parse(&text).unwrap();
+            assert_eq!(file.fit.unwrap().terms, Some(Terms::Auto));
+        }
         let file = parse(&format!("{SLS}[fit]\nterms = 15\n")).unwrap();
         assert_eq!(file.fit.unwrap().terms, Some(Terms::Count(15)));
         assert!(parse(&format!("{SLS}[fit]\nterms = 0\n")).is_err());
         assert!(parse(&format!("{SLS}[fit]\nterms = \"many\"\n")).is_err());
+    }
+
+    #[test]
+    fn fit_section_gives_fit_params() {
+        let text = format!(
+            "{SLS}[fit]\nE_at = {{ omega = 2.0, E = 1.2e8 }}\nE1_max = 5e9\nterms_per_decade = 1.5\n\
+             method = \"nelder-mead\"\nlambda = 0\nseed = 7\nstarts = 2\nmax_evaluations = 500\n\
+             tolerance = 1e-5\n"
+        );
+        let (setup, params) = parse(&text).unwrap().fit_setup().unwrap();
+        assert_eq!(setup.geometry.radius, 0.01);
+        assert_eq!(setup.substrate.poisson, DEFAULT_POISSON);
+        assert_eq!(
+            params.anchor,
+            Some(ScaleAnchor::ModulusAt {
+                omega: 2.0,
+                modulus: 1.2e8
+            })
+        );
+        assert_eq!(params.e1_max, 5e9);
+        assert_eq!(params.terms, TermRule::PerDecade(1.5));
+        assert_eq!(params.method, Method::NelderMead);
+        assert_eq!(params.lambda, Lambda::Fixed(0.0));
+        assert_eq!((params.seed, params.starts), (7, 2));
+        assert_eq!(params.max_evaluations, Some(500));
+        assert_eq!(params.model_tolerance, 1e-5);
+        // The scene's standard linear solid is the starting point.
+        let start = params.start.clone().unwrap();
+        assert_eq!((start.static_modulus, start.glassy_modulus), (1e6, 1e7));
+        assert!(params.check(setup).is_ok());
+
+        // Defaults, a Prony start (E0 = E1 - sum H) and explicit tau.
+        let prony = SLS
+            .replace("model = \"sls\"\nE0 = 1e6\n", "model = \"prony\"\n")
+            .replace("tau = 1", "H = [4e6, 5e6]\ntau = [0.1, 1.0]");
+        let (_, params) = parse(&format!(
+            "{prony}[fit]\ntau = [1e-3, 1e-2, 1e-1]\nlambda = \"auto\"\n"
+        ))
+        .unwrap()
+        .fit_setup()
+        .unwrap();
+        assert_eq!(params.terms, TermRule::Explicit(vec![1e-3, 1e-2, 1e-1]));
+        assert_eq!(params.lambda, Lambda::Auto);
+        assert_eq!(params.anchor, None);
+        let start = params.start.unwrap();
+        assert!((start.static_modulus - 1e6).abs() < 1e-6);
+        let (_, params) = parse(SLS.split("[material]").next().unwrap())
+            .unwrap()
+            .fit_setup()
+            .unwrap();
+        assert_eq!(params, FitParams::default());
+    }
+
+    #[test]
+    fn fit_section_conflicts_are_named() {
+        let err = |fit: &str| format!("{:#}", parse(&format!("{SLS}[fit]\n{fit}\n")).unwrap_err());
+        let m = err("E0 = 1e6\ncontact_radius = { v = 1e-6, r = 1e-3 }");
+        assert!(
+            m.contains("`E0`, `contact_radius`") && m.contains("at most one"),
+            "{m}"
+        );
+        let m = err("terms = 10\ntau = [1.0, 2.0]");
+        assert!(m.contains("`terms` and `tau`"), "{m}");
+        assert!(err("lambda = -1").contains("lambda = -1"));
+        assert!(err("lambda = \"big\"").contains("auto"));
+        assert!(err("method = \"newton\"").contains("unknown method \"newton\""));
+        assert!(err("seed = -1").contains("seed"));
+        assert!(err("terms_per_decade = 0").contains("terms_per_decade = 0"));
+        assert!(err("tau = [1.0, -2.0]").contains("tau[1] = -2"));
+        assert!(err("bogus = 1").contains("unknown field `bogus`"));
     }
 
     #[test]
@@ -889,23 +1189,89 @@ count = 7
         assert!((shift.log10_a_t - expected).abs() < 1e-12);
     }
 
+    const FREE_SHIFT: &str = "tau = 1\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
+         log_aT = [{ T = 60.0, log_aT = -3.0 }, { T = 0.0, log_aT = 2.0 }]\n";
+
     #[test]
-    fn free_shift_interpolates_and_refuses_to_extrapolate() {
-        let text = SLS.replace(
-            "tau = 1\n",
-            "tau = 1\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
-             log_aT = [{ T = 0.0, log_aT = 2.0 }, { T = 60.0, log_aT = -3.0 }]\n",
-        );
+    fn free_shift_follows_the_model_rule() {
+        let text = SLS.replace("tau = 1\n", FREE_SHIFT);
         let shift_at = |t: f64| {
             setup(&format!("{text}temperature = {t:?}\n")).map(|s| s.shift.unwrap().log10_a_t)
         };
+        let model =
+            rollfit_model::modulus::FreeShift::new(20.0, vec![(60.0, -3.0), (0.0, 2.0)]).unwrap();
+        for t in [0.0, 5.0, 10.0, 20.0, 33.3, 40.0, 60.0] {
+            assert_eq!(shift_at(t).unwrap(), model.log10_shift(t).unwrap(), "{t}");
+        }
+        // Exact at listed temperatures and T_ref, linear in T between them.
+        assert_eq!(shift_at(0.0).unwrap(), 2.0);
+        assert_eq!(shift_at(20.0).unwrap(), 0.0);
+        assert_eq!(shift_at(60.0).unwrap(), -3.0);
         assert!((shift_at(10.0).unwrap() - 1.0).abs() < 1e-12);
         assert!((shift_at(40.0).unwrap() + 1.5).abs() < 1e-12);
-        assert_eq!(shift_at(20.0).unwrap(), 0.0);
-        assert_eq!(shift_at(0.0).unwrap(), 2.0);
-        assert_eq!(shift_at(60.0).unwrap(), -3.0);
-        let err = format!("{:#}", shift_at(70.0).unwrap_err());
-        assert!(err.contains("outside"), "{err}");
+        for t in [70.0, -0.5] {
+            let err = format!("{:#}", shift_at(t).unwrap_err());
+            for fragment in [
+                "[material.shift] at [sweep] temperature",
+                &format!("T = {t} °C"),
+                "outside",
+                "0 to 60 °C",
+                "`log_aT`",
+            ] {
+                assert!(err.contains(fragment), "{fragment:?} in {err}");
+            }
+        }
+    }
+
+    #[test]
+    fn free_shift_entries_are_checked_by_the_model_and_named() {
+        let err = |log_at: &str| {
+            let text = SLS.replace(
+                "tau = 1\n",
+                &format!("tau = 1\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n{log_at}"),
+            );
+            format!("{:#}", parse(&text).unwrap_err())
+        };
+        let msg = err("log_aT = [{ T = 0.0, log_aT = 2.0 }, { T = 0.0, log_aT = 2.5 }]\n");
+        assert!(
+            msg.contains("[material.shift]") && msg.contains("`log_aT`: free shift: entry 1"),
+            "{msg}"
+        );
+        assert!(msg.contains("listed before as entry 0"), "{msg}");
+        let msg = err("log_aT = [{ T = 20.0, log_aT = 0.5 }]\n");
+        assert!(
+            msg.contains("`log_aT`") && msg.contains("reference temperature"),
+            "{msg}"
+        );
+        let msg = err("log_aT = []\n");
+        assert!(
+            msg.contains("`log_aT`") && msg.contains("no temperatures"),
+            "{msg}"
+        );
+        let msg = err("");
+        assert!(msg.contains("needs the key `log_aT`"), "{msg}");
+        let msg = err("log_aT = [{ T = 0.0, log_aT = 2.0 }]\nC1 = 8.86\n");
+        assert!(msg.contains("`C1` and `C2` do not belong"), "{msg}");
+    }
+
+    #[test]
+    fn havriliak_negami_and_its_alias() {
+        let hn =
+            "model = \"havriliak-negami\"\nE0 = 1e6\nE1 = 1e9\ntau = 1e-3\nalpha = 0.5\nbeta = 0.4";
+        let text = SLS.replace("model = \"sls\"\nE0 = 1e6\nE1 = 1e7\ntau = 1", hn);
+        let s = setup(&text).unwrap();
+        assert_eq!(s.scene.material().static_modulus(), 1e6);
+        assert_eq!(s.scene.material().loss_exponent_at_zero(), 0.5);
+        let alias = setup(&text.replace("\"havriliak-negami\"", "\"hn\"")).unwrap();
+        assert_eq!(
+            alias.scene.material().modulus(3.0),
+            s.scene.material().modulus(3.0)
+        );
+        let err = format!(
+            "{:#}",
+            parse(&text.replace("alpha = 0.5\n", "")).unwrap_err()
+        );
+        assert!(err.contains("needs the key `alpha`"), "{err}");
     }
 
     #[test]

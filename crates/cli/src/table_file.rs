@@ -17,6 +17,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail, ensure};
 
+use crate::csv_columns;
+
 /// A master curve as read: angular frequency (rad/s), storage and loss
 /// Young's moduli (Pa), in increasing frequency.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,17 +53,10 @@ pub fn parse<R: Read>(input: R) -> Result<ModulusTable> {
         .comment(Some(b'#'))
         .trim(csv::Trim::All)
         .from_reader(input);
-    let header = reader
-        .headers()
-        .context("cannot read the header row")?
-        .clone();
-    ensure!(
-        !header.is_empty(),
-        "the table is empty: expected a header row (omega or f, E_storage, E_loss) and data rows"
-    );
-    if let Some(name) = duplicate(&header) {
-        bail!("the header names column `{name}` twice");
-    }
+    let header = csv_columns::header(
+        &mut reader,
+        "the table is empty: expected a header row (omega or f, E_storage, E_loss) and data rows",
+    )?;
     let position = |name: &str| header.iter().position(|h| h == name);
     let (frequency_column, frequency) = match (position("omega"), position("f")) {
         (Some(i), None) => (i, Frequency::Angular),
@@ -71,7 +66,7 @@ pub fn parse<R: Read>(input: R) -> Result<ModulusTable> {
         }
         (None, None) => bail!(
             "the header has no frequency column: expected `omega` (rad/s) or `f` (Hz), found {}",
-            list(&header)
+            csv_columns::list(&header)
         ),
     };
     let mut columns = [frequency_column, 0, 0];
@@ -84,7 +79,7 @@ pub fn parse<R: Read>(input: R) -> Result<ModulusTable> {
             ),
             None => bail!(
                 "the header has no `{name}` column (Pa); found {}",
-                list(&header)
+                csv_columns::list(&header)
             ),
         };
     }
@@ -105,14 +100,7 @@ pub fn parse<R: Read>(input: R) -> Result<ModulusTable> {
         let line = record.position().map_or(0, |p| p.line());
         let mut values = [0.0; 3];
         for ((value, &column), name) in values.iter_mut().zip(&columns).zip(&names) {
-            let text = record.get(column).unwrap_or("");
-            *value = text
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .with_context(|| {
-                    format!("line {line}: column `{name}`: {text:?} is not a finite number")
-                })?;
+            *value = csv_columns::finite(&record, column, line, name)?;
             ensure!(
                 *value > 0.0,
                 "line {line}: column `{name}` = {value}: must be greater than zero \
@@ -143,19 +131,6 @@ pub fn parse<R: Read>(input: R) -> Result<ModulusTable> {
         table.omega.len()
     );
     Ok(table)
-}
-
-fn duplicate(header: &csv::StringRecord) -> Option<&str> {
-    header
-        .iter()
-        .enumerate()
-        .find(|(i, h)| header.iter().skip(i + 1).any(|other| other == *h))
-        .map(|(_, h)| h)
-}
-
-fn list(header: &csv::StringRecord) -> String {
-    let names: Vec<String> = header.iter().map(|h| format!("`{h}`")).collect();
-    names.join(", ")
 }
 
 #[cfg(test)]

@@ -8,14 +8,16 @@
 //!
 //! Where each equation lives:
 //! - [`modulus`]: E*(ω) — standard linear solid (Eq. 12), Prony series
-//!   (Eq. B2), tabulated master curves, time–temperature shift (WLF).
+//!   (Eq. B2), Havriliak–Negami, tabulated master curves, time–temperature
+//!   shift (WLF).
 //! - [`contact`]: Hertz contact size and mean pressure (static and dynamic).
 //! - [`film`]: the film factor S(qd) of a layer on a rigid base.
 //! - [`kernel`]: the universal kernels of the friction integrals — J1²(y)/y for
 //!   the cylinder (Eq. 11), x²G(x) for the sphere (Eq. 17 reduced to one
 //!   frequency integral) — and their product-integration weights.
 //! - [`friction`]: μ(v) and its derivatives with respect to Prony parameters.
-//! - [`asymptotes`]: the low-speed limit (Eqs. 18/19), Greenwood–Tabor α
+//! - [`asymptotes`]: the low-speed limit (Eqs. 18/19, generalised to
+//!   E″ ∝ ω^p), Greenwood–Tabor α
 //!   (Eqs. 20–21), pressure-centroid shift, friction maximum.
 //!
 //! Sign convention: E*(ω) = E′ + iE″ with E″ ≥ 0 for ω > 0; the loss
@@ -35,6 +37,7 @@ pub use contact::{ContactSize, Shape};
 pub use error::ModelError;
 pub use friction::FrictionJacobian;
 pub use modulus::{
-    Prony, Shifted, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus, Wlf,
+    HavriliakNegami, Prony, Shifted, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus,
+    Wlf,
 };
 pub use scene::{Geometry, Scene, Substrate};

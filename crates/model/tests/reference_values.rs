@@ -143,7 +143,6 @@ fn is_film_sphere(case: &Case) -> bool {
 }
 
 #[test]
-#[ignore = "a film under a sphere is not implemented yet (forward-model issue, follow-up)"]
 fn film_under_sphere_reference() {
     for case in cases().into_iter().filter(is_film_sphere) {
         let worst = worst_error(&case, &case.scene);

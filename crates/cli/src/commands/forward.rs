@@ -1,9 +1,20 @@
-//! `rollfit forward SCENE.toml [-o OUT.csv]`: μ(v) of a scene over its
-//! `[sweep]` of speeds.
+//! `rollfit forward SCENE.toml [-o OUT.csv] [--noise REL [--seed N]]`: μ(v)
+//! of a scene over its `[sweep]` of speeds, optionally as a synthetic
+//! measurement with multiplicative Gaussian noise.
+//!
+//! Noise: each μ_i is multiplied by (1 + REL·z_i), z_i independent standard
+//! normal deviates, and reported with its standard deviation
+//! σ_i = REL·μ_exact,i. The deviates come from ChaCha8 seeded with
+//! `seed_from_u64(N)` (rand_chacha) through rand_distr's `StandardNormal`,
+//! drawn in sweep order: a seed names one fixed data set, the same on every
+//! machine for the versions pinned in Cargo.lock.
 
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
 use rollfit_model::Shape;
 
 use crate::output;
@@ -24,6 +35,21 @@ pub const COLUMNS: [&str; 7] = [
     "gt_alpha",
 ];
 
+/// CSV columns with `--noise`: v; the noisy μ; its standard deviation σ;
+/// the noiseless μ; then the columns after `mu` in [`COLUMNS`], computed
+/// from the noiseless μ (they describe the model, not the measurement).
+pub const NOISY_COLUMNS: [&str; 9] = [
+    "v",
+    "mu",
+    "sigma",
+    "mu_exact",
+    "mu_low_speed",
+    "contact_size_static",
+    "mean_pressure_static",
+    "centroid_shift",
+    "gt_alpha",
+];
+
 /// Arguments of `rollfit forward`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -33,6 +59,42 @@ pub struct Args {
     /// to stdout.
     #[arg(short, long, value_name = "OUT.csv")]
     pub output: Option<PathBuf>,
+    /// Make a synthetic measurement: multiply each μ by (1 + REL·z), z a
+    /// standard normal deviate, and add the columns sigma (= REL·μ) and
+    /// mu_exact. REL is relative, e.g. 0.01 for 1 % noise.
+    #[arg(long, value_name = "REL", value_parser = parse_noise, allow_hyphen_values = true)]
+    pub noise: Option<f64>,
+    /// Seed of the noise generator (ChaCha8); the same seed gives the same
+    /// file on every machine. Default 0. Needs --noise.
+    #[arg(long, value_name = "N", requires = "noise")]
+    pub seed: Option<u64>,
+}
+
+/// `--noise`: a finite relative standard deviation, zero or greater.
+fn parse_noise(text: &str) -> Result<f64, String> {
+    let rel: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a number such as 0.01 (1 % noise), got {text:?}"))?;
+    if rel.is_finite() && rel >= 0.0 {
+        Ok(rel)
+    } else {
+        Err(format!(
+            "the relative noise must be a finite number, zero or greater (0.01 = 1 %), got {rel}"
+        ))
+    }
+}
+
+/// Multiplicative Gaussian noise: (noisy μ, σ) for each noiseless μ, from
+/// ChaCha8 seeded with `seed`, one standard normal deviate per μ in order.
+pub fn add_noise(mu: &[f64], rel: f64, seed: u64) -> Vec<(f64, f64)> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    mu.iter()
+        .map(|&m| {
+            let z: f64 = StandardNormal.sample(&mut rng);
+            (m * (1.0 + rel * z), rel * m)
+        })
+        .collect()
 }
 
 /// Runs the command: reads the scene, computes μ(v), writes the CSV and a
@@ -53,7 +115,29 @@ pub fn run(args: &Args) -> Result<()> {
         .map_err(anyhow::Error::msg)
         .with_context(|| format!("computing μ(v) for scene file {}", path.display()))?;
 
-    let bytes = output::csv_bytes(&COLUMNS, rows(&setup.scene, &setup.speeds, &mu))?;
+    let rows = rows(&setup.scene, &setup.speeds, &mu);
+    let bytes = match args.noise {
+        None => output::csv_bytes(&COLUMNS, rows)?,
+        Some(rel) => {
+            let noisy = add_noise(&mu, rel, args.seed.unwrap_or(0));
+            let negative = noisy.iter().filter(|(m, _)| *m <= 0.0).count();
+            if negative > 0 {
+                // Kept, not clipped: clipping would bias the data set; a
+                // fit with relative weights needs to know, though.
+                eprintln!(
+                    "warning: {negative} of {} noisy μ values are zero or negative \
+                     (with --noise {rel}, every deviate below -1/{rel} gives one)",
+                    noisy.len()
+                );
+            }
+            let rows = rows.zip(noisy).map(|(mut row, (m, sigma))| {
+                // [v, mu_exact, rest..] → [v, mu, sigma, mu_exact, rest..]
+                row.splice(1..1, [m, sigma]);
+                row
+            });
+            output::csv_bytes(&NOISY_COLUMNS, rows)?
+        }
+    };
     match &args.output {
         Some(out) => output::write_atomically(out, &bytes)?,
         None => output::write_stdout(&bytes)?,
@@ -133,5 +217,33 @@ fn peak_description(scene: &DynScene, speeds: &[f64], mu: &[f64]) -> String {
             "friction maximum near v = {:.4e} m/s (μ = {:.4e}), not refined: {e}",
             speeds[i], mu[i]
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn noise_is_reproducible_and_relative() {
+        let mu = [1e-3, 2e-2, 5e-1];
+        let a = add_noise(&mu, 0.01, 7);
+        assert_eq!(a, add_noise(&mu, 0.01, 7));
+        assert_ne!(a, add_noise(&mu, 0.01, 8));
+        for ((m, sigma), exact) in a.iter().zip(mu) {
+            assert_eq!(*sigma, 0.01 * exact);
+            assert!((m / exact - 1.0).abs() < 0.1);
+        }
+        let none = add_noise(&mu, 0.0, 3);
+        assert!(none.iter().zip(mu).all(|(&(m, s), e)| m == e && s == 0.0));
+    }
+
+    #[test]
+    fn noise_level_is_checked() {
+        assert_eq!(parse_noise("0.01"), Ok(0.01));
+        assert_eq!(parse_noise("0"), Ok(0.0));
+        for bad in ["-0.01", "nan", "inf", "1%", ""] {
+            assert!(parse_noise(bad).is_err(), "{bad}");
+        }
     }
 }

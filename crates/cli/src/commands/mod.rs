@@ -1,3 +1,4 @@
 //! One module per `rollfit` subcommand.
 
+pub mod fit;
 pub mod forward;

@@ -9,8 +9,8 @@
 //! on a uniform grid σ_j = σ₀ + jh in σ = ln(ω r(ω)). The grid is shared by
 //! all speeds of a sweep, so the modulus is evaluated once per node, not once
 //! per node and speed. The sum is truncated where a rigorous bound of the
-//! remaining tail, κ Σ e^{σ_j} W(σ_j − ln v) with κ ≥ Φ e^{−σ} (for a Prony
-//! series L(ω) ≤ L′(0) ω), falls below the tolerance.
+//! remaining tail, κ Σ e^{pσ_j} W(σ_j − ln v) with κ ≥ Φ e^{−pσ} (for a Prony
+//! series p = 1 and L(ω) ≤ L′(0) ω), falls below the tolerance.
 //!
 //! Derivatives: with g_p = ∂E*/∂p (1 for E1, −1/(1 + iωτ_k) for H_k),
 //! ∂L/∂p = (1 − ν²) Im(g_p/E²), ∂ ln r/∂p = −(1/n) Re(g_p/E) and
@@ -82,29 +82,35 @@ fn one_speed<F: Fn(f64) -> (Complex64, Complex64)>(
     let eps = 0.02 * tolerance;
     let film_weight = |node: &Node| -> f64 {
         match film {
-            Some((d, nu)) => 1.0 / film_factor(node.s.exp() * d / v, nu),
+            Some((d, nu)) => 1.0 / film_factor(node.point.omega * d / v, nu),
             None => 1.0,
         }
     };
+    let tau0 = grid.origin() + j0 as f64 * h - t;
+    let cursor = table.cursor(tau0);
     let mut sum = 0.0;
     // March up from j0, then down from j0 − 1; each direction stops once the
-    // bounded remaining tail (geometric with the given ratio) is negligible.
-    let up = (1i64, j0, 1.0 / (1.0 - (-h).exp()));
-    let down = (-1i64, j0 - 1, 1.0 / (1.0 - (-2.0 * h).exp()));
-    for (direction, start, tail_ratio) in [up, down] {
-        let mut j = start;
+    // bounded remaining tail (see [`Node`]) is negligible.
+    for direction in [1i64, -1] {
+        let mut j = if direction > 0 { j0 } else { j0 - 1 };
         loop {
             let node = grid.node(j)?;
-            let tau = node.point.sigma - t;
-            let (w, dw) = table.evaluate(tau);
+            let (w, dw) = table.evaluate_at(&cursor, j - j0);
             let f = film_weight(&node);
             sum += node.phi * f * w;
             if let Some(r) = record.as_deref_mut() {
                 r.push((j, w * f, dw * f));
             }
-            let bound = setup.tail_bound * node.point.sigma.exp() * w.abs() * tail_ratio;
-            if direction as f64 * tau > 2.0 && bound <= eps * sum.abs() {
-                break;
+            let tau = tau0 + (j - j0) as f64 * h;
+            if direction as f64 * tau > 2.0 {
+                let bound = if direction > 0 {
+                    node.up_bound
+                } else {
+                    node.down_bound
+                };
+                if bound * w.abs() <= eps * sum.abs() {
+                    break;
+                }
             }
             j += direction;
         }
@@ -139,6 +145,7 @@ impl<M: ViscoelasticModulus> Scene<M> {
             |omega| material.modulus_and_log_slope(omega),
             speeds[0].ln(),
             table.step(),
+            self.tolerance(),
         );
         let film = self
             .substrate()
@@ -153,7 +160,8 @@ impl<M: ViscoelasticModulus> Scene<M> {
 
 impl Scene<Prony> {
     /// μ at each of `speeds` and ∂μ/∂(E1, H_1..H_n), computed in one pass over
-    /// a shared grid. Not available for a film under a sphere.
+    /// a shared grid (for a film under a sphere: per speed, by the film
+    /// correction of the `film_sphere` module).
     pub fn friction_with_gradient(&self, speeds: &[f64]) -> Result<FrictionJacobian, ModelError> {
         check_speeds(speeds)?;
         let prony = self.material();
@@ -166,10 +174,8 @@ impl Scene<Prony> {
             });
         }
         let setup = Setup::new(self)?;
-        if let (Shape::Sphere, Some(_)) = (setup.shape, self.substrate().film_thickness) {
-            return Err(ModelError::Evaluation(
-                "derivatives of μ for a film under a sphere are not implemented".into(),
-            ));
+        if let (Shape::Sphere, Some(d)) = (setup.shape, self.substrate().film_thickness) {
+            return film_sphere::friction_with_gradient(self, speeds, d);
         }
         let table = KernelTable::get(setup.shape, step_for_tolerance(self.tolerance()));
         let mut grid = Grid::new(
@@ -177,6 +183,7 @@ impl Scene<Prony> {
             |omega| prony.modulus_and_log_slope(omega),
             speeds[0].ln(),
             table.step(),
+            self.tolerance(),
         );
         let film = self
             .substrate()
@@ -213,7 +220,7 @@ impl Scene<Prony> {
         let m = setup.m;
         for (idx, j) in (j_min..=j_max).enumerate() {
             let node = grid.node(j)?;
-            let omega = node.s.exp();
+            let omega = node.point.omega;
             let _ = prony.evaluate_with_factors(omega, &mut factors);
             let p = node.point;
             let inv2 = p.inv_e * p.inv_e;

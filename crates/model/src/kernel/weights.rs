@@ -293,34 +293,64 @@ impl KernelTable {
     /// W(τ) and W′(τ).
     #[inline]
     pub fn evaluate(&self, tau: f64) -> (f64, f64) {
-        let q = (tau - self.tau_lo) / self.delta;
+        self.evaluate_at(&self.cursor(tau), 0)
+    }
+
+    /// Prepares evaluations at τ₀ + kh for integer k. Every such point lies at
+    /// the same fractional position between table points (the table spacing
+    /// is h/[`SUBDIVISION`]), so the six interpolation weights are computed
+    /// once for all of them.
+    #[inline]
+    pub fn cursor(&self, tau0: f64) -> KernelCursor {
+        let q = (tau0 - self.tau_lo) / self.delta;
         let i = q.floor();
-        let n = self.w.len();
-        if i < 2.0 {
-            return self.low.value(tau);
-        }
-        if i > (n - 4) as f64 {
-            return self.high.value(tau);
-        }
         let f = q - i;
-        let i = i as usize;
         // Six-point Lagrange weights for nodes −2..3 at fractional offset f.
         let (fm2, fm1, f0, f1, f2, f3) = (f + 2.0, f + 1.0, f, f - 1.0, f - 2.0, f - 3.0);
-        let c = [
-            -(fm1 * f0 * f1 * f2 * f3) / 120.0,
-            (fm2 * f0 * f1 * f2 * f3) / 24.0,
-            -(fm2 * fm1 * f1 * f2 * f3) / 12.0,
-            (fm2 * fm1 * f0 * f2 * f3) / 12.0,
-            -(fm2 * fm1 * f0 * f1 * f3) / 24.0,
-            (fm2 * fm1 * f0 * f1 * f2) / 120.0,
-        ];
-        let (mut w, mut dw) = (0.0, 0.0);
-        for (k, ck) in c.iter().enumerate() {
-            w += ck * self.w[i - 2 + k];
-            dw += ck * self.dw[i - 2 + k];
+        KernelCursor {
+            tau0,
+            index0: i as i64,
+            weights: [
+                -(fm1 * f0 * f1 * f2 * f3) / 120.0,
+                (fm2 * f0 * f1 * f2 * f3) / 24.0,
+                -(fm2 * fm1 * f1 * f2 * f3) / 12.0,
+                (fm2 * fm1 * f0 * f2 * f3) / 12.0,
+                -(fm2 * fm1 * f0 * f1 * f3) / 24.0,
+                (fm2 * fm1 * f0 * f1 * f2) / 120.0,
+            ],
         }
-        (w, dw)
     }
+
+    /// W and W′ at τ₀ + kh, τ₀ from `cursor`.
+    #[inline]
+    pub fn evaluate_at(&self, cursor: &KernelCursor, k: i64) -> (f64, f64) {
+        let i = cursor.index0 + k * SUBDIVISION as i64;
+        let n = self.w.len() as i64;
+        if i < 2 {
+            return self.low.value(cursor.tau0 + k as f64 * self.step);
+        }
+        if i > n - 4 {
+            return self.high.value(cursor.tau0 + k as f64 * self.step);
+        }
+        let i = i as usize - 2;
+        let (w, dw) = (&self.w[i..i + 6], &self.dw[i..i + 6]);
+        let c = &cursor.weights;
+        let mut value = 0.0;
+        let mut slope = 0.0;
+        for k in 0..6 {
+            value += c[k] * w[k];
+            slope += c[k] * dw[k];
+        }
+        (value, slope)
+    }
+}
+
+/// Shared interpolation state for W at τ₀ + kh, see [`KernelTable::cursor`].
+#[derive(Debug, Clone, Copy)]
+pub struct KernelCursor {
+    tau0: f64,
+    index0: i64,
+    weights: [f64; 6],
 }
 
 #[cfg(test)]

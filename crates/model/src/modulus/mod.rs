@@ -8,12 +8,15 @@
 //! The friction model needs, besides E*(ω), its logarithmic slope
 //! dE*/d ln ω (the dynamic contact size follows |E*| and the quadrature maps
 //! frequency onto the contact variable ω·a(ω)), the static modulus E(0) and the
-//! low-frequency slope of the loss modulus, lim E″(ω)/ω (for the low-speed
-//! asymptote).
+//! low-frequency behaviour of the loss modulus, E″ ≈ ℓ ω^p with 0 < p ≤ 1
+//! (p = 1 and ℓ = lim E″(ω)/ω for a solid with a longest relaxation time),
+//! for the low-speed asymptote and the friction quadrature's tail bound.
 //!
 //! Models:
 //! - [`StandardLinearSolid`]: Persson (2010), Eq. (12).
 //! - [`Prony`]: Prony series, Eq. (B2), with derivatives in its parameters.
+//! - [`HavriliakNegami`]: E1 + (E0 − E1)/(1 + (iωτ)^α)^β, a broad transition
+//!   with power-law wings (Havriliak & Negami 1967); E″ ∝ ω^α at low ω.
 //! - [`TabulatedModulus`]: a measured master curve, interpolated in log–log.
 //! - [`Shifted`]: time–temperature superposition, E(ω, T) = E(ω a_T, T_ref).
 //!
@@ -22,12 +25,17 @@
 //!   viscoelastic solid", Eur. Phys. J. E 33 (2010) 327–333.
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley 1980
 //!   (Prony series, WLF shift).
+//! - S. Havriliak, S. Negami, "A complex plane representation of dielectric
+//!   and mechanical relaxation processes in some polymers", Polymer 8 (1967)
+//!   161–210.
 
+mod havriliak_negami;
 mod prony;
 mod shift;
 mod sls;
 mod table;
 
+pub use havriliak_negami::HavriliakNegami;
 pub use prony::Prony;
 pub use shift::{FreeShift, Shifted, Wlf};
 pub use sls::StandardLinearSolid;
@@ -47,13 +55,42 @@ pub trait ViscoelasticModulus: Send + Sync {
     /// The static (rubbery) modulus E(0), Pa.
     fn static_modulus(&self) -> f64;
 
-    /// lim_{ω→0} E″(ω)/ω in Pa·s (zero if the loss vanishes faster than ω).
+    /// lim_{ω→0} E″(ω)/ω in Pa·s (zero if the loss vanishes faster than ω,
+    /// infinite if slower, see [`Self::loss_exponent_at_zero`]).
     fn loss_slope_at_zero(&self) -> f64;
+
+    /// The exponent p of the low-frequency loss, E″(ω) ∝ ω^p as ω → 0, with
+    /// 0 < p ≤ 1. A solid whose relaxation times are bounded has p = 1 (the
+    /// default); a power-law spectrum such as Havriliak–Negami has p < 1,
+    /// and then μ(v) ∝ v^p at low speed instead of Eq. (18)'s μ ∝ v. The
+    /// friction quadrature bounds its low-frequency tail with it.
+    fn loss_exponent_at_zero(&self) -> f64 {
+        1.0
+    }
+
+    /// The coefficient ℓ of the low-frequency loss, E″(ω) ≈ ℓ ω^p as ω → 0
+    /// (Pa·s^p, p = [`Self::loss_exponent_at_zero`]); it sets the low-speed
+    /// asymptote μ ∝ ℓ v^p.
+    ///
+    /// The default is [`Self::loss_slope_at_zero`] for p = 1. For p < 1 it
+    /// reads E″/ω^p three decades below [`Self::structure_range`], where
+    /// the power law holds to the structure range's accuracy: that keeps
+    /// wrappers such as [`Shifted`] right without their own formula. Models
+    /// with a closed form override it.
+    fn low_frequency_loss_coefficient(&self) -> f64 {
+        let p = self.loss_exponent_at_zero();
+        if p >= 1.0 {
+            return self.loss_slope_at_zero();
+        }
+        let omega = 1e-3 * self.structure_range().0;
+        self.modulus(omega).im / omega.powf(p)
+    }
 
     /// The angular-frequency interval (rad/s) that holds the modulus's
     /// structure: below it E* follows its low-frequency limit
-    /// (E′ ≈ const, E″ ∝ ω) and above it its high-frequency limit
-    /// (E′ ≈ const, E″ ∝ 1/ω) to within a small relative error. The friction
+    /// (E′ ≈ const, E″ ∝ ω^p) and above it its high-frequency limit
+    /// (E′ ≈ const, E″ a power law, ∝ 1/ω for a Prony series) to within a
+    /// small relative error. The friction
     /// quadrature uses it to decide where its tails begin.
     fn structure_range(&self) -> (f64, f64);
 
@@ -79,6 +116,12 @@ impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for Box<M> {
     fn loss_slope_at_zero(&self) -> f64 {
         (**self).loss_slope_at_zero()
     }
+    fn loss_exponent_at_zero(&self) -> f64 {
+        (**self).loss_exponent_at_zero()
+    }
+    fn low_frequency_loss_coefficient(&self) -> f64 {
+        (**self).low_frequency_loss_coefficient()
+    }
     fn structure_range(&self) -> (f64, f64) {
         (**self).structure_range()
     }
@@ -99,6 +142,12 @@ impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for std::sync::Arc<M> 
     }
     fn loss_slope_at_zero(&self) -> f64 {
         (**self).loss_slope_at_zero()
+    }
+    fn loss_exponent_at_zero(&self) -> f64 {
+        (**self).loss_exponent_at_zero()
+    }
+    fn low_frequency_loss_coefficient(&self) -> f64 {
+        (**self).low_frequency_loss_coefficient()
     }
     fn structure_range(&self) -> (f64, f64) {
         (**self).structure_range()

@@ -127,16 +127,27 @@ impl ViscoelasticModulus for Prony {
     }
 
     fn modulus_and_log_slope(&self, omega: f64) -> (Complex64, Complex64) {
-        let mut e = Complex64::new(self.glassy_modulus, 0.0);
-        let mut slope = Complex64::new(0.0, 0.0);
+        // Per term, with w = ωτ and D = 1/(1 + iw): E −= H D, and
+        // dE/d ln ω = Σ H i w D² = Σ H w/(1 + w²)² (2w + i(1 − w²)),
+        // written out in reals because this loop is the friction code's
+        // innermost one.
+        let (mut e_re, mut e_im) = (self.glassy_modulus, 0.0);
+        let (mut slope_re, mut slope_im) = (0.0, 0.0);
         for (&h, &tau) in self.strengths.iter().zip(&self.relaxation_times) {
             let w = omega * tau;
-            let inv = 1.0 / (1.0 + w * w);
-            let d = Complex64::new(inv, -w * inv);
-            e -= h * d;
-            slope += Complex64::new(0.0, h * w) * d * d;
+            let w2 = w * w;
+            let inv = 1.0 / (1.0 + w2);
+            let hinv = h * inv;
+            e_re -= hinv;
+            e_im += w * hinv;
+            let hwinv2 = w * hinv * inv;
+            slope_re += 2.0 * w * hwinv2;
+            slope_im += (1.0 - w2) * hwinv2;
         }
-        (e, slope)
+        (
+            Complex64::new(e_re, e_im),
+            Complex64::new(slope_re, slope_im),
+        )
     }
 
     fn static_modulus(&self) -> f64 {

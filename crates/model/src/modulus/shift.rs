@@ -22,7 +22,16 @@
 //!   log10 a_T = 0.97 and 10 K warmer −0.79: the paper's remark that about
 //!   10 °C less moves μ(v) by about one decade.
 //! - free shifts, [`FreeShift`]: one log10 a_T per measured temperature, e.g.
-//!   fitted freely; defined only at the listed temperatures (and at T_ref).
+//!   fitted freely. T_ref counts as listed, with log10 a_T = 0. At a listed
+//!   temperature the listed value is returned exactly; between two listed
+//!   temperatures log10 a_T is interpolated linearly in T; outside the
+//!   listed range [T_lo, T_hi] (T_ref included) evaluating is an error: the
+//!   list says nothing about the material there, and extrapolating a shift
+//!   that is not WLF-like would be a guess. Linear in T because it is the
+//!   simplest rule exact at the listed points and never leaves the range of
+//!   its two neighbours; for shifts that follow WLF with the constants
+//!   above, listed every 10 K from 0 to 40 °C, it is within 0.035 decades
+//!   of WLF in between.
 //!
 //! [`Shifted`] wraps a reference modulus with one shift factor:
 //! - E*(ω) = E*_ref(ω a_T);
@@ -103,12 +112,18 @@ impl Wlf {
 /// Free per-temperature shift factors: log10 a_T listed for each measured
 /// temperature (°C) relative to a reference temperature T_ref (°C).
 ///
-/// Only listed temperatures (and T_ref, where log10 a_T = 0) can be asked
-/// for; there is deliberately no interpolation between them.
+/// The rule (module documentation): exact at listed temperatures and at
+/// T_ref (log10 a_T = 0), linear in T between neighbouring ones, an error
+/// outside the listed range. This is the only free-shift rule of the code
+/// base; front ends build a `FreeShift` rather than interpolating
+/// themselves.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FreeShift {
     t_ref: f64,
     entries: Vec<(f64, f64)>,
+    /// The entries and, unless listed, (T_ref, 0), sorted by temperature:
+    /// the knots of the interpolation.
+    knots: Vec<(f64, f64)>,
 }
 
 impl FreeShift {
@@ -121,9 +136,10 @@ impl FreeShift {
     const REFERENCE_TOLERANCE: f64 = 1e-12;
 
     /// Builds a validated list from the reference temperature `t_ref` (°C)
-    /// and `(T, log10 a_T)` pairs (°C, decades). The list must not be empty,
-    /// every value must be finite, the temperatures distinct, and an entry
-    /// at T_ref, if present, must have log10 a_T = 0.
+    /// and `(T, log10 a_T)` pairs (°C, decades) in any order. The list must
+    /// not be empty, every value must be finite, the temperatures distinct,
+    /// and an entry at T_ref, if present, must have log10 a_T = 0. Errors
+    /// name the entry (counted from 0).
     pub fn new(t_ref: f64, entries: Vec<(f64, f64)>) -> Result<Self, ModelError> {
         const NAME: &str = "free shift";
         if !t_ref.is_finite() {
@@ -172,7 +188,18 @@ impl FreeShift {
                 ));
             }
         }
-        Ok(FreeShift { t_ref, entries })
+        let mut knots = entries.clone();
+        if !knots.iter().any(|&(t, _)| same_temperature(t, t_ref)) {
+            knots.push((t_ref, 0.0));
+        }
+        // Distinct by more than the tolerance (checked above), so the
+        // interpolation never divides by a vanishing temperature step.
+        knots.sort_by(|a, b| a.0.total_cmp(&b.0));
+        Ok(FreeShift {
+            t_ref,
+            entries,
+            knots,
+        })
     }
 
     /// The reference temperature, °C.
@@ -185,22 +212,61 @@ impl FreeShift {
         &self.entries
     }
 
-    /// log10 a_T at a listed temperature `t` (°C), 0 at T_ref; an error for
-    /// any other temperature.
+    /// The temperatures (°C) at which log10 a_T is defined: from the lowest
+    /// to the highest of the listed temperatures and T_ref.
+    pub fn temperature_range(&self) -> (f64, f64) {
+        // `new` refuses an empty list and adds T_ref, so there is a first
+        // and a last knot; the fallback only keeps this free of panics.
+        match (self.knots.first(), self.knots.last()) {
+            (Some(&(lo, _)), Some(&(hi, _))) => (lo, hi),
+            _ => (self.t_ref, self.t_ref),
+        }
+    }
+
+    /// log10 a_T at temperature `t` (°C): the listed value at a listed
+    /// temperature (0 at T_ref), linear in T between listed temperatures,
+    /// and an error for a non-finite `t` or one outside
+    /// [`Self::temperature_range`].
     pub fn log10_shift(&self, t: f64) -> Result<f64, ModelError> {
-        if let Some(&(_, log_a)) = self.entries.iter().find(|e| same_temperature(e.0, t)) {
+        if !t.is_finite() {
+            return Err(ModelError::parameter(
+                "T",
+                t,
+                "must be a finite temperature in °C",
+            ));
+        }
+        // Listed temperatures first, so that they are returned exactly and
+        // round-off in `t` (within the tolerance) does not count as outside.
+        if let Some(&(_, log_a)) = self.knots.iter().find(|k| same_temperature(k.0, t)) {
             return Ok(log_a);
         }
-        if same_temperature(t, self.t_ref) {
-            return Ok(0.0);
+        // The first knot above `t`; it has a knot below it exactly when `t`
+        // lies inside the range.
+        let above = self.knots.partition_point(|k| k.0 < t);
+        let below = above.checked_sub(1).and_then(|i| self.knots.get(i));
+        match (below, self.knots.get(above)) {
+            (Some(&(t0, a0)), Some(&(t1, a1))) => Ok(a0 + (a1 - a0) * (t - t0) / (t1 - t0)),
+            _ => {
+                let (lo, hi) = self.temperature_range();
+                let listed: Vec<String> = self
+                    .knots
+                    .iter()
+                    .map(|&(tk, _)| {
+                        if same_temperature(tk, self.t_ref) {
+                            format!("{tk} (T_ref)")
+                        } else {
+                            tk.to_string()
+                        }
+                    })
+                    .collect();
+                Err(ModelError::Evaluation(format!(
+                    "no shift factor for T = {t} °C: it lies outside the temperatures of the \
+                     free shift, {lo} to {hi} °C (listed: {} °C); log10 a_T is interpolated \
+                     linearly between listed temperatures but not extrapolated beyond them",
+                    listed.join(", ")
+                )))
+            }
         }
-        let listed: Vec<String> = self.entries.iter().map(|e| e.0.to_string()).collect();
-        Err(ModelError::Evaluation(format!(
-            "no shift factor for T = {t} °C: the free shift lists only T = {} °C \
-             (T_ref = {} °C) and does not interpolate",
-            listed.join(", "),
-            self.t_ref
-        )))
     }
 }
 
@@ -272,6 +338,9 @@ impl<M: ViscoelasticModulus> ViscoelasticModulus for Shifted<M> {
     }
     fn loss_slope_at_zero(&self) -> f64 {
         self.inner.loss_slope_at_zero() * self.shift_factor
+    }
+    fn loss_exponent_at_zero(&self) -> f64 {
+        self.inner.loss_exponent_at_zero()
     }
     fn structure_range(&self) -> (f64, f64) {
         let (a, b) = self.inner.structure_range();
@@ -358,29 +427,73 @@ mod tests {
         assert!(w.log10_shift(f64::NAN).is_err());
     }
 
+    /// The problem of an out-of-range or otherwise refused temperature.
+    fn refusal(f: &FreeShift, t: f64) -> String {
+        match f.log10_shift(t) {
+            Err(ModelError::Evaluation(msg)) => msg,
+            Err(ModelError::InvalidParameter { name, .. }) => name,
+            other => panic!("T = {t}: expected a refusal, got {other:?}"),
+        }
+    }
+
     #[test]
-    fn free_shift_returns_listed_values_only() {
-        let f = FreeShift::new(20.0, vec![(0.0, 2.1), (20.0, 0.0), (40.0, -1.5)]).unwrap();
+    fn free_shift_is_exact_at_listed_temperatures_and_linear_between() {
+        // Listed out of order, T_ref among them.
+        let f = FreeShift::new(20.0, vec![(40.0, -1.5), (0.0, 2.1), (20.0, 0.0)]).unwrap();
         assert_eq!(f.log10_shift(0.0).unwrap(), 2.1);
         assert_eq!(f.log10_shift(40.0).unwrap(), -1.5);
         assert_eq!(f.log10_shift(20.0).unwrap(), 0.0);
         // Round-off in a temperature is not a different temperature.
         assert_eq!(f.log10_shift(0.1 + 0.2 + 39.7).unwrap(), -1.5);
-        match f.log10_shift(30.0) {
-            Err(ModelError::Evaluation(msg)) => {
-                assert!(
-                    msg.contains("T = 30 °C") && msg.contains("0, 20, 40"),
-                    "{msg}"
-                );
+        assert_eq!(f.log10_shift(0.1 + 0.2 - 0.3).unwrap(), 2.1);
+        // Linear in T between neighbours.
+        assert!((f.log10_shift(10.0).unwrap() - 1.05).abs() < 1e-15);
+        assert!((f.log10_shift(30.0).unwrap() + 0.75).abs() < 1e-15);
+        assert!((f.log10_shift(35.0).unwrap() + 1.125).abs() < 1e-15);
+        // Continuous at the listed temperatures.
+        for (t, log_a) in [(0.0, 2.1), (20.0, 0.0), (40.0, -1.5)] {
+            for dt in [-1e-6, 1e-6] {
+                if let Ok(v) = f.log10_shift(t + dt) {
+                    assert!((v - log_a).abs() < 1e-6, "{t} {dt}: {v}");
+                }
             }
-            other => panic!("{other:?}"),
         }
-        // T_ref need not be listed.
+        assert_eq!(f.temperature_range(), (0.0, 40.0));
+        assert_eq!(f.t_ref(), 20.0);
+        assert_eq!(f.entries(), &[(40.0, -1.5), (0.0, 2.1), (20.0, 0.0)]);
+    }
+
+    #[test]
+    fn free_shift_counts_the_reference_temperature_as_listed() {
+        // T_ref = 20 °C is not listed but known: log10 a_T = 0 there.
         let f = FreeShift::new(20.0, vec![(60.0, -3.0)]).unwrap();
         assert_eq!(f.log10_shift(20.0).unwrap(), 0.0);
-        assert!(f.log10_shift(40.0).is_err());
-        assert_eq!(f.t_ref(), 20.0);
-        assert_eq!(f.entries(), &[(60.0, -3.0)]);
+        assert!((f.log10_shift(40.0).unwrap() + 1.5).abs() < 1e-15);
+        assert_eq!(f.temperature_range(), (20.0, 60.0));
+        // T_ref outside the listed temperatures widens the range.
+        let f = FreeShift::new(20.0, vec![(-20.0, 4.0), (0.0, 2.0)]).unwrap();
+        assert_eq!(f.temperature_range(), (-20.0, 20.0));
+        assert!((f.log10_shift(10.0).unwrap() - 1.0).abs() < 1e-15);
+        // A list holding T_ref only is defined at T_ref only.
+        let f = FreeShift::new(20.0, vec![(20.0, 0.0)]).unwrap();
+        assert_eq!(f.log10_shift(20.0).unwrap(), 0.0);
+        assert!(f.log10_shift(20.5).is_err());
+    }
+
+    #[test]
+    fn free_shift_refuses_outside_the_listed_range() {
+        let f = FreeShift::new(20.0, vec![(0.0, 2.1), (40.0, -1.5)]).unwrap();
+        for t in [-0.5, 40.001, -300.0, 1e6] {
+            let msg = refusal(&f, t);
+            assert!(msg.contains(&format!("T = {t} °C")), "{msg}");
+            assert!(msg.contains("outside"), "{msg}");
+            assert!(msg.contains("0 to 40 °C"), "{msg}");
+            assert!(msg.contains("0, 20 (T_ref), 40"), "{msg}");
+            assert!(msg.contains("not extrapolated"), "{msg}");
+        }
+        for t in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(refusal(&f, t), "T");
+        }
     }
 
     #[test]

@@ -4,16 +4,20 @@
 //! # Inside the table (ω_min ≤ ω ≤ ω_max)
 //!
 //! With u = ln ω, ln E′(u) and ln E″(u) are each a piecewise cubic Hermite
-//! interpolant: on [u_k, u_{k+1}], s = u − u_k,
+//! interpolant: on [u_k, u_{k+1}] of width h, t = (u − u_k)/h, r = 1 − t,
 //!
-//! ln E(u) = ln E_k + s (b_k + s (c_k + s d_k)),
+//! ln E(u) = ln E_k + Δ_k t²(3 − 2t) + h t r (m_k r − m_{k+1} t),
+//! Δ_k = ln E_{k+1} − ln E_k,
 //!
 //! fixed by the values at both knots and the slopes m_k, m_{k+1} there, so the
 //! curve goes through every table point and is C¹. Log–log because moduli span
 //! decades and their terminal and transition behaviour is close to power laws,
-//! which become straight lines. The value is evaluated as E_k·exp(…) so that
-//! table points are returned exactly, and the logarithmic slope is the exact
-//! derivative of the interpolant:
+//! which become straight lines. The value is evaluated from the nearer knot,
+//! as E_k·exp(…) or E_{k+1}·exp(…) with an exponent that vanishes there, so
+//! that table points are returned exactly and approached to within rounding
+//! of exp (a power series from the left knot alone missed E_{k+1} by up to
+//! 20 ulp just before ω_{k+1}: an overshoot of monotone data). The
+//! logarithmic slope is the exact derivative of the interpolant:
 //!
 //! dE*/d ln ω = E′ · d ln E′/du + i E″ · d ln E″/du.
 //!
@@ -80,34 +84,72 @@ const TABLE: &str = "modulus table";
 /// [0, 3]² of Fritsch & Carlson's monotonicity region.
 const SLOPE_CAP: f64 = 3.0;
 
-/// The cubic ln E_k + s (b + s (c + s d)) on one interval, s = ln ω − ln ω_k.
+/// The Hermite cubic of ln E on one interval [u_k, u_{k+1}] of width h, in
+/// the fraction t = (u − u_k)/h and its complement r = 1 − t:
+///
+/// ln E = ln E_k + Δ t²(3 − 2t) + h t r (m_k r − m_{k+1} t),  Δ = ln E_{k+1} − ln E_k,
+///
+/// which is symmetric under t ↔ r, k ↔ k+1, so it is evaluated from the
+/// nearer knot (see [`Cubic::eval`]).
 #[derive(Debug, Clone, PartialEq)]
 struct Cubic {
-    value: f64,
-    b: f64,
-    c: f64,
-    d: f64,
+    /// E_k and E_{k+1}, the table values at the two knots.
+    left: f64,
+    right: f64,
+    /// Δ = ln E_{k+1} − ln E_k.
+    rise: f64,
+    /// Δ/h, the secant.
+    secant: f64,
+    /// h m_k and h m_{k+1}: the end slopes scaled to the interval.
+    left_slope_h: f64,
+    right_slope_h: f64,
+    /// m_k and m_{k+1}, d ln E/d ln ω at the knots.
+    left_slope: f64,
+    right_slope: f64,
 }
 
 impl Cubic {
-    /// Hermite cubic from the interval width `h`, the end values of ln E
-    /// (`y0`, `y1`), the end slopes (`m0`, `m1`) and the table value `value`.
-    fn hermite(h: f64, y0: f64, y1: f64, m0: f64, m1: f64, value: f64) -> Self {
-        let secant = (y1 - y0) / h;
+    /// Hermite cubic from the interval width `h`, the table values at both
+    /// ends (`e0`, `e1`) and the end slopes of ln E (`m0`, `m1`).
+    fn hermite(h: f64, (e0, e1): (f64, f64), (y0, y1): (f64, f64), m0: f64, m1: f64) -> Self {
+        let rise = y1 - y0;
         Cubic {
-            value,
-            b: m0,
-            c: (3.0 * secant - 2.0 * m0 - m1) / h,
-            d: (m0 + m1 - 2.0 * secant) / (h * h),
+            left: e0,
+            right: e1,
+            rise,
+            secant: rise / h,
+            left_slope_h: h * m0,
+            right_slope_h: h * m1,
+            left_slope: m0,
+            right_slope: m1,
         }
     }
 
-    /// (E, d ln E/d ln ω) at offset `s` into the interval.
+    /// (E, d ln E/d ln ω) at the fraction `t` of the interval, `r` = 1 − t,
+    /// `from_right` when the right knot is the nearer one.
+    ///
+    /// Why from the nearer knot, as E_k·exp(…) or E_{k+1}·exp(…): the
+    /// exponent then vanishes at that knot and is small next to it, so both
+    /// table values are returned exactly and the curve approaches them to a
+    /// few ulp. Anchored at the left knot only (a power series in u − u_k),
+    /// the exponent at the right end is a sum of terms several times Δ that
+    /// should cancel to Δ; its rounding put E up to 20 ulp beyond E_{k+1},
+    /// i.e. an overshoot of monotone data and a jump at the knot.
     #[inline]
-    fn eval(&self, s: f64) -> (f64, f64) {
-        let log_ratio = s * (self.b + s * (self.c + s * self.d));
-        let log_slope = self.b + s * (2.0 * self.c + 3.0 * s * self.d);
-        (self.value * log_ratio.exp(), log_slope)
+    fn eval(&self, t: f64, r: f64, from_right: bool) -> (f64, f64) {
+        let (m0h, m1h) = (self.left_slope_h, self.right_slope_h);
+        let e = if from_right {
+            // ln E − ln E_{k+1} = −Δ r²(3 − 2r) + h t r (m_k r − m_{k+1} t).
+            let log_ratio = -self.rise * r * r * (3.0 - 2.0 * r) + t * r * (m0h * r - m1h * t);
+            self.right * log_ratio.exp()
+        } else {
+            let log_ratio = self.rise * t * t * (3.0 - 2.0 * t) + t * r * (m0h * r - m1h * t);
+            self.left * log_ratio.exp()
+        };
+        // d ln E/du = 6 t r Δ/h + m_k r (r − 2t) − m_{k+1} t (2r − t).
+        let log_slope = 6.0 * t * r * self.secant + self.left_slope * r * (r - 2.0 * t)
+            - self.right_slope * t * (2.0 * r - t);
+        (e, log_slope)
     }
 }
 
@@ -222,8 +264,8 @@ impl TabulatedModulus {
                 Complex64::new(0.0, e_loss),
             );
         }
-        // ω_max itself goes here too: E″(ω_max) ω_max/ω_max is the table
-        // value exactly, which the last cubic at its right end is not.
+        // ω_max itself goes here too, so that both parts come from one
+        // formula there (the last cubic would give the same values).
         if omega >= self.omega[last] {
             let e_loss = self.loss[last] * (self.omega[last] / omega);
             return (
@@ -240,9 +282,21 @@ impl TabulatedModulus {
             .partition_point(|&knot| knot <= u)
             .saturating_sub(1)
             .min(last - 1);
-        let s = u - self.knots[k];
-        let (e_storage, slope_storage) = self.storage_cubics[k].eval(s);
-        let (e_loss, slope_loss) = self.loss_cubics[k].eval(s);
+        // Both distances are measured from their own knot, so that the one
+        // that decides the side, and is used there, is accurate to an ulp
+        // of itself rather than of the interval width.
+        let (from_left, from_right) = (u - self.knots[k], self.knots[k + 1] - u);
+        let h = self.knots[k + 1] - self.knots[k];
+        let right = from_right < from_left;
+        let (t, r) = if right {
+            let r = from_right / h;
+            (1.0 - r, r)
+        } else {
+            let t = from_left / h;
+            (t, 1.0 - t)
+        };
+        let (e_storage, slope_storage) = self.storage_cubics[k].eval(t, r, right);
+        let (e_loss, slope_loss) = self.loss_cubics[k].eval(t, r, right);
         (
             Complex64::new(e_storage, e_loss),
             Complex64::new(e_storage * slope_storage, e_loss * slope_loss),
@@ -276,11 +330,10 @@ fn log_log_cubics(knots: &[f64], values: &[f64]) -> Vec<Cubic> {
         .map(|k| {
             Cubic::hermite(
                 knots[k + 1] - knots[k],
-                y[k],
-                y[k + 1],
+                (values[k], values[k + 1]),
+                (y[k], y[k + 1]),
                 slopes[k],
                 slopes[k + 1],
-                values[k],
             )
         })
         .collect()
@@ -500,38 +553,130 @@ mod tests {
         }
     }
 
+    /// E′ from monotone data: `steps` of (decades to the next frequency,
+    /// 0 for a flat step, ln E′ step), all rising or all falling; E″ = 1.
+    fn stepped_table(steps: &[(f64, usize, f64)], rising: bool) -> TabulatedModulus {
+        let (mut lw, mut le) = (0.0f64, 10.0f64);
+        let (mut omega, mut storage) = (vec![1.0], vec![le.exp()]);
+        for &(dw, flat, de) in steps {
+            lw += dw * std::f64::consts::LN_10;
+            le += if flat == 0 {
+                0.0
+            } else if rising {
+                de
+            } else {
+                -de
+            };
+            omega.push(lw.exp());
+            storage.push(le.exp());
+        }
+        let n = omega.len();
+        TabulatedModulus::new(omega, storage, vec![1.0; n]).unwrap()
+    }
+
+    /// The first place where E′ of a table of monotone data (rising if
+    /// `sign` > 0) is not monotone or leaves its interval's end values, by
+    /// more than rounding of the final exp and product (2 ulp). Sampled, in
+    /// increasing order, at each knot, the 16 binary64 frequencies on either
+    /// side of it and 63 points inside each interval: the knots are where a
+    /// cubic anchored at one end only missed the other end by up to 20 ulp.
+    fn monotone_violation(t: &TabulatedModulus, sign: f64) -> Option<String> {
+        let next =
+            |w: f64, up: bool| f64::from_bits(if up { w.to_bits() + 1 } else { w.to_bits() - 1 });
+        let n = t.omega().len();
+        let mut prev = t.storage()[0];
+        for k in 0..n - 1 {
+            let (w0, w1) = (t.omega()[k], t.omega()[k + 1]);
+            let (e0, e1) = (t.storage()[k], t.storage()[k + 1]);
+            let mut points = vec![w0];
+            let mut w = w0;
+            for _ in 0..16 {
+                w = next(w, true);
+                points.push(w);
+            }
+            points.extend((1..64).map(|j| w0 * (w1 / w0).powf(j as f64 / 64.0)));
+            let mut below = Vec::new();
+            let mut w = w1;
+            for _ in 0..16 {
+                w = next(w, false);
+                below.push(w);
+            }
+            points.extend(below.into_iter().rev());
+            for w in points {
+                let e = t.modulus(w).re;
+                let tol = 2.0 * f64::EPSILON * e;
+                if sign * (e - prev) < -tol {
+                    return Some(format!(
+                        "interval {k}: E' = {e:e} at {w:e} goes back from {prev:e}"
+                    ));
+                }
+                if e < e0.min(e1) - tol || e > e0.max(e1) + tol {
+                    return Some(format!(
+                        "interval {k}: E' = {e:e} at {w:e} is outside [{e0:e}, {e1:e}]"
+                    ));
+                }
+                prev = e;
+            }
+        }
+        let (e_last, e_end) = (t.storage()[n - 1], t.modulus(t.omega()[n - 1]).re);
+        (e_end != e_last).then(|| format!("the last knot gives {e_end:e}, not {e_last:e}"))
+    }
+
+    #[test]
+    fn monotone_data_found_by_the_property_test_give_a_monotone_curve() {
+        // The case first found (recorded in proptest-regressions/) and the
+        // minimal one proptest shrank the knot test to: a fall of 4.4 in
+        // ln E′ within 0.01 decades between two plateaus. With the cubic
+        // written as a power series from the left knot, E′ overshot E′_{k+1}
+        // by several ulp (up to 20 in random tables) in the last few ulps of
+        // ω before ω_{k+1}.
+        for steps in [
+            vec![
+                (0.01, 0, 0.0),
+                (0.01, 1, 4.374126230511208),
+                (2.520719780355095, 0, 0.0),
+            ],
+            vec![
+                (0.42896838748066213, 1, 4.200766711361163),
+                (2.603846879900324, 1, 1.3633562790780025),
+                (0.3954269330700939, 1, 1.1714423991203393),
+                (1.8316326003105754, 0, 0.0),
+                (2.0567966253793917, 1, 3.7177228225506145),
+                (2.4939088793445214, 0, 0.0),
+                (0.33824119917726003, 1, 3.8522138799328687),
+            ],
+        ] {
+            for (rising, sign) in [(true, 1.0), (false, -1.0)] {
+                let t = stepped_table(&steps, rising);
+                assert_eq!(
+                    monotone_violation(&t, sign),
+                    None,
+                    "{steps:?} rising {rising}"
+                );
+            }
+        }
+    }
+
     proptest::proptest! {
+        // Fixed seed and case count: the same 4096 tables on every run, so
+        // CI cannot be flaky; cases recorded in proptest-regressions/ are
+        // replayed first.
+        #![proptest_config(proptest::test_runner::Config {
+            cases: 4096,
+            rng_algorithm: proptest::test_runner::RngAlgorithm::ChaCha,
+            rng_seed: proptest::test_runner::RngSeed::Fixed(0x0007_ab1e_5eed),
+            ..proptest::test_runner::Config::default()
+        })]
         #[test]
-        #[ignore = "found an overshoot on monotone data (e.g. one step 0.43 decades wide); fix the endpoint slope rule, then re-enable"]
         fn random_monotone_data_give_a_monotone_curve(
             steps in proptest::collection::vec((0.01f64..3.0, 0usize..4, 0.0f64..5.0), 1..12),
             rising in proptest::bool::ANY,
         ) {
             // Frequencies a random 0.01–3 decades apart; ln E′ steps of 0 to 5
             // (one in four flat) in one direction.
-            let (mut lw, mut le) = (0.0, 10.0);
-            let (mut omega, mut storage) = (vec![1.0], vec![10f64.exp()]);
-            for &(dw, flat, de) in &steps {
-                lw += dw * std::f64::consts::LN_10;
-                le += if flat == 0 { 0.0 } else if rising { de } else { -de };
-                omega.push(lw.exp());
-                storage.push(le.exp());
-            }
-            let n = omega.len();
-            let t = TabulatedModulus::new(omega, storage, vec![1.0; n]).unwrap();
-            let sign = if rising { 1.0 } else { -1.0 };
-            let mut prev = t.storage()[0];
-            for k in 0..n - 1 {
-                let (w0, w1) = (t.omega()[k], t.omega()[k + 1]);
-                let (e0, e1) = (t.storage()[k], t.storage()[k + 1]);
-                for j in 1..=64 {
-                    let e = t.modulus(w0 * (w1 / w0).powf(j as f64 / 64.0)).re;
-                    let tol = 8.0 * f64::EPSILON * e;
-                    proptest::prop_assert!(sign * (e - prev) >= -tol);
-                    proptest::prop_assert!(e >= e0.min(e1) - tol && e <= e0.max(e1) + tol);
-                    prev = e;
-                }
-            }
+            let t = stepped_table(&steps, rising);
+            let violation = monotone_violation(&t, if rising { 1.0 } else { -1.0 });
+            proptest::prop_assert!(violation.is_none(), "{}", violation.unwrap_or_default());
         }
     }
 

@@ -1,0 +1,480 @@
+//! `rollfit fit SCENE.toml DATA.csv [-o DIR]`: recover the master curve
+//! E*(ω) from measured μ(v) (Persson 2010, Appendix B; DESIGN.md §2, §4).
+//!
+//! The scene's [geometry], [substrate] and [contact] describe the
+//! experiment; its optional `[fit]` table holds the scale anchor and the
+//! solver settings; an "sls" or "prony" `[material]` is the starting point.
+//! Flags override the scene. Writes DIR/fit.json, DIR/modulus.csv and
+//! DIR/mu.csv (each atomically) and a summary on stderr. A fit that does not
+//! converge still writes its results, then fails unless
+//! `--allow-unconverged`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, anyhow, bail};
+use rollfit_fit::{FitError, FitParams, FitReport, Lambda, Method, RollingSetup, TermRule};
+use rollfit_model::Shape;
+use serde::Serialize;
+
+use crate::data_file::{self, DataTable};
+use crate::output;
+use crate::scene_file;
+
+/// Columns of modulus.csv: DESIGN.md §4 fixes the first four (Young's
+/// modulus, Pa; ω in rad/s); then |E*| and the 1σ band of each quantity.
+pub const MODULUS_COLUMNS: [&str; 9] = [
+    "omega",
+    "E_storage",
+    "E_loss",
+    "tan_delta",
+    "abs_E",
+    "E_storage_sigma",
+    "E_loss_sigma",
+    "tan_delta_sigma",
+    "abs_E_sigma",
+];
+
+/// Arguments of `rollfit fit`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Scene file (TOML): [geometry], optional [substrate], [contact],
+    /// [material] (starting point) and [fit] (anchor and settings).
+    pub scene: PathBuf,
+    /// Measured data (CSV): columns v (m/s) and mu, optional sigma and T.
+    pub data: PathBuf,
+    /// Folder for fit.json, modulus.csv and mu.csv (created if missing).
+    /// Default: fits/<DATA file stem>.
+    #[arg(short, long, value_name = "DIR")]
+    pub output: Option<PathBuf>,
+    /// Solver: auto (= levenberg-marquardt), levenberg-marquardt, lbfgs or
+    /// nelder-mead. Overrides [fit] method.
+    #[arg(long, value_name = "NAME", value_parser = parse_method)]
+    pub method: Option<Method>,
+    /// Smoothness weight λ ≥ 0 on ln H_k, or "auto" (discrepancy principle
+    /// with sigma, else generalised cross-validation). Overrides [fit] lambda.
+    #[arg(long, value_name = "VALUE|auto", value_parser = parse_lambda, allow_hyphen_values = true)]
+    pub lambda: Option<Lambda>,
+    /// Seed of the multi-start perturbations. Overrides [fit] seed.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// Number of starts (the neutral one plus seeded perturbations).
+    /// Overrides [fit] starts.
+    #[arg(long, value_name = "N")]
+    pub starts: Option<usize>,
+    /// Relaxation times: a count N, "auto" (1, 2 or 3 per decade by AICc) or
+    /// a density "X/decade". Overrides [fit] terms, terms_per_decade, tau.
+    #[arg(long, value_name = "N|auto|X/decade", value_parser = parse_terms)]
+    pub terms: Option<TermRule>,
+    /// Exit with status 0 even when the final solver run did not converge.
+    #[arg(long)]
+    pub allow_unconverged: bool,
+}
+
+fn parse_method(text: &str) -> Result<Method, String> {
+    Method::parse(text.trim()).map_err(|e| match e {
+        FitError::InvalidSetting { problem, .. } => problem,
+        other => other.to_string(),
+    })
+}
+
+fn parse_lambda(text: &str) -> Result<Lambda, String> {
+    let text = text.trim();
+    if text == "auto" {
+        return Ok(Lambda::Auto);
+    }
+    match text.parse::<f64>() {
+        Ok(l) if l.is_finite() && l >= 0.0 => Ok(Lambda::Fixed(l)),
+        _ => Err(format!(
+            "expected a finite number ≥ 0 (0 switches the smoothness penalty off) or \"auto\", \
+             got {text:?}"
+        )),
+    }
+}
+
+fn parse_terms(text: &str) -> Result<TermRule, String> {
+    let text = text.trim();
+    if text == "auto" {
+        return Ok(TermRule::Auto);
+    }
+    if let Some(density) = text.strip_suffix("/decade") {
+        return match density.trim().parse::<f64>() {
+            Ok(d) if d.is_finite() && d > 0.0 => Ok(TermRule::PerDecade(d)),
+            _ => Err(format!(
+                "expected a positive number of terms per decade before \"/decade\", got {text:?}"
+            )),
+        };
+    }
+    text.parse::<usize>().map(TermRule::Count).map_err(|_| {
+        format!(
+            "expected a whole number of terms, \"auto\" or a density such as \"2/decade\", \
+             got {text:?}"
+        )
+    })
+}
+
+/// The default output folder: fits/<DATA file stem>.
+fn default_output(data: &Path) -> Result<PathBuf> {
+    let stem = data
+        .file_stem()
+        .with_context(|| format!("data file {} has no file name", data.display()))?;
+    Ok(Path::new("fits").join(stem))
+}
+
+/// Fit settings given on the command line, as the keys [`FitError`] names.
+fn apply_flags(args: &Args, params: &mut FitParams) -> Vec<&'static str> {
+    let mut overridden = Vec::new();
+    if let Some(method) = args.method {
+        params.method = method;
+        overridden.push("method");
+    }
+    if let Some(lambda) = args.lambda {
+        params.lambda = lambda;
+        overridden.push("lambda");
+    }
+    if let Some(seed) = args.seed {
+        params.seed = seed;
+        overridden.push("seed");
+    }
+    if let Some(starts) = args.starts {
+        params.starts = starts;
+        overridden.push("starts");
+    }
+    if let Some(terms) = &args.terms {
+        params.terms = terms.clone();
+        overridden.extend(["terms", "tau"]);
+    }
+    overridden
+}
+
+/// Runs the command.
+pub fn run(args: &Args) -> Result<()> {
+    let scene_path = &args.scene;
+    let data_path = &args.data;
+    let dir = match &args.output {
+        Some(dir) => dir.clone(),
+        None => default_output(data_path)?,
+    };
+    if dir.exists() && !dir.is_dir() {
+        bail!(
+            "output {} exists and is not a folder; give a folder for fit.json, modulus.csv and mu.csv",
+            dir.display()
+        );
+    }
+
+    let file = scene_file::load(scene_path)?;
+    let (setup, mut params) = file
+        .fit_setup()
+        .with_context(|| format!("scene file {}", scene_path.display()))?;
+    let overridden = apply_flags(args, &mut params);
+    let table = data_file::read(data_path)?;
+    let temperature =
+        single_temperature(&table).with_context(|| format!("data file {}", data_path.display()))?;
+    let data = table
+        .measurements()
+        .with_context(|| format!("data file {}", data_path.display()))?;
+    let valid = params.check(setup).map_err(|e| match &e {
+        FitError::InvalidSetting { key, .. } if overridden.contains(&key.as_str()) => {
+            anyhow!("command line: --{}: {e}", key)
+        }
+        _ => anyhow!("scene file {}: {e}", scene_path.display()),
+    })?;
+
+    eprintln!(
+        "fitting {} point(s) of {} with scene {}: {}",
+        data.len(),
+        data_path.display(),
+        scene_path.display(),
+        describe_setup(&setup)
+    );
+    let report = rollfit_fit::fit(&data, &valid).map_err(|e| match e {
+        FitError::InsufficientData(why) => anyhow!("data file {}: {why}", data_path.display()),
+        other => anyhow!(
+            "fitting data file {} with scene file {}: {other}",
+            data_path.display(),
+            scene_path.display()
+        ),
+    })?;
+
+    write_results(&dir, args, &table, &report, temperature)?;
+    eprint!("{}", summary(&report, &dir));
+    if let Some(t) = temperature {
+        eprintln!(
+            "note: every point was measured at T = {t} °C; the master curve is E*(ω) at that \
+             temperature"
+        );
+    }
+    if !report.converged {
+        if args.allow_unconverged {
+            eprintln!(
+                "warning: the fit did not converge ({}); results kept because of --allow-unconverged",
+                report.stop_reason
+            );
+        } else {
+            bail!(
+                "the fit did not converge: {}; the results in {} are marked \"converged\": false \
+                 (give --allow-unconverged to accept them, or try another --method, more --starts \
+                 or a larger [fit] max_evaluations)",
+                report.stop_reason,
+                dir.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The one temperature of a `T` column (None without one). Several
+/// temperatures form a temperature set, which needs a time–temperature
+/// shift the fit does not estimate yet: refused rather than fitted as one
+/// curve.
+fn single_temperature(table: &DataTable) -> Result<Option<f64>> {
+    let temperatures = table.temperatures();
+    match temperatures.as_slice() {
+        [] => Ok(None),
+        [t] => Ok(Some(*t)),
+        several => {
+            let (first, second) = (several[0], several[1]);
+            let line = table
+                .temperature
+                .iter()
+                .flatten()
+                .zip(&table.lines)
+                .find(|(t, _)| **t == second)
+                .map_or(0, |(_, line)| *line);
+            bail!(
+                "column `T` holds {} temperatures (T = {first} °C, then T = {second} °C on line \
+                 {line}, ...): fitting a temperature set is not supported yet; fit one \
+                 temperature at a time",
+                several.len()
+            )
+        }
+    }
+}
+
+fn describe_setup(setup: &RollingSetup) -> String {
+    let g = setup.geometry;
+    let (shape, unit) = match g.shape {
+        Shape::Sphere => ("sphere", "N"),
+        Shape::Cylinder => ("cylinder", "N/m"),
+    };
+    format!(
+        "{shape} R = {} m, load {} {unit}, ν = {}",
+        g.radius, g.load, setup.substrate.poisson
+    )
+}
+
+/// fit.json: the report (DESIGN.md §4, in the fit library's field order)
+/// plus where it came from.
+#[derive(Serialize)]
+struct FitJson<'a> {
+    #[serde(flatten)]
+    report: &'a FitReport,
+    input: Input,
+    rollfit_version: &'static str,
+}
+
+/// The inputs of a fit, as given on the command line.
+#[derive(Serialize)]
+struct Input {
+    scene: String,
+    data: String,
+    points: usize,
+    /// The one temperature of the data's `T` column, °C.
+    #[serde(rename = "T", skip_serializing_if = "Option::is_none")]
+    temperature: Option<f64>,
+}
+
+fn fit_json(args: &Args, report: &FitReport, temperature: Option<f64>) -> Result<Vec<u8>> {
+    let value = FitJson {
+        report,
+        input: Input {
+            scene: args.scene.display().to_string(),
+            data: args.data.display().to_string(),
+            points: report.mu_fit.len(),
+            temperature,
+        },
+        rollfit_version: env!("CARGO_PKG_VERSION"),
+    };
+    let mut bytes = serde_json::to_vec_pretty(&value).context("cannot encode the fit report")?;
+    bytes.push(b'\n');
+    Ok(bytes)
+}
+
+fn modulus_csv(report: &FitReport) -> Result<Vec<u8>> {
+    output::csv_bytes(
+        &MODULUS_COLUMNS,
+        report.curve.iter().map(|p| {
+            vec![
+                p.omega,
+                p.storage,
+                p.loss,
+                p.tan_delta,
+                p.magnitude,
+                p.storage_sigma,
+                p.loss_sigma,
+                p.tan_delta_sigma,
+                p.magnitude_sigma,
+            ]
+        }),
+    )
+}
+
+/// mu.csv: v, mu_measured, mu_fit, [sigma], residual = (μ_fit − μ)/μ, in the
+/// data's order.
+fn mu_csv(table: &DataTable, report: &FitReport) -> Result<Vec<u8>> {
+    if report.mu_fit.len() != table.speeds.len() {
+        bail!(
+            "the fit returned {} fitted values for {} data points",
+            report.mu_fit.len(),
+            table.speeds.len()
+        );
+    }
+    let mut header = vec!["v", "mu_measured", "mu_fit"];
+    if table.sigma.is_some() {
+        header.push("sigma");
+    }
+    header.push("residual");
+    let rows = (0..table.speeds.len()).map(|i| {
+        let (v, mu, fit) = (table.speeds[i], table.friction[i], report.mu_fit[i]);
+        let mut row = vec![v, mu, fit];
+        if let Some(sigma) = &table.sigma {
+            row.push(sigma[i]);
+        }
+        row.push((fit - mu) / mu);
+        row
+    });
+    output::csv_bytes(&header, rows)
+}
+
+/// Writes the three result files, each atomically; fit.json last, so that
+/// its presence marks a complete result.
+fn write_results(
+    dir: &Path,
+    args: &Args,
+    table: &DataTable,
+    report: &FitReport,
+    temperature: Option<f64>,
+) -> Result<()> {
+    // Encode everything before touching the disk.
+    let mu = mu_csv(table, report)?;
+    let modulus = modulus_csv(report)?;
+    let json = fit_json(args, report, temperature)?;
+    output::write_atomically(&dir.join("mu.csv"), &mu)?;
+    output::write_atomically(&dir.join("modulus.csv"), &modulus)?;
+    output::write_atomically(&dir.join("fit.json"), &json)?;
+    Ok(())
+}
+
+/// A few lines for a person at a terminal.
+fn summary(report: &FitReport, dir: &Path) -> String {
+    let mut text = String::new();
+    let weights = if report.sigma_weights {
+        "χ² with the measured sigma"
+    } else {
+        "relative residuals"
+    };
+    let status = if report.converged {
+        report.stop_reason.clone()
+    } else {
+        format!("NOT converged — {}", report.stop_reason)
+    };
+    text += &format!(
+        "method {}: {status}; {} iterations in the final run, {} evaluations in {} runs\n",
+        report.method,
+        report.iterations,
+        report.evaluations,
+        report.runs.len()
+    );
+    text += &format!(
+        "objective V = {:.6e}; misfit per point {:.4} ({weights}), noise ≈ {:.3e}\n",
+        report.objective, report.misfit_per_point, report.noise
+    );
+    text += &format!(
+        "λ = {:.4e} ({}); {} effective parameters\n",
+        report.lambda.value,
+        lambda_rule(report),
+        fmt_short(report.effective_parameters)
+    );
+    let determined = report.model.determined.iter().filter(|d| **d).count();
+    text += &format!(
+        "window ω = {:.3e} … {:.3e} rad/s; {} relaxation times ({:.3} per decade, rule {}), \
+         {determined} determined by the data\n",
+        report.window.omega_min,
+        report.window.omega_max,
+        report.terms.count,
+        report.terms.per_decade,
+        report.terms.rule
+    );
+    match &report.anchor {
+        Some(a) if a.omega == 0.0 => {
+            text += &format!("scale anchor {}: E0 = {:.4e} Pa\n", a.source, a.modulus)
+        }
+        Some(a) => {
+            text += &format!(
+                "scale anchor {}: |E| = {:.4e} Pa at ω = {:.4e} rad/s\n",
+                a.source, a.modulus, a.omega
+            )
+        }
+        None => {}
+    }
+    text += &format!(
+        "E0 = {:.4e} Pa, E1 = {:.4e} Pa; wall time {:.3} s\n",
+        report.model.static_modulus, report.model.glassy_modulus, report.wall_time_s
+    );
+    for warning in &report.warnings {
+        text += &format!("warning: {warning}\n");
+    }
+    text += &format!("wrote {} (fit.json, modulus.csv, mu.csv)\n", dir.display());
+    text
+}
+
+fn lambda_rule(report: &FitReport) -> String {
+    serde_json::to_value(report.lambda.rule)
+        .ok()
+        .and_then(|v| v.as_str().map(|s| s.replace('_', " ")))
+        .unwrap_or_else(|| "?".into())
+}
+
+fn fmt_short(x: f64) -> String {
+    format!("{x:.1}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn terms_flag_forms() {
+        assert_eq!(parse_terms("15"), Ok(TermRule::Count(15)));
+        assert_eq!(parse_terms("auto"), Ok(TermRule::Auto));
+        assert_eq!(parse_terms("2/decade"), Ok(TermRule::PerDecade(2.0)));
+        assert_eq!(parse_terms("1.5/decade"), Ok(TermRule::PerDecade(1.5)));
+        for bad in ["", "-3", "2.5", "x/decade", "0/decade", "many"] {
+            assert!(parse_terms(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn lambda_and_method_flags() {
+        assert_eq!(parse_lambda("auto"), Ok(Lambda::Auto));
+        assert_eq!(parse_lambda("0"), Ok(Lambda::Fixed(0.0)));
+        assert_eq!(parse_lambda("1e-3"), Ok(Lambda::Fixed(1e-3)));
+        for bad in ["-1", "nan", "inf", "x"] {
+            assert!(parse_lambda(bad).is_err(), "{bad}");
+        }
+        assert_eq!(parse_method("lbfgs"), Ok(Method::Lbfgs));
+        assert_eq!(parse_method("auto"), Ok(Method::LevenbergMarquardt));
+        let err = parse_method("newton").unwrap_err();
+        assert!(
+            err.contains("\"newton\"") && err.contains("nelder-mead"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn default_output_is_fits_stem() {
+        assert_eq!(
+            default_output(Path::new("data/hn-rubber.csv")).unwrap(),
+            Path::new("fits").join("hn-rubber")
+        );
+    }
+}

@@ -1,0 +1,54 @@
+//! The one error type of the fit crate.
+
+use rollfit_model::ModelError;
+use thiserror::Error;
+
+/// Everything that can stop a fit before it produces a result.
+///
+/// Settings and data are validated before any numerics run (see
+/// [`crate::FitParams::check`] and [`crate::Measurements::new`]); a fit that
+/// runs but does not converge is not an error — it is reported in
+/// [`crate::FitReport::converged`] with the reason.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum FitError {
+    /// A measured value is unusable (row numbers count data rows from 1).
+    #[error("data row {row}: {column} = {value}: {requirement}")]
+    InvalidData {
+        /// Data row, counting from 1.
+        row: usize,
+        /// Column name (`v`, `mu`, `sigma`, `T`).
+        column: &'static str,
+        /// The offending value.
+        value: f64,
+        /// What the value must satisfy.
+        requirement: &'static str,
+    },
+    /// The data set as a whole cannot be fitted.
+    #[error("{0}")]
+    InsufficientData(String),
+    /// A fit setting is outside its valid range.
+    #[error("fit setting `{key}`: {problem}")]
+    InvalidSetting {
+        /// Key as used in the scene file's `[fit]` table or on the command line.
+        key: String,
+        /// What is wrong.
+        problem: String,
+    },
+    /// A solver used up its budget of objective evaluations (internal: the
+    /// solver drivers turn it into a stop reason, it never reaches a user).
+    #[error("the budget of {0} objective evaluations is used up")]
+    BudgetExhausted(usize),
+    /// The forward model refused a scene or a material.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+}
+
+impl FitError {
+    /// Shorthand for [`FitError::InvalidSetting`].
+    pub fn setting(key: &str, problem: impl Into<String>) -> Self {
+        FitError::InvalidSetting {
+            key: key.to_string(),
+            problem: problem.into(),
+        }
+    }
+}

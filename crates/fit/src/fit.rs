@@ -1,0 +1,527 @@
+//! The fit driver: τ grid, starts, λ choice, solver runs, analysis.
+//!
+//! 1. The τ grid of [`crate::tau_grid`] for the data's speeds (for
+//!    `terms = "auto"`: 1, 2 and 3 per decade, chosen by AICc).
+//! 2. A neutral start: a flat spectrum with E1/E0 = 1000 at the anchored
+//!    (or starting, or 1 MPa) scale.
+//! 3. λ: fixed, or the decreasing path of [`crate::regularization`] with
+//!    warm starts, then refinement.
+//! 4. At the chosen λ, further starts (seeded perturbations of the neutral
+//!    start, N(0, 1) in each log-parameter) are run; the best V wins.
+//! 5. Curvature, window, determined terms and bands at the optimum.
+//!
+//! Results are deterministic for a given seed: the solvers are
+//! deterministic and the perturbations come from ChaCha8 seeded with it.
+
+use std::time::Instant;
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+
+use crate::analysis::{curvature, modulus_point, probed_window};
+use crate::data::Measurements;
+use crate::error::FitError;
+use crate::parametrization::Parametrization;
+use crate::params::{Lambda, Method, TermRule, ValidFitParams};
+use crate::problem::Problem;
+use crate::regularization::{LambdaRule, REFINEMENTS, Trial, path};
+use crate::report::{
+    AnchorRecord, FitReport, LambdaRecord, ModelRecord, RunRecord, TermsRecord, Window,
+};
+use crate::solvers::{SolverRun, default_budget, run};
+use crate::tau_grid::{SOFTEST_MODULUS, probed_band, relaxation_times};
+
+/// E1/E0 of the neutral start.
+const START_RATIO: f64 = 1000.0;
+/// Static modulus of the neutral start without anchor or start material, Pa.
+const START_MODULUS: f64 = 1e6;
+/// Points per decade of the reported master curve.
+const CURVE_DENSITY: f64 = 10.0;
+
+/// Fits `data` under `params`.
+pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
+    let clock = Instant::now();
+    let (mut report, candidates) = match &params.terms {
+        TermRule::Auto => {
+            let mut best: Option<(f64, FitReport)> = None;
+            let mut candidates = Vec::new();
+            let mut runs = Vec::new();
+            for density in [1.0, 2.0, 3.0] {
+                let tau = grid(data, params, &TermRule::PerDecade(density));
+                let r = match fit_on_grid(data, params, tau) {
+                    Ok(r) => r,
+                    Err(FitError::InsufficientData(_)) => continue,
+                    Err(e) => return Err(e),
+                };
+                let aicc = aicc(data.len(), r.misfit, r.effective_parameters);
+                candidates.push([density, aicc]);
+                runs.extend(r.runs.iter().cloned());
+                if best.as_ref().is_none_or(|(a, _)| aicc < *a) {
+                    best = Some((aicc, r));
+                }
+            }
+            let (_, mut r) = best.ok_or_else(|| {
+                FitError::InsufficientData(
+                    "too few data points for even one relaxation time per decade".into(),
+                )
+            })?;
+            r.runs = runs;
+            (r, candidates)
+        }
+        rule => (
+            fit_on_grid(data, params, grid(data, params, rule))?,
+            Vec::new(),
+        ),
+    };
+    let count = report.model.tau.len();
+    let span = (report.model.tau[count - 1] / report.model.tau[0]).log10();
+    report.terms = TermsRecord {
+        count,
+        per_decade: if span > 0.0 {
+            (count - 1) as f64 / span
+        } else {
+            0.0
+        },
+        rule: match &params.terms {
+            TermRule::PerDecade(_) => "per_decade",
+            TermRule::Count(_) => "count",
+            TermRule::Explicit(_) => "explicit",
+            TermRule::Auto => "aicc",
+        }
+        .into(),
+        candidates,
+    };
+    report.evaluations = report.runs.iter().map(|r| r.evaluations).sum();
+    report.wall_time_s = clock.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+/// Corrected Akaike criterion with k effective parameters.
+fn aicc(n: usize, misfit: f64, k: f64) -> f64 {
+    let n = n as f64;
+    let k = k + 1.0; // the noise level
+    n * (misfit / n).ln() + 2.0 * k + 2.0 * k * (k + 1.0) / (n - k - 1.0).max(0.5)
+}
+
+fn grid(data: &Measurements, params: &ValidFitParams, rule: &TermRule) -> Vec<f64> {
+    let soft = match (params.anchor, &params.start) {
+        (Some(a), _) if a.omega == 0.0 => a.modulus,
+        (_, Some(s)) => s.static_modulus,
+        _ => SOFTEST_MODULUS,
+    };
+    let band = probed_band(&params.setup, data.speed_range(), soft, params.e1_max);
+    relaxation_times(band, rule)
+}
+
+/// The neutral start θ₀.
+fn neutral_start(param: &Parametrization, params: &ValidFitParams) -> Vec<f64> {
+    let e0 = match (params.anchor, &params.start) {
+        (Some(a), _) if a.omega == 0.0 => a.modulus,
+        (_, Some(s)) => s.static_modulus,
+        _ => START_MODULUS,
+    };
+    let ratio = match &params.start {
+        Some(s) => s.glassy_modulus / s.static_modulus,
+        None => START_RATIO.min(0.5 * params.e1_max / e0).max(2.0),
+    };
+    let n = param.terms();
+    let h = vec![e0 * (ratio - 1.0) / n as f64; n];
+    param.theta_of(e0, &h)
+}
+
+fn record(stage: &str, lambda: f64, r: &SolverRun) -> RunRecord {
+    RunRecord {
+        stage: stage.into(),
+        method: r.method.name(),
+        lambda,
+        objective: r.objective,
+        iterations: r.iterations,
+        evaluations: r.evaluations,
+        wall_time_s: r.wall_time_s,
+        converged: r.stop.converged(),
+        stop_reason: r.stop.describe(),
+    }
+}
+
+/// The fit on one τ grid.
+fn fit_on_grid(
+    data: &Measurements,
+    params: &ValidFitParams,
+    tau: Vec<f64>,
+) -> Result<FitReport, FitError> {
+    let param = Parametrization::new(tau, params.anchor);
+    let free = param.free_count();
+    if data.len() < free {
+        return Err(FitError::InsufficientData(format!(
+            "{} data points cannot determine {free} free parameters ({} relaxation times{}); \
+             measure more speeds or give fewer terms (`terms`){}",
+            data.len(),
+            param.terms(),
+            if params.anchor.is_some() {
+                ""
+            } else {
+                " and the modulus scale"
+            },
+            if params.anchor.is_some() {
+                ""
+            } else {
+                " or a scale anchor"
+            }
+        )));
+    }
+    let mut problem = Problem {
+        setup: &params.setup,
+        data,
+        scales: data.residual_scales(),
+        param,
+        lambda: 0.0,
+        e1_max: params.e1_max,
+        tolerance: params.model_tolerance,
+        evaluations: Default::default(),
+        budget: Default::default(),
+        best: Default::default(),
+        history: Default::default(),
+    };
+    let method = params.method;
+    let budget = params
+        .max_evaluations
+        .unwrap_or_else(|| default_budget(method, free));
+    let start = neutral_start(&problem.param, params);
+    let sigma_known = data.sigma().is_some();
+    let mut runs = Vec::new();
+    let mut path_record = Vec::new();
+
+    // Fit at one λ from θ₀; returns the trial and the run.
+    let solve = |problem: &mut Problem<'_>,
+                 lambda: f64,
+                 from: &[f64],
+                 stage: &str,
+                 runs: &mut Vec<RunRecord>|
+     -> Result<(Trial, SolverRun), FitError> {
+        problem.lambda = lambda;
+        let r = run(method, problem, from, budget);
+        runs.push(record(stage, lambda, &r));
+        problem.reset(usize::MAX);
+        let e = problem.evaluate(&r.theta, true)?;
+        let jac = e.jacobian.as_ref().ok_or_else(|| {
+            FitError::InsufficientData("the forward model returned no Jacobian".into())
+        })?;
+        let c = curvature(jac, data.len(), e.misfit, sigma_known);
+        Ok((
+            Trial {
+                lambda,
+                theta: r.theta.clone(),
+                misfit: e.misfit,
+                effective_parameters: c.effective_parameters,
+            },
+            r,
+        ))
+    };
+
+    let (rule, mut chosen, mut chosen_run) = match params.lambda {
+        Lambda::Fixed(lambda) => {
+            let (t, r) = solve(&mut problem, lambda, &start, "fixed lambda", &mut runs)?;
+            (LambdaRule::Fixed, t, r)
+        }
+        Lambda::Auto => {
+            let rule = if sigma_known {
+                LambdaRule::Discrepancy
+            } else {
+                LambdaRule::Gcv
+            };
+            let n = data.len();
+            let mut trials: Vec<(Trial, SolverRun)> = Vec::new();
+            let mut from = start.clone();
+            for lambda in path() {
+                let (t, r) = solve(&mut problem, lambda, &from, "lambda path", &mut runs)?;
+                from = t.theta.clone();
+                path_record.push([lambda, t.misfit, t.effective_parameters]);
+                let stop_now = match rule {
+                    LambdaRule::Discrepancy => t.misfit <= discrepancy_target(n, &t),
+                    _ => {
+                        // Past the minimum by two decades of rising GCV.
+                        let k = trials.len();
+                        k >= 2
+                            && t.gcv(n) > trials[k - 1].0.gcv(n)
+                            && trials[k - 1].0.gcv(n) > trials[k - 2].0.gcv(n)
+                    }
+                };
+                trials.push((t, r));
+                if stop_now {
+                    break;
+                }
+            }
+            let (t, r) = refine(rule, n, trials, &mut |lambda, from: &[f64]| {
+                let (t, r) = solve(&mut problem, lambda, from, "refine lambda", &mut runs)?;
+                path_record.push([lambda, t.misfit, t.effective_parameters]);
+                Ok((t, r))
+            })?;
+            (rule, t, r)
+        }
+    };
+
+    // Further starts at the chosen λ.
+    if params.starts > 1 {
+        let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
+        let normal = Normal::new(0.0, 1.0).map_err(|e| FitError::setting("seed", e.to_string()))?;
+        for k in 1..params.starts {
+            let from: Vec<f64> = start.iter().map(|t| t + normal.sample(&mut rng)).collect();
+            let (t, r) = solve(
+                &mut problem,
+                chosen.lambda,
+                &from,
+                &format!("start {}", k + 1),
+                &mut runs,
+            )?;
+            if r.objective < chosen_run.objective {
+                chosen = t;
+                chosen_run = r;
+            }
+        }
+    }
+
+    analyse(
+        data,
+        params,
+        &mut problem,
+        chosen,
+        chosen_run,
+        rule,
+        path_record,
+        runs,
+    )
+}
+
+/// The misfit the discrepancy principle aims at: χ² = N (Morozov). (The
+/// variant N − t, t the effective parameters, was tried on the bundled
+/// rubber: it picks λ a hundred times smaller and lets tan δ wiggle by
+/// ±3 % without improving |E|.)
+fn discrepancy_target(n: usize, _trial: &Trial) -> f64 {
+    n as f64
+}
+
+type Solve<'s> = dyn FnMut(f64, &[f64]) -> Result<(Trial, SolverRun), FitError> + 's;
+
+/// Refines λ between path points.
+fn refine(
+    rule: LambdaRule,
+    n: usize,
+    trials: Vec<(Trial, SolverRun)>,
+    solve: &mut Solve<'_>,
+) -> Result<(Trial, SolverRun), FitError> {
+    let mut trials = trials;
+    match rule {
+        LambdaRule::Discrepancy => {
+            let last = trials.len() - 1;
+            if trials[last].0.misfit > discrepancy_target(n, &trials[last].0) || last == 0 {
+                // Never reached χ² = N (or already at the largest λ): keep the
+                // path's best end.
+                let best = trials
+                    .into_iter()
+                    .min_by(|a, b| a.0.misfit.total_cmp(&b.0.misfit))
+                    .ok_or_else(|| FitError::InsufficientData("empty λ path".into()))?;
+                return Ok(best);
+            }
+            // Bisection in ln λ between trials[last − 1] (χ² > N) and
+            // trials[last] (χ² ≤ N); keep the largest λ with χ² ≤ N.
+            let mut above = trials[last - 1].clone();
+            let mut below = trials.swap_remove(last);
+            for _ in 0..REFINEMENTS {
+                let lambda = (above.0.lambda * below.0.lambda).sqrt();
+                let from = below.0.theta.clone();
+                let t = solve(lambda, &from)?;
+                if t.0.misfit <= discrepancy_target(n, &t.0) {
+                    below = t;
+                } else {
+                    above = t;
+                }
+            }
+            Ok(below)
+        }
+        LambdaRule::Gcv | LambdaRule::Fixed => {
+            let best = trials
+                .iter()
+                .enumerate()
+                .min_by(|a, b| a.1.0.gcv(n).total_cmp(&b.1.0.gcv(n)))
+                .map(|(i, _)| i)
+                .unwrap_or(0);
+            // Golden-section search in ln λ over the neighbouring path points.
+            let lo = trials[best.saturating_sub(1)].0.lambda.ln();
+            let hi = trials[(best + 1).min(trials.len() - 1)].0.lambda.ln();
+            let mut incumbent = trials.swap_remove(best);
+            if lo == hi {
+                return Ok(incumbent);
+            }
+            let (mut a, mut b) = (lo.min(hi), lo.max(hi));
+            let golden = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..REFINEMENTS {
+                let c = b - golden * (b - a);
+                let d = a + golden * (b - a);
+                let from = incumbent.0.theta.clone();
+                let tc = solve(c.exp(), &from)?;
+                let td = solve(d.exp(), &from)?;
+                if tc.0.gcv(n) < td.0.gcv(n) {
+                    b = d;
+                    if tc.0.gcv(n) < incumbent.0.gcv(n) {
+                        incumbent = tc;
+                    }
+                } else {
+                    a = c;
+                    if td.0.gcv(n) < incumbent.0.gcv(n) {
+                        incumbent = td;
+                    }
+                }
+            }
+            Ok(incumbent)
+        }
+    }
+}
+
+/// Curvature, window, determined terms, bands and the report.
+#[allow(clippy::too_many_arguments)]
+fn analyse(
+    data: &Measurements,
+    params: &ValidFitParams,
+    problem: &mut Problem<'_>,
+    chosen: Trial,
+    chosen_run: SolverRun,
+    rule: LambdaRule,
+    path_record: Vec<[f64; 3]>,
+    runs: Vec<RunRecord>,
+) -> Result<FitReport, FitError> {
+    problem.lambda = chosen.lambda;
+    problem.reset(usize::MAX);
+    let e = problem.evaluate(&chosen.theta, true)?;
+    let jac = e.jacobian.as_ref().ok_or_else(|| {
+        FitError::InsufficientData("the forward model returned no Jacobian".into())
+    })?;
+    let sigma_known = data.sigma().is_some();
+    let c = curvature(jac, data.len(), e.misfit, sigma_known);
+    let param = &problem.param;
+    let mapped = param.map(&chosen.theta);
+    let prony = param.prony(&mapped)?;
+    let (omega_min, omega_max) = probed_window(&params.setup, &prony, data.speed_range());
+    let first = param.first_strength();
+    let determined: Vec<bool> = param
+        .tau()
+        .iter()
+        .enumerate()
+        .map(|(k, &tau)| {
+            let omega = 1.0 / tau;
+            let near = omega >= omega_min / 10.0 && omega <= omega_max * 10.0;
+            near && c.sensitivity[first + k] >= c.noise_variance
+        })
+        .collect();
+    let ln_strength_sigma = (0..param.terms())
+        .map(|k| c.covariance[(first + k, first + k)].max(0.0).sqrt())
+        .collect();
+    let decades = (omega_max / omega_min).log10();
+    let points = (decades * CURVE_DENSITY).ceil().max(1.0) as usize + 1;
+    let curve = (0..points)
+        .map(|i| {
+            let omega = omega_min * (omega_max / omega_min).powf(i as f64 / (points - 1) as f64);
+            modulus_point(param, &mapped, &c.covariance, omega)
+        })
+        .collect();
+
+    let mut warnings = Vec::new();
+    if params.anchor.is_none() {
+        warnings.push(
+            "no scale anchor ([fit] E0, E_at or contact_radius): rolling friction fixes the \
+             shape of tan δ(ω) far better than the level of |E|, so the modulus scale is weakly \
+             determined; see the uncertainty band"
+                .into(),
+        );
+    }
+    if !chosen_run.stop.converged() {
+        warnings.push(format!(
+            "the final {} run did not converge: {}",
+            chosen_run.method.name(),
+            chosen_run.stop.describe()
+        ));
+    }
+    if rule == LambdaRule::Discrepancy && e.misfit > data.len() as f64 * 1.5 {
+        warnings.push(format!(
+            "χ²/N = {:.2} stays above 1 at every λ: the model does not reach the noise floor \
+             (underestimated σ, or physics the model lacks)",
+            e.misfit / data.len() as f64
+        ));
+    }
+    if mapped.glassy_modulus() > 0.999 * params.e1_max {
+        warnings.push(format!(
+            "the glassy modulus E1 sits at its bound E1_max = {:e} Pa",
+            params.e1_max
+        ));
+    }
+    let undetermined = determined.iter().filter(|d| !**d).count();
+    if undetermined > 0 {
+        warnings.push(format!(
+            "{undetermined} of {} relaxation times are not determined by the data \
+             (marked in model.determined); they only extend E* outside the window",
+            determined.len()
+        ));
+    }
+    let method = chosen_run.method;
+    Ok(FitReport {
+        model: ModelRecord {
+            kind: "prony",
+            glassy_modulus: mapped.glassy_modulus(),
+            static_modulus: mapped.static_modulus,
+            tau: param.tau().to_vec(),
+            strengths: mapped.strengths.clone(),
+            determined,
+            ln_strength_sigma,
+        },
+        poisson: params.setup.substrate.poisson,
+        window: Window {
+            omega_min,
+            omega_max,
+        },
+        method: method.name(),
+        objective: e.objective(),
+        misfit: e.misfit,
+        misfit_per_point: e.misfit / data.len() as f64,
+        sigma_weights: sigma_known,
+        iterations: chosen_run.iterations,
+        evaluations: 0,
+        converged: chosen_run.stop.converged(),
+        stop_reason: chosen_run.stop.describe(),
+        wall_time_s: 0.0,
+        lambda: LambdaRecord {
+            value: chosen.lambda,
+            rule,
+            path: path_record,
+        },
+        terms: TermsRecord {
+            count: 0,
+            per_decade: 0.0,
+            rule: String::new(),
+            candidates: Vec::new(),
+        },
+        anchor: params.anchor.map(|a| AnchorRecord {
+            source: a.source,
+            omega: a.omega,
+            modulus: a.modulus,
+        }),
+        effective_parameters: c.effective_parameters,
+        noise: c.noise_variance.sqrt(),
+        seed: params.seed,
+        warnings,
+        runs,
+        history: chosen_run
+            .history
+            .iter()
+            .map(|&(k, v)| [k as f64, v])
+            .collect(),
+        curve,
+        mu_fit: e.mu.clone(),
+    })
+}
+
+impl Method {
+    /// Whether this method uses derivatives.
+    pub fn uses_gradient(self) -> bool {
+        !matches!(self, Method::NelderMead)
+    }
+}

@@ -1,0 +1,38 @@
+//! # rollfit-fit
+//!
+//! The inverse problem of rollfit (Persson 2010, Appendix B): recover a
+//! rubber's viscoelastic master curve E*(ω) from rolling-friction
+//! measurements μ(v).
+//!
+//! Where each piece lives:
+//! - [`data`]: validated measurements.
+//! - [`params`]: fit settings, checked before any numerics run.
+//! - [`tau_grid`]: the relaxation-time grid and the rule for its ends.
+//! - `parametrization`: θ ↦ Prony series, positivity and scale anchors.
+//! - `problem`: the objective of Eq. (B3) as residuals with exact Jacobian.
+//! - [`solvers`]: Levenberg–Marquardt (default), L-BFGS and Nelder–Mead.
+//! - `regularization`: the data-driven choice of the smoothness weight λ.
+//! - `analysis`: the determined window, determined terms, uncertainty bands.
+//! - [`fit`]: the driver tying them together; [`report`]: its result.
+
+pub mod data;
+pub mod error;
+pub mod fit;
+pub mod params;
+pub mod regularization;
+pub mod report;
+pub mod solvers;
+pub mod tau_grid;
+
+mod analysis;
+mod parametrization;
+mod problem;
+
+pub use data::Measurements;
+pub use error::FitError;
+pub use fit::fit;
+pub use params::{
+    FitParams, Lambda, Method, ModulusAnchor, RollingSetup, ScaleAnchor, StartMaterial, TermRule,
+    ValidFitParams,
+};
+pub use report::{FitReport, ModulusPoint};

@@ -1,0 +1,357 @@
+//! Fit settings, unchecked and validated (the linfa pattern): a
+//! [`FitParams`] is what a user asks for; [`FitParams::check`] turns it into
+//! [`ValidFitParams`] against the rolling set-up, so that no invalid setting
+//! can reach the numerics.
+
+use std::f64::consts::PI;
+
+use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
+
+use crate::error::FitError;
+
+/// The optimiser.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Levenberg–Marquardt on the residual vector with the analytic
+    /// Jacobian (trust region, MINPACK's algorithm): the robust default.
+    LevenbergMarquardt,
+    /// argmin's L-BFGS with a Moré–Thuente line search on V(θ).
+    Lbfgs,
+    /// argmin's Nelder–Mead simplex on V(θ), the paper's "amoeba".
+    NelderMead,
+}
+
+impl Method {
+    /// The name used in scene files, on the command line and in fit.json.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::LevenbergMarquardt => "levenberg-marquardt",
+            Method::Lbfgs => "lbfgs",
+            Method::NelderMead => "nelder-mead",
+        }
+    }
+
+    /// Parses a method name; "auto" and "lm" select Levenberg–Marquardt.
+    pub fn parse(name: &str) -> Result<Self, FitError> {
+        match name {
+            "auto" | "lm" | "levenberg-marquardt" => Ok(Method::LevenbergMarquardt),
+            "lbfgs" | "l-bfgs" => Ok(Method::Lbfgs),
+            "nelder-mead" | "amoeba" => Ok(Method::NelderMead),
+            other => Err(FitError::setting(
+                "method",
+                format!(
+                    "unknown method \"{other}\" (use \"auto\", \"levenberg-marquardt\", \
+                     \"lbfgs\" or \"nelder-mead\")"
+                ),
+            )),
+        }
+    }
+}
+
+/// A known point of the modulus scale, used as a constraint.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ScaleAnchor {
+    /// Known static Young's modulus E0, Pa.
+    StaticModulus(f64),
+    /// Known |E| (Young's, Pa) at angular frequency `omega` (rad/s).
+    ModulusAt {
+        /// rad/s.
+        omega: f64,
+        /// |E*(ω)|, Pa.
+        modulus: f64,
+    },
+    /// A contact radius (half-width for a cylinder) `radius` (m) measured at
+    /// rolling speed `speed` (m/s).
+    ContactRadius {
+        /// m/s.
+        speed: f64,
+        /// m.
+        radius: f64,
+    },
+}
+
+/// How the relaxation times are chosen.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TermRule {
+    /// τ_k log-spaced at this many per decade over the rule of
+    /// [`crate::tau_grid`] (default 2).
+    PerDecade(f64),
+    /// Exactly this many τ_k over the same extent.
+    Count(usize),
+    /// 1, 2 or 3 per decade, chosen by the corrected Akaike criterion.
+    Auto,
+    /// Given relaxation times, s.
+    Explicit(Vec<f64>),
+}
+
+/// The smoothness weight λ on ln H_k.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Lambda {
+    /// Data-driven: the discrepancy principle when σ is measured, else
+    /// generalised cross-validation.
+    Auto,
+    /// A fixed λ ≥ 0 (0 switches the penalty off).
+    Fixed(f64),
+}
+
+/// What a user asks of a fit (unchecked).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitParams {
+    /// Optimiser.
+    pub method: Method,
+    /// Relaxation-time rule.
+    pub terms: TermRule,
+    /// Scale anchor, if any.
+    pub anchor: Option<ScaleAnchor>,
+    /// Upper bound of the glassy modulus E1, Pa.
+    pub e1_max: f64,
+    /// Smoothness weight.
+    pub lambda: Lambda,
+    /// Seed of the multi-start perturbations.
+    pub seed: u64,
+    /// Number of starts (the neutral start plus seeded perturbations of it).
+    pub starts: usize,
+    /// Budget of objective evaluations per solver run (None: the method's
+    /// default).
+    pub max_evaluations: Option<usize>,
+    /// Relative tolerance of the forward model's quadrature.
+    pub model_tolerance: f64,
+    /// A starting material (E1, H, τ) to begin from instead of the neutral
+    /// start, e.g. the scene's `[material]`.
+    pub start: Option<StartMaterial>,
+}
+
+/// A Prony series used as a starting point; it is re-expressed on the fit's
+/// τ grid by matching E*(ω) at the grid frequencies.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StartMaterial {
+    /// Static modulus E0, Pa.
+    pub static_modulus: f64,
+    /// Glassy modulus E1, Pa.
+    pub glassy_modulus: f64,
+}
+
+impl Default for FitParams {
+    fn default() -> Self {
+        FitParams {
+            method: Method::LevenbergMarquardt,
+            terms: TermRule::PerDecade(2.0),
+            anchor: None,
+            e1_max: 1e10,
+            lambda: Lambda::Auto,
+            seed: 0,
+            starts: 3,
+            max_evaluations: None,
+            model_tolerance: 1e-6,
+            start: None,
+        }
+    }
+}
+
+/// The rolling set-up a fit works in: everything of a scene but the material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollingSetup {
+    /// Body and load.
+    pub geometry: Geometry,
+    /// Poisson's ratio and film.
+    pub substrate: Substrate,
+    /// Contact-size rule.
+    pub contact: ContactSize,
+}
+
+/// A scale anchor reduced to one known |E| at one frequency (ω = 0 for the
+/// static modulus).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModulusAnchor {
+    /// rad/s (0 for E0).
+    pub omega: f64,
+    /// |E*(ω)|, Young's, Pa.
+    pub modulus: f64,
+    /// Where it came from, for reports: "E0", "E_at" or "contact_radius".
+    pub source: &'static str,
+}
+
+/// Settings that passed [`FitParams::check`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidFitParams {
+    pub(crate) method: Method,
+    pub(crate) terms: TermRule,
+    pub(crate) anchor: Option<ModulusAnchor>,
+    pub(crate) e1_max: f64,
+    pub(crate) lambda: Lambda,
+    pub(crate) seed: u64,
+    pub(crate) starts: usize,
+    pub(crate) max_evaluations: Option<usize>,
+    pub(crate) model_tolerance: f64,
+    pub(crate) start: Option<StartMaterial>,
+    pub(crate) setup: RollingSetup,
+}
+
+impl ValidFitParams {
+    /// The optimiser.
+    pub fn method(&self) -> Method {
+        self.method
+    }
+    /// The scale anchor as a known |E| at one frequency.
+    pub fn anchor(&self) -> Option<ModulusAnchor> {
+        self.anchor
+    }
+    /// The rolling set-up.
+    pub fn setup(&self) -> &RollingSetup {
+        &self.setup
+    }
+}
+
+fn positive(key: &str, value: f64) -> Result<f64, FitError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(FitError::setting(
+            key,
+            format!("{value} must be a finite number greater than zero"),
+        ))
+    }
+}
+
+impl FitParams {
+    /// Validates every setting against the rolling set-up and reduces the
+    /// scale anchor to a known |E| at one frequency.
+    pub fn check(self, setup: RollingSetup) -> Result<ValidFitParams, FitError> {
+        let e1_max = positive("E1_max", self.e1_max)?;
+        let nu = setup.substrate.poisson;
+        let plane_strain = 1.0 - nu * nu;
+        let anchor = match self.anchor {
+            None => None,
+            Some(ScaleAnchor::StaticModulus(e0)) => {
+                let e0 = positive("E0", e0)?;
+                Some(ModulusAnchor {
+                    omega: 0.0,
+                    modulus: e0,
+                    source: "E0",
+                })
+            }
+            Some(ScaleAnchor::ModulusAt { omega, modulus }) => Some(ModulusAnchor {
+                omega: positive("E_at.omega", omega)?,
+                modulus: positive("E_at.E", modulus)?,
+                source: "E_at",
+            }),
+            Some(ScaleAnchor::ContactRadius { speed, radius }) => {
+                let speed = positive("contact_radius.v", speed)?;
+                let radius = positive("contact_radius.r", radius)?;
+                let g = setup.geometry;
+                if radius >= g.radius {
+                    return Err(FitError::setting(
+                        "contact_radius.r",
+                        format!(
+                            "{radius} m is not smaller than the body's radius {} m: \
+                             Hertz contact does not apply",
+                            g.radius
+                        ),
+                    ));
+                }
+                // Invert Hertz for |E_eff| at the contact's own frequency
+                // ω = v/r (the centre of the band v/r … 20 v/r it probes).
+                let e_eff = match g.shape {
+                    Shape::Sphere => 0.75 * g.load * g.radius / radius.powi(3),
+                    Shape::Cylinder => 4.0 * g.load * g.radius / (PI * radius * radius),
+                };
+                let omega = match setup.contact {
+                    ContactSize::Dynamic => speed / radius,
+                    ContactSize::Static => 0.0,
+                };
+                Some(ModulusAnchor {
+                    omega,
+                    modulus: e_eff * plane_strain,
+                    source: "contact_radius",
+                })
+            }
+        };
+        if let Some(a) = anchor
+            && a.modulus >= e1_max
+        {
+            return Err(FitError::setting(
+                a.source,
+                format!(
+                    "the anchored modulus {:e} Pa is not below E1_max = {e1_max:e} Pa",
+                    a.modulus
+                ),
+            ));
+        }
+        match &self.terms {
+            TermRule::PerDecade(d) => {
+                if !(d.is_finite() && *d >= 0.5 && *d <= 10.0) {
+                    return Err(FitError::setting(
+                        "terms",
+                        format!("{d} terms per decade: use 0.5 to 10"),
+                    ));
+                }
+            }
+            TermRule::Count(n) => {
+                if *n < 2 || *n > 200 {
+                    return Err(FitError::setting(
+                        "terms",
+                        format!("{n} terms: use 2 to 200"),
+                    ));
+                }
+            }
+            TermRule::Auto => {}
+            TermRule::Explicit(tau) => {
+                if tau.len() < 2 {
+                    return Err(FitError::setting(
+                        "tau",
+                        "give at least two relaxation times",
+                    ));
+                }
+                for (i, &t) in tau.iter().enumerate() {
+                    positive(&format!("tau[{i}]"), t)?;
+                    if i > 0 && t <= tau[i - 1] {
+                        return Err(FitError::setting(
+                            "tau",
+                            format!("relaxation times must increase (tau[{i}] = {t})"),
+                        ));
+                    }
+                }
+            }
+        }
+        if let Lambda::Fixed(l) = self.lambda
+            && !(l.is_finite() && l >= 0.0)
+        {
+            return Err(FitError::setting(
+                "lambda",
+                format!("{l} must be a finite number ≥ 0"),
+            ));
+        }
+        if self.starts == 0 || self.starts > 100 {
+            return Err(FitError::setting(
+                "starts",
+                format!("{} starts: use 1 to 100", self.starts),
+            ));
+        }
+        if let Some(0) = self.max_evaluations {
+            return Err(FitError::setting("max_evaluations", "must be at least 1"));
+        }
+        let model_tolerance = positive("tolerance", self.model_tolerance)?;
+        if let Some(s) = &self.start {
+            positive("material.E0", s.static_modulus)?;
+            if !(s.glassy_modulus.is_finite() && s.glassy_modulus > s.static_modulus) {
+                return Err(FitError::setting(
+                    "material.E1",
+                    "the starting glassy modulus must exceed the static one",
+                ));
+            }
+        }
+        Ok(ValidFitParams {
+            method: self.method,
+            terms: self.terms,
+            anchor,
+            e1_max,
+            lambda: self.lambda,
+            seed: self.seed,
+            starts: self.starts,
+            max_evaluations: self.max_evaluations,
+            model_tolerance,
+            start: self.start,
+            setup,
+        })
+    }
+}

@@ -1,0 +1,245 @@
+//! The objective of Eq. (B3) as a residual vector, with its exact Jacobian.
+//!
+//! V(θ) = Σ_i [(μ_th(v_i; θ) − μ_i)/s_i]² + λ Σ_k (Δ² ln H_k)² + P(θ),
+//!
+//! s_i = σ_i when measured, else μ_i (relative weights, g_i = 1/μ_i²). The
+//! second term is the smoothness penalty on the log-spectrum: second
+//! differences of ln H_k on the log-spaced τ grid, which leave a power-law
+//! spectrum free and penalise wiggles (the ill-posedness of Appendix B shows
+//! up as neighbouring H_k trading off wildly). P keeps the glassy modulus
+//! below E1_max: w·max(0, ln(E1/E1_max)), squared.
+//!
+//! ∂μ_th/∂θ comes from the forward model's one-pass Jacobian
+//! ([`rollfit_model::Scene::friction_with_gradient`]) through the chain rule
+//! of [`crate::parametrization`].
+//!
+//! The same problem serves Levenberg–Marquardt (as residuals and Jacobian)
+//! and argmin's solvers (as `CostFunction` V and `Gradient` 2Jᵀr).
+
+use std::cell::{Cell, RefCell};
+
+use argmin::core::{CostFunction, Error as ArgminError, Gradient};
+use nalgebra::{DMatrix, DVector};
+use rollfit_model::{Prony, Scene};
+
+use crate::data::Measurements;
+use crate::error::FitError;
+use crate::parametrization::{Mapped, Parametrization};
+use crate::params::RollingSetup;
+
+/// Weight of the E1_max penalty: one per cent above the bound costs as much
+/// as a hundred standard deviations of misfit.
+const BOUND_WEIGHT: f64 = 1e3;
+
+/// The fit problem at one λ.
+pub(crate) struct Problem<'a> {
+    pub setup: &'a RollingSetup,
+    pub data: &'a Measurements,
+    pub scales: Vec<f64>,
+    pub param: Parametrization,
+    pub lambda: f64,
+    pub e1_max: f64,
+    pub tolerance: f64,
+    /// Forward-model evaluations so far (one per residual vector).
+    pub evaluations: Cell<usize>,
+    /// Evaluations allowed before [`FitError::BudgetExhausted`].
+    pub budget: Cell<usize>,
+    /// The best (V, θ) seen, kept so that a solver that stops on an error
+    /// (line search, budget) still yields its best point.
+    pub best: RefCell<Option<(f64, Vec<f64>)>>,
+    /// (evaluations, best V so far) after every evaluation.
+    pub history: RefCell<Vec<(usize, f64)>>,
+}
+
+/// Residuals (and Jacobian) at one θ.
+#[derive(Debug, Clone)]
+pub(crate) struct Evaluation {
+    /// Data residuals, then smoothness, then the bound.
+    pub residuals: DVector<f64>,
+    /// ∂residuals/∂θ.
+    pub jacobian: Option<DMatrix<f64>>,
+    /// μ_th(v_i).
+    pub mu: Vec<f64>,
+    /// Σ data residuals² (χ² when σ is measured).
+    pub misfit: f64,
+}
+
+impl Evaluation {
+    /// V = Σ r².
+    pub fn objective(&self) -> f64 {
+        self.residuals.norm_squared()
+    }
+}
+
+impl<'a> Problem<'a> {
+    /// Rows of the residual vector.
+    pub fn residual_count(&self) -> usize {
+        self.data.len() + self.smoothness_count() + 1
+    }
+
+    fn smoothness_count(&self) -> usize {
+        self.param.terms().saturating_sub(2)
+    }
+
+    /// The scene for a mapped θ.
+    pub fn scene(&self, m: &Mapped) -> Result<Scene<Prony>, FitError> {
+        let prony = self.param.prony(m)?;
+        Ok(Scene::new(
+            self.setup.geometry,
+            self.setup.substrate,
+            self.setup.contact,
+            prony,
+        )?
+        .with_tolerance(self.tolerance)?)
+    }
+
+    /// Residuals, and the Jacobian when `with_jacobian`.
+    pub fn evaluate(&self, theta: &[f64], with_jacobian: bool) -> Result<Evaluation, FitError> {
+        if self.evaluations.get() >= self.budget.get() {
+            return Err(FitError::BudgetExhausted(self.budget.get()));
+        }
+        self.evaluations.set(self.evaluations.get() + 1);
+        if theta.iter().any(|t| !t.is_finite()) {
+            return Err(FitError::setting(
+                "parameters",
+                "the optimiser produced a non-finite parameter",
+            ));
+        }
+        let m = self.param.map(theta);
+        let scene = self.scene(&m)?;
+        let n_data = self.data.len();
+        let n_free = self.param.free_count();
+        let rows = self.residual_count();
+        let mut residuals = DVector::zeros(rows);
+        let mut jacobian = with_jacobian.then(|| DMatrix::zeros(rows, n_free));
+        let mu = if let Some(jac) = jacobian.as_mut() {
+            let fj = scene.friction_with_gradient(self.data.speeds())?;
+            let np = fj.parameter_count;
+            let mut grad_p = vec![0.0; np];
+            let mut grad_theta = vec![0.0; n_free];
+            for i in 0..n_data {
+                let row = &fj.jacobian[i * np..(i + 1) * np];
+                // Model parameters (E1, H) → (E0, H): E1 = E0 + ΣH.
+                grad_p[0] = row[0];
+                for k in 1..np {
+                    grad_p[k] = row[k] + row[0];
+                }
+                self.param.pullback(&m, &grad_p, &mut grad_theta);
+                for (j, g) in grad_theta.iter().enumerate() {
+                    jac[(i, j)] = g / self.scales[i];
+                }
+            }
+            fj.mu
+        } else {
+            scene.friction_sweep(self.data.speeds())?
+        };
+        let mut misfit = 0.0;
+        for i in 0..n_data {
+            let r = (mu[i] - self.data.friction()[i]) / self.scales[i];
+            residuals[i] = r;
+            misfit += r * r;
+        }
+        // Smoothness: √λ (θ_{k+1} − 2θ_k + θ_{k−1}) over the ln H_k.
+        let root_lambda = self.lambda.sqrt();
+        let first = self.param.first_strength();
+        for k in 0..self.smoothness_count() {
+            let row = n_data + k;
+            let (a, b, c) = (first + k, first + k + 1, first + k + 2);
+            residuals[row] = root_lambda * (theta[a] - 2.0 * theta[b] + theta[c]);
+            if let Some(jac) = jacobian.as_mut() {
+                jac[(row, a)] = root_lambda;
+                jac[(row, b)] = -2.0 * root_lambda;
+                jac[(row, c)] = root_lambda;
+            }
+        }
+        // Glassy-modulus bound.
+        let row = rows - 1;
+        let e1 = m.glassy_modulus();
+        let excess = (e1 / self.e1_max).ln();
+        if excess > 0.0 {
+            residuals[row] = BOUND_WEIGHT * excess;
+            if let Some(jac) = jacobian.as_mut() {
+                let ones = vec![1.0; self.param.terms() + 1];
+                let mut d = vec![0.0; n_free];
+                self.param.pullback(&m, &ones, &mut d);
+                for (j, dj) in d.iter().enumerate() {
+                    jac[(row, j)] = BOUND_WEIGHT * dj / e1;
+                }
+            }
+        }
+        let evaluation = Evaluation {
+            residuals,
+            jacobian,
+            mu,
+            misfit,
+        };
+        self.record(theta, evaluation.objective());
+        Ok(evaluation)
+    }
+
+    fn record(&self, theta: &[f64], objective: f64) {
+        let mut best = self.best.borrow_mut();
+        let improved = best.as_ref().is_none_or(|(v, _)| objective < *v);
+        if improved {
+            *best = Some((objective, theta.to_vec()));
+        }
+        let best_value = best.as_ref().map_or(objective, |(v, _)| *v);
+        self.history
+            .borrow_mut()
+            .push((self.evaluations.get(), best_value));
+    }
+
+    /// Resets the counters and the record for a new solver run with `budget`
+    /// evaluations.
+    pub fn reset(&self, budget: usize) {
+        self.evaluations.set(0);
+        self.budget.set(budget);
+        *self.best.borrow_mut() = None;
+        self.history.borrow_mut().clear();
+    }
+}
+
+/// V reported to argmin at a trial point the forward model refuses (an
+/// absurd material a long line-search step or a simplex move produced): a
+/// very poor but finite value, so the line search backtracks and the simplex
+/// contracts instead of the run ending. Running out of budget still ends it.
+const REFUSED_OBJECTIVE: f64 = 1e30;
+
+fn refused(e: &FitError) -> bool {
+    !matches!(e, FitError::BudgetExhausted(_))
+}
+
+fn to_argmin(e: FitError) -> ArgminError {
+    ArgminError::msg(e.to_string())
+}
+
+impl CostFunction for &Problem<'_> {
+    type Param = DVector<f64>;
+    type Output = f64;
+
+    fn cost(&self, theta: &Self::Param) -> Result<f64, ArgminError> {
+        match self.evaluate(theta.as_slice(), false) {
+            Ok(e) => Ok(e.objective()),
+            Err(e) if refused(&e) => Ok(REFUSED_OBJECTIVE),
+            Err(e) => Err(to_argmin(e)),
+        }
+    }
+}
+
+impl Gradient for &Problem<'_> {
+    type Param = DVector<f64>;
+    type Gradient = DVector<f64>;
+
+    fn gradient(&self, theta: &Self::Param) -> Result<Self::Gradient, ArgminError> {
+        match self.evaluate(theta.as_slice(), true) {
+            Ok(e) => {
+                let jac = e
+                    .jacobian
+                    .ok_or_else(|| ArgminError::msg("the model returned no Jacobian"))?;
+                Ok(2.0 * jac.transpose() * e.residuals)
+            }
+            Err(e) if refused(&e) => Ok(DVector::zeros(theta.len())),
+            Err(e) => Err(to_argmin(e)),
+        }
+    }
+}

@@ -1,0 +1,156 @@
+//! The result of a fit, as written to fit.json (the contract of DESIGN.md
+//! §4, extended), plus the curves the command line writes as CSV.
+
+use serde::Serialize;
+
+pub use crate::analysis::ModulusPoint;
+use crate::regularization::LambdaRule;
+
+/// The recovered Prony series at the reference state.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelRecord {
+    /// Always "prony".
+    pub kind: &'static str,
+    /// Glassy modulus E1 = E0 + Σ H_k, Pa.
+    #[serde(rename = "E1")]
+    pub glassy_modulus: f64,
+    /// Static modulus E0, Pa.
+    #[serde(rename = "E0")]
+    pub static_modulus: f64,
+    /// Relaxation times τ_k, s.
+    pub tau: Vec<f64>,
+    /// Strengths H_k, Pa.
+    #[serde(rename = "H")]
+    pub strengths: Vec<f64>,
+    /// Whether the data determine each H_k (see `analysis`); undetermined
+    /// terms shape E* only outside the window and are not results.
+    pub determined: Vec<bool>,
+    /// 1σ of ln H_k from the curvature of V.
+    #[serde(rename = "ln_H_sigma")]
+    pub ln_strength_sigma: Vec<f64>,
+}
+
+/// The frequency window the data determine, rad/s.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Window {
+    /// rad/s.
+    pub omega_min: f64,
+    /// rad/s.
+    pub omega_max: f64,
+}
+
+/// The smoothness weight and how it was chosen.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LambdaRecord {
+    /// λ.
+    pub value: f64,
+    /// The rule.
+    pub rule: LambdaRule,
+    /// (λ, misfit, effective parameters) along the path, for L-curve plots.
+    pub path: Vec<[f64; 3]>,
+}
+
+/// How the number of terms was chosen.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TermsRecord {
+    /// Number of relaxation times.
+    pub count: usize,
+    /// Terms per decade of the grid.
+    pub per_decade: f64,
+    /// "per_decade", "count", "explicit" or "aicc" (the corrected Akaike
+    /// criterion over 1, 2, 3 per decade).
+    pub rule: String,
+    /// AICc per candidate density when the rule is "aicc".
+    pub candidates: Vec<[f64; 2]>,
+}
+
+/// The anchor as used.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AnchorRecord {
+    /// "E0", "E_at" or "contact_radius".
+    pub source: &'static str,
+    /// rad/s.
+    pub omega: f64,
+    /// |E*(ω)|, Pa.
+    #[serde(rename = "E")]
+    pub modulus: f64,
+}
+
+/// One solver run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunRecord {
+    /// What the run was for ("lambda path", "refine", "start 2", …).
+    pub stage: String,
+    /// Method name.
+    pub method: &'static str,
+    /// λ of the run.
+    pub lambda: f64,
+    /// V at the end.
+    pub objective: f64,
+    /// Solver iterations.
+    pub iterations: usize,
+    /// Objective evaluations.
+    pub evaluations: usize,
+    /// Wall time, s.
+    pub wall_time_s: f64,
+    /// Whether it converged.
+    pub converged: bool,
+    /// How it ended.
+    pub stop_reason: String,
+}
+
+/// Everything a fit produced.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FitReport {
+    /// The master curve.
+    pub model: ModelRecord,
+    /// Poisson's ratio used.
+    pub poisson: f64,
+    /// The window the data determine.
+    pub window: Window,
+    /// The optimiser.
+    pub method: &'static str,
+    /// V at the optimum: weighted misfit plus smoothness penalty.
+    pub objective: f64,
+    /// The weighted misfit Σ r_i² alone (χ² when σ is measured).
+    pub misfit: f64,
+    /// misfit/N.
+    pub misfit_per_point: f64,
+    /// Whether the residuals are in units of measured σ (else relative).
+    pub sigma_weights: bool,
+    /// Iterations of the final run.
+    pub iterations: usize,
+    /// Evaluations of all runs.
+    pub evaluations: usize,
+    /// Whether the final run converged.
+    pub converged: bool,
+    /// How the final run ended.
+    pub stop_reason: String,
+    /// Wall time of the whole fit, s.
+    pub wall_time_s: f64,
+    /// Smoothness weight.
+    pub lambda: LambdaRecord,
+    /// Number of terms.
+    pub terms: TermsRecord,
+    /// Scale anchor, if any.
+    pub anchor: Option<AnchorRecord>,
+    /// Effective number of parameters the data fix.
+    pub effective_parameters: f64,
+    /// Estimated noise: √(s²), in σ units or relative.
+    pub noise: f64,
+    /// Seed of the multi-start.
+    pub seed: u64,
+    /// Things the user must know.
+    pub warnings: Vec<String>,
+    /// Every solver run.
+    pub runs: Vec<RunRecord>,
+    /// (evaluations, best V) of the final run.
+    pub history: Vec<[f64; 2]>,
+    /// The master curve over the window with 1σ bands (written to
+    /// modulus.csv, not to fit.json).
+    #[serde(skip)]
+    pub curve: Vec<ModulusPoint>,
+    /// μ of the fit at the data speeds (mu.csv).
+    #[serde(skip)]
+    pub mu_fit: Vec<f64>,
+}

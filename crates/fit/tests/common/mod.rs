@@ -1,0 +1,53 @@
+//! Shared by the fit crate's tests: the bundled example's rolling set-up,
+//! its broad-rubber truth, and synthetic measurements with seeded noise.
+
+// Each test binary uses a different subset of these helpers.
+#![allow(dead_code)]
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use rollfit_fit::{Measurements, RollingSetup};
+use rollfit_model::ViscoelasticModulus;
+use rollfit_model::{ContactSize, Geometry, HavriliakNegami, Scene, Shape, Substrate};
+
+/// A 5 mm steel ball at 1 N on a thick rubber block, ν = 0.5, dynamic
+/// contact (data/hn-rubber.toml).
+pub fn setup() -> RollingSetup {
+    RollingSetup {
+        geometry: Geometry {
+            shape: Shape::Sphere,
+            radius: 0.005,
+            load: 1.0,
+        },
+        substrate: Substrate {
+            poisson: 0.5,
+            film_thickness: None,
+        },
+        contact: ContactSize::Dynamic,
+    }
+}
+
+/// The bundled example's truth: a broad Havriliak–Negami rubber,
+/// E0 = 2 MPa, E1 = 2 GPa, τ = 1 ms, α = 0.55, β = 0.4.
+pub fn hn_rubber() -> HavriliakNegami {
+    HavriliakNegami::new(2e6, 2e9, 1e-3, 0.55, 0.4).unwrap()
+}
+
+/// μ of `truth` at 41 speeds over 8 decades (1e-8 … 1 m/s) with
+/// multiplicative Gaussian noise of relative size `noise` (ChaCha8 with
+/// `seed`), and σ = noise·μ.
+pub fn synthetic<M: ViscoelasticModulus>(truth: M, noise: f64, seed: u64) -> Measurements {
+    let s = setup();
+    let scene = Scene::new(s.geometry, s.substrate, s.contact, truth).unwrap();
+    let speeds: Vec<f64> = (0..41).map(|i| 1e-8 * 10f64.powf(i as f64 * 0.2)).collect();
+    let mu = scene.friction_sweep(&speeds).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let noisy: Vec<f64> = mu
+        .iter()
+        .map(|m| m * (1.0 + noise * normal.sample(&mut rng)))
+        .collect();
+    let sigma: Vec<f64> = mu.iter().map(|m| noise * m).collect();
+    Measurements::new(speeds, noisy, Some(sigma), None).unwrap()
+}

@@ -1,0 +1,589 @@
+//! End-to-end tests of `rollfit fit`: a synthetic measurement is made with
+//! `rollfit forward --noise` in a temporary folder and fitted back; broken
+//! data files, scenes and flags are refused.
+//!
+//! Every bad-input test checks the same promise: a non-zero exit, an error
+//! on stderr that names the file and the line or key (or the flag), no
+//! panic, and no output folder.
+
+mod common;
+
+use std::ffi::OsStr;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+use common::{Table, TempDir, assert_failure, rollfit, rollfit_in, text};
+
+// ---------------------------------------------------------------- helpers
+
+/// A steel ball on a broad Havriliak–Negami rubber (E1/E0 = 1000), 31
+/// speeds over 6 decades, the static modulus known. The material is the
+/// truth of the synthetic data; for the fit it is not a starting point
+/// (only "sls" and "prony" materials are).
+const SCENE: &str = r#"# fit_cli test scene
+[geometry]
+shape = "sphere"
+radius = 0.005
+load = 1.0
+
+[substrate]
+poisson = 0.5
+
+[material]
+model = "havriliak-negami"
+E0 = 2.0e6
+E1 = 2.0e9
+tau = 1.0e-3
+alpha = 0.55
+beta = 0.4
+
+[fit]
+E0 = 2.0e6
+
+[sweep]
+v_min = 1e-6
+v_max = 1.0
+count = 31
+"#;
+
+/// Replaces exactly one occurrence of `from` in `scene`.
+fn edit(scene: &str, from: &str, to: &str) -> String {
+    assert_eq!(scene.matches(from).count(), 1, "{from:?} in the scene");
+    scene.replacen(from, to, 1)
+}
+
+/// Writes `scene` and makes its synthetic measurement (1 % noise, seed 3)
+/// with `rollfit forward`; returns (scene path, data path).
+fn synthetic(dir: &TempDir, scene: &str) -> (PathBuf, PathBuf) {
+    let scene_path = dir.write("scene.toml", scene);
+    let data = dir.path().join("measured.csv");
+    let out = rollfit(&[
+        OsStr::new("forward"),
+        scene_path.as_os_str(),
+        OsStr::new("--noise"),
+        OsStr::new("0.01"),
+        OsStr::new("--seed"),
+        OsStr::new("3"),
+        OsStr::new("-o"),
+        data.as_os_str(),
+    ]);
+    assert!(out.status.success(), "forward: {}", text(&out.stderr));
+    (scene_path, data)
+}
+
+/// Runs `rollfit fit SCENE DATA -o OUT extra..`.
+fn fit(scene: &Path, data: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        OsStr::new("fit"),
+        scene.as_os_str(),
+        data.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ];
+    args.extend(extra.iter().map(OsStr::new));
+    rollfit(&args)
+}
+
+/// Runs a fit that must succeed; returns its stderr.
+fn fit_ok(scene: &Path, data: &Path, out: &Path, extra: &[&str]) -> String {
+    let output = fit(scene, data, out, extra);
+    let stderr = text(&output.stderr);
+    assert!(output.status.success(), "{extra:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    stderr
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap()
+}
+
+// ------------------------------------------------------------- good input
+
+#[test]
+fn fits_a_synthetic_measurement_with_a_static_modulus_anchor() {
+    let dir = TempDir::new("good");
+    let (scene, data) = synthetic(&dir, SCENE);
+    let out = dir.path().join("result");
+    let stderr = fit_ok(&scene, &data, &out, &[]);
+    for fragment in [
+        "method levenberg-marquardt",
+        "converged",
+        "misfit per point",
+        "λ = ",
+        "(discrepancy)",
+        "window ω = ",
+        "relaxation times",
+        "determined by the data",
+        "wall time",
+        "scale anchor E0",
+    ] {
+        assert!(stderr.contains(fragment), "{fragment:?} in {stderr}");
+    }
+    assert!(!stderr.contains("no scale anchor"), "{stderr}");
+
+    // fit.json: the contract's keys (DESIGN.md §4).
+    let report = json(&out.join("fit.json"));
+    for key in [
+        "model",
+        "poisson",
+        "window",
+        "method",
+        "objective",
+        "iterations",
+        "converged",
+        "wall_time_s",
+        "stop_reason",
+        "warnings",
+        "lambda",
+        "anchor",
+    ] {
+        assert!(report.get(key).is_some(), "fit.json has no {key}");
+    }
+    let model = &report["model"];
+    assert_eq!(model["kind"], "prony");
+    let tau = model["tau"].as_array().unwrap();
+    let h = model["H"].as_array().unwrap();
+    assert!(tau.len() >= 2 && tau.len() == h.len());
+    assert!(h.iter().all(|h| h.as_f64().unwrap() >= 0.0));
+    let e0 = model["E0"].as_f64().unwrap();
+    assert!((e0 / 2.0e6 - 1.0).abs() < 1e-9, "anchored E0 = {e0}");
+    assert!(model["E1"].as_f64().unwrap() > e0);
+    assert_eq!(report["poisson"], 0.5);
+    assert_eq!(report["method"], "levenberg-marquardt");
+    assert_eq!(report["converged"], true);
+    assert_eq!(report["anchor"]["source"], "E0");
+    assert!(report["iterations"].as_u64().is_some());
+    assert!(report["objective"].as_f64().unwrap() > 0.0);
+    assert!(report["wall_time_s"].as_f64().unwrap() > 0.0);
+    let (w_min, w_max) = (
+        report["window"]["omega_min"].as_f64().unwrap(),
+        report["window"]["omega_max"].as_f64().unwrap(),
+    );
+    assert!(0.0 < w_min && w_min < w_max, "window {w_min} … {w_max}");
+    assert_eq!(report["input"]["points"], 31);
+
+    // modulus.csv: the window only, increasing ω, positive moduli.
+    let modulus = Table::read(&out.join("modulus.csv"));
+    assert_eq!(
+        modulus.header,
+        [
+            "omega",
+            "E_storage",
+            "E_loss",
+            "tan_delta",
+            "abs_E",
+            "E_storage_sigma",
+            "E_loss_sigma",
+            "tan_delta_sigma",
+            "abs_E_sigma"
+        ]
+    );
+    let omega = modulus.column("omega");
+    assert!(omega.len() > 10);
+    assert!(omega.windows(2).all(|w| w[0] < w[1]));
+    assert!(omega[0] >= w_min * (1.0 - 1e-12) && *omega.last().unwrap() <= w_max * (1.0 + 1e-12));
+    for (i, row) in modulus.rows.iter().enumerate() {
+        assert!(row.iter().all(|x| x.is_finite() && *x >= 0.0), "row {i}");
+        assert!(
+            (row[3] - row[2] / row[1]).abs() <= 1e-9 * row[3],
+            "tan δ, row {i}"
+        );
+    }
+
+    // mu.csv: the data's rows in order, the fit within a few per cent.
+    let measured = Table::read(&data);
+    let mu = Table::read(&out.join("mu.csv"));
+    assert_eq!(
+        mu.header,
+        ["v", "mu_measured", "mu_fit", "sigma", "residual"]
+    );
+    assert_eq!(mu.column("v"), measured.column("v"));
+    assert_eq!(mu.column("mu_measured"), measured.column("mu"));
+    assert_eq!(mu.column("sigma"), measured.column("sigma"));
+    let mut sum = 0.0;
+    for row in &mu.rows {
+        let relative = (row[2] - row[1]) / row[1];
+        assert!((row[4] - relative).abs() < 1e-12, "residual column");
+        assert!(relative.abs() < 0.05, "v = {}: μ misfit {relative}", row[0]);
+        sum += relative * relative;
+    }
+    let rms = (sum / mu.rows.len() as f64).sqrt();
+    assert!(rms < 0.02, "rms relative misfit {rms}");
+
+    // Nothing but the three results in the folder (no temporary files).
+    let mut names: Vec<_> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["fit.json", "modulus.csv", "mu.csv"]);
+}
+
+#[test]
+fn default_output_folder_is_fits_and_the_data_stem() {
+    let dir = TempDir::new("default-out");
+    synthetic(&dir, SCENE);
+    let out = rollfit_in(
+        Some(dir.path()),
+        &[
+            OsStr::new("fit"),
+            OsStr::new("scene.toml"),
+            OsStr::new("measured.csv"),
+        ],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let folder = dir.path().join("fits").join("measured");
+    for name in ["fit.json", "modulus.csv", "mu.csv"] {
+        assert!(folder.join(name).is_file(), "{name}");
+    }
+}
+
+#[test]
+fn without_an_anchor_the_fit_warns_about_the_scale() {
+    let dir = TempDir::new("no-anchor");
+    let (_, data) = synthetic(&dir, SCENE);
+    let scene = dir.write("free.toml", &edit(SCENE, "[fit]\nE0 = 2.0e6\n", ""));
+    let out = dir.path().join("result");
+    let stderr = fit_ok(&scene, &data, &out, &[]);
+    assert!(stderr.contains("warning: no scale anchor"), "{stderr}");
+    let report = json(&out.join("fit.json"));
+    assert!(report["anchor"].is_null());
+    let warnings = report["warnings"].as_array().unwrap();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.as_str().unwrap().contains("no scale anchor")),
+        "{warnings:?}"
+    );
+}
+
+#[test]
+fn repeated_speeds_unsorted_rows_and_comments_are_accepted() {
+    let dir = TempDir::new("unsorted");
+    let (scene, data) = synthetic(&dir, SCENE);
+    // Reverse the rows, repeat two of them (rescaled a little), add
+    // comments and drop the sigma column (relative weights).
+    let measured = Table::read(&data);
+    let (v, mu) = (measured.column("v"), measured.column("mu"));
+    let mut content = String::from("# measured in reverse\nmu,v,note\n");
+    let mut expected_v = Vec::new();
+    for i in (0..v.len()).rev() {
+        content += &format!("{:e},{:e},0\n", mu[i], v[i]);
+        expected_v.push(v[i]);
+        if i == 10 || i == 20 {
+            content += &format!("# repeat\n{:e},{:e},1\n", mu[i] * 1.01, v[i]);
+            expected_v.push(v[i]);
+        }
+    }
+    let shuffled = dir.write("shuffled.csv", &content);
+    let out = dir.path().join("result");
+    fit_ok(&scene, &shuffled, &out, &[]);
+    let result = Table::read(&out.join("mu.csv"));
+    assert_eq!(result.header, ["v", "mu_measured", "mu_fit", "residual"]);
+    assert_eq!(result.column("v"), expected_v);
+    let report = json(&out.join("fit.json"));
+    assert_eq!(report["sigma_weights"], false);
+    assert_eq!(report["input"]["points"], 33);
+}
+
+#[test]
+fn an_unconverged_fit_writes_its_results_and_fails_unless_allowed() {
+    let dir = TempDir::new("unconverged");
+    let (_, data) = synthetic(&dir, SCENE);
+    let scene = dir.write(
+        "budget.toml",
+        &edit(SCENE, "[fit]\n", "[fit]\nmax_evaluations = 3\n"),
+    );
+    let out = dir.path().join("result");
+    let output = fit(&scene, &data, &out, &[]);
+    let stderr = text(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(
+        stderr.contains("did not converge") && stderr.contains("--allow-unconverged"),
+        "{stderr}"
+    );
+    let report = json(&out.join("fit.json"));
+    assert_eq!(report["converged"], false);
+    assert!(
+        report["stop_reason"].as_str().unwrap().contains("budget"),
+        "{}",
+        report["stop_reason"]
+    );
+    assert!(out.join("modulus.csv").is_file() && out.join("mu.csv").is_file());
+
+    let stderr = fit_ok(&scene, &data, &out, &["--allow-unconverged"]);
+    assert!(
+        stderr.contains("warning: the fit did not converge"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn command_line_flags_override_the_scene() {
+    let dir = TempDir::new("flags");
+    let (_, data) = synthetic(&dir, SCENE);
+    let scene = dir.write(
+        "settings.toml",
+        &edit(
+            SCENE,
+            "[fit]\n",
+            "[fit]\nmethod = \"nelder-mead\"\nlambda = 5.0\nseed = 1\nstarts = 4\nterms = \"auto\"\n",
+        ),
+    );
+    let out = dir.path().join("result");
+    fit_ok(
+        &scene,
+        &data,
+        &out,
+        &[
+            "--method",
+            "auto",
+            "--lambda",
+            "10",
+            "--seed",
+            "5",
+            "--starts",
+            "1",
+            "--terms",
+            "1.5/decade",
+            "--allow-unconverged",
+        ],
+    );
+    let report = json(&out.join("fit.json"));
+    assert_eq!(report["method"], "levenberg-marquardt");
+    assert_eq!(report["lambda"]["value"], 10.0);
+    assert_eq!(report["lambda"]["rule"], "fixed");
+    assert_eq!(report["seed"], 5);
+    assert_eq!(report["terms"]["rule"], "per_decade");
+    let per_decade = report["terms"]["per_decade"].as_f64().unwrap();
+    assert!((per_decade - 1.5).abs() < 0.1, "{per_decade}");
+    let runs = report["runs"].as_array().unwrap();
+    assert!(!runs.iter().any(|r| r["stage"] == "start 2"), "one start");
+}
+
+// -------------------------------------------------------------- bad input
+
+/// A small valid data set for tests whose error lies elsewhere.
+const SMALL_DATA: &str = "v,mu\n1e-6,0.02\n1e-5,0.05\n1e-4,0.06\n1e-3,0.04\n1e-2,0.02\n";
+
+/// Runs `rollfit fit` on `scene` and `data` (None: a data file that does
+/// not exist) written to a temporary folder, and checks the promise of
+/// every bad-input test. Returns stderr.
+fn assert_refused(scene: &str, data: Option<&str>, extra: &[&str], expected: &[&str]) -> String {
+    let dir = TempDir::new("bad");
+    let scene = dir.write("bad-scene.toml", scene);
+    let data = match data {
+        Some(content) => dir.write("bad-data.csv", content),
+        None => dir.path().join("missing.csv"),
+    };
+    let out = dir.path().join("result");
+    let stderr = assert_failure(&fit(&scene, &data, &out, extra), expected);
+    assert!(!out.exists(), "an output folder was created");
+    stderr
+}
+
+#[test]
+fn missing_data_file() {
+    assert_refused(SCENE, None, &[], &["missing.csv", "cannot open data file"]);
+}
+
+#[test]
+fn data_without_a_mu_column() {
+    assert_refused(
+        SCENE,
+        Some("# speeds only\nv,friction\n1e-3,0.1\n"),
+        &[],
+        &["bad-data.csv", "line 2", "no column `mu`", "`friction`"],
+    );
+}
+
+#[test]
+fn nan_speed() {
+    assert_refused(
+        SCENE,
+        Some("v,mu\n1e-3,0.1\n# next\nNaN,0.2\n"),
+        &[],
+        &["bad-data.csv", "line 4", "column `v`", "NaN", "finite"],
+    );
+}
+
+#[test]
+fn negative_mu() {
+    assert_refused(
+        SCENE,
+        Some("v,mu\n1e-3,0.1\n1e-2,-0.02\n"),
+        &[],
+        &[
+            "bad-data.csv",
+            "line 3",
+            "column `mu` = -0.02",
+            "greater than zero",
+        ],
+    );
+}
+
+#[test]
+fn zero_sigma() {
+    assert_refused(
+        SCENE,
+        Some("v,mu,sigma\n1e-3,0.1,1e-3\n1e-2,0.2,0\n"),
+        &[],
+        &[
+            "bad-data.csv",
+            "line 3",
+            "column `sigma` = 0",
+            "greater than zero",
+        ],
+    );
+}
+
+#[test]
+fn empty_data() {
+    assert_refused(
+        SCENE,
+        Some("# nothing measured yet\nv,mu,sigma\n"),
+        &[],
+        &["bad-data.csv", "no data rows"],
+    );
+    assert_refused(SCENE, Some(""), &[], &["bad-data.csv", "empty"]);
+}
+
+#[test]
+fn several_temperatures() {
+    assert_refused(
+        SCENE,
+        Some("v,mu,T\n1e-3,0.1,20\n1e-2,0.2,40\n"),
+        &[],
+        &["bad-data.csv", "line 3", "temperature set"],
+    );
+}
+
+#[test]
+fn unknown_fit_key() {
+    let scene = edit(SCENE, "[fit]\n", "[fit]\nlamda = 1\n");
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &["bad-scene.toml", "unknown field `lamda`", "line 19"],
+    );
+}
+
+#[test]
+fn two_anchors() {
+    let scene = edit(SCENE, "[fit]\n", "[fit]\nE_at = { omega = 1.0, E = 1e8 }\n");
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &["bad-scene.toml", "[fit]", "`E0`, `E_at`", "at most one"],
+    );
+}
+
+#[test]
+fn negative_static_modulus_anchor() {
+    let scene = edit(SCENE, "[fit]\nE0 = 2.0e6\n", "[fit]\nE0 = -1\n");
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &["bad-scene.toml", "[fit]", "E0 = -1", "greater than zero"],
+    );
+}
+
+#[test]
+fn anchor_above_the_glassy_bound() {
+    let scene = edit(
+        SCENE,
+        "[fit]\nE0 = 2.0e6\n",
+        "[fit]\nE_at = { omega = 1.0, E = 2e10 }\n",
+    );
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &["bad-scene.toml", "`E_at`", "E1_max"],
+    );
+}
+
+#[test]
+fn fewer_points_than_free_parameters() {
+    assert_refused(
+        SCENE,
+        Some("v,mu\n1e-5,0.05\n1e-3,0.04\n1e-1,0.01\n"),
+        &[],
+        &["bad-data.csv", "3 data points", "free parameters"],
+    );
+}
+
+#[test]
+fn unknown_method_flag() {
+    assert_refused(
+        SCENE,
+        Some(SMALL_DATA),
+        &["--method", "newton"],
+        &["--method", "unknown method \"newton\"", "nelder-mead"],
+    );
+}
+
+#[test]
+fn unknown_method_in_the_scene() {
+    let scene = edit(SCENE, "[fit]\n", "[fit]\nmethod = \"newton\"\n");
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &["bad-scene.toml", "[fit]", "unknown method \"newton\""],
+    );
+}
+
+#[test]
+fn out_of_range_flags_are_named() {
+    assert_refused(
+        SCENE,
+        Some(SMALL_DATA),
+        &["--starts", "0"],
+        &["--starts", "use 1 to 100"],
+    );
+    assert_refused(
+        SCENE,
+        Some(SMALL_DATA),
+        &["--terms", "many"],
+        &["--terms", "\"many\""],
+    );
+    assert_refused(
+        SCENE,
+        Some(SMALL_DATA),
+        &["--lambda", "-1"],
+        &["--lambda", "≥ 0"],
+    );
+}
+
+#[test]
+fn bad_geometry_is_named_with_its_section() {
+    let scene = edit(SCENE, "radius = 0.005", "radius = -0.005");
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &["bad-scene.toml", "[geometry]", "radius"],
+    );
+}
+
+#[test]
+fn output_that_is_a_file_is_refused() {
+    let dir = TempDir::new("out-file");
+    let scene = dir.write("scene.toml", SCENE);
+    let data = dir.write("data.csv", SMALL_DATA);
+    let out = dir.write("taken", "not a folder");
+    let output = fit(&scene, &data, &out, &[]);
+    let stderr = text(&output.stderr);
+    assert!(!output.status.success());
+    assert!(
+        stderr.contains("taken") && stderr.contains("not a folder"),
+        "{stderr}"
+    );
+    assert_eq!(fs::read_to_string(&out).unwrap(), "not a folder");
+}
