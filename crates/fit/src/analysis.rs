@@ -59,14 +59,18 @@ fn pseudo_inverse(h: &DMatrix<f64>) -> DMatrix<f64> {
 }
 
 /// Statistics from the full residual Jacobian `jacobian` whose first
-/// `data_count` rows are data residuals.
+/// `data_count` rows are data residuals and whose last row is the E1_max
+/// bound.
 pub(crate) fn curvature(
     jacobian: &DMatrix<f64>,
     data_count: usize,
     misfit: f64,
     sigma_known: bool,
 ) -> Curvature {
-    let h = jacobian.transpose() * jacobian;
+    // The last row is the E1_max bound: a guard against runaway steps, not
+    // information about the material, so it does not narrow the band.
+    let informative = jacobian.rows(0, jacobian.nrows() - 1);
+    let h = informative.transpose() * informative;
     let jd = jacobian.rows(0, data_count);
     let hd = jd.transpose() * jd;
     let h_inv = pseudo_inverse(&h);

@@ -42,7 +42,7 @@ fn anchored(anchor: ScaleAnchor) -> rollfit_fit::ValidFitParams {
 /// Issue 3's recovery target: tan δ and |E| within 3 % RMS at 1 % noise for
 /// each of 10 seeds with one anchor (E0 or E_at), within 1.5 % at 0.1 %.
 #[test]
-#[ignore = "target not met yet: see the issue note (worst seeds miss |E| by ~3.5 % at the top of the window)"]
+#[ignore = "target not met yet: with the E0 anchor 4 of 10 seeds miss |E| at 1 % noise (3.5–6.5 %, top of the window); E_at meets it for all 10 (see the issue note)"]
 fn anchored_recovery_meets_the_target_for_ten_seeds() {
     let truth = hn_rubber();
     let e_at = truth.modulus(10.0).norm();
@@ -194,4 +194,104 @@ fn prony_data_are_fitted_back_to_the_noise_floor() {
         }
     }
     eprintln!("L-BFGS stopped short in {lbfgs_stalls} of 5 seeds");
+}
+
+/// Without an anchor the fit runs, warns that the modulus scale is weakly
+/// determined, and its 1σ band on |E| says so honestly: the truth lies
+/// inside the band over most of the window. (The warning part holds today and
+/// is also checked end to end in tests/fit_cli.rs.)
+#[test]
+#[ignore = "target not met yet: without an anchor the glassy side runs to E1_max, |E| misses by ~70 % and the band does not show it (see the issue note)"]
+fn unanchored_fit_warns_and_its_band_covers_the_truth() {
+    let truth = hn_rubber();
+    for seed in 1..4 {
+        let params = FitParams::default().check(setup()).unwrap();
+        let report = fit(&synthetic(hn_rubber(), 0.01, seed), &params).unwrap();
+        assert!(
+            report
+                .warnings
+                .iter()
+                .any(|w| w.contains("weakly determined")),
+            "{:?}",
+            report.warnings
+        );
+        let lo = report.window.omega_min * 10f64.powf(0.5);
+        let hi = report.window.omega_max / 10f64.powf(0.5);
+        let inside: Vec<bool> = report
+            .curve
+            .iter()
+            .filter(|p| p.omega >= lo && p.omega <= hi)
+            .map(|p| (p.magnitude - truth.modulus(p.omega).norm()).abs() <= p.magnitude_sigma)
+            .collect();
+        let covered = inside.iter().filter(|c| **c).count() as f64 / inside.len() as f64;
+        let (t, e) = errors(&report, &truth);
+        eprintln!(
+            "seed {seed}: |E| inside 1σ over {covered:.2} of the window; tan δ {t:.3}, \
+             |E| {e:.3}; E0 {:.3e}, E1 {:.3e}",
+            report.model.static_modulus, report.model.glassy_modulus
+        );
+        assert!(covered >= 0.5, "covered {covered}");
+    }
+}
+
+/// A second truth, not in data/: a rubber with a narrower, more symmetric
+/// transition (HN α = 0.7, β = 0.25, E1/E0 = 300, τ = 10 µs) under a
+/// 10 mm cylinder at 200 N/m, anchored by one |E| in the window.
+#[test]
+fn second_truth_under_a_cylinder_is_recovered() {
+    use rollfit_fit::Measurements;
+    use rollfit_model::{ContactSize, Geometry, HavriliakNegami, Scene, Shape, Substrate};
+    let truth = HavriliakNegami::new(5e6, 1.5e9, 1e-5, 0.7, 0.25).unwrap();
+    let setup = rollfit_fit::RollingSetup {
+        geometry: Geometry {
+            shape: Shape::Cylinder,
+            radius: 0.01,
+            load: 200.0,
+        },
+        substrate: Substrate {
+            poisson: 0.49,
+            film_thickness: None,
+        },
+        contact: ContactSize::Dynamic,
+    };
+    let scene = Scene::new(
+        setup.geometry,
+        setup.substrate,
+        setup.contact,
+        truth.clone(),
+    )
+    .unwrap();
+    let speeds: Vec<f64> = (0..41).map(|i| 1e-9 * 10f64.powf(i as f64 * 0.2)).collect();
+    let exact = scene.friction_sweep(&speeds).unwrap();
+    // Deterministic ±1 % noise from a fixed LCG, no extra crates needed.
+    let mut state = 77u64;
+    let noisy: Vec<f64> = exact
+        .iter()
+        .map(|m| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let u = (state >> 11) as f64 / (1u64 << 53) as f64;
+            m * (1.0 + 0.01 * (2.0 * u - 1.0) * 3f64.sqrt())
+        })
+        .collect();
+    let sigma = exact.iter().map(|m| 0.01 * m).collect();
+    let data = Measurements::new(speeds, noisy, Some(sigma), None).unwrap();
+    let params = FitParams {
+        anchor: Some(ScaleAnchor::ModulusAt {
+            omega: 100.0,
+            modulus: truth.modulus(100.0).norm(),
+        }),
+        ..FitParams::default()
+    }
+    .check(setup)
+    .unwrap();
+    let report = fit(&data, &params).unwrap();
+    let (t, e) = errors(&report, &truth);
+    eprintln!(
+        "cylinder truth: tan δ {t:.4}, |E| {e:.4}, χ²/N {:.3}, {:.3} s",
+        report.misfit_per_point, report.wall_time_s
+    );
+    assert!(report.converged);
+    assert!(t <= 0.03 && e <= 0.03, "tan δ {t}, |E| {e}");
 }
