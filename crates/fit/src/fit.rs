@@ -23,7 +23,7 @@ use crate::analysis::{curvature, modulus_point, probed_window};
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::parametrization::Parametrization;
-use crate::params::{Lambda, Method, TermRule, ValidFitParams};
+use crate::params::{Lambda, Method, ModulusAnchor, TermRule, ValidFitParams};
 use crate::problem::Problem;
 use crate::regularization::{LambdaRule, REFINEMENTS, Trial, path};
 use crate::report::{
@@ -281,7 +281,7 @@ fn fit_on_grid(
         }
     }
 
-    analyse(
+    let mut report = analyse(
         data,
         params,
         &mut problem,
@@ -290,7 +290,101 @@ fn fit_on_grid(
         rule,
         path_record,
         runs,
-    )
+    )?;
+    if params.anchor.is_none() {
+        profile_scale(data, params, &mut report)?;
+    }
+    Ok(report)
+}
+
+/// Scale factors of the profile along the weak direction.
+const PROFILE_FACTORS: [f64; 10] = [
+    0.1,
+    0.2,
+    0.35,
+    0.5,
+    0.7,
+    1.0 / 0.7,
+    2.0,
+    1.0 / 0.35,
+    5.0,
+    10.0,
+];
+
+/// Widens the bands of an unanchored fit by a profile along the modulus
+/// scale, the direction rolling data determine worst.
+///
+/// The curvature band is local: where V is nearly flat along "stiffer with
+/// a little more loss" but the optimum sits against E1_max or the penalty's
+/// preference, it can be far too narrow. So the fit is repeated with |E*| at
+/// the window's centre ω_c pinned to c·|E*_fit(ω_c)| for the factors
+/// [`PROFILE_FACTORS`] (same τ grid and λ); every profile whose objective
+/// lies within one noise unit of the best is statistically as good, and the
+/// band is widened to enclose all of them (a profile-likelihood interval).
+///
+/// # References
+/// - D.J. Venzon, S.H. Moolgavkar, "A method for computing
+///   profile-likelihood-based confidence intervals", Appl. Statist. 37
+///   (1988) 87–94.
+fn profile_scale(
+    data: &Measurements,
+    params: &ValidFitParams,
+    report: &mut FitReport,
+) -> Result<(), FitError> {
+    use rollfit_model::{Prony, ViscoelasticModulus};
+    let omega_c = (report.window.omega_min * report.window.omega_max).sqrt();
+    let m = &report.model;
+    let fitted = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
+    let centre = fitted.modulus(omega_c).norm();
+    let threshold = report.noise * report.noise;
+    let best = report.objective;
+    let mut accepted = Vec::new();
+    let mut profile = Vec::new();
+    for factor in PROFILE_FACTORS {
+        let mut pinned = params.clone();
+        pinned.anchor = Some(ModulusAnchor {
+            omega: omega_c,
+            modulus: factor * centre,
+            source: "profile",
+        });
+        pinned.lambda = Lambda::Fixed(report.lambda.value);
+        pinned.starts = 1;
+        pinned.terms = TermRule::Explicit(m.tau.clone());
+        let r = match fit_on_grid(data, &pinned, m.tau.clone()) {
+            Ok(r) => r,
+            // A pinned scale the model cannot reach is simply not a candidate.
+            Err(FitError::Model(_)) => continue,
+            Err(e) => return Err(e),
+        };
+        profile.push([factor, r.objective]);
+        if r.objective - best <= threshold {
+            let pm = &r.model;
+            accepted.push(Prony::new(
+                pm.glassy_modulus,
+                pm.strengths.clone(),
+                pm.tau.clone(),
+            )?);
+        }
+        report.runs.extend(r.runs.into_iter().map(|mut run| {
+            run.stage = format!("scale profile ×{factor:.2}: {}", run.stage);
+            run
+        }));
+    }
+    for point in report.curve.iter_mut() {
+        for p in &accepted {
+            let e = p.modulus(point.omega);
+            point.storage_sigma = point.storage_sigma.max((e.re - point.storage).abs());
+            point.loss_sigma = point.loss_sigma.max((e.im - point.loss).abs());
+            point.tan_delta_sigma = point
+                .tan_delta_sigma
+                .max((e.im / e.re - point.tan_delta).abs());
+            point.magnitude_sigma = point
+                .magnitude_sigma
+                .max((e.norm() - point.magnitude).abs());
+        }
+    }
+    report.scale_profile = profile;
+    Ok(())
 }
 
 /// The misfit the discrepancy principle aims at: χ² = N (Morozov). (The
@@ -515,6 +609,7 @@ fn analyse(
             .map(|&(k, v)| [k as f64, v])
             .collect(),
         curve,
+        scale_profile: Vec::new(),
         mu_fit: e.mu.clone(),
     })
 }

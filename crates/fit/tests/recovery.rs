@@ -201,7 +201,7 @@ fn prony_data_are_fitted_back_to_the_noise_floor() {
 /// inside the band over most of the window. (The warning part holds today and
 /// is also checked end to end in tests/fit_cli.rs.)
 #[test]
-#[ignore = "target not met yet: without an anchor the glassy side runs to E1_max, |E| misses by ~70 % and the band does not show it (see the issue note)"]
+#[ignore = "target not met yet: without an anchor |E| misses by 60–80 %; the scale profile widens the band to cover the truth for seeds 1 and 2 but not 3 (see the issue note)"]
 fn unanchored_fit_warns_and_its_band_covers_the_truth() {
     let truth = hn_rubber();
     for seed in 1..4 {
@@ -229,6 +229,10 @@ fn unanchored_fit_warns_and_its_band_covers_the_truth() {
             "seed {seed}: |E| inside 1σ over {covered:.2} of the window; tan δ {t:.3}, \
              |E| {e:.3}; E0 {:.3e}, E1 {:.3e}",
             report.model.static_modulus, report.model.glassy_modulus
+        );
+        eprintln!(
+            "   V {:.2} profile {:?}",
+            report.objective, report.scale_profile
         );
         assert!(covered >= 0.5, "covered {covered}");
     }
@@ -294,4 +298,52 @@ fn second_truth_under_a_cylinder_is_recovered() {
     );
     assert!(report.converged);
     assert!(t <= 0.03 && e <= 0.03, "tan δ {t}, |E| {e}");
+}
+
+/// The same data, settings and seed give the same fit, bit for bit.
+#[test]
+fn fits_are_deterministic_for_a_seed() {
+    let data = synthetic(hn_rubber(), 0.01, 4);
+    let params = FitParams {
+        anchor: Some(ScaleAnchor::StaticModulus(2e6)),
+        seed: 17,
+        ..FitParams::default()
+    }
+    .check(setup())
+    .unwrap();
+    let a = fit(&data, &params).unwrap();
+    let b = fit(&data, &params).unwrap();
+    assert_eq!(a.model, b.model);
+    assert_eq!(a.lambda, b.lambda);
+    assert_eq!(a.mu_fit, b.mu_fit);
+    assert_eq!(a.objective, b.objective);
+}
+
+/// `terms = "auto"` compares the densities that fit in the data by the
+/// corrected Akaike criterion and says which it chose.
+#[test]
+fn automatic_term_count_reports_its_choice() {
+    use rollfit_fit::TermRule;
+    let data = synthetic(hn_rubber(), 0.01, 5);
+    let params = FitParams {
+        anchor: Some(ScaleAnchor::StaticModulus(2e6)),
+        terms: TermRule::Auto,
+        ..FitParams::default()
+    }
+    .check(setup())
+    .unwrap();
+    let report = fit(&data, &params).unwrap();
+    assert_eq!(report.terms.rule, "aicc");
+    assert!(!report.terms.candidates.is_empty());
+    let best = report
+        .terms
+        .candidates
+        .iter()
+        .min_by(|a, b| a[1].total_cmp(&b[1]))
+        .unwrap();
+    eprintln!(
+        "AICc candidates {:?}; chose {:.2} per decade",
+        report.terms.candidates, report.terms.per_decade
+    );
+    assert!((report.terms.per_decade - best[0]).abs() < 0.1);
 }
