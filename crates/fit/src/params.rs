@@ -109,7 +109,9 @@ pub struct FitParams {
     pub lambda: Lambda,
     /// Seed of the multi-start perturbations.
     pub seed: u64,
-    /// Number of starts (the neutral start plus seeded perturbations of it).
+    /// Number of starts: 1 runs the neutral start alone; k ≥ 2 adds four
+    /// bump-shaped spectra and k − 1 seeded perturbations of the neutral
+    /// start (see [`crate::fit`]).
     pub starts: usize,
     /// Budget of objective evaluations per solver run (None: the method's
     /// default).
@@ -353,5 +355,24 @@ impl FitParams {
             start: self.start,
             setup,
         })
+    }
+}
+
+/// The bundled example's set-up (a 5 mm steel ball at 1 N on a thick rubber,
+/// ν = 0.5, dynamic contact), shared by the unit tests.
+#[cfg(test)]
+pub(crate) fn example_setup() -> RollingSetup {
+    use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
+    RollingSetup {
+        geometry: Geometry {
+            shape: Shape::Sphere,
+            radius: 0.005,
+            load: 1.0,
+        },
+        substrate: Substrate {
+            poisson: 0.5,
+            film_thickness: None,
+        },
+        contact: ContactSize::Dynamic,
     }
 }

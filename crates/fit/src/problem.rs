@@ -243,3 +243,80 @@ impl Gradient for &Problem<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::ModulusAnchor;
+
+    /// The residual Jacobian against central finite differences, with and
+    /// without scale anchors, on a fixed θ with the E1 bound active.
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        let setup = crate::params::example_setup();
+        let speeds: Vec<f64> = (0..9).map(|i| 1e-7 * 10f64.powi(i)).collect();
+        let mu: Vec<f64> = speeds
+            .iter()
+            .map(|v| 0.01 + 0.001 * v.log10().abs())
+            .collect();
+        let data = Measurements::new(speeds, mu, None, None).unwrap();
+        let tau: Vec<f64> = (0..8).map(|k| 10f64.powf(k as f64 - 5.0)).collect();
+        for anchor in [
+            None,
+            Some(ModulusAnchor {
+                omega: 0.0,
+                modulus: 2e6,
+                source: "E0",
+            }),
+            Some(ModulusAnchor {
+                omega: 30.0,
+                modulus: 5e7,
+                source: "E_at",
+            }),
+        ] {
+            let param = Parametrization::new(tau.clone(), anchor);
+            let n = param.free_count();
+            let theta: Vec<f64> = (0..n)
+                .map(|k| {
+                    if anchor.is_none() && k == 0 {
+                        14.5
+                    } else {
+                        3.0 + 0.4 * (k as f64).sin()
+                    }
+                })
+                .collect();
+            let problem = Problem {
+                setup: &setup,
+                data: &data,
+                scales: data.residual_scales(),
+                param,
+                lambda: 0.3,
+                e1_max: 1e8,
+                tolerance: 1e-10,
+                evaluations: Default::default(),
+                budget: Cell::new(usize::MAX),
+                best: Default::default(),
+                history: Default::default(),
+            };
+            let e = problem.evaluate(&theta, true).unwrap();
+            let jac = e.jacobian.unwrap();
+            for j in 0..n {
+                let step = 1e-5;
+                let mut up = theta.clone();
+                let mut dn = theta.clone();
+                up[j] += step;
+                dn[j] -= step;
+                let ru = problem.evaluate(&up, false).unwrap().residuals;
+                let rd = problem.evaluate(&dn, false).unwrap().residuals;
+                for i in 0..ru.len() {
+                    let fd = (ru[i] - rd[i]) / (2.0 * step);
+                    assert!(
+                        (jac[(i, j)] - fd).abs() <= 1e-5 * (1.0 + fd.abs()),
+                        "{anchor:?} row {i} column {j}: {} vs {fd}",
+                        jac[(i, j)]
+                    );
+                }
+            }
+        }
+    }
+}

@@ -76,21 +76,9 @@ pub fn relaxation_times(band: (f64, f64), rule: &TermRule) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rollfit_model::{ContactSize, Geometry, Substrate};
 
     fn setup() -> RollingSetup {
-        RollingSetup {
-            geometry: Geometry {
-                shape: Shape::Sphere,
-                radius: 0.005,
-                load: 1.0,
-            },
-            substrate: Substrate {
-                poisson: 0.5,
-                film_thickness: None,
-            },
-            contact: ContactSize::Dynamic,
-        }
+        crate::params::example_setup()
     }
 
     #[test]
