@@ -375,7 +375,7 @@ fn fit_on_grid(
 }
 
 /// Scale factors of the profile along the weak direction.
-const PROFILE_FACTORS: [f64; 10] = [
+const PROFILE_FACTORS: [f64; 12] = [
     0.1,
     0.2,
     0.35,
@@ -383,9 +383,11 @@ const PROFILE_FACTORS: [f64; 10] = [
     0.7,
     1.0 / 0.7,
     2.0,
-    1.0 / 0.35,
-    5.0,
-    10.0,
+    2.8,
+    4.0,
+    5.6,
+    8.0,
+    11.0,
 ];
 
 /// Widens the bands of an unanchored fit by a profile along the modulus
@@ -395,9 +397,11 @@ const PROFILE_FACTORS: [f64; 10] = [
 /// a little more loss" but the optimum sits against E1_max or the penalty's
 /// preference, it can be far too narrow. So the fit is repeated with |E*| at
 /// the window's centre ω_c pinned to c·|E*_fit(ω_c)| for the factors
-/// [`PROFILE_FACTORS`] (same τ grid and λ); every profile whose objective
-/// lies within one noise unit of the best is statistically as good, and the
-/// band is widened to enclose all of them (a profile-likelihood interval).
+/// [`PROFILE_FACTORS`] (same τ grid and λ); every profile whose data misfit
+/// lies within one noise unit of the fit's is as good a description of the
+/// data, and the band is widened to enclose all of them (a
+/// profile-likelihood interval on the scale; the misfit, not V, decides,
+/// because the penalty would otherwise vote for its favourite scale).
 ///
 /// # References
 /// - D.J. Venzon, S.H. Moolgavkar, "A method for computing
@@ -414,7 +418,7 @@ fn profile_scale(
     let fitted = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
     let centre = fitted.modulus(omega_c).norm();
     let threshold = report.noise * report.noise;
-    let best = report.objective;
+    let best = report.misfit;
     let mut accepted = Vec::new();
     let mut profile = Vec::new();
     for factor in PROFILE_FACTORS {
@@ -433,8 +437,8 @@ fn profile_scale(
             Err(FitError::Model(_)) => continue,
             Err(e) => return Err(e),
         };
-        profile.push([factor, r.objective]);
-        if r.objective - best <= threshold {
+        profile.push([factor, r.misfit]);
+        if r.misfit - best <= threshold {
             let pm = &r.model;
             accepted.push(Prony::new(
                 pm.glassy_modulus,

@@ -146,9 +146,9 @@ pub struct FitReport {
     pub runs: Vec<RunRecord>,
     /// (evaluations, best V) of the final run.
     pub history: Vec<[f64; 2]>,
-    /// Without an anchor: (factor c, V) of the refits with |E*| at the
-    /// window's centre pinned to c times the fitted value; those within one
-    /// noise unit of the best widen the bands.
+    /// Without an anchor: (factor c, misfit) of the refits with |E*| at the
+    /// window's centre pinned to c times the fitted value; those whose misfit
+    /// is within one noise unit of the fit's widen the bands.
     pub scale_profile: Vec<[f64; 2]>,
     /// The master curve over the window with 1σ bands (written to
     /// modulus.csv, not to fit.json).

@@ -201,7 +201,7 @@ fn prony_data_are_fitted_back_to_the_noise_floor() {
 /// inside the band over most of the window. (The warning part holds today and
 /// is also checked end to end in tests/fit_cli.rs.)
 #[test]
-#[ignore = "target not met yet: without an anchor |E| misses by 60–80 %; the scale profile widens the band to cover the truth for seeds 1 and 2 but not 3 (see the issue note)"]
+#[ignore = "target not met yet: without an anchor |E| misses by 60–80 % and the scale profile's band stops just short of the truth (see the issue note)"]
 fn unanchored_fit_warns_and_its_band_covers_the_truth() {
     let truth = hn_rubber();
     for seed in 1..4 {
