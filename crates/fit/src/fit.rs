@@ -25,7 +25,7 @@ use crate::analysis::{curvature, modulus_point, probed_window};
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::parametrization::Parametrization;
-use crate::params::{Lambda, Method, ModulusAnchor, TermRule, ValidFitParams};
+use crate::params::{Lambda, ModulusAnchor, TermRule, ValidFitParams};
 use crate::problem::Problem;
 use crate::regularization::{LambdaRule, REFINEMENTS, Trial, path};
 use crate::report::{
@@ -289,7 +289,7 @@ fn fit_on_grid(
                 from = t.theta.clone();
                 path_record.push([lambda, t.misfit, t.effective_parameters]);
                 let stop_now = match rule {
-                    LambdaRule::Discrepancy => t.misfit <= discrepancy_target(n, &t),
+                    LambdaRule::Discrepancy => t.misfit <= discrepancy_target(n),
                     _ => {
                         // Past the minimum by two decades of rising GCV.
                         let k = trials.len();
@@ -472,7 +472,7 @@ fn profile_scale(
 /// variant N − t, t the effective parameters, was tried on the bundled
 /// rubber: it picks λ a hundred times smaller and lets tan δ wiggle by
 /// ±3 % without improving |E|.)
-fn discrepancy_target(n: usize, _trial: &Trial) -> f64 {
+fn discrepancy_target(n: usize) -> f64 {
     n as f64
 }
 
@@ -489,7 +489,7 @@ fn refine(
     match rule {
         LambdaRule::Discrepancy => {
             let last = trials.len() - 1;
-            if trials[last].0.misfit > discrepancy_target(n, &trials[last].0) || last == 0 {
+            if trials[last].0.misfit > discrepancy_target(n) || last == 0 {
                 // Never reached χ² = N (or already at the largest λ): keep the
                 // path's best end.
                 let best = trials
@@ -506,7 +506,7 @@ fn refine(
                 let lambda = (above.0.lambda * below.0.lambda).sqrt();
                 let from = below.0.theta.clone();
                 let t = solve(lambda, &from)?;
-                if t.0.misfit <= discrepancy_target(n, &t.0) {
+                if t.0.misfit <= discrepancy_target(n) {
                     below = t;
                 } else {
                     above = t;
@@ -693,11 +693,4 @@ fn analyse(
         scale_profile: Vec::new(),
         mu_fit: e.mu.clone(),
     })
-}
-
-impl Method {
-    /// Whether this method uses derivatives.
-    pub fn uses_gradient(self) -> bool {
-        !matches!(self, Method::NelderMead)
-    }
 }

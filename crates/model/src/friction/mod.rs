@@ -125,6 +125,35 @@ impl<M: ViscoelasticModulus> Scene<M> {
         Ok(self.friction_sweep(&[v])?[0])
     }
 
+    /// The kernel table, the σ-grid (started at the first speed) that all
+    /// speeds of a sweep share, and the film (thickness, ν) under a
+    /// cylinder, if any.
+    #[allow(clippy::type_complexity)]
+    fn shared_grid<'a>(
+        &'a self,
+        setup: &'a Setup,
+        first_speed: f64,
+    ) -> (
+        &'static KernelTable,
+        Grid<'a, impl Fn(f64) -> (Complex64, Complex64) + 'a>,
+        Option<(f64, f64)>,
+    ) {
+        let table = KernelTable::get(setup.shape, step_for_tolerance(self.tolerance()));
+        let material = self.material();
+        let grid = Grid::new(
+            setup,
+            move |omega| material.modulus_and_log_slope(omega),
+            first_speed.ln(),
+            table.step(),
+            self.tolerance(),
+        );
+        let film = self
+            .substrate()
+            .film_thickness
+            .map(|d| (d, self.substrate().poisson));
+        (table, grid, film)
+    }
+
     /// μ at each of `speeds` (m/s), sharing the modulus evaluations.
     pub fn friction_sweep(&self, speeds: &[f64]) -> Result<Vec<f64>, ModelError> {
         check_speeds(speeds)?;
@@ -138,19 +167,7 @@ impl<M: ViscoelasticModulus> Scene<M> {
                 .map(|&v| film_sphere::friction(self, &setup, v, d))
                 .collect();
         }
-        let table = KernelTable::get(setup.shape, step_for_tolerance(self.tolerance()));
-        let material = self.material();
-        let mut grid = Grid::new(
-            &setup,
-            |omega| material.modulus_and_log_slope(omega),
-            speeds[0].ln(),
-            table.step(),
-            self.tolerance(),
-        );
-        let film = self
-            .substrate()
-            .film_thickness
-            .map(|d| (d, self.substrate().poisson));
+        let (table, mut grid, film) = self.shared_grid(&setup, speeds[0]);
         speeds
             .iter()
             .map(|&v| one_speed(&mut grid, &setup, table, self.tolerance(), v, film, None))
@@ -177,18 +194,7 @@ impl Scene<Prony> {
         if let (Shape::Sphere, Some(d)) = (setup.shape, self.substrate().film_thickness) {
             return film_sphere::friction_with_gradient(self, speeds, d);
         }
-        let table = KernelTable::get(setup.shape, step_for_tolerance(self.tolerance()));
-        let mut grid = Grid::new(
-            &setup,
-            |omega| prony.modulus_and_log_slope(omega),
-            speeds[0].ln(),
-            table.step(),
-            self.tolerance(),
-        );
-        let film = self
-            .substrate()
-            .film_thickness
-            .map(|d| (d, self.substrate().poisson));
+        let (table, mut grid, film) = self.shared_grid(&setup, speeds[0]);
         let mut stencils = Vec::with_capacity(speeds.len());
         let mut mu = Vec::with_capacity(speeds.len());
         for &v in speeds {
