@@ -51,7 +51,7 @@ pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
             let mut runs = Vec::new();
             for density in [1.0, 2.0, 3.0] {
                 let tau = grid(data, params, &TermRule::PerDecade(density));
-                let r = match fit_on_grid(data, params, tau) {
+                let r = match fit_on_grid(data, params, tau, None) {
                     Ok(r) => r,
                     Err(FitError::InsufficientData(_)) => continue,
                     Err(e) => return Err(e),
@@ -72,7 +72,7 @@ pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
             (r, candidates)
         }
         rule => (
-            fit_on_grid(data, params, grid(data, params, rule))?,
+            fit_on_grid(data, params, grid(data, params, rule), None)?,
             Vec::new(),
         ),
     };
@@ -186,11 +186,13 @@ fn record(stage: &str, lambda: f64, r: &SolverRun) -> RunRecord {
     }
 }
 
-/// The fit on one τ grid.
+/// The fit on one τ grid, from `warm` (a θ of this grid's
+/// parametrisation) instead of the neutral start when given.
 fn fit_on_grid(
     data: &Measurements,
     params: &ValidFitParams,
     tau: Vec<f64>,
+    warm: Option<Vec<f64>>,
 ) -> Result<FitReport, FitError> {
     let param = Parametrization::new(tau, params.anchor);
     let free = param.free_count();
@@ -229,7 +231,7 @@ fn fit_on_grid(
     let budget = params
         .max_evaluations
         .unwrap_or_else(|| default_budget(method, free));
-    let start = neutral_start(&problem.param, params);
+    let start = warm.unwrap_or_else(|| neutral_start(&problem.param, params));
     let sigma_known = data.sigma().is_some();
     let mut runs = Vec::new();
     let mut path_record = Vec::new();
@@ -374,21 +376,15 @@ fn fit_on_grid(
     Ok(report)
 }
 
-/// Scale factors of the profile along the weak direction.
-const PROFILE_FACTORS: [f64; 12] = [
-    0.1,
-    0.2,
-    0.35,
-    0.5,
-    0.7,
-    1.0 / 0.7,
-    2.0,
-    2.8,
-    4.0,
-    5.6,
-    8.0,
-    11.0,
+/// Scale factors of the profile along the weak direction, walked outward
+/// from the fit in two chains (stiffer, softer).
+const PROFILE_FACTORS: [&[f64]; 2] = [
+    &[1.0 / 0.7, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0],
+    &[0.7, 0.5, 0.35, 0.2, 0.1],
 ];
+
+/// Relaxations of λ tried at each point of the scale profile.
+const PROFILE_RELAXATION: [f64; 4] = [1.0, 0.1, 0.01, 0.001];
 
 /// Widens the bands of an unanchored fit by a profile along the modulus
 /// scale, the direction rolling data determine worst.
@@ -402,6 +398,10 @@ const PROFILE_FACTORS: [f64; 12] = [
 /// data, and the band is widened to enclose all of them (a
 /// profile-likelihood interval on the scale; the misfit, not V, decides,
 /// because the penalty would otherwise vote for its favourite scale).
+///
+/// Each pinned fit starts from its neighbour's shape (continuation): from
+/// the neutral start alone a pinned fit far from the optimum can stall in a
+/// poor local minimum and cut the profile short with a spurious wall.
 ///
 /// # References
 /// - D.J. Venzon, S.H. Moolgavkar, "A method for computing
@@ -421,36 +421,67 @@ fn profile_scale(
     let best = report.misfit;
     let mut accepted = Vec::new();
     let mut profile = Vec::new();
-    for factor in PROFILE_FACTORS {
-        let mut pinned = params.clone();
-        pinned.anchor = Some(ModulusAnchor {
-            omega: omega_c,
-            modulus: factor * centre,
-            source: "profile",
-        });
-        pinned.lambda = Lambda::Fixed(report.lambda.value);
-        pinned.starts = 1;
-        pinned.terms = TermRule::Explicit(m.tau.clone());
-        let r = match fit_on_grid(data, &pinned, m.tau.clone()) {
-            Ok(r) => r,
-            // A pinned scale the model cannot reach is simply not a candidate.
-            Err(FitError::Model(_)) => continue,
-            Err(e) => return Err(e),
-        };
-        profile.push([factor, r.misfit]);
-        if r.misfit - best <= threshold {
+    // The fit's own shape in the pinned parametrisation: H_k/E0.
+    let own_shape: Vec<f64> = m
+        .strengths
+        .iter()
+        .map(|h| (h / m.static_modulus).ln())
+        .collect();
+    for chain in PROFILE_FACTORS {
+        let mut from = own_shape.clone();
+        for &factor in chain {
+            // The weakest smoothing among λ, λ/10, … λ/1000 that still
+            // describes the data as well as the fit does (within one noise
+            // unit): at the fit's λ alone the penalty, not the data, would
+            // build the wall of the profile.
+            let mut r = None;
+            for relax in PROFILE_RELAXATION {
+                let mut pinned = params.clone();
+                pinned.anchor = Some(ModulusAnchor {
+                    omega: omega_c,
+                    modulus: factor * centre,
+                    source: "profile",
+                });
+                pinned.lambda = Lambda::Fixed(report.lambda.value * relax);
+                pinned.starts = 1;
+                pinned.terms = TermRule::Explicit(m.tau.clone());
+                let trial = match fit_on_grid(data, &pinned, m.tau.clone(), Some(from.clone())) {
+                    Ok(t) => t,
+                    // A pinned scale the model cannot reach ends the chain.
+                    Err(FitError::Model(_)) => break,
+                    Err(e) => return Err(e),
+                };
+                from = trial
+                    .model
+                    .strengths
+                    .iter()
+                    .map(|h| (h / trial.model.static_modulus).ln())
+                    .collect();
+                report
+                    .runs
+                    .extend(trial.runs.iter().cloned().map(|mut run| {
+                        run.stage = format!("scale profile ×{factor:.2}: {}", run.stage);
+                        run
+                    }));
+                let good = trial.misfit - best <= threshold;
+                r = Some(trial);
+                if good {
+                    break;
+                }
+            }
+            let Some(r) = r else { break };
+            profile.push([factor, r.misfit, r.lambda.value]);
             let pm = &r.model;
-            accepted.push(Prony::new(
-                pm.glassy_modulus,
-                pm.strengths.clone(),
-                pm.tau.clone(),
-            )?);
+            if r.misfit - best <= threshold {
+                accepted.push(Prony::new(
+                    pm.glassy_modulus,
+                    pm.strengths.clone(),
+                    pm.tau.clone(),
+                )?);
+            }
         }
-        report.runs.extend(r.runs.into_iter().map(|mut run| {
-            run.stage = format!("scale profile ×{factor:.2}: {}", run.stage);
-            run
-        }));
     }
+    profile.sort_by(|a, b| a[0].total_cmp(&b[0]));
     for point in report.curve.iter_mut() {
         for p in &accepted {
             let e = p.modulus(point.omega);

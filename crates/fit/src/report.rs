@@ -146,10 +146,12 @@ pub struct FitReport {
     pub runs: Vec<RunRecord>,
     /// (evaluations, best V) of the final run.
     pub history: Vec<[f64; 2]>,
-    /// Without an anchor: (factor c, misfit) of the refits with |E*| at the
-    /// window's centre pinned to c times the fitted value; those whose misfit
-    /// is within one noise unit of the fit's widen the bands.
-    pub scale_profile: Vec<[f64; 2]>,
+    /// Without an anchor: (factor c, misfit, λ) of the refits with |E*| at
+    /// the window's centre pinned to c times the fitted value, each at the
+    /// strongest of λ, λ/10, λ/100, λ/1000 that describes the data within
+    /// one noise unit of the fit (else the weakest); those within widen the
+    /// bands.
+    pub scale_profile: Vec<[f64; 3]>,
     /// The master curve over the window with 1σ bands (written to
     /// modulus.csv, not to fit.json).
     #[serde(skip)]
