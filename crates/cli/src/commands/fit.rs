@@ -46,6 +46,17 @@ pub struct Args {
     /// Default: fits/<DATA file stem>.
     #[arg(short, long, value_name = "DIR")]
     pub output: Option<PathBuf>,
+    #[command(flatten)]
+    pub settings: Settings,
+    /// Exit with status 0 even when the final solver run did not converge.
+    #[arg(long)]
+    pub allow_unconverged: bool,
+}
+
+/// Fit settings that override the scene's [fit] table (shared by `fit` and
+/// `batch`).
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Settings {
     /// Solver: auto (= levenberg-marquardt), levenberg-marquardt, lbfgs or
     /// nelder-mead. Overrides [fit] method.
     #[arg(long, value_name = "NAME", value_parser = parse_method)]
@@ -65,9 +76,6 @@ pub struct Args {
     /// a density "X/decade". Overrides [fit] terms, terms_per_decade, tau.
     #[arg(long, value_name = "N|auto|X/decade", value_parser = parse_terms)]
     pub terms: Option<TermRule>,
-    /// Exit with status 0 even when the final solver run did not converge.
-    #[arg(long)]
-    pub allow_unconverged: bool,
 }
 
 fn parse_method(text: &str) -> Result<Method, String> {
@@ -113,7 +121,7 @@ fn parse_terms(text: &str) -> Result<TermRule, String> {
 }
 
 /// The default output folder: fits/<DATA file stem>.
-fn default_output(data: &Path) -> Result<PathBuf> {
+pub fn default_output(data: &Path) -> Result<PathBuf> {
     let stem = data
         .file_stem()
         .with_context(|| format!("data file {} has no file name", data.display()))?;
@@ -121,7 +129,7 @@ fn default_output(data: &Path) -> Result<PathBuf> {
 }
 
 /// Fit settings given on the command line, as the keys [`FitError`] names.
-fn apply_flags(args: &Args, params: &mut FitParams) -> Vec<&'static str> {
+fn apply_flags(args: &Settings, params: &mut FitParams) -> Vec<&'static str> {
     let mut overridden = Vec::new();
     if let Some(method) = args.method {
         params.method = method;
@@ -148,56 +156,20 @@ fn apply_flags(args: &Args, params: &mut FitParams) -> Vec<&'static str> {
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
-    let scene_path = &args.scene;
-    let data_path = &args.data;
     let dir = match &args.output {
         Some(dir) => dir.clone(),
-        None => default_output(data_path)?,
+        None => default_output(&args.data)?,
     };
-    if dir.exists() && !dir.is_dir() {
-        bail!(
-            "output {} exists and is not a folder; give a folder for fit.json, modulus.csv and mu.csv",
-            dir.display()
-        );
-    }
-
-    let file = scene_file::load(scene_path)?;
-    let (setup, mut params) = file
-        .fit_setup()
-        .with_context(|| format!("scene file {}", scene_path.display()))?;
-    let overridden = apply_flags(args, &mut params);
-    let table = data_file::read(data_path)?;
-    let temperature =
-        single_temperature(&table).with_context(|| format!("data file {}", data_path.display()))?;
-    let data = table
-        .measurements()
-        .with_context(|| format!("data file {}", data_path.display()))?;
-    let valid = params.check(setup).map_err(|e| match &e {
-        FitError::InvalidSetting { key, .. } if overridden.contains(&key.as_str()) => {
-            anyhow!("command line: --{}: {e}", key)
-        }
-        _ => anyhow!("scene file {}: {e}", scene_path.display()),
-    })?;
-
-    eprintln!(
-        "fitting {} point(s) of {} with scene {}: {}",
-        data.len(),
-        data_path.display(),
-        scene_path.display(),
-        describe_setup(&setup)
-    );
-    let report = rollfit_fit::fit(&data, &valid).map_err(|e| match e {
-        FitError::InsufficientData(why) => anyhow!("data file {}: {why}", data_path.display()),
-        other => anyhow!(
-            "fitting data file {} with scene file {}: {other}",
-            data_path.display(),
-            scene_path.display()
-        ),
-    })?;
-
-    write_results(&dir, args, &table, &report, temperature)?;
-    eprint!("{}", summary(&report, &dir));
-    if let Some(t) = temperature {
+    let job = Job {
+        scene: &args.scene,
+        data: &args.data,
+        dir: &dir,
+        settings: &args.settings,
+    };
+    let outcome = fit_files(&job, |line| eprintln!("{line}"))?;
+    let report = &outcome.report;
+    eprint!("{}", summary(report, &dir));
+    if let Some(t) = outcome.temperature {
         eprintln!(
             "note: every point was measured at T = {t} °C; the master curve is E*(ω) at that \
              temperature"
@@ -220,6 +192,75 @@ pub fn run(args: &Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// One fit: a scene, a data file, a result folder and overriding settings.
+pub struct Job<'a> {
+    pub scene: &'a Path,
+    pub data: &'a Path,
+    pub dir: &'a Path,
+    pub settings: &'a Settings,
+}
+
+/// What a finished fit returns besides its files.
+pub struct Outcome {
+    pub report: FitReport,
+    /// The one temperature of the data's `T` column, °C.
+    pub temperature: Option<f64>,
+}
+
+/// Reads the scene and the data of `job`, fits, and writes DIR/mu.csv,
+/// DIR/modulus.csv and DIR/fit.json (fit.json last, each atomically). An
+/// unconverged fit is written and returned (the caller decides); `log`
+/// receives a line before the (possibly long) fit starts.
+pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
+    let (scene_path, data_path, dir) = (job.scene, job.data, job.dir);
+    if dir.exists() && !dir.is_dir() {
+        bail!(
+            "output {} exists and is not a folder; give a folder for fit.json, modulus.csv and mu.csv",
+            dir.display()
+        );
+    }
+
+    let file = scene_file::load(scene_path)?;
+    let (setup, mut params) = file
+        .fit_setup()
+        .with_context(|| format!("scene file {}", scene_path.display()))?;
+    let overridden = apply_flags(job.settings, &mut params);
+    let table = data_file::read(data_path)?;
+    let temperature =
+        single_temperature(&table).with_context(|| format!("data file {}", data_path.display()))?;
+    let data = table
+        .measurements()
+        .with_context(|| format!("data file {}", data_path.display()))?;
+    let valid = params.check(setup).map_err(|e| match &e {
+        FitError::InvalidSetting { key, .. } if overridden.contains(&key.as_str()) => {
+            anyhow!("command line: --{}: {e}", key)
+        }
+        _ => anyhow!("scene file {}: {e}", scene_path.display()),
+    })?;
+
+    log(&format!(
+        "fitting {} point(s) of {} with scene {}: {}",
+        data.len(),
+        data_path.display(),
+        scene_path.display(),
+        describe_setup(&setup)
+    ));
+    let report = rollfit_fit::fit(&data, &valid).map_err(|e| match e {
+        FitError::InsufficientData(why) => anyhow!("data file {}: {why}", data_path.display()),
+        other => anyhow!(
+            "fitting data file {} with scene file {}: {other}",
+            data_path.display(),
+            scene_path.display()
+        ),
+    })?;
+
+    write_results(job, &table, &report, temperature)?;
+    Ok(Outcome {
+        report,
+        temperature,
+    })
 }
 
 /// The one temperature of a `T` column (None without one). Several
@@ -283,12 +324,12 @@ struct Input {
     temperature: Option<f64>,
 }
 
-fn fit_json(args: &Args, report: &FitReport, temperature: Option<f64>) -> Result<Vec<u8>> {
+fn fit_json(job: &Job<'_>, report: &FitReport, temperature: Option<f64>) -> Result<Vec<u8>> {
     let value = FitJson {
         report,
         input: Input {
-            scene: args.scene.display().to_string(),
-            data: args.data.display().to_string(),
+            scene: job.scene.display().to_string(),
+            data: job.data.display().to_string(),
             points: report.mu_fit.len(),
             temperature,
         },
@@ -348,8 +389,7 @@ fn mu_csv(table: &DataTable, report: &FitReport) -> Result<Vec<u8>> {
 /// Writes the three result files, each atomically; fit.json last, so that
 /// its presence marks a complete result.
 fn write_results(
-    dir: &Path,
-    args: &Args,
+    job: &Job<'_>,
     table: &DataTable,
     report: &FitReport,
     temperature: Option<f64>,
@@ -357,7 +397,8 @@ fn write_results(
     // Encode everything before touching the disk.
     let mu = mu_csv(table, report)?;
     let modulus = modulus_csv(report)?;
-    let json = fit_json(args, report, temperature)?;
+    let json = fit_json(job, report, temperature)?;
+    let dir = job.dir;
     output::write_atomically(&dir.join("mu.csv"), &mu)?;
     output::write_atomically(&dir.join("modulus.csv"), &modulus)?;
     output::write_atomically(&dir.join("fit.json"), &json)?;
@@ -365,7 +406,7 @@ fn write_results(
 }
 
 /// A few lines for a person at a terminal.
-fn summary(report: &FitReport, dir: &Path) -> String {
+pub fn summary(report: &FitReport, dir: &Path) -> String {
     let mut text = String::new();
     let weights = if report.sigma_weights {
         "χ² with the measured sigma"
