@@ -722,6 +722,7 @@ fn analyse(
             .collect(),
         curve,
         scale_profile: Vec::new(),
+        shift: None,
         mu_fit: e.mu.clone(),
     })
 }

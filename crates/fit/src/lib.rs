@@ -35,4 +35,4 @@ pub use params::{
     FitParams, Lambda, Method, ModulusAnchor, RollingSetup, ScaleAnchor, StartMaterial, TermRule,
     ValidFitParams,
 };
-pub use report::{FitReport, ModulusPoint};
+pub use report::{FitReport, LogShift, ModulusPoint, ShiftRecord};
