@@ -251,6 +251,22 @@ fn jacobian_matches_finite_differences() {
                 assert_matches_difference(&jac, i, q, fd, base, 1e-5, &what);
             }
         }
+        // ∂μ/∂ln v (the temperature-shift column), fourth-order in ln v.
+        let h: f64 = 1e-2;
+        let at = |k: f64| {
+            let vs: Vec<f64> = speeds.iter().map(|v| v * (k * h).exp()).collect();
+            scene.friction_sweep(&vs).unwrap()
+        };
+        let (p1, m1, p2, m2) = (at(1.0), at(-1.0), at(2.0), at(-2.0));
+        for i in 0..speeds.len() {
+            let fd = (8.0 * (p1[i] - m1[i]) - (p2[i] - m2[i])) / (12.0 * h);
+            assert!(
+                (jac.d_ln_speed[i] - fd).abs() <= 1e-5 * jac.mu[i],
+                "{contact:?} d/r0={ratio} v={}: ∂μ/∂ln v {} vs difference {fd}",
+                speeds[i],
+                jac.d_ln_speed[i]
+            );
+        }
     }
 }
 

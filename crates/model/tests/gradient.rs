@@ -51,3 +51,36 @@ fn jacobian_matches_finite_differences() {
         }
     }
 }
+
+/// ∂μ/∂ln v (the time-scale column used for temperature shifts) against a
+/// central difference of μ in ln v, for each shape, contact choice and film.
+#[test]
+fn speed_derivative_matches_finite_differences() {
+    let mut rng = Lcg(7_2026_11_21);
+    let speeds = [1e-7, 1e-4, 3e-3, 0.1, 10.0];
+    let h: f64 = 1e-4;
+    for (shape, contact, film) in [
+        (Shape::Sphere, ContactSize::Dynamic, None),
+        (Shape::Cylinder, ContactSize::Dynamic, None),
+        (Shape::Sphere, ContactSize::Static, None),
+        (Shape::Cylinder, ContactSize::Static, Some(2e-4)),
+    ] {
+        let p = random_prony(&mut rng, 15, -8.0, 0.5);
+        let scene = build(shape, contact, film, p);
+        let jac = scene.friction_with_gradient(&speeds).unwrap();
+        let up: Vec<f64> = speeds.iter().map(|v| v * h.exp()).collect();
+        let down: Vec<f64> = speeds.iter().map(|v| v * (-h).exp()).collect();
+        let plus = scene.friction_sweep(&up).unwrap();
+        let minus = scene.friction_sweep(&down).unwrap();
+        for i in 0..speeds.len() {
+            let fd = (plus[i] - minus[i]) / (2.0 * h);
+            let scale = jac.mu[i].abs();
+            assert!(
+                (jac.d_ln_speed[i] - fd).abs() <= 1e-6 * scale,
+                "{shape:?} {contact:?} film {film:?} v = {}: ∂μ/∂ln v {} vs difference {fd}",
+                speeds[i],
+                jac.d_ln_speed[i]
+            );
+        }
+    }
+}

@@ -618,6 +618,7 @@ pub(super) fn friction_with_gradient(
     let e0 = prony.static_modulus();
     let mut mu = Vec::with_capacity(speeds.len());
     let mut jacobian = Vec::with_capacity(speeds.len() * np);
+    let mut d_ln_speed = Vec::with_capacity(speeds.len());
     let mut factors = vec![Complex64::new(0.0, 0.0); prony.len()];
     let mut scratch = Vec::new();
     for &v in speeds {
@@ -635,7 +636,9 @@ pub(super) fn friction_with_gradient(
         .with_tolerance(solution.half_tolerance)?
         .friction_with_gradient(&[v])?;
         let mut row = half.jacobian;
-        let mut d_delta = vec![0.0; np];
+        // The parameters, then the time scale (see FrictionJacobian).
+        row.push(half.d_ln_speed[0]);
+        let mut d_delta = vec![0.0; np + 1];
         let mut failure = None;
         let budget = solution.budget;
         let span = solution.deficit.span;
@@ -644,6 +647,7 @@ pub(super) fn friction_with_gradient(
                 return;
             }
             let (e, _) = prony.evaluate_with_factors(s.exp(), &mut factors);
+            let (_, log_slope) = prony.modulus_and_log_slope(s.exp());
             let (x, z, omega_over_v_sq, loss) = deficit.point(s, e);
             let floor = budget.inner_floor / (span * omega_over_v_sq * loss);
             let dd = match deficit_and_slope(
@@ -667,8 +671,10 @@ pub(super) fn friction_with_gradient(
                 // g = ∂E*/∂p_q and ∂E0/∂p_q.
                 let (g, de0) = if q == 0 {
                     (Complex64::new(1.0, 0.0), 1.0)
-                } else {
+                } else if q < np {
                     (-factors[q - 1], -1.0)
+                } else {
+                    (log_slope, 0.0)
                 };
                 let d_loss = deficit.plane_strain * (g * inv_e2).im;
                 let d_ln_r = match deficit.static_size {
@@ -690,11 +696,13 @@ pub(super) fn friction_with_gradient(
             )));
         }
         mu.push(solution.mu);
-        jacobian.extend_from_slice(&row);
+        jacobian.extend_from_slice(&row[..np]);
+        d_ln_speed.push(row[np]);
     }
     Ok(FrictionJacobian {
         mu,
         jacobian,
         parameter_count: np,
+        d_ln_speed,
     })
 }

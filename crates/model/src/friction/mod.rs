@@ -48,6 +48,12 @@ pub struct FrictionJacobian {
     pub jacobian: Vec<f64>,
     /// Number of parameters n + 1.
     pub parameter_count: usize,
+    /// ∂μ(v_i)/∂ln v_i. By time–temperature superposition this is also
+    /// ∂μ/∂ln a_T of a shifted curve μ(v a_T): scaling v by a is the same as
+    /// scaling every τ_k by a, a material change with ∂E*/∂ln a = dE*/d ln ω
+    /// and ∂E0/∂ln a = 0, so it is computed as one more column of the same
+    /// pass.
+    pub d_ln_speed: Vec<f64>,
 }
 
 fn check_speeds(speeds: &[f64]) -> Result<(), ModelError> {
@@ -188,6 +194,7 @@ impl Scene<Prony> {
                 mu: Vec::new(),
                 jacobian: Vec::new(),
                 parameter_count: np,
+                d_ln_speed: Vec::new(),
             });
         }
         let setup = Setup::new(self)?;
@@ -218,8 +225,10 @@ impl Scene<Prony> {
                 (lo.min(j), hi.max(j))
             });
         let span = (j_max - j_min + 1) as usize;
-        let mut d_a = vec![0.0; span * np];
-        let mut d_sigma = vec![0.0; span * np];
+        // Columns: the n + 1 parameters, then the time scale (ln a).
+        let nq = np + 1;
+        let mut d_a = vec![0.0; span * nq];
+        let mut d_sigma = vec![0.0; span * nq];
         let mut factors = vec![Complex64::new(0.0, 0.0); prony.len()];
         let e0 = setup.static_modulus;
         let n = setup.n;
@@ -228,17 +237,20 @@ impl Scene<Prony> {
             let node = grid.node(j)?;
             let omega = node.point.omega;
             let _ = prony.evaluate_with_factors(omega, &mut factors);
+            let (_, log_slope) = prony.modulus_and_log_slope(omega);
             let p = node.point;
             let inv2 = p.inv_e * p.inv_e;
             let ds_dsigma = 1.0 / p.dsigma_ds;
-            let row_a = &mut d_a[idx * np..(idx + 1) * np];
-            let row_s = &mut d_sigma[idx * np..(idx + 1) * np];
-            for q in 0..np {
+            let row_a = &mut d_a[idx * nq..(idx + 1) * nq];
+            let row_s = &mut d_sigma[idx * nq..(idx + 1) * nq];
+            for q in 0..nq {
                 // g = ∂E*/∂p_q and ∂E0/∂p_q.
                 let (g, de0) = if q == 0 {
                     (Complex64::new(1.0, 0.0), 1.0)
-                } else {
+                } else if q < np {
                     (-factors[q - 1], -1.0)
+                } else {
+                    (log_slope, 0.0)
                 };
                 let d_loss = setup.plane_strain * (g * inv2).im;
                 let d_ln_r = match setup.static_ln_size {
@@ -249,14 +261,14 @@ impl Scene<Prony> {
                 row_s[q] = ds_dsigma * p.a * d_ln_r;
             }
         }
-        let mut jacobian = vec![0.0; speeds.len() * np];
+        let mut wide = vec![0.0; speeds.len() * nq];
         for (i, stencil) in stencils.iter().enumerate() {
-            let row = &mut jacobian[i * np..(i + 1) * np];
+            let row = &mut wide[i * nq..(i + 1) * nq];
             for &(j, w, dw) in stencil {
                 let idx = (j - j_min) as usize;
-                let a = &d_a[idx * np..(idx + 1) * np];
-                let s = &d_sigma[idx * np..(idx + 1) * np];
-                for q in 0..np {
+                let a = &d_a[idx * nq..(idx + 1) * nq];
+                let s = &d_sigma[idx * nq..(idx + 1) * nq];
+                for q in 0..nq {
                     row[q] += a[q] * w + s[q] * dw;
                 }
             }
@@ -264,10 +276,17 @@ impl Scene<Prony> {
                 *value *= setup.prefactor;
             }
         }
+        let mut jacobian = Vec::with_capacity(speeds.len() * np);
+        let mut d_ln_speed = Vec::with_capacity(speeds.len());
+        for row in wide.chunks_exact(nq) {
+            jacobian.extend_from_slice(&row[..np]);
+            d_ln_speed.push(row[np]);
+        }
         Ok(FrictionJacobian {
             mu,
             jacobian,
             parameter_count: np,
+            d_ln_speed,
         })
     }
 }
