@@ -371,6 +371,15 @@ pub struct FitSection {
     pub max_evaluations: Option<usize>,
     /// Relative quadrature tolerance of the forward model during the fit.
     pub tolerance: Option<Real>,
+    /// Shift fitted to a temperature set: "wlf" (default) or "free".
+    pub shift: Option<ShiftKind>,
+    /// Reference temperature of the master curve, °C (overrides
+    /// `[material.shift] T_ref`).
+    #[serde(rename = "T_ref")]
+    pub t_ref: Option<Real>,
+    /// Whether a temperature set is also fitted one temperature at a time to
+    /// cross-check the shifts (default true).
+    pub cross_check: Option<bool>,
 }
 
 /// `[fit] lambda`: a fixed smoothness weight or `"auto"`.
@@ -597,6 +606,20 @@ impl SceneFile {
             .with_tolerance(params.model_tolerance)
             .map_err(|e| anyhow!("[fit]: {e}"))?;
         params.start = self.material.as_ref().and_then(MaterialSection::start);
+        // A scene's shift gives a temperature set its reference temperature
+        // and, for WLF, starting constants; [fit] shift and T_ref override.
+        if let Some(shift) = self.material.as_ref().and_then(|m| m.shift.as_ref()) {
+            shift.check().context("[material.shift]")?;
+            if params.shift.t_ref.is_none() {
+                params.shift.t_ref = Some(shift.t_ref.0);
+            }
+            if let (Some(Real(c1)), Some(Real(c2))) = (shift.c1, shift.c2) {
+                params.shift.wlf_start = Some((c1, c2));
+            }
+            if fit.shift.is_none() && shift.model == ShiftKind::Free {
+                params.shift.kind = rollfit_fit::ShiftKind::Free;
+            }
+        }
         Ok((setup, params))
     }
 }
@@ -955,6 +978,18 @@ impl FitSection {
         }
         if let Some(Real(tolerance)) = self.tolerance {
             params.model_tolerance = tolerance;
+        }
+        if let Some(kind) = self.shift {
+            params.shift.kind = match kind {
+                ShiftKind::Wlf => rollfit_fit::ShiftKind::Wlf,
+                ShiftKind::Free => rollfit_fit::ShiftKind::Free,
+            };
+        }
+        if let Some(Real(t)) = self.t_ref {
+            params.shift.t_ref = Some(t);
+        }
+        if let Some(check) = self.cross_check {
+            params.shift.cross_check = check;
         }
         Ok(params)
     }

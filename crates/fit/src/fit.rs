@@ -33,6 +33,7 @@ use crate::report::{
 };
 use crate::solvers::{SolverRun, default_budget, run};
 use crate::tau_grid::{SOFTEST_MODULUS, probed_band, relaxation_times};
+use crate::temperature_set::{ShiftStart, cross_check, temperature_set};
 
 /// E1/E0 of the neutral start.
 const START_RATIO: f64 = 1000.0;
@@ -44,14 +45,17 @@ const CURVE_DENSITY: f64 = 10.0;
 /// Fits `data` under `params`.
 pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
     let clock = Instant::now();
+    let set = temperature_set(data, params)?;
+    let range = set.as_ref().map_or_else(|| data.speed_range(), |s| s.range);
+    let set = set.as_ref();
     let (mut report, candidates) = match &params.terms {
         TermRule::Auto => {
             let mut best: Option<(f64, FitReport)> = None;
             let mut candidates = Vec::new();
             let mut runs = Vec::new();
             for density in [1.0, 2.0, 3.0] {
-                let tau = grid(data, params, &TermRule::PerDecade(density));
-                let r = match fit_on_grid(data, params, tau, None) {
+                let tau = grid(range, params, &TermRule::PerDecade(density));
+                let r = match fit_on_grid(data, params, tau, None, set) {
                     Ok(r) => r,
                     Err(FitError::InsufficientData(_)) => continue,
                     Err(e) => return Err(e),
@@ -72,7 +76,7 @@ pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
             (r, candidates)
         }
         rule => (
-            fit_on_grid(data, params, grid(data, params, rule), None)?,
+            fit_on_grid(data, params, grid(range, params, rule), None, set)?,
             Vec::new(),
         ),
     };
@@ -94,6 +98,26 @@ pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
         .into(),
         candidates,
     };
+    if let Some(set) = set {
+        report.warnings.extend(set.notes.iter().cloned());
+        if params.shift.cross_check {
+            match cross_check(data, params, &report, set) {
+                Ok(check) => {
+                    if check.max_difference > 0.3 {
+                        report.warnings.push(format!(
+                            "the shifts of the joint fit and of the single-temperature fits \
+                             differ by up to {:.2} decades (see shift_cross_check)",
+                            check.max_difference
+                        ));
+                    }
+                    report.shift_cross_check = Some(check);
+                }
+                Err(why) => report
+                    .warnings
+                    .push(format!("shift cross-check not made: {why}")),
+            }
+        }
+    }
     report.evaluations = report.runs.iter().map(|r| r.evaluations).sum();
     report.wall_time_s = clock.elapsed().as_secs_f64();
     Ok(report)
@@ -106,13 +130,13 @@ fn aicc(n: usize, misfit: f64, k: f64) -> f64 {
     n * (misfit / n).ln() + 2.0 * k + 2.0 * k * (k + 1.0) / (n - k - 1.0).max(0.5)
 }
 
-fn grid(data: &Measurements, params: &ValidFitParams, rule: &TermRule) -> Vec<f64> {
+fn grid(range: (f64, f64), params: &ValidFitParams, rule: &TermRule) -> Vec<f64> {
     let soft = match (params.anchor, &params.start) {
         (Some(a), _) if a.omega == 0.0 => a.modulus,
         (_, Some(s)) => s.static_modulus,
         _ => SOFTEST_MODULUS,
     };
-    let band = probed_band(&params.setup, data.speed_range(), soft, params.e1_max);
+    let band = probed_band(&params.setup, range, soft, params.e1_max);
     relaxation_times(band, rule)
 }
 
@@ -132,6 +156,12 @@ fn neutral_start(param: &Parametrization, params: &ValidFitParams) -> Vec<f64> {
     param.theta_of(e0, &h)
 }
 
+/// An exploratory start may use 1/EXPLORATION_SHARE of a run's budget: it is
+/// a probe, and a winner that has not converged is continued with the full
+/// budget. (A quarter let a random start on a five-temperature set spend
+/// two seconds reaching the minimum the path had already found.)
+const EXPLORATION_SHARE: usize = 20;
+
 /// Centres of the bump starts, as fractions of the probed band in log ω.
 const BUMP_CENTRES: [f64; 4] = [0.2, 0.4, 0.6, 0.8];
 
@@ -144,13 +174,13 @@ const BUMP_CENTRES: [f64; 4] = [0.2, 0.4, 0.6, 0.8];
 fn bump_starts(
     param: &Parametrization,
     params: &ValidFitParams,
-    data: &Measurements,
+    range: (f64, f64),
     neutral: &[f64],
 ) -> Vec<Vec<f64>> {
     let mapped = param.map(neutral);
     let e0 = mapped.static_modulus;
     let total = mapped.strengths.iter().sum::<f64>();
-    let band = probed_band(&params.setup, data.speed_range(), e0, params.e1_max);
+    let band = probed_band(&params.setup, range, e0, params.e1_max);
     let (lo, hi) = (band.0.log10(), band.1.log10());
     BUMP_CENTRES
         .iter()
@@ -186,16 +216,18 @@ fn record(stage: &str, lambda: f64, r: &SolverRun) -> RunRecord {
     }
 }
 
-/// The fit on one τ grid, from `warm` (a θ of this grid's
-/// parametrisation) instead of the neutral start when given.
+/// The fit on one τ grid, from `warm` (a material θ of this grid's
+/// parametrisation) instead of the neutral start when given; for a
+/// temperature set `set` holds the shift and its starting θ_s.
 fn fit_on_grid(
     data: &Measurements,
     params: &ValidFitParams,
     tau: Vec<f64>,
     warm: Option<Vec<f64>>,
+    set: Option<&ShiftStart>,
 ) -> Result<FitReport, FitError> {
     let param = Parametrization::new(tau, params.anchor);
-    let free = param.free_count();
+    let free = param.free_count() + set.map_or(0, |s| s.param.count());
     if data.len() < free {
         return Err(FitError::InsufficientData(format!(
             "{} data points cannot determine {free} free parameters ({} relaxation times{}); \
@@ -219,6 +251,7 @@ fn fit_on_grid(
         data,
         scales: data.residual_scales(),
         param,
+        shift: set.map(|s| s.param.clone()),
         lambda: 0.0,
         e1_max: params.e1_max,
         tolerance: params.model_tolerance,
@@ -231,7 +264,18 @@ fn fit_on_grid(
     let budget = params
         .max_evaluations
         .unwrap_or_else(|| default_budget(method, free));
-    let start = warm.unwrap_or_else(|| neutral_start(&problem.param, params));
+    let start_material = warm.unwrap_or_else(|| neutral_start(&problem.param, params));
+    let with_shift = |material: Vec<f64>| -> Vec<f64> {
+        match set {
+            Some(s) => material
+                .into_iter()
+                .chain(s.theta.iter().copied())
+                .collect(),
+            None => material,
+        }
+    };
+    let start = with_shift(start_material.clone());
+    let range = set.map_or_else(|| data.speed_range(), |s| s.range);
     let sigma_known = data.sigma().is_some();
     let mut runs = Vec::new();
     let mut path_record = Vec::new();
@@ -319,9 +363,18 @@ fn fit_on_grid(
     if params.starts > 1 {
         let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
         let normal = Normal::new(0.0, 1.0).map_err(|e| FitError::setting("seed", e.to_string()))?;
-        let mut others = bump_starts(&problem.param, params, data, &start);
+        let mut others: Vec<Vec<f64>> = bump_starts(&problem.param, params, range, &start_material)
+            .into_iter()
+            .map(&with_shift)
+            .collect();
         for _ in 1..params.starts {
-            others.push(start.iter().map(|t| t + normal.sample(&mut rng)).collect());
+            // The material only: the starting shift is already close.
+            others.push(with_shift(
+                start_material
+                    .iter()
+                    .map(|t| t + normal.sample(&mut rng))
+                    .collect(),
+            ));
         }
         for (k, from) in others.iter().enumerate() {
             let stage = if k < BUMP_CENTRES.len() {
@@ -337,7 +390,7 @@ fn fit_on_grid(
                 from,
                 &stage,
                 &mut runs,
-                (budget / 4).max(1),
+                (budget / EXPLORATION_SHARE).max(1),
             )?;
             if r.objective < chosen_run.objective {
                 chosen = t;
@@ -371,7 +424,7 @@ fn fit_on_grid(
         runs,
     )?;
     if params.anchor.is_none() {
-        profile_scale(data, params, &mut report)?;
+        profile_scale(data, params, &mut report, set)?;
     }
     Ok(report)
 }
@@ -411,7 +464,9 @@ fn profile_scale(
     data: &Measurements,
     params: &ValidFitParams,
     report: &mut FitReport,
+    set: Option<&ShiftStart>,
 ) -> Result<(), FitError> {
+    let set = set.map(|s| s.with_theta(data, report.shift_theta.clone()));
     use rollfit_model::{Prony, ViscoelasticModulus};
     let omega_c = (report.window.omega_min * report.window.omega_max).sqrt();
     let m = &report.model;
@@ -445,7 +500,13 @@ fn profile_scale(
                 pinned.lambda = Lambda::Fixed(report.lambda.value * relax);
                 pinned.starts = 1;
                 pinned.terms = TermRule::Explicit(m.tau.clone());
-                let trial = match fit_on_grid(data, &pinned, m.tau.clone(), Some(from.clone())) {
+                let trial = match fit_on_grid(
+                    data,
+                    &pinned,
+                    m.tau.clone(),
+                    Some(from.clone()),
+                    set.as_ref(),
+                ) {
                     Ok(t) => t,
                     // A pinned scale the model cannot reach ends the chain.
                     Err(FitError::Model(_)) => break,
@@ -605,9 +666,25 @@ fn analyse(
     let sigma_known = data.sigma().is_some();
     let c = curvature(jac, data.len(), e.misfit, sigma_known);
     let param = &problem.param;
-    let mapped = param.map(&chosen.theta);
+    let n_material = param.free_count();
+    let mapped = param.map(&chosen.theta[..n_material]);
     let prony = param.prony(&mapped)?;
-    let (omega_min, omega_max) = probed_window(&params.setup, &prony, data.speed_range());
+    let (omega_min, omega_max) =
+        probed_window(&params.setup, &prony, problem.reduced_range(&chosen.theta));
+    // The material's block of the covariance is its marginal covariance.
+    let material_covariance = c
+        .covariance
+        .view((0, 0), (n_material, n_material))
+        .into_owned();
+    let n_shift = chosen.theta.len() - n_material;
+    let shift_theta = chosen.theta[n_material..].to_vec();
+    let shift = problem.shift.as_ref().map(|s| {
+        let block = c
+            .covariance
+            .view((n_material, n_material), (n_shift, n_shift))
+            .into_owned();
+        s.record(&shift_theta, &block)
+    });
     let first = param.first_strength();
     let determined: Vec<bool> = param
         .tau()
@@ -627,7 +704,7 @@ fn analyse(
     let curve = (0..points)
         .map(|i| {
             let omega = omega_min * (omega_max / omega_min).powf(i as f64 / (points - 1) as f64);
-            modulus_point(param, &mapped, &c.covariance, omega)
+            modulus_point(param, &mapped, &material_covariance, omega)
         })
         .collect();
 
@@ -722,7 +799,9 @@ fn analyse(
             .collect(),
         curve,
         scale_profile: Vec::new(),
-        shift: None,
+        shift,
+        shift_cross_check: None,
+        shift_theta,
         mu_fit: e.mu.clone(),
     })
 }

@@ -12,6 +12,8 @@
 //! - `problem`: the objective of Eq. (B3) as residuals with exact Jacobian.
 //! - [`solvers`]: Levenberg–Marquardt (default), L-BFGS and Nelder–Mead.
 //! - `regularization`: the data-driven choice of the smoothness weight λ.
+//! - `shift`: the time–temperature shift of a temperature set (WLF or free)
+//!   and shifts by overlapping curves.
 //! - `analysis`: the determined window, determined terms, uncertainty bands.
 //! - [`fit`]: the driver tying them together; [`report`]: its result.
 
@@ -27,12 +29,14 @@ pub mod tau_grid;
 mod analysis;
 mod parametrization;
 mod problem;
+mod shift;
+mod temperature_set;
 
 pub use data::Measurements;
 pub use error::FitError;
 pub use fit::fit;
 pub use params::{
-    FitParams, Lambda, Method, ModulusAnchor, RollingSetup, ScaleAnchor, StartMaterial, TermRule,
-    ValidFitParams,
+    FitParams, Lambda, Method, ModulusAnchor, RollingSetup, ScaleAnchor, ShiftKind, ShiftSettings,
+    StartMaterial, TermRule, ValidFitParams,
 };
-pub use report::{FitReport, LogShift, ModulusPoint, ShiftRecord};
+pub use report::{CrossCheckRow, FitReport, LogShift, ModulusPoint, ShiftCrossCheck, ShiftRecord};

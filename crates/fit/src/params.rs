@@ -121,6 +121,46 @@ pub struct FitParams {
     /// A starting material (E1, H, τ) to begin from instead of the neutral
     /// start, e.g. the scene's `[material]`.
     pub start: Option<StartMaterial>,
+    /// How a temperature set (data at several temperatures) is shifted;
+    /// ignored for data at one temperature.
+    pub shift: ShiftSettings,
+}
+
+/// The time–temperature shift fitted to a temperature set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShiftKind {
+    /// WLF: log10 a_T = −C1 (T − T_ref)/(C2 + T − T_ref), C1 and C2 fitted.
+    Wlf,
+    /// One free log10 a_T per temperature, 0 at T_ref.
+    Free,
+}
+
+/// Settings of a temperature-set fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShiftSettings {
+    /// The shift model.
+    pub kind: ShiftKind,
+    /// Reference temperature of the master curve, °C (None: the measured
+    /// temperature in the middle of the set). A free shift needs it to be
+    /// one of the measured temperatures.
+    pub t_ref: Option<f64>,
+    /// Starting WLF constants (C1, C2 in K), e.g. from the scene's
+    /// `[material.shift]` (None: estimated from the data).
+    pub wlf_start: Option<(f64, f64)>,
+    /// Also fit each temperature alone and estimate the shifts by
+    /// overlapping the single-temperature tan δ curves (a cross-check).
+    pub cross_check: bool,
+}
+
+impl Default for ShiftSettings {
+    fn default() -> Self {
+        ShiftSettings {
+            kind: ShiftKind::Wlf,
+            t_ref: None,
+            wlf_start: None,
+            cross_check: true,
+        }
+    }
 }
 
 /// A Prony series used as a starting point; it is re-expressed on the fit's
@@ -146,6 +186,7 @@ impl Default for FitParams {
             max_evaluations: None,
             model_tolerance: 1e-6,
             start: None,
+            shift: ShiftSettings::default(),
         }
     }
 }
@@ -186,6 +227,7 @@ pub struct ValidFitParams {
     pub(crate) max_evaluations: Option<usize>,
     pub(crate) model_tolerance: f64,
     pub(crate) start: Option<StartMaterial>,
+    pub(crate) shift: ShiftSettings,
     pub(crate) setup: RollingSetup,
 }
 
@@ -342,6 +384,18 @@ impl FitParams {
                 ));
             }
         }
+        if let Some(t) = self.shift.t_ref
+            && !t.is_finite()
+        {
+            return Err(FitError::setting(
+                "T_ref",
+                format!("{t} must be a finite temperature"),
+            ));
+        }
+        if let Some((c1, c2)) = self.shift.wlf_start {
+            positive("C1", c1)?;
+            positive("C2", c2)?;
+        }
         Ok(ValidFitParams {
             method: self.method,
             terms: self.terms,
@@ -353,6 +407,7 @@ impl FitParams {
             max_evaluations: self.max_evaluations,
             model_tolerance,
             start: self.start,
+            shift: self.shift,
             setup,
         })
     }

@@ -26,6 +26,7 @@ use crate::data::Measurements;
 use crate::error::FitError;
 use crate::parametrization::{Mapped, Parametrization};
 use crate::params::RollingSetup;
+use crate::shift::ShiftParam;
 
 /// Weight of the E1_max penalty: one per cent above the bound costs as much
 /// as a hundred standard deviations of misfit.
@@ -37,6 +38,9 @@ pub(crate) struct Problem<'a> {
     pub data: &'a Measurements,
     pub scales: Vec<f64>,
     pub param: Parametrization,
+    /// The temperature shift of a temperature set; its parameters follow
+    /// the material's in θ.
+    pub shift: Option<ShiftParam>,
     pub lambda: f64,
     pub e1_max: f64,
     pub tolerance: f64,
@@ -81,6 +85,40 @@ impl<'a> Problem<'a> {
         self.param.terms().saturating_sub(2)
     }
 
+    /// Free parameters: the material's, then the shift's.
+    pub fn free_count(&self) -> usize {
+        self.param.free_count() + self.shift.as_ref().map_or(0, |s| s.count())
+    }
+
+    /// The speeds at which the master curve is evaluated: the measured ones,
+    /// times a_T for a temperature set; and ∂ln a_T/∂θ_s per point.
+    pub fn reduced_speeds(&self, theta: &[f64]) -> (Vec<f64>, Vec<Vec<f64>>) {
+        match &self.shift {
+            None => (self.data.speeds().to_vec(), Vec::new()),
+            Some(shift) => {
+                let (ln_a, grads) = shift.point_shifts(&theta[self.param.free_count()..]);
+                let v = self
+                    .data
+                    .speeds()
+                    .iter()
+                    .zip(&ln_a)
+                    .map(|(v, l)| v * l.exp())
+                    .collect();
+                (v, grads)
+            }
+        }
+    }
+
+    /// Smallest and largest reduced speed at θ, m/s.
+    pub fn reduced_range(&self, theta: &[f64]) -> (f64, f64) {
+        self.reduced_speeds(theta)
+            .0
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            })
+    }
+
     /// The scene for a mapped θ.
     pub fn scene(&self, m: &Mapped) -> Result<Scene<Prony>, FitError> {
         let prony = self.param.prony(m)?;
@@ -105,18 +143,26 @@ impl<'a> Problem<'a> {
                 "the optimiser produced a non-finite parameter",
             ));
         }
-        let m = self.param.map(theta);
+        let n_material = self.param.free_count();
+        let m = self.param.map(&theta[..n_material]);
         let scene = self.scene(&m)?;
         let n_data = self.data.len();
-        let n_free = self.param.free_count();
+        let n_free = self.free_count();
+        let (speeds, shift_grads) = self.reduced_speeds(theta);
+        if speeds.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(FitError::setting(
+                "shift",
+                "the optimiser produced a shift factor outside the floating-point range",
+            ));
+        }
         let rows = self.residual_count();
         let mut residuals = DVector::zeros(rows);
         let mut jacobian = with_jacobian.then(|| DMatrix::zeros(rows, n_free));
         let mu = if let Some(jac) = jacobian.as_mut() {
-            let fj = scene.friction_with_gradient(self.data.speeds())?;
+            let fj = scene.friction_with_gradient(&speeds)?;
             let np = fj.parameter_count;
             let mut grad_p = vec![0.0; np];
-            let mut grad_theta = vec![0.0; n_free];
+            let mut grad_theta = vec![0.0; n_material];
             for i in 0..n_data {
                 let row = &fj.jacobian[i * np..(i + 1) * np];
                 // Model parameters (E1, H) → (E0, H): E1 = E0 + ΣH.
@@ -128,10 +174,15 @@ impl<'a> Problem<'a> {
                 for (j, g) in grad_theta.iter().enumerate() {
                     jac[(i, j)] = g / self.scales[i];
                 }
+                if let Some(d_ln_a) = shift_grads.get(i) {
+                    for (k, d) in d_ln_a.iter().enumerate() {
+                        jac[(i, n_material + k)] = fj.d_ln_speed[i] * d / self.scales[i];
+                    }
+                }
             }
             fj.mu
         } else {
-            scene.friction_sweep(self.data.speeds())?
+            scene.friction_sweep(&speeds)?
         };
         let mut misfit = 0.0;
         for i in 0..n_data {
@@ -160,7 +211,7 @@ impl<'a> Problem<'a> {
             residuals[row] = BOUND_WEIGHT * excess;
             if let Some(jac) = jacobian.as_mut() {
                 let ones = vec![1.0; self.param.terms() + 1];
-                let mut d = vec![0.0; n_free];
+                let mut d = vec![0.0; n_material];
                 self.param.pullback(&m, &ones, &mut d);
                 for (j, dj) in d.iter().enumerate() {
                     jac[(row, j)] = BOUND_WEIGHT * dj / e1;
@@ -290,6 +341,7 @@ mod tests {
                 data: &data,
                 scales: data.residual_scales(),
                 param,
+                shift: None,
                 lambda: 0.3,
                 e1_max: 1e8,
                 tolerance: 1e-10,
@@ -313,6 +365,78 @@ mod tests {
                     assert!(
                         (jac[(i, j)] - fd).abs() <= 1e-5 * (1.0 + fd.abs()),
                         "{anchor:?} row {i} column {j}: {} vs {fd}",
+                        jac[(i, j)]
+                    );
+                }
+            }
+        }
+    }
+
+    /// The shift columns of a temperature set's Jacobian (WLF and free)
+    /// against central finite differences.
+    #[test]
+    fn shift_jacobian_matches_finite_differences() {
+        use crate::params::{ShiftKind, ShiftSettings};
+        let setup = crate::params::example_setup();
+        let mut speeds = Vec::new();
+        let mut temps = Vec::new();
+        for t in [0.0, 20.0, 45.0] {
+            for i in 0..5 {
+                speeds.push(1e-6 * 10f64.powi(i));
+                temps.push(t);
+            }
+        }
+        let mu: Vec<f64> = speeds
+            .iter()
+            .map(|v| 0.02 + 0.001 * v.log10().abs())
+            .collect();
+        let data = Measurements::new(speeds, mu, None, Some(temps)).unwrap();
+        let tau: Vec<f64> = (0..8).map(|k| 10f64.powf(k as f64 - 6.0)).collect();
+        for kind in [ShiftKind::Wlf, ShiftKind::Free] {
+            let settings = ShiftSettings {
+                kind,
+                t_ref: Some(20.0),
+                ..ShiftSettings::default()
+            };
+            let shift = ShiftParam::new(&data, &settings).unwrap();
+            let anchor = Some(ModulusAnchor {
+                omega: 0.0,
+                modulus: 2e6,
+                source: "E0",
+            });
+            let param = Parametrization::new(tau.clone(), anchor);
+            let mut theta: Vec<f64> = (0..param.free_count())
+                .map(|k| 3.0 + 0.4 * (k as f64).sin())
+                .collect();
+            theta.extend(shift.theta_of_wlf(8.86, 101.6));
+            let problem = Problem {
+                setup: &setup,
+                data: &data,
+                scales: data.residual_scales(),
+                param,
+                shift: Some(shift),
+                lambda: 0.3,
+                e1_max: 1e10,
+                tolerance: 1e-10,
+                evaluations: Default::default(),
+                budget: Cell::new(usize::MAX),
+                best: Default::default(),
+                history: Default::default(),
+            };
+            let jac = problem.evaluate(&theta, true).unwrap().jacobian.unwrap();
+            for j in problem.param.free_count()..theta.len() {
+                let step = 1e-5;
+                let mut up = theta.clone();
+                let mut dn = theta.clone();
+                up[j] += step;
+                dn[j] -= step;
+                let ru = problem.evaluate(&up, false).unwrap().residuals;
+                let rd = problem.evaluate(&dn, false).unwrap().residuals;
+                for i in 0..ru.len() {
+                    let fd = (ru[i] - rd[i]) / (2.0 * step);
+                    assert!(
+                        (jac[(i, j)] - fd).abs() <= 1e-5 * (1.0 + fd.abs()),
+                        "{kind:?} row {i} column {j}: {} vs {fd}",
                         jac[(i, j)]
                     );
                 }

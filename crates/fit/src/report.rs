@@ -160,6 +160,38 @@ impl ShiftRecord {
     }
 }
 
+/// The cross-check of a temperature set's shifts.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ShiftCrossCheck {
+    /// How the single-temperature shifts were found.
+    pub method: String,
+    /// Per temperature: the joint fit's and the single fits' log10 a_T.
+    pub temperatures: Vec<CrossCheckRow>,
+    /// RMS of (single − joint) over the temperatures, decades.
+    pub rms_difference: f64,
+    /// Largest |single − joint|, decades.
+    pub max_difference: f64,
+}
+
+/// One temperature of the cross-check.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CrossCheckRow {
+    /// °C.
+    #[serde(rename = "T")]
+    pub temperature: f64,
+    /// log10 a_T of the joint fit.
+    #[serde(rename = "log_aT_joint")]
+    pub log_shift_joint: f64,
+    /// log10 a_T from overlapping the single-temperature fits (relative to
+    /// T_ref through the chain of neighbours).
+    #[serde(rename = "log_aT_single")]
+    pub log_shift_single: f64,
+    /// single − joint, decades.
+    pub difference: f64,
+    /// The single-temperature fit's misfit per point.
+    pub single_misfit_per_point: f64,
+}
+
 /// log10 a_T at one temperature.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct LogShift {
@@ -230,6 +262,13 @@ pub struct FitReport {
     /// one noise unit of the fit (else the weakest); those within widen the
     /// bands.
     pub scale_profile: Vec<[f64; 3]>,
+    /// For a temperature set: the shifts estimated again by fitting each
+    /// temperature alone and overlapping the tan δ curves.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shift_cross_check: Option<ShiftCrossCheck>,
+    /// θ of the shift at the optimum (for refits that continue from it).
+    #[serde(skip)]
+    pub(crate) shift_theta: Vec<f64>,
     /// The master curve over the window with 1σ bands (written to
     /// modulus.csv, not to fit.json).
     #[serde(skip)]

@@ -12,7 +12,9 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
-use rollfit_fit::{FitError, FitParams, FitReport, Lambda, Method, RollingSetup, TermRule};
+use rollfit_fit::{
+    FitError, FitParams, FitReport, Lambda, Method, RollingSetup, ShiftRecord, TermRule,
+};
 use rollfit_model::Shape;
 use serde::Serialize;
 
@@ -78,14 +80,14 @@ pub struct Settings {
     pub terms: Option<TermRule>,
 }
 
-fn parse_method(text: &str) -> Result<Method, String> {
+pub(crate) fn parse_method(text: &str) -> Result<Method, String> {
     Method::parse(text.trim()).map_err(|e| match e {
         FitError::InvalidSetting { problem, .. } => problem,
         other => other.to_string(),
     })
 }
 
-fn parse_lambda(text: &str) -> Result<Lambda, String> {
+pub(crate) fn parse_lambda(text: &str) -> Result<Lambda, String> {
     let text = text.trim();
     if text == "auto" {
         return Ok(Lambda::Auto);
@@ -99,7 +101,7 @@ fn parse_lambda(text: &str) -> Result<Lambda, String> {
     }
 }
 
-fn parse_terms(text: &str) -> Result<TermRule, String> {
+pub(crate) fn parse_terms(text: &str) -> Result<TermRule, String> {
     let text = text.trim();
     if text == "auto" {
         return Ok(TermRule::Auto);
@@ -129,7 +131,7 @@ pub fn default_output(data: &Path) -> Result<PathBuf> {
 }
 
 /// Fit settings given on the command line, as the keys [`FitError`] names.
-fn apply_flags(args: &Settings, params: &mut FitParams) -> Vec<&'static str> {
+pub(crate) fn apply_flags(args: &Settings, params: &mut FitParams) -> Vec<&'static str> {
     let mut overridden = Vec::new();
     if let Some(method) = args.method {
         params.method = method;
@@ -173,6 +175,12 @@ pub fn run(args: &Args) -> Result<()> {
         eprintln!(
             "note: every point was measured at T = {t} °C; the master curve is E*(ω) at that \
              temperature"
+        );
+    }
+    if let Some(shift) = &report.shift {
+        eprintln!(
+            "note: a temperature set; the master curve is E*(ω) at T_ref = {} °C",
+            shift.t_ref()
         );
     }
     if !report.converged {
@@ -263,32 +271,14 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     })
 }
 
-/// The one temperature of a `T` column (None without one). Several
-/// temperatures form a temperature set, which needs a time–temperature
-/// shift the fit does not estimate yet: refused rather than fitted as one
-/// curve.
+/// The one temperature of a `T` column (None without one, or for a
+/// temperature set, whose temperatures the report lists).
 fn single_temperature(table: &DataTable) -> Result<Option<f64>> {
     let temperatures = table.temperatures();
-    match temperatures.as_slice() {
-        [] => Ok(None),
-        [t] => Ok(Some(*t)),
-        several => {
-            let (first, second) = (several[0], several[1]);
-            let line = table
-                .temperature
-                .iter()
-                .flatten()
-                .zip(&table.lines)
-                .find(|(t, _)| **t == second)
-                .map_or(0, |(_, line)| *line);
-            bail!(
-                "column `T` holds {} temperatures (T = {first} °C, then T = {second} °C on line \
-                 {line}, ...): fitting a temperature set is not supported yet; fit one \
-                 temperature at a time",
-                several.len()
-            )
-        }
-    }
+    Ok(match temperatures.as_slice() {
+        [t] => Some(*t),
+        _ => None,
+    })
 }
 
 fn describe_setup(setup: &RollingSetup) -> String {
@@ -359,8 +349,9 @@ fn modulus_csv(report: &FitReport) -> Result<Vec<u8>> {
     )
 }
 
-/// mu.csv: v, mu_measured, mu_fit, [sigma], residual = (μ_fit − μ)/μ, in the
-/// data's order.
+/// mu.csv: v, mu_measured, mu_fit, [sigma], residual = (μ_fit − μ)/μ, and
+/// for a temperature set T, log_aT and v_reduced = v·a_T (the speed on the
+/// master curve at T_ref), in the data's order.
 fn mu_csv(table: &DataTable, report: &FitReport) -> Result<Vec<u8>> {
     if report.mu_fit.len() != table.speeds.len() {
         bail!(
@@ -374,15 +365,37 @@ fn mu_csv(table: &DataTable, report: &FitReport) -> Result<Vec<u8>> {
         header.push("sigma");
     }
     header.push("residual");
-    let rows = (0..table.speeds.len()).map(|i| {
+    let shift = report.shift.as_ref();
+    if shift.is_some() {
+        header.extend(["T", "log_aT", "v_reduced"]);
+    }
+    let mut rows = Vec::with_capacity(table.speeds.len());
+    for i in 0..table.speeds.len() {
         let (v, mu, fit) = (table.speeds[i], table.friction[i], report.mu_fit[i]);
         let mut row = vec![v, mu, fit];
         if let Some(sigma) = &table.sigma {
             row.push(sigma[i]);
         }
         row.push((fit - mu) / mu);
-        row
-    });
+        if let Some(shift) = shift {
+            let t = table
+                .temperature
+                .as_ref()
+                .map(|t| t[i])
+                .context("a temperature set without a T value")?;
+            let log_a = shift
+                .log_shifts()
+                .iter()
+                .min_by(|a, b| {
+                    (a.temperature - t)
+                        .abs()
+                        .total_cmp(&(b.temperature - t).abs())
+                })
+                .map_or(f64::NAN, |s| s.log_shift);
+            row.extend([t, log_a, v * 10f64.powf(log_a)]);
+        }
+        rows.push(row);
+    }
     output::csv_bytes(&header, rows)
 }
 
@@ -461,6 +474,36 @@ pub fn summary(report: &FitReport, dir: &Path) -> String {
         "E0 = {:.4e} Pa, E1 = {:.4e} Pa; wall time {:.3} s\n",
         report.model.static_modulus, report.model.glassy_modulus, report.wall_time_s
     );
+    match &report.shift {
+        Some(ShiftRecord::Wlf {
+            t_ref,
+            c1,
+            c2,
+            c1_sigma,
+            c2_sigma,
+            ..
+        }) => {
+            text += &format!(
+                "shift WLF at T_ref = {t_ref} °C: C1 = {c1:.4} ± {c1_sigma:.2e}, \
+                 C2 = {c2:.4} ± {c2_sigma:.2e} K\n"
+            )
+        }
+        Some(ShiftRecord::Free { t_ref, log_shift }) => {
+            text += &format!("shift free, T_ref = {t_ref} °C: log10 a_T =");
+            for s in log_shift {
+                text += &format!(" {:.3} ({} °C)", s.log_shift, s.temperature);
+            }
+            text += "\n";
+        }
+        None => {}
+    }
+    if let Some(check) = &report.shift_cross_check {
+        text += &format!(
+            "cross-check (each temperature alone, tan δ overlapped): log10 a_T differs from the \
+             joint fit by {:.3} decades RMS, {:.3} at most\n",
+            check.rms_difference, check.max_difference
+        );
+    }
     for warning in &report.warnings {
         text += &format!("warning: {warning}\n");
     }

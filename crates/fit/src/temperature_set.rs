@@ -1,0 +1,229 @@
+//! Temperature sets: one master curve at T_ref from μ(v) measured at several
+//! temperatures, and the cross-check of its shifts.
+//!
+//! The joint fit (see [`crate::fit`]) fits the Prony master curve and the
+//! shift together, evaluating the master curve at the reduced speeds v·a_T
+//! ([`crate::shift`]). What this module adds:
+//!
+//! 1. A model-free start for the shift: the measured ln μ(log10 v) curves of
+//!    neighbouring temperatures are overlapped ([`crate::shift::overlap`]),
+//!    and for WLF the constants are fitted to those shifts (unless the
+//!    scene's `[material.shift]` gives starting constants). The τ grid and
+//!    the probed band follow the reduced speeds of this start.
+//! 2. The cross-check users ask for: each temperature is fitted alone (the
+//!    scale anchor carried to that temperature with the model-free start
+//!    shift, so the check does not lean on the joint fit), and the
+//!    single-temperature tan δ(ω) curves — which rolling data fix far
+//!    better than |E| — are overlapped to estimate the shifts again.
+
+use crate::data::Measurements;
+use crate::error::FitError;
+use crate::params::{ModulusAnchor, ShiftKind, ValidFitParams};
+use crate::report::{CrossCheckRow, FitReport, ShiftCrossCheck};
+use crate::shift::overlap::{Curve, chained_shifts};
+use crate::shift::{ShiftParam, distinct_temperatures, index_of};
+
+/// The shift of a temperature set with its starting θ_s.
+#[derive(Debug, Clone)]
+pub(crate) struct ShiftStart {
+    pub param: ShiftParam,
+    pub theta: Vec<f64>,
+    /// Smallest and largest reduced speed at `theta`, m/s.
+    pub range: (f64, f64),
+    /// How the start was found, for the report's warnings.
+    pub notes: Vec<String>,
+}
+
+impl ShiftStart {
+    /// The same shift starting from `theta`.
+    pub(crate) fn with_theta(&self, data: &Measurements, theta: Vec<f64>) -> ShiftStart {
+        let range = reduced_range(&self.param, data, &theta);
+        ShiftStart {
+            param: self.param.clone(),
+            theta,
+            range,
+            notes: Vec::new(),
+        }
+    }
+}
+
+fn reduced_range(param: &ShiftParam, data: &Measurements, theta: &[f64]) -> (f64, f64) {
+    let (ln_a, _) = param.point_shifts(theta);
+    data.speeds()
+        .iter()
+        .zip(&ln_a)
+        .map(|(v, l)| v * l.exp())
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+}
+
+/// The rows of `data` at each of the distinct temperatures `temps`.
+fn rows_by_temperature(data: &Measurements, temps: &[f64]) -> Vec<Vec<usize>> {
+    let mut rows = vec![Vec::new(); temps.len()];
+    for (i, &t) in data.temperature().unwrap_or_default().iter().enumerate() {
+        if let Some(j) = index_of(temps, t) {
+            rows[j].push(i);
+        }
+    }
+    rows
+}
+
+/// None for data at one temperature (or without `T`); else the shift of the
+/// set and a model-free start.
+pub(crate) fn temperature_set(
+    data: &Measurements,
+    params: &ValidFitParams,
+) -> Result<Option<ShiftStart>, FitError> {
+    let temps = distinct_temperatures(data);
+    if temps.len() < 2 {
+        return Ok(None);
+    }
+    let param = ShiftParam::new(data, &params.shift)?;
+    let rows = rows_by_temperature(data, &temps);
+    if let Some((j, r)) = rows.iter().enumerate().find(|(_, r)| r.len() < 2) {
+        return Err(FitError::InsufficientData(format!(
+            "T = {} °C has {} measurement(s): a temperature set needs at least two speeds at \
+             every temperature",
+            temps[j],
+            r.len()
+        )));
+    }
+    let mut notes = Vec::new();
+    let theta = match (params.shift.kind, params.shift.wlf_start) {
+        (ShiftKind::Wlf, Some((c1, c2))) => {
+            notes.push(format!(
+                "WLF started from the scene's C1 = {c1}, C2 = {c2} K"
+            ));
+            param.theta_of_wlf(c1, c2)
+        }
+        _ => {
+            let curves: Vec<Curve> = rows
+                .iter()
+                .map(|r| {
+                    Curve::new(
+                        r.iter()
+                            .map(|&i| (data.speeds()[i].log10(), data.friction()[i].ln()))
+                            .collect(),
+                    )
+                })
+                .collect();
+            match chained_shifts(&curves) {
+                Some(chain) => param.theta_of_log_shifts(&chain),
+                None => {
+                    notes.push(
+                        "the μ(v) curves of neighbouring temperatures do not overlap, so the \
+                         shift started from WLF with C1 = 8.86, C2 = 101.6 K; check the \
+                         fitted shift"
+                            .into(),
+                    );
+                    param.theta_of_wlf(8.86, 101.6)
+                }
+            }
+        }
+    };
+    let range = reduced_range(&param, data, &theta);
+    Ok(Some(ShiftStart {
+        param,
+        theta,
+        range,
+        notes,
+    }))
+}
+
+/// The cross-check of `report`'s shift: single-temperature fits overlapped
+/// by tan δ. `Err` carries a reason the check could not be made (reported
+/// as a warning, not a failure of the joint fit).
+pub(crate) fn cross_check(
+    data: &Measurements,
+    params: &ValidFitParams,
+    report: &FitReport,
+    start: &ShiftStart,
+) -> Result<ShiftCrossCheck, String> {
+    let joint = report
+        .shift
+        .as_ref()
+        .ok_or_else(|| "the joint fit has no shift".to_string())?;
+    let temps = start.param.temperatures().to_vec();
+    let rows = rows_by_temperature(data, &temps);
+    let (start_log_shift, _) = start.param.log_shifts(&start.theta);
+    let mut curves = Vec::with_capacity(temps.len());
+    let mut misfits = Vec::with_capacity(temps.len());
+    for (j, r) in rows.iter().enumerate() {
+        let pick = |col: &[f64]| r.iter().map(|&i| col[i]).collect::<Vec<f64>>();
+        let subset = Measurements::new(
+            pick(data.speeds()),
+            pick(data.friction()),
+            data.sigma().map(pick),
+            None,
+        )
+        .map_err(|e| e.to_string())?;
+        let mut single = params.clone();
+        single.shift.cross_check = false;
+        // |E_T(ω_a/a_T)| = |E_ref(ω_a)|: the anchor moves with the start shift.
+        single.anchor = params.anchor.map(|a| ModulusAnchor {
+            omega: a.omega / 10f64.powf(start_log_shift[j]),
+            ..a
+        });
+        let fitted = crate::fit::fit(&subset, &single)
+            .map_err(|e| format!("the fit of T = {} °C alone failed: {e}", temps[j]))?;
+        misfits.push(fitted.misfit_per_point);
+        curves.push(Curve::new(
+            fitted
+                .curve
+                .iter()
+                .map(|p| (p.omega.log10(), p.tan_delta.ln()))
+                .collect(),
+        ));
+    }
+    let chain = chained_shifts(&curves).ok_or_else(|| {
+        "the tan δ windows of neighbouring single-temperature fits do not overlap".to_string()
+    })?;
+    let joint_at: Vec<f64> = temps
+        .iter()
+        .map(|&t| {
+            joint
+                .log_shifts()
+                .iter()
+                .find(|s| (s.temperature - t).abs() <= crate::shift::SAME_TEMPERATURE)
+                .map_or(f64::NAN, |s| s.log_shift)
+        })
+        .collect();
+    // Chained shifts are relative: tie them to T_ref when it was measured,
+    // else to the joint fit's mean.
+    let (offset, method) = match index_of(&temps, start.param.t_ref()) {
+        Some(r) => (
+            chain[r],
+            "single-temperature fits overlapped by ln tan δ(log10 ω), neighbour to neighbour, \
+             relative to T_ref",
+        ),
+        None => (
+            chain.iter().zip(&joint_at).map(|(c, j)| c - j).sum::<f64>() / temps.len() as f64,
+            "single-temperature fits overlapped by ln tan δ(log10 ω), neighbour to neighbour; \
+             T_ref was not measured, so the chain is aligned to the joint fit's mean",
+        ),
+    };
+    let rows: Vec<CrossCheckRow> = temps
+        .iter()
+        .enumerate()
+        .map(|(j, &t)| {
+            let single = chain[j] - offset;
+            CrossCheckRow {
+                temperature: t,
+                log_shift_joint: joint_at[j],
+                log_shift_single: single,
+                difference: single - joint_at[j],
+                single_misfit_per_point: misfits[j],
+            }
+        })
+        .collect();
+    let n = rows.len() as f64;
+    let rms_difference = (rows.iter().map(|r| r.difference.powi(2)).sum::<f64>() / n).sqrt();
+    let max_difference = rows.iter().fold(0.0f64, |m, r| m.max(r.difference.abs()));
+    Ok(ShiftCrossCheck {
+        method: method.into(),
+        temperatures: rows,
+        rms_difference,
+        max_difference,
+    })
+}
