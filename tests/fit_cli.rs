@@ -450,13 +450,19 @@ fn empty_data() {
     assert_refused(SCENE, Some(""), &[], &["bad-data.csv", "empty"]);
 }
 
+/// Several temperatures form a temperature set, which needs a sweep at
+/// each temperature.
 #[test]
-fn several_temperatures() {
+fn temperature_set_with_one_point_per_temperature() {
     assert_refused(
         SCENE,
         Some("v,mu,T\n1e-3,0.1,20\n1e-2,0.2,40\n"),
         &[],
-        &["bad-data.csv", "line 3", "temperature set"],
+        &[
+            "bad-data.csv",
+            "T = 20 °C has 1 measurement",
+            "temperature set needs at least two speeds",
+        ],
     );
 }
 

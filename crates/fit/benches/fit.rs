@@ -3,15 +3,22 @@
 //! noise, σ known so λ follows the discrepancy principle), default τ grid
 //! (two per decade, 31 terms), default method (Levenberg–Marquardt, three
 //! starts), including the λ choice. One core.
+//!
+//! And a joint fit of a temperature set: 5 temperatures (−20 … 60 °C) × 41
+//! speeds of the same rubber under a WLF shift (C1 = 8.86, C2 = 101.6 K at
+//! 20 °C), 1 % noise, |E| at 10 rad/s as the anchor, default grid (two per
+//! decade over the combined ~16 decades, 48 terms), C1 and C2 fitted; with
+//! and without the single-temperature cross-check.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rollfit_fit::{FitParams, ScaleAnchor, fit};
+use rollfit_fit::{FitParams, ScaleAnchor, ShiftSettings, fit};
+use rollfit_model::ViscoelasticModulus;
 use std::hint::black_box;
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use common::{hn_rubber, setup, synthetic};
+use common::{hn_rubber, setup, synthetic, temperature_set};
 
 fn benches(c: &mut Criterion) {
     let params = FitParams {
@@ -26,6 +33,27 @@ fn benches(c: &mut Criterion) {
     group.bench_function("anchored_regularised_41_points", |b| {
         b.iter(|| fit(black_box(&measured), &params).unwrap())
     });
+    let set = temperature_set(hn_rubber(), &[-20.0, 0.0, 20.0, 40.0, 60.0], 0.01, 1);
+    for (name, cross_check) in [
+        ("joint_5x41_wlf", false),
+        ("joint_5x41_wlf_with_cross_check", true),
+    ] {
+        let params = FitParams {
+            anchor: Some(ScaleAnchor::ModulusAt {
+                omega: 10.0,
+                modulus: hn_rubber().modulus(10.0).norm(),
+            }),
+            shift: ShiftSettings {
+                t_ref: Some(20.0),
+                cross_check,
+                ..ShiftSettings::default()
+            },
+            ..FitParams::default()
+        }
+        .check(setup())
+        .unwrap();
+        group.bench_function(name, |b| b.iter(|| fit(black_box(&set), &params).unwrap()));
+    }
     group.finish();
 }
 

@@ -53,6 +53,11 @@ pub(crate) struct Problem<'a> {
     pub best: RefCell<Option<(f64, Vec<f64>)>>,
     /// (evaluations, best V so far) after every evaluation.
     pub history: RefCell<Vec<(usize, f64)>>,
+    /// An exploratory run is abandoned when after this many evaluations its
+    /// best V is still above this value: (evaluations, V).
+    pub abandon_above: Cell<Option<(usize, f64)>>,
+    /// Set when a run was abandoned.
+    pub abandoned: Cell<bool>,
 }
 
 /// Residuals (and Jacobian) at one θ.
@@ -238,11 +243,21 @@ impl<'a> Problem<'a> {
         self.history
             .borrow_mut()
             .push((self.evaluations.get(), best_value));
+        if let Some((at, above)) = self.abandon_above.get()
+            && self.evaluations.get() >= at
+            && best_value > above
+        {
+            // The next evaluation reports the budget used up, which ends
+            // every solver; `abandoned` tells the driver why.
+            self.abandoned.set(true);
+            self.budget.set(self.evaluations.get());
+        }
     }
 
     /// Resets the counters and the record for a new solver run with `budget`
     /// evaluations.
     pub fn reset(&self, budget: usize) {
+        self.abandoned.set(false);
         self.evaluations.set(0);
         self.budget.set(budget);
         *self.best.borrow_mut() = None;
@@ -349,6 +364,8 @@ mod tests {
                 budget: Cell::new(usize::MAX),
                 best: Default::default(),
                 history: Default::default(),
+                abandon_above: Default::default(),
+                abandoned: Default::default(),
             };
             let e = problem.evaluate(&theta, true).unwrap();
             let jac = e.jacobian.unwrap();
@@ -422,6 +439,8 @@ mod tests {
                 budget: Cell::new(usize::MAX),
                 best: Default::default(),
                 history: Default::default(),
+                abandon_above: Default::default(),
+                abandoned: Default::default(),
             };
             let jac = problem.evaluate(&theta, true).unwrap().jacobian.unwrap();
             for j in problem.param.free_count()..theta.len() {

@@ -33,6 +33,8 @@ pub enum StopReason {
     LineSearchFailure(String),
     /// The forward model failed at a trial point.
     ModelFailure(String),
+    /// An exploratory start given up as hopeless (the text says why).
+    Abandoned(String),
 }
 
 impl StopReason {
@@ -49,6 +51,7 @@ impl StopReason {
             StopReason::Stall(why) => format!("stalled: {why}"),
             StopReason::LineSearchFailure(why) => format!("line search failed: {why}"),
             StopReason::ModelFailure(why) => format!("forward model failed: {why}"),
+            StopReason::Abandoned(why) => format!("abandoned: {why}"),
         }
     }
 }
@@ -92,11 +95,16 @@ pub(crate) fn run(
 ) -> SolverRun {
     let clock = std::time::Instant::now();
     problem.reset(budget);
-    let (iterations, stop) = match method {
+    let (iterations, mut stop) = match method {
         Method::LevenbergMarquardt => levenberg_marquardt::minimize(problem, start),
         Method::Lbfgs => lbfgs::minimize(problem, start),
         Method::NelderMead => nelder_mead::minimize(problem, start),
     };
+    if problem.abandoned.get()
+        && let Some((at, above)) = problem.abandon_above.get()
+    {
+        stop = StopReason::Abandoned(format!("V still above {above:.4e} after {at} evaluations"));
+    }
     let (objective, theta) = problem
         .best
         .borrow()

@@ -51,3 +51,38 @@ pub fn synthetic<M: ViscoelasticModulus>(truth: M, noise: f64, seed: u64) -> Mea
     let sigma: Vec<f64> = mu.iter().map(|m| noise * m).collect();
     Measurements::new(speeds, noisy, Some(sigma), None).unwrap()
 }
+
+/// The WLF truth of the synthetic temperature sets: C1 = 8.86,
+/// C2 = 101.6 K at T_ref = 20 °C (log10 a_T).
+pub fn wlf_truth(t: f64) -> f64 {
+    -8.86 * (t - 20.0) / (101.6 + t - 20.0)
+}
+
+/// A temperature set of `truth` (the master curve at 20 °C) under the WLF
+/// truth: 41 speeds over 8 decades at each of `temperatures`, multiplicative
+/// Gaussian noise of relative size `noise` (ChaCha8 with `seed`, drawn in
+/// row order), σ = noise·μ.
+pub fn temperature_set<M: ViscoelasticModulus>(
+    truth: M,
+    temperatures: &[f64],
+    noise: f64,
+    seed: u64,
+) -> Measurements {
+    let s = setup();
+    let scene = Scene::new(s.geometry, s.substrate, s.contact, truth).unwrap();
+    let speeds: Vec<f64> = (0..41).map(|i| 1e-8 * 10f64.powf(i as f64 * 0.2)).collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let (mut v, mut mu, mut sigma, mut temps) = (vec![], vec![], vec![], vec![]);
+    for &t in temperatures {
+        let a = 10f64.powf(wlf_truth(t));
+        let reduced: Vec<f64> = speeds.iter().map(|x| x * a).collect();
+        for (x, m) in speeds.iter().zip(scene.friction_sweep(&reduced).unwrap()) {
+            v.push(*x);
+            mu.push(m * (1.0 + noise * normal.sample(&mut rng)));
+            sigma.push(noise * m);
+            temps.push(t);
+        }
+    }
+    Measurements::new(v, mu, Some(sigma), Some(temps)).unwrap()
+}

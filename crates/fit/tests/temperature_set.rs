@@ -1,0 +1,147 @@
+//! Temperature sets (fixed seeds): one master curve at T_ref and the shift,
+//! recovered from synthetic μ(v) at five temperatures.
+//!
+//! The truth: the bundled broad Havriliak–Negami rubber (not a Prony series)
+//! as the master curve at 20 °C, shifted by WLF with C1 = 8.86,
+//! C2 = 101.6 K; 41 speeds over 8 decades at −20, 0, 20, 40 and 60 °C (about
+//! 16 decades of reduced speed); 1 % noise; one scale anchor, |E| at
+//! 10 rad/s at T_ref.
+
+mod common;
+
+use common::{hn_rubber, setup, temperature_set, wlf_truth};
+use rollfit_fit::{FitParams, FitReport, ScaleAnchor, ShiftKind, ShiftRecord, ShiftSettings, fit};
+use rollfit_model::ViscoelasticModulus;
+
+const TEMPERATURES: [f64; 5] = [-20.0, 0.0, 20.0, 40.0, 60.0];
+
+fn params(kind: ShiftKind, cross_check: bool) -> rollfit_fit::ValidFitParams {
+    FitParams {
+        anchor: Some(ScaleAnchor::ModulusAt {
+            omega: 10.0,
+            modulus: hn_rubber().modulus(10.0).norm(),
+        }),
+        shift: ShiftSettings {
+            kind,
+            t_ref: Some(20.0),
+            cross_check,
+            ..ShiftSettings::default()
+        },
+        ..FitParams::default()
+    }
+    .check(setup())
+    .unwrap()
+}
+
+/// RMS relative errors of tan δ and |E| over the reported (combined) window
+/// shrunk by half a decade at each end.
+fn errors(report: &FitReport) -> (f64, f64) {
+    let truth = hn_rubber();
+    let lo = report.window.omega_min * 10f64.powf(0.5);
+    let hi = report.window.omega_max / 10f64.powf(0.5);
+    let (mut se_t, mut se_e, mut n) = (0.0, 0.0, 0);
+    for p in report
+        .curve
+        .iter()
+        .filter(|p| p.omega >= lo && p.omega <= hi)
+    {
+        let e = truth.modulus(p.omega);
+        se_t += (p.tan_delta / (e.im / e.re) - 1.0).powi(2);
+        se_e += (p.magnitude / e.norm() - 1.0).powi(2);
+        n += 1;
+    }
+    assert!(n > 100, "window too small: {n} points");
+    ((se_t / n as f64).sqrt(), (se_e / n as f64).sqrt())
+}
+
+/// Issue 4's target for WLF: C1 and C2 within 5 %, tan δ and |E| within
+/// 5 % RMS over the combined window, on three noise seeds. (Measured: C1,
+/// C2 within 0.5 %, tan δ and |E| about 1 %.)
+#[test]
+fn wlf_set_is_recovered() {
+    for seed in 1..4 {
+        let report = fit(
+            &temperature_set(hn_rubber(), &TEMPERATURES, 0.01, seed),
+            &params(ShiftKind::Wlf, false),
+        )
+        .unwrap();
+        let (t, e) = errors(&report);
+        let Some(ShiftRecord::Wlf { c1, c2, t_ref, .. }) = report.shift.clone() else {
+            panic!("no WLF shift: {:?}", report.shift)
+        };
+        eprintln!(
+            "seed {seed}: C1 {c1:.4} C2 {c2:.3} tan δ {t:.4} |E| {e:.4} χ²/N {:.3} window {:.2e}…{:.2e} {} terms {:.2} s",
+            report.misfit_per_point,
+            report.window.omega_min,
+            report.window.omega_max,
+            report.model.tau.len(),
+            report.wall_time_s
+        );
+        assert_eq!(t_ref, 20.0);
+        assert!(report.converged, "{}", report.stop_reason);
+        assert!((c1 / 8.86 - 1.0).abs() <= 0.05, "C1 {c1}");
+        assert!((c2 / 101.6 - 1.0).abs() <= 0.05, "C2 {c2}");
+        assert!(t <= 0.05 && e <= 0.05, "tan δ {t}, |E| {e}");
+        // The window spans the combined, shifted range: about 16 decades of
+        // reduced speed.
+        assert!((report.window.omega_max / report.window.omega_min).log10() > 15.0);
+    }
+}
+
+/// Issue 4's target for free shifts: every log10 a_T within 0.1 decade of
+/// the truth, and the master curve within 5 %.
+#[test]
+fn free_shifts_are_recovered() {
+    for seed in [1, 5] {
+        let report = fit(
+            &temperature_set(hn_rubber(), &TEMPERATURES, 0.01, seed),
+            &params(ShiftKind::Free, false),
+        )
+        .unwrap();
+        let Some(ShiftRecord::Free { log_shift, t_ref }) = report.shift.clone() else {
+            panic!("no free shift: {:?}", report.shift)
+        };
+        assert_eq!(t_ref, 20.0);
+        assert_eq!(log_shift.len(), 5);
+        for s in &log_shift {
+            let truth = wlf_truth(s.temperature);
+            eprintln!(
+                "seed {seed} T {}: log a_T {:.4} ± {:.4} (truth {truth:.4})",
+                s.temperature, s.log_shift, s.log_shift_sigma
+            );
+            assert!((s.log_shift - truth).abs() <= 0.1, "{s:?} vs {truth}");
+        }
+        let (t, e) = errors(&report);
+        assert!(t <= 0.05 && e <= 0.05, "tan δ {t}, |E| {e}");
+    }
+}
+
+/// The cross-check: each temperature fitted alone and the tan δ curves
+/// overlapped gives shifts close to the joint fit's (and to the truth).
+#[test]
+fn cross_check_agrees_with_the_joint_fit() {
+    let report = fit(
+        &temperature_set(hn_rubber(), &TEMPERATURES, 0.01, 2),
+        &params(ShiftKind::Wlf, true),
+    )
+    .unwrap();
+    let check = report
+        .shift_cross_check
+        .as_ref()
+        .unwrap_or_else(|| panic!("no cross-check: {:?}", report.warnings));
+    assert_eq!(check.temperatures.len(), 5);
+    for row in &check.temperatures {
+        eprintln!("{row:?}");
+        assert!((row.log_shift_single - wlf_truth(row.temperature)).abs() <= 0.1);
+        assert!((0.5..1.5).contains(&row.single_misfit_per_point));
+    }
+    assert!(check.max_difference <= 0.1, "{check:?}");
+}
+
+/// One temperature alone is not a set: no shift is fitted or reported.
+#[test]
+fn one_temperature_is_not_a_set() {
+    let data = temperature_set(hn_rubber(), &[20.0], 0.01, 1);
+    let report = fit(&data, &params(ShiftKind::Wlf, true)).unwrap();
+    assert!(report.shift.is_none() && report.shift_cross_check.is_none());
+}
