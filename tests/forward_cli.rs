@@ -131,14 +131,34 @@ const HEADER: [&str; 7] = [
     "gt_alpha",
 ];
 
-/// Runs forward on a scene that must succeed and returns its CSV.
-fn run_ok(scene: &Path) -> Table {
+/// Runs forward on a scene that must succeed and returns its CSV, whose
+/// columns must be `header`.
+fn run_ok_with_header(scene: &Path, header: &[&str]) -> Table {
     let out = forward(scene, None);
     let stderr = text(&out.stderr);
     assert!(out.status.success(), "{}: {stderr}", scene.display());
     assert!(!stderr.contains("panicked"), "{stderr}");
     let table = parse_csv(&text(&out.stdout));
-    assert_eq!(table.header, HEADER);
+    assert_eq!(table.header, header, "{}", scene.display());
+    table
+}
+
+/// Runs forward on a scene without a temperature: exactly [`HEADER`].
+fn run_ok(scene: &Path) -> Table {
+    run_ok_with_header(scene, &HEADER)
+}
+
+/// `columns` followed by `T`, the column forward adds last whenever
+/// [sweep] sets a temperature.
+fn with_t(columns: &[&'static str]) -> Vec<&'static str> {
+    columns.iter().copied().chain(["T"]).collect()
+}
+
+/// Runs forward on a scene whose [sweep] sets a temperature: [`HEADER`],
+/// then `T`, and every row at temperature `t`.
+fn run_ok_at(scene: &Path, t: f64) -> Table {
+    let table = run_ok_with_header(scene, &with_t(&HEADER));
+    assert!(table.column("T").iter().all(|&x| x == t), "T column ≠ {t}");
     table
 }
 
@@ -355,7 +375,7 @@ fn wlf_temperature_equals_a_scaled_relaxation_time() {
         "tau = 1.0",
         &format!("tau = {:e}", 10f64.powf(log_at)),
     );
-    let a = run_ok(&dir.write("shifted.toml", &shifted));
+    let a = run_ok_at(&dir.write("shifted.toml", &shifted), t);
     let b = run_ok(&dir.write("scaled.toml", &scaled));
     for (x, y) in a.column("mu").into_iter().zip(b.column("mu")) {
         assert_close(x, y, 1e-6, "μ shifted vs scaled");
@@ -373,7 +393,7 @@ fn free_shift_temperature_equals_a_scaled_relaxation_time() {
     ) + "temperature = 30.0\n";
     // Linear in T between 20 °C (0) and 40 °C (−2): log10 a_T(30 °C) = −1.
     let scaled = edit(SLS_SCENE, "tau = 1.0", "tau = 0.1");
-    let a = run_ok(&dir.write("shifted.toml", &shifted));
+    let a = run_ok_at(&dir.write("shifted.toml", &shifted), 30.0);
     let b = run_ok(&dir.write("scaled.toml", &scaled));
     for (x, y) in a.column("mu").into_iter().zip(b.column("mu")) {
         assert_close(x, y, 1e-6, "μ shifted vs scaled");
@@ -391,10 +411,10 @@ fn free_shift_is_exact_at_listed_temperatures_and_knows_t_ref() {
         "tau = 1.0\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
          log_aT = [{ T = 40.0, log_aT = -2.0 }]\n",
     );
-    for (t, tau) in [("30.0", "0.1"), ("40.0", "0.01")] {
-        let shifted = format!("{base}temperature = {t}\n");
+    for (t, tau) in [(30.0, "0.1"), (40.0, "0.01")] {
+        let shifted = format!("{base}temperature = {t:?}\n");
         let scaled = edit(SLS_SCENE, "tau = 1.0", &format!("tau = {tau}"));
-        let a = run_ok(&dir.write("shifted.toml", &shifted));
+        let a = run_ok_at(&dir.write("shifted.toml", &shifted), t);
         let b = run_ok(&dir.write("scaled.toml", &scaled));
         for (x, y) in a.column("mu").into_iter().zip(b.column("mu")) {
             assert_close(x, y, 1e-6, "μ shifted vs scaled");
@@ -1251,4 +1271,259 @@ fn havriliak_negami_foreign_and_array_keys_are_named() {
     assert_rejected(&scene, &[], &["key `alpha`", "\"sls\""]);
     let scene = edit(HN_SCENE, "alpha = 1.0", "alpha = \"wide\"");
     assert_rejected(&scene, &[], &["alpha", "invalid type: string"]);
+}
+
+// ------------------------------------------------------ temperature sets
+
+/// `SLS_SCENE` with a WLF shift (T_ref = 20 °C); add `temperature = ..`.
+fn wlf_scene() -> String {
+    edit(
+        SLS_SCENE,
+        "tau = 1.0\n",
+        "tau = 1.0\n[material.shift]\nmodel = \"wlf\"\nT_ref = 20.0\nC1 = 8.86\nC2 = 101.6\n",
+    )
+}
+
+/// `SLS_SCENE` with a free shift listing 0 °C (2.0) and 40 °C (−2.0)
+/// around T_ref = 20 °C; add `temperature = ..`.
+fn free_scene() -> String {
+    edit(
+        SLS_SCENE,
+        "tau = 1.0\n",
+        "tau = 1.0\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
+         log_aT = [{ T = 0.0, log_aT = 2.0 }, { T = 40.0, log_aT = -2.0 }]\n",
+    )
+}
+
+/// Listed out of order on purpose (the blocks keep the listed order), with
+/// an integer entry (TOML arrays may mix integers and floats).
+const SET: [f64; 5] = [20.0, -20.0, 60.0, 0.0, 40.0];
+const SET_TOML: &str = "temperature = [20.0, -20.0, 60.0, 0, 40.0]\n";
+/// Speeds per block (`count` of `SLS_SCENE`).
+const COUNT: usize = 7;
+
+/// The data lines of a CSV (without its header).
+fn data_lines(csv: &str) -> Vec<&str> {
+    csv.lines().skip(1).collect()
+}
+
+#[test]
+fn temperature_list_writes_one_block_per_temperature() {
+    let dir = TempDir::new("tset");
+    let scene = dir.write("set.toml", &(wlf_scene() + SET_TOML));
+    let (csv, stderr) = forward_with(&scene, &[]);
+    let set = parse_csv(&csv);
+    assert_eq!(set.header, with_t(&HEADER), "T is the last column");
+    assert_eq!(set.rows.len(), COUNT * SET.len());
+    let expected_t: Vec<f64> = SET
+        .iter()
+        .flat_map(|&t| std::iter::repeat_n(t, COUNT))
+        .collect();
+    assert_eq!(set.column("T"), expected_t);
+    let v = set.column("v");
+    for block in v.chunks(COUNT) {
+        assert_eq!(block, &v[..COUNT], "every block is the full sweep");
+    }
+    assert_eq!((v[0], v[COUNT - 1]), (1e-6, 1.0));
+
+    // Each block is, number for number, the single-temperature file.
+    let lines = data_lines(&csv);
+    for (k, &t) in SET.iter().enumerate() {
+        let single = dir.write(
+            "single.toml",
+            &(wlf_scene() + &format!("temperature = {t:?}\n")),
+        );
+        let (single_csv, _) = forward_with(&single, &[]);
+        let single_table = parse_csv(&single_csv);
+        assert_eq!(single_table.header, set.header);
+        assert_eq!(
+            set.rows[k * COUNT..(k + 1) * COUNT],
+            single_table.rows[..],
+            "block {k} (T = {t} °C)"
+        );
+        assert_eq!(
+            lines[k * COUNT..(k + 1) * COUNT],
+            data_lines(&single_csv)[..],
+            "block {k} (T = {t} °C) as text"
+        );
+    }
+    // The shift matters: 20 °C and 60 °C give other curves.
+    let mu = set.column("mu");
+    assert!(
+        mu[..COUNT]
+            .iter()
+            .zip(&mu[2 * COUNT..3 * COUNT])
+            .all(|(a, b)| a != b)
+    );
+
+    // The summary is one line and names the temperatures in order.
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("T = 20, -20, 60, 0, 40 °C"), "{stderr}");
+    assert!(stderr.contains("5 temperatures"), "{stderr}");
+}
+
+#[test]
+fn free_shift_temperature_list_equals_scaled_relaxation_times() {
+    // log10 a_T: 40 °C → −2, 0 °C → 2, 30 °C → −1 (between T_ref and 40 °C).
+    let dir = TempDir::new("tset-free");
+    let set = run_ok_with_header(
+        &dir.write(
+            "set.toml",
+            &(free_scene() + "temperature = [40.0, 0.0, 30.0]\n"),
+        ),
+        &with_t(&HEADER),
+    );
+    assert_eq!(set.rows.len(), 3 * COUNT);
+    let (mu, t) = (set.column("mu"), set.column("T"));
+    for (k, (temperature, tau)) in [(40.0, "0.01"), (0.0, "100.0"), (30.0, "0.1")]
+        .into_iter()
+        .enumerate()
+    {
+        let scaled = edit(SLS_SCENE, "tau = 1.0", &format!("tau = {tau}"));
+        let b = run_ok(&dir.write("scaled.toml", &scaled));
+        let block = k * COUNT..(k + 1) * COUNT;
+        assert!(t[block.clone()].iter().all(|&x| x == temperature));
+        for (x, y) in mu[block].iter().zip(b.column("mu")) {
+            assert_close(*x, y, 1e-6, &format!("μ at {temperature} °C vs τ = {tau}"));
+        }
+    }
+}
+
+/// z = (mu − mu_exact)/sigma of every row of a noisy CSV.
+fn deviates(table: &Table) -> Vec<f64> {
+    let (mu, sigma, exact) = (
+        table.column("mu"),
+        table.column("sigma"),
+        table.column("mu_exact"),
+    );
+    (0..mu.len())
+        .map(|i| (mu[i] - exact[i]) / sigma[i])
+        .collect()
+}
+
+#[test]
+fn temperature_set_noise_is_one_stream_reproducible_by_seed() {
+    let dir = TempDir::new("tset-noise");
+    let scene = dir.write("set.toml", &(wlf_scene() + SET_TOML));
+    let noise = |seed: &str| forward_with(&scene, &["--noise", "0.02", "--seed", seed]).0;
+    let (a, b, c) = (noise("11"), noise("11"), noise("12"));
+    assert_eq!(a, b, "same seed, same file");
+    assert_ne!(a, c, "another seed, other noise");
+
+    let a = parse_csv(&a);
+    assert_eq!(a.header, with_t(&NOISY_HEADER), "T is the last column");
+    let exact = run_ok_with_header(&scene, &with_t(&HEADER));
+    assert_eq!(a.column("mu_exact"), exact.column("mu"));
+    assert_eq!(a.column("T"), exact.column("T"));
+    for name in &HEADER[2..] {
+        assert_eq!(a.column(name), exact.column(name), "{name}");
+    }
+    for (s, m) in a.column("sigma").into_iter().zip(a.column("mu_exact")) {
+        assert_eq!(s, 0.02 * m);
+    }
+
+    // One stream in row order over the whole file: the deviates are those
+    // of a single sweep of as many rows with the same seed...
+    let rows = COUNT * SET.len();
+    let long = dir.write(
+        "long.toml",
+        &edit(SLS_SCENE, "count = 7", &format!("count = {rows}")),
+    );
+    let (long, _) = forward_with(&long, &["--noise", "0.02", "--seed", "11"]);
+    let (z, z_long) = (deviates(&a), deviates(&parse_csv(&long)));
+    assert_eq!(z.len(), z_long.len());
+    for (i, (x, y)) in z.iter().zip(&z_long).enumerate() {
+        assert!((x - y).abs() < 1e-9, "deviate {i}: {x} vs {y}");
+    }
+    // ... so the first block is the single-temperature file with that seed,
+    // and the blocks do not repeat one another's noise.
+    let first = dir.write(
+        "first.toml",
+        &(wlf_scene() + &format!("temperature = {:?}\n", SET[0])),
+    );
+    let (first, _) = forward_with(&first, &["--noise", "0.02", "--seed", "11"]);
+    assert_eq!(a.rows[..COUNT], parse_csv(&first).rows[..]);
+    assert!(
+        z[..COUNT]
+            .iter()
+            .zip(&z[COUNT..2 * COUNT])
+            .all(|(x, y)| x != y)
+    );
+}
+
+#[test]
+fn empty_temperature_list_is_rejected() {
+    assert_rejected(
+        &(wlf_scene() + "temperature = []\n"),
+        &[],
+        &["[sweep]", "`temperature = []`", "no temperatures"],
+    );
+}
+
+#[test]
+fn non_finite_temperature_entry_is_rejected() {
+    let scene = wlf_scene() + "temperature = [0.0, nan, 40.0]\n";
+    let line = scene.lines().count();
+    assert_rejected(
+        &scene,
+        &[],
+        &[
+            "[sweep] temperature[1]",
+            "NaN",
+            "finite",
+            &format!("line {line}"),
+        ],
+    );
+    assert_rejected(
+        &(wlf_scene() + "temperature = [0.0, 20.0, -inf]\n"),
+        &[],
+        &["[sweep] temperature[2]", "inf", "finite"],
+    );
+    assert_rejected(
+        &(wlf_scene() + "temperature = [0.0, \"warm\"]\n"),
+        &[],
+        &["[sweep] temperature[1]", "invalid type: string"],
+    );
+}
+
+#[test]
+fn duplicate_temperatures_are_rejected() {
+    assert_rejected(
+        &(wlf_scene() + "temperature = [0.0, 20.0, 40.0, 20]\n"),
+        &[],
+        &[
+            "[sweep]",
+            "temperature[3] = 20",
+            "repeats temperature[1] = 20",
+        ],
+    );
+}
+
+#[test]
+fn temperature_list_without_shift_is_rejected() {
+    assert_rejected(
+        &(SLS_SCENE.to_string() + "temperature = [0.0, 20.0]\n"),
+        &[],
+        &["[sweep]", "temperature = [0, 20]", "[material.shift]"],
+    );
+}
+
+#[test]
+fn temperature_list_outside_a_free_shift_names_the_entry() {
+    assert_rejected(
+        &(free_scene() + "temperature = [0.0, 40.0, 80.0, 20.0]\n"),
+        &[],
+        &[
+            "[material.shift] at [sweep] temperature[2] = 80 °C",
+            "T = 80 °C",
+            "outside",
+            "0 to 40 °C",
+            "`log_aT`",
+        ],
+    );
+    assert_rejected(
+        &(free_scene() + "temperature = [-0.5, 20.0]\n"),
+        &[],
+        &["temperature[0] = -0.5 °C", "outside", "0 to 40 °C"],
+    );
 }

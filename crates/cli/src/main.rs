@@ -30,7 +30,10 @@ enum Command {
     /// Columns: v (m/s), mu, mu_low_speed, contact_size_static (m),
     /// mean_pressure_static (Pa), centroid_shift (m), gt_alpha. With
     /// --noise REL (a synthetic measurement): v, mu (noisy), sigma,
-    /// mu_exact, then the same columns from mu_low_speed on.
+    /// mu_exact, then the same columns from mu_low_speed on. When [sweep]
+    /// sets a temperature, a last column T (°C); a list of temperatures
+    /// (a synthetic temperature set) gives one block of rows per
+    /// temperature, in the listed order.
     Forward(commands::forward::Args),
     /// Recover the master curve E*(ω) from measured μ(v) (Persson 2010,
     /// Appendix B).

@@ -12,9 +12,11 @@
 
 use std::fmt;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use anyhow::{Context, Result, anyhow, bail, ensure};
 use rollfit_fit::{FitParams, Lambda, Method, RollingSetup, ScaleAnchor, StartMaterial, TermRule};
+use rollfit_model::modulus::FreeShift;
 use rollfit_model::{
     ContactSize, Geometry, HavriliakNegami, ModelError, Prony, Scene, Shape, Shifted,
     StandardLinearSolid, Substrate, TabulatedModulus, ViscoelasticModulus, Wlf,
@@ -35,9 +37,14 @@ pub const DEFAULT_SWEEP_COUNT: i64 = 61;
 /// that a typo cannot make the tool try to allocate exabytes.
 pub const MAX_SWEEP_COUNT: i64 = 1_000_000;
 
-const TEMPERATURE_WITHOUT_SHIFT: &str = "[sweep] temperature is set but [material] has no \
-     [material.shift]: without a time-temperature shift the material is known only at its \
-     reference temperature";
+/// The error of a `[sweep] temperature` without `[material.shift]`.
+fn temperature_without_shift(temperature: &SweepTemperature) -> String {
+    format!(
+        "[sweep] {} is set but [material] has no [material.shift]: without a \
+         time-temperature shift the material is known only at its reference temperature",
+        temperature.describe()
+    )
+}
 
 /// Default Poisson's ratio (incompressible rubber).
 pub const DEFAULT_POISSON: f64 = 0.5;
@@ -121,6 +128,109 @@ impl<'de> Deserialize<'de> for RealOrList {
             }
         }
         deserializer.deserialize_any(OneOrListVisitor)
+    }
+}
+
+/// `[sweep] temperature`, °C: one temperature, or a list of them (a
+/// synthetic temperature set, one block of rows per temperature).
+#[derive(Debug, Clone, PartialEq)]
+pub enum SweepTemperature {
+    /// `temperature = 20.0`.
+    One(f64),
+    /// `temperature = [-20.0, 0.0, ..]`, in the listed order.
+    List(Vec<f64>),
+}
+
+impl SweepTemperature {
+    /// The temperatures in order (one for [`SweepTemperature::One`]).
+    pub fn values(&self) -> &[f64] {
+        match self {
+            SweepTemperature::One(t) => std::slice::from_ref(t),
+            SweepTemperature::List(list) => list,
+        }
+    }
+
+    /// How messages name the `i`-th temperature: `temperature = 20` or
+    /// `temperature[i] = 20`.
+    pub fn entry(&self, i: usize) -> String {
+        match self {
+            SweepTemperature::One(t) => format!("temperature = {t}"),
+            SweepTemperature::List(list) => format!("temperature[{i}] = {}", list[i]),
+        }
+    }
+
+    /// The key as written, for messages: `temperature = 20` or
+    /// `temperature = [-20, 0, 20]`.
+    fn describe(&self) -> String {
+        match self {
+            SweepTemperature::One(t) => format!("temperature = {t}"),
+            SweepTemperature::List(list) => {
+                let listed: Vec<String> = list.iter().map(f64::to_string).collect();
+                format!("temperature = [{}]", listed.join(", "))
+            }
+        }
+    }
+
+    /// Checks what serde cannot see: a list names at least one temperature
+    /// and none twice (within the model's [`FreeShift::TEMPERATURE_TOLERANCE`],
+    /// the rule the fit uses to tell the temperatures of a set apart).
+    fn check(&self) -> Result<()> {
+        let SweepTemperature::List(list) = self else {
+            return Ok(());
+        };
+        ensure!(
+            !list.is_empty(),
+            "`temperature = []` lists no temperatures: give at least one (°C), e.g. \
+             temperature = [0.0, 20.0, 40.0], or leave the key out"
+        );
+        for (j, &t) in list.iter().enumerate() {
+            if let Some(i) = list[..j]
+                .iter()
+                .position(|&s| (s - t).abs() <= FreeShift::TEMPERATURE_TOLERANCE)
+            {
+                bail!(
+                    "temperature[{j}] = {t} repeats temperature[{i}] = {}: list each temperature once",
+                    list[i]
+                );
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<'de> Deserialize<'de> for SweepTemperature {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct TemperatureVisitor;
+        impl<'de> Visitor<'de> for TemperatureVisitor {
+            type Value = SweepTemperature;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a temperature in °C or an array of temperatures")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<SweepTemperature, E> {
+                finite(v).map(|r| SweepTemperature::One(r.0))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<SweepTemperature, E> {
+                Ok(SweepTemperature::One(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<SweepTemperature, E> {
+                Ok(SweepTemperature::One(v as f64))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<SweepTemperature, A::Error> {
+                let mut values = Vec::new();
+                // Real rejects nan and inf; the entry's index is added here,
+                // toml adds the line and column.
+                while let Some(Real(t)) = seq.next_element::<Real>().map_err(|e| {
+                    de::Error::custom(format!("[sweep] temperature[{}]: {e}", values.len()))
+                })? {
+                    values.push(t);
+                }
+                Ok(SweepTemperature::List(values))
+            }
+        }
+        deserializer.deserialize_any(TemperatureVisitor)
     }
 }
 
@@ -453,8 +563,9 @@ pub struct SweepSection {
     pub count: Option<i64>,
     /// Explicit speeds, m/s, instead of a range.
     pub v: Option<Vec<Real>>,
-    /// Temperature, °C; needs `[material.shift]`.
-    pub temperature: Option<Real>,
+    /// Temperature, °C, or a list of them (a temperature set); needs
+    /// `[material.shift]`.
+    pub temperature: Option<SweepTemperature>,
     /// Relative quadrature tolerance of μ (default 1e-6).
     pub tolerance: Option<Real>,
 }
@@ -468,14 +579,21 @@ pub struct ShiftApplied {
     pub log10_a_t: f64,
 }
 
-/// Everything `rollfit forward` needs, validated.
-pub struct ForwardSetup {
-    /// The scene, material already shifted to the sweep temperature.
+/// One sweep of `rollfit forward`: the scene at one temperature.
+pub struct ForwardBlock {
+    /// The scene, material already shifted to the block's temperature.
     pub scene: DynScene,
-    /// Strictly increasing speeds, m/s.
-    pub speeds: Vec<f64>,
     /// The temperature shift, if the sweep asked for a temperature.
     pub shift: Option<ShiftApplied>,
+}
+
+/// Everything `rollfit forward` needs, validated.
+pub struct ForwardSetup {
+    /// One block per `[sweep] temperature`, in the listed order; a single
+    /// block at the material's reference temperature without the key.
+    pub blocks: Vec<ForwardBlock>,
+    /// Strictly increasing speeds, m/s, the same in every block.
+    pub speeds: Vec<f64>,
 }
 
 /// Reads, parses and validates a scene file; every error names `path`.
@@ -502,9 +620,11 @@ pub fn parse(text: &str) -> Result<SceneFile> {
     }
     if let Some(sweep) = &file.sweep {
         sweep.speeds().context("[sweep]")?;
-        if sweep.temperature.is_some() && file.material.as_ref().is_some_and(|m| m.shift.is_none())
-        {
-            bail!(TEMPERATURE_WITHOUT_SHIFT);
+        if let Some(temperature) = &sweep.temperature {
+            temperature.check().context("[sweep]")?;
+            if file.material.as_ref().is_some_and(|m| m.shift.is_none()) {
+                bail!(temperature_without_shift(temperature));
+            }
         }
     }
     Ok(file)
@@ -524,42 +644,56 @@ impl SceneFile {
         let speeds = sweep.speeds().context("[sweep]")?;
 
         let base_dir = scene_path.parent().unwrap_or(Path::new(""));
-        let mut material = material_section.build(base_dir).context("[material]")?;
-        let mut shift = None;
-        if let Some(Real(temperature)) = sweep.temperature {
-            let section = material_section
-                .shift
-                .as_ref()
-                .context(TEMPERATURE_WITHOUT_SHIFT)?;
-            let log10_a_t = section.log10_shift(temperature).with_context(|| {
-                format!("[material.shift] at [sweep] temperature = {temperature} °C")
-            })?;
-            material = Box::new(
-                Shifted::new(material, log10_a_t).map_err(|e| anyhow!("[material.shift]: {e}"))?,
-            );
-            shift = Some(ShiftApplied {
-                temperature,
-                log10_a_t,
-            });
-        }
+        let material = material_section.build(base_dir).context("[material]")?;
+        let materials: Vec<(Box<dyn ViscoelasticModulus>, Option<ShiftApplied>)> =
+            match &sweep.temperature {
+                None => vec![(material, None)],
+                Some(temperatures) => {
+                    temperatures.check().context("[sweep]")?;
+                    let section = material_section
+                        .shift
+                        .as_ref()
+                        .with_context(|| temperature_without_shift(temperatures))?;
+                    // One reference modulus (a table is read once), shifted
+                    // to each temperature.
+                    let reference: Arc<dyn ViscoelasticModulus> = Arc::from(material);
+                    let mut materials = Vec::new();
+                    for (i, &temperature) in temperatures.values().iter().enumerate() {
+                        let log10_a_t = section.log10_shift(temperature).with_context(|| {
+                            format!("[material.shift] at [sweep] {} °C", temperatures.entry(i))
+                        })?;
+                        let shifted = Shifted::new(Arc::clone(&reference), log10_a_t)
+                            .map_err(|e| anyhow!("[material.shift]: {e}"))?;
+                        let applied = ShiftApplied {
+                            temperature,
+                            log10_a_t,
+                        };
+                        materials.push((
+                            Box::new(shifted) as Box<dyn ViscoelasticModulus>,
+                            Some(applied),
+                        ));
+                    }
+                    materials
+                }
+            };
 
         let RollingSetup {
             geometry,
             substrate,
             contact,
         } = self.rolling_setup();
-        let mut scene = Scene::new(geometry, substrate, contact, material)
-            .map_err(|e| anyhow!("{}{e}", section_of(&e)))?;
-        if let Some(Real(tolerance)) = sweep.tolerance {
-            scene = scene
-                .with_tolerance(tolerance)
-                .map_err(|e| anyhow!("[sweep]: {e}"))?;
+        let mut blocks = Vec::with_capacity(materials.len());
+        for (material, shift) in materials {
+            let mut scene = Scene::new(geometry, substrate, contact, material)
+                .map_err(|e| anyhow!("{}{e}", section_of(&e)))?;
+            if let Some(Real(tolerance)) = sweep.tolerance {
+                scene = scene
+                    .with_tolerance(tolerance)
+                    .map_err(|e| anyhow!("[sweep]: {e}"))?;
+            }
+            blocks.push(ForwardBlock { scene, shift });
         }
-        Ok(ForwardSetup {
-            scene,
-            speeds,
-            shift,
-        })
+        Ok(ForwardSetup { blocks, speeds })
     }
 }
 
@@ -1092,15 +1226,15 @@ count = 7
     #[test]
     fn defaults_fill_optional_sections() {
         let s = setup(SLS).unwrap();
-        assert_eq!(s.scene.substrate().poisson, 0.5);
-        assert_eq!(s.scene.substrate().film_thickness, None);
-        assert_eq!(s.scene.contact(), ContactSize::Dynamic);
+        assert_eq!(s.blocks[0].scene.substrate().poisson, 0.5);
+        assert_eq!(s.blocks[0].scene.substrate().film_thickness, None);
+        assert_eq!(s.blocks[0].scene.contact(), ContactSize::Dynamic);
         assert_eq!(s.speeds.len(), 7);
         assert_eq!(s.speeds[0], 1e-6);
         assert_eq!(s.speeds[6], 1.0);
         assert!((s.speeds[3] - 1e-3).abs() < 1e-15);
-        assert!(s.shift.is_none());
-        assert_eq!(s.scene.material().static_modulus(), 1e6);
+        assert!(s.blocks[0].shift.is_none());
+        assert_eq!(s.blocks[0].scene.material().static_modulus(), 1e6);
     }
 
     #[test]
@@ -1120,7 +1254,7 @@ count = 7
             );
         let s = setup(&text).unwrap();
         assert_eq!(s.speeds, vec![1e-3, 2e-3, 1.0]);
-        assert!((s.scene.material().static_modulus() - 1e6).abs() < 1e-6);
+        assert!((s.blocks[0].scene.material().static_modulus() - 1e6).abs() < 1e-6);
     }
 
     #[test]
@@ -1219,9 +1353,58 @@ count = 7
             "tau = 1\n[material.shift]\nmodel = \"wlf\"\nT_ref = 20.0\nC1 = 8.86\nC2 = 101.6\n",
         ) + "temperature = 40.0\n";
         let s = setup(&text).unwrap();
-        let shift = s.shift.unwrap();
+        let shift = s.blocks[0].shift.unwrap();
         let expected = -8.86 * 20.0 / (101.6 + 20.0);
         assert!((shift.log10_a_t - expected).abs() < 1e-12);
+    }
+
+    #[test]
+    fn temperature_list_gives_one_block_per_temperature() {
+        let text = SLS.replace(
+            "tau = 1\n",
+            "tau = 1\n[material.shift]\nmodel = \"wlf\"\nT_ref = 20.0\nC1 = 8.86\nC2 = 101.6\n",
+        );
+        let wlf = |t: f64| -8.86 * (t - 20.0) / (101.6 + t - 20.0);
+        let s = setup(&format!("{text}temperature = [40.0, -20, 20.0]\n")).unwrap();
+        assert_eq!(s.speeds.len(), 7);
+        let shifts: Vec<ShiftApplied> = s.blocks.iter().map(|b| b.shift.unwrap()).collect();
+        assert_eq!(
+            shifts.iter().map(|s| s.temperature).collect::<Vec<_>>(),
+            vec![40.0, -20.0, 20.0]
+        );
+        for shift in &shifts {
+            assert!((shift.log10_a_t - wlf(shift.temperature)).abs() < 1e-12);
+        }
+        // The same shift as the single-temperature form.
+        let one = setup(&format!("{text}temperature = -20.0\n")).unwrap();
+        assert_eq!(one.blocks.len(), 1);
+        assert_eq!(one.blocks[0].shift, Some(shifts[1]));
+
+        let err = |list: &str| {
+            format!(
+                "{:#}",
+                parse(&format!("{text}temperature = {list}\n")).unwrap_err()
+            )
+        };
+        assert!(err("[]").contains("[sweep]: `temperature = []`"));
+        let m = err("[1.0, 2.0, 1.0]");
+        assert!(
+            m.contains("temperature[2] = 1 repeats temperature[0] = 1"),
+            "{m}"
+        );
+        let m = err("[1.0, inf]");
+        assert!(
+            m.contains("[sweep] temperature[1]") && m.contains("finite"),
+            "{m}"
+        );
+        let m = format!(
+            "{:#}",
+            parse(&format!("{SLS}temperature = [1.0]\n")).unwrap_err()
+        );
+        assert!(
+            m.contains("[sweep] temperature = [1]") && m.contains("[material.shift]"),
+            "{m}"
+        );
     }
 
     const FREE_SHIFT: &str = "tau = 1\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
@@ -1231,7 +1414,8 @@ count = 7
     fn free_shift_follows_the_model_rule() {
         let text = SLS.replace("tau = 1\n", FREE_SHIFT);
         let shift_at = |t: f64| {
-            setup(&format!("{text}temperature = {t:?}\n")).map(|s| s.shift.unwrap().log10_a_t)
+            setup(&format!("{text}temperature = {t:?}\n"))
+                .map(|s| s.blocks[0].shift.unwrap().log10_a_t)
         };
         let model =
             rollfit_model::modulus::FreeShift::new(20.0, vec![(60.0, -3.0), (0.0, 2.0)]).unwrap();
@@ -1295,12 +1479,12 @@ count = 7
             "model = \"havriliak-negami\"\nE0 = 1e6\nE1 = 1e9\ntau = 1e-3\nalpha = 0.5\nbeta = 0.4";
         let text = SLS.replace("model = \"sls\"\nE0 = 1e6\nE1 = 1e7\ntau = 1", hn);
         let s = setup(&text).unwrap();
-        assert_eq!(s.scene.material().static_modulus(), 1e6);
-        assert_eq!(s.scene.material().loss_exponent_at_zero(), 0.5);
+        assert_eq!(s.blocks[0].scene.material().static_modulus(), 1e6);
+        assert_eq!(s.blocks[0].scene.material().loss_exponent_at_zero(), 0.5);
         let alias = setup(&text.replace("\"havriliak-negami\"", "\"hn\"")).unwrap();
         assert_eq!(
-            alias.scene.material().modulus(3.0),
-            s.scene.material().modulus(3.0)
+            alias.blocks[0].scene.material().modulus(3.0),
+            s.blocks[0].scene.material().modulus(3.0)
         );
         let err = format!(
             "{:#}",

@@ -2,12 +2,21 @@
 //! of a scene over its `[sweep]` of speeds, optionally as a synthetic
 //! measurement with multiplicative Gaussian noise.
 //!
+//! Temperatures: `[sweep] temperature = T` evaluates the material shifted to
+//! T (°C); a list, `temperature = [T1, T2, ..]`, makes a synthetic
+//! temperature set: one block of rows per temperature, in the listed order,
+//! each the full speed sweep at that temperature. Whenever `temperature` is
+//! set, a column `T` (°C) is added as the last column.
+//!
 //! Noise: each μ_i is multiplied by (1 + REL·z_i), z_i independent standard
 //! normal deviates, and reported with its standard deviation
-//! σ_i = REL·μ_exact,i. The deviates come from ChaCha8 seeded with
-//! `seed_from_u64(N)` (rand_chacha) through rand_distr's `StandardNormal`,
-//! drawn in sweep order: a seed names one fixed data set, the same on every
-//! machine for the versions pinned in Cargo.lock.
+//! σ_i = REL·μ_exact,i. The deviates come from one ChaCha8 stream seeded
+//! with `seed_from_u64(N)` (rand_chacha) through rand_distr's
+//! `StandardNormal`, drawn in row order over the whole file (for a
+//! temperature set: the first temperature's sweep, then the next one's, ..):
+//! a seed names one fixed data set, the same on every machine for the
+//! versions pinned in Cargo.lock. The first block of a set therefore has the
+//! noise of the single-temperature file with the same seed.
 
 use std::path::PathBuf;
 
@@ -18,7 +27,7 @@ use rand_distr::{Distribution, StandardNormal};
 use rollfit_model::Shape;
 
 use crate::output;
-use crate::scene_file::{self, DynScene, ForwardSetup};
+use crate::scene_file::{self, DynScene, ForwardBlock, ForwardSetup};
 
 /// CSV columns, in order (DESIGN.md §4 fixes `v` and `mu`; the rest is ours):
 /// speed v (m/s); friction coefficient μ; its low-speed asymptote (Eqs.
@@ -49,6 +58,11 @@ pub const NOISY_COLUMNS: [&str; 9] = [
     "centroid_shift",
     "gt_alpha",
 ];
+
+/// The column added last, after [`COLUMNS`] or [`NOISY_COLUMNS`], when
+/// `[sweep]` sets a temperature: the temperature of the row, °C (the name
+/// the fit's data reader takes a temperature set from).
+pub const TEMPERATURE_COLUMN: &str = "T";
 
 /// Arguments of `rollfit forward`.
 #[derive(Debug, clap::Args)]
@@ -97,8 +111,8 @@ pub fn add_noise(mu: &[f64], rel: f64, seed: u64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Runs the command: reads the scene, computes μ(v), writes the CSV and a
-/// one-line summary on stderr.
+/// Runs the command: reads the scene, computes μ(v) (at each temperature),
+/// writes the CSV and a one-line summary on stderr.
 pub fn run(args: &Args) -> Result<()> {
     let path = &args.scene;
     if let Some(out) = &args.output {
@@ -109,17 +123,37 @@ pub fn run(args: &Args) -> Result<()> {
     let setup = file
         .forward_setup(path)
         .with_context(|| format!("scene file {}", path.display()))?;
+    // μ of each block, in row order.
     let mu = setup
-        .scene
-        .friction_sweep(&setup.speeds)
-        .map_err(anyhow::Error::msg)
-        .with_context(|| format!("computing μ(v) for scene file {}", path.display()))?;
+        .blocks
+        .iter()
+        .map(|block| {
+            block
+                .scene
+                .friction_sweep(&setup.speeds)
+                .map_err(anyhow::Error::msg)
+                .with_context(|| {
+                    let at = block
+                        .shift
+                        .map(|s| format!(" at T = {} °C", s.temperature))
+                        .unwrap_or_default();
+                    format!("computing μ(v){at} for scene file {}", path.display())
+                })
+        })
+        .collect::<Result<Vec<_>>>()?;
 
-    let rows = rows(&setup.scene, &setup.speeds, &mu);
+    let with_temperature = setup.blocks.iter().any(|b| b.shift.is_some());
+    let rows = setup
+        .blocks
+        .iter()
+        .zip(&mu)
+        .flat_map(|(block, mu)| rows(block, &setup.speeds, mu));
     let bytes = match args.noise {
-        None => output::csv_bytes(&COLUMNS, rows)?,
+        None => output::csv_bytes(&header(&COLUMNS, with_temperature), rows)?,
         Some(rel) => {
-            let noisy = add_noise(&mu, rel, args.seed.unwrap_or(0));
+            // One stream over the whole file, in row order.
+            let exact: Vec<f64> = mu.iter().flatten().copied().collect();
+            let noisy = add_noise(&exact, rel, args.seed.unwrap_or(0));
             let negative = noisy.iter().filter(|(m, _)| *m <= 0.0).count();
             if negative > 0 {
                 // Kept, not clipped: clipping would bias the data set; a
@@ -131,11 +165,11 @@ pub fn run(args: &Args) -> Result<()> {
                 );
             }
             let rows = rows.zip(noisy).map(|(mut row, (m, sigma))| {
-                // [v, mu_exact, rest..] → [v, mu, sigma, mu_exact, rest..]
+                // [v, mu_exact, rest.., (T)] → [v, mu, sigma, mu_exact, rest.., (T)]
                 row.splice(1..1, [m, sigma]);
                 row
             });
-            output::csv_bytes(&NOISY_COLUMNS, rows)?
+            output::csv_bytes(&header(&NOISY_COLUMNS, with_temperature), rows)?
         }
     };
     match &args.output {
@@ -146,15 +180,28 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// `columns`, then [`TEMPERATURE_COLUMN`] if the rows carry a temperature.
+fn header(columns: &[&'static str], with_temperature: bool) -> Vec<&'static str> {
+    let mut header = columns.to_vec();
+    if with_temperature {
+        header.push(TEMPERATURE_COLUMN);
+    }
+    header
+}
+
+/// The rows of one block: the columns of [`COLUMNS`], then the block's
+/// temperature if it has one.
 fn rows<'a>(
-    scene: &'a DynScene,
+    block: &'a ForwardBlock,
     speeds: &'a [f64],
     mu: &'a [f64],
 ) -> impl Iterator<Item = Vec<f64>> + 'a {
+    let scene = &block.scene;
     let contact_size = scene.static_contact_size();
     let pressure = scene.static_mean_pressure();
+    let temperature = block.shift.map(|s| s.temperature);
     speeds.iter().zip(mu).map(move |(&v, &mu)| {
-        vec![
+        let mut row = vec![
             v,
             mu,
             scene.low_speed_asymptote(v),
@@ -162,33 +209,70 @@ fn rows<'a>(
             pressure,
             scene.centroid_shift(mu),
             scene.greenwood_tabor_alpha(mu),
-        ]
+        ];
+        row.extend(temperature);
+        row
     })
 }
 
-/// One line for a person at a terminal: the scene's static contact and, when
-/// the sweep brackets one, the friction maximum.
-fn summary(setup: &ForwardSetup, mu: &[f64]) -> String {
-    let scene = &setup.scene;
-    let g = scene.geometry();
+/// One line for a person at a terminal: the scene's static contact (the
+/// same at every temperature: a shift leaves the static modulus alone), the
+/// temperatures and, where the sweep brackets one, the friction maximum at
+/// each.
+fn summary(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
+    let first = &setup.blocks[0].scene;
+    let g = first.geometry();
     let (shape, load_unit, size_name) = match g.shape {
         Shape::Sphere => ("sphere", "N", "r0"),
         Shape::Cylinder => ("cylinder", "N/m", "a0"),
     };
     let speeds = &setup.speeds;
     let mut line = format!("{shape} R = {} m, load {} {load_unit}", g.radius, g.load);
-    if let Some(shift) = setup.shift {
-        line += &format!(
-            ", T = {} °C (log10 a_T = {:.4})",
-            shift.temperature, shift.log10_a_t
-        );
+    let shifts: Vec<_> = setup.blocks.iter().filter_map(|b| b.shift).collect();
+    match shifts.as_slice() {
+        [] => {}
+        [shift] => {
+            line += &format!(
+                ", T = {} °C (log10 a_T = {:.4})",
+                shift.temperature,
+                // + 0.0: WLF gives −0 at T_ref, which would print as "-0.0000".
+                shift.log10_a_t + 0.0
+            );
+        }
+        many => {
+            let list = |f: &dyn Fn(&scene_file::ShiftApplied) -> String| {
+                many.iter().map(f).collect::<Vec<_>>().join(", ")
+            };
+            line += &format!(
+                ", temperature set of {} temperatures T = {} °C (log10 a_T = {}), {} speeds \
+                 each, {} rows",
+                many.len(),
+                list(&|s| s.temperature.to_string()),
+                list(&|s| format!("{:.4}", s.log10_a_t + 0.0)),
+                speeds.len(),
+                many.len() * speeds.len()
+            );
+        }
     }
     line += &format!(
         ": static contact {size_name} = {:.4e} m, mean pressure p_a = {:.4e} Pa; ",
-        scene.static_contact_size(),
-        scene.static_mean_pressure()
+        first.static_contact_size(),
+        first.static_mean_pressure()
     );
-    line += &peak_description(scene, speeds, mu);
+    if let [block] = setup.blocks.as_slice() {
+        line += &peak_description(&block.scene, speeds, &mu[0]);
+    } else {
+        let peaks: Vec<String> = setup
+            .blocks
+            .iter()
+            .zip(mu)
+            .map(|(block, mu)| {
+                let t = block.shift.map_or(f64::NAN, |s| s.temperature);
+                format!("at {t} °C {}", peak_description(&block.scene, speeds, mu))
+            })
+            .collect();
+        line += &peaks.join("; ");
+    }
     line
 }
 
