@@ -220,6 +220,80 @@ fn fits_a_synthetic_measurement_with_a_static_modulus_anchor() {
     assert_eq!(names, ["fit.json", "modulus.csv", "mu.csv"]);
 }
 
+/// The bundled temperature set (data/hn-rubber-tset.*, five temperatures,
+/// WLF truth C1 = 8.86, C2 = 101.6 K at 20 °C): fit.json carries the shift
+/// and its cross-check, mu.csv the reduced speeds.
+#[test]
+fn fits_the_bundled_temperature_set() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let dir = TempDir::new("fit-tset");
+    let out = dir.path().join("out");
+    let stderr = fit_ok(
+        &root.join("data/hn-rubber-tset.toml"),
+        &root.join("data/hn-rubber-tset.csv"),
+        &out,
+        &[],
+    );
+    assert!(stderr.contains("shift WLF at T_ref = 20 °C"), "{stderr}");
+    assert!(stderr.contains("cross-check"), "{stderr}");
+    let report = json(&out.join("fit.json"));
+    let shift = &report["shift"];
+    assert_eq!(shift["model"], "wlf");
+    assert_eq!(shift["T_ref"], 20.0);
+    let c1 = shift["C1"].as_f64().unwrap();
+    let c2 = shift["C2"].as_f64().unwrap();
+    assert!((c1 / 8.86 - 1.0).abs() < 0.05, "C1 {c1}");
+    assert!((c2 / 101.6 - 1.0).abs() < 0.05, "C2 {c2}");
+    assert_eq!(shift["log_aT"].as_array().unwrap().len(), 5);
+    let check = &report["shift_cross_check"];
+    assert_eq!(check["temperatures"].as_array().unwrap().len(), 5);
+    assert!(check["max_difference"].as_f64().unwrap() < 0.1);
+    let mu = Table::read(&out.join("mu.csv"));
+    let (v, t, log_a, reduced) = (
+        mu.column("v"),
+        mu.column("T"),
+        mu.column("log_aT"),
+        mu.column("v_reduced"),
+    );
+    assert_eq!(v.len(), 205);
+    for i in 0..v.len() {
+        assert!((reduced[i] / (v[i] * 10f64.powf(log_a[i])) - 1.0).abs() < 1e-12);
+        let truth = -8.86 * (t[i] - 20.0) / (101.6 + t[i] - 20.0);
+        assert!((log_a[i] - truth).abs() < 0.1);
+    }
+    // The window covers the combined, shifted range (~16 decades).
+    let w = &report["window"];
+    let span = (w["omega_max"].as_f64().unwrap() / w["omega_min"].as_f64().unwrap()).log10();
+    assert!(span > 15.0, "{span}");
+}
+
+/// A free shift must be tied to a measured temperature.
+#[test]
+fn free_shift_at_an_unmeasured_reference_is_refused() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let scene = fs::read_to_string(root.join("data/hn-rubber-tset.toml")).unwrap();
+    let scene = edit(&scene, "shift = \"wlf\"", "shift = \"free\"");
+    let scene = edit(&scene, "T_ref = 20.0", "T_ref = 25.0");
+    let dir = TempDir::new("fit-tset-free");
+    let scene_path = dir.write("bad-scene.toml", &scene);
+    let out = dir.path().join("out");
+    let output = fit(
+        &scene_path,
+        &root.join("data/hn-rubber-tset.csv"),
+        &out,
+        &[],
+    );
+    assert_failure(
+        &output,
+        &[
+            "bad-scene.toml",
+            "T_ref",
+            "25 °C is not one of the measured temperatures",
+        ],
+    );
+    assert!(!out.exists());
+}
+
 #[test]
 fn default_output_folder_is_fits_and_the_data_stem() {
     let dir = TempDir::new("default-out");
