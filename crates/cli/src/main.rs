@@ -5,6 +5,7 @@
 mod commands;
 mod csv_columns;
 mod data_file;
+mod manifest;
 mod output;
 mod scene_file;
 mod table_file;
@@ -46,6 +47,20 @@ enum Command {
     /// DIR/mu.csv (v, mu_measured, mu_fit, [sigma], residual). Exits
     /// non-zero if the fit did not converge, unless --allow-unconverged.
     Fit(commands::fit::Args),
+    /// Run many fits in parallel: one per entry of a manifest.
+    ///
+    /// The manifest (TOML) lists [[entry]] tables with a name, a scene and a
+    /// data file (paths relative to the manifest's folder) and optional
+    /// settings (method, lambda, seed, starts, terms; defaults in
+    /// [defaults]). Each entry writes what `rollfit fit` writes to
+    /// DIR/<name>/; DIR/summary.csv has one row per entry (entry, status,
+    /// objective, misfit_per_point, omega_min, omega_max, wall_time_s,
+    /// converged, C1, C2, message). Entries with an existing
+    /// DIR/<name>/fit.json are skipped unless --force, so running the same
+    /// command again resumes a batch; --shard i/n spreads it over machines.
+    /// Exits non-zero if an entry failed or did not converge (unless
+    /// --allow-unconverged).
+    Batch(commands::batch::Args),
 }
 
 fn main() -> ExitCode {
@@ -53,6 +68,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Forward(args) => commands::forward::run(args),
         Command::Fit(args) => commands::fit::run(args),
+        Command::Batch(args) => commands::batch::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

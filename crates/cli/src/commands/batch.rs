@@ -1,0 +1,543 @@
+//! `rollfit batch MANIFEST.toml [-o DIR]`: many independent fits, in
+//! parallel (DESIGN.md §4).
+//!
+//! Each manifest entry (see [`crate::manifest`]) is one `rollfit fit` of a
+//! scene and a data file into DIR/<entry name>/ — the same files, made by
+//! the same [`fit_files`]. The entries run on a local rayon pool
+//! (`--jobs`); a failing entry is reported and does not stop the others.
+//! An entry whose DIR/<name>/fit.json exists is skipped (fit_files writes
+//! fit.json last and atomically, so it marks a complete result) unless
+//! `--force`: running the same command again resumes an interrupted batch,
+//! and `--shard i/n` spreads one batch over several processes or machines
+//! that share DIR. DIR/summary.csv (DIR/summary-<i>-of-<n>.csv for a
+//! shard) has one row per entry run, in manifest order.
+//!
+//! Settings, from strongest to weakest: the entry's own keys, the command
+//! line's flags, the manifest's `[defaults]`, the scene's `[fit]` table.
+
+use std::fmt::Write as _;
+use std::io::IsTerminal;
+use std::panic::{self, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use anyhow::{Context, Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use rollfit_fit::FitError;
+use serde_json::Value;
+
+use crate::commands::fit::{Job, Settings, fit_files};
+use crate::manifest::{self, Entry};
+use crate::output;
+
+/// Columns of summary.csv.
+pub const SUMMARY_COLUMNS: [&str; 11] = [
+    "entry",
+    "status",
+    "objective",
+    "misfit_per_point",
+    "omega_min",
+    "omega_max",
+    "wall_time_s",
+    "converged",
+    "C1",
+    "C2",
+    "message",
+];
+
+/// Arguments of `rollfit batch`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Manifest (TOML): optional [defaults] (method, lambda, seed, starts,
+    /// terms) and one [[entry]] per fit with name, scene and data (paths
+    /// relative to the manifest's folder) and optional settings.
+    pub manifest: PathBuf,
+    /// Folder for the results: DIR/<entry name>/ per entry and
+    /// DIR/summary.csv. Default: fits/<MANIFEST file stem>.
+    #[arg(short, long, value_name = "DIR")]
+    pub output: Option<PathBuf>,
+    /// Overrides of every entry's scene [fit] and the manifest's
+    /// [defaults]; an entry's own settings override these.
+    #[command(flatten)]
+    pub settings: Settings,
+    /// Refit entries whose result (DIR/<name>/fit.json) exists; by default
+    /// they are skipped, so that running the same command again resumes an
+    /// interrupted batch.
+    #[arg(long)]
+    pub force: bool,
+    /// Exit with status 0 even when some fits did not converge.
+    #[arg(long)]
+    pub allow_unconverged: bool,
+    /// Run only shard i of n (0 ≤ i < n): the entries whose position in the
+    /// manifest, counting from 0, is i modulo n. The summary is then
+    /// DIR/summary-<i>-of-<n>.csv.
+    #[arg(long, value_name = "i/n", value_parser = parse_shard, allow_hyphen_values = true)]
+    pub shard: Option<Shard>,
+    /// Number of fits run at the same time (threads). Default: all cores.
+    #[arg(short, long, value_name = "N", value_parser = parse_jobs)]
+    pub jobs: Option<usize>,
+}
+
+/// `--shard i/n`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, 0 ≤ index < count.
+    pub index: usize,
+    /// Number of shards.
+    pub count: usize,
+}
+
+impl Shard {
+    fn holds(self, entry: &Entry) -> bool {
+        entry.index % self.count == self.index
+    }
+}
+
+fn parse_shard(text: &str) -> Result<Shard, String> {
+    let usage = || {
+        format!(
+            "expected i/n with whole numbers 0 ≤ i < n (e.g. 0/4 … 3/4), got {:?}",
+            text
+        )
+    };
+    let (i, n) = text.trim().split_once('/').ok_or_else(usage)?;
+    let index: usize = i.trim().parse().map_err(|_| usage())?;
+    let count: usize = n.trim().parse().map_err(|_| usage())?;
+    if count == 0 {
+        return Err(format!(
+            "{text:?}: the number of shards n must be at least 1"
+        ));
+    }
+    if index >= count {
+        return Err(format!(
+            "{text:?}: shards count from 0, so i must be below n = {count} (0/{count} … {}/{count})",
+            count - 1
+        ));
+    }
+    Ok(Shard { index, count })
+}
+
+fn parse_jobs(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!(
+            "expected a whole number of threads ≥ 1, got {text:?}"
+        )),
+    }
+}
+
+/// The default output folder: fits/<MANIFEST file stem>.
+pub fn default_output(manifest: &Path) -> Result<PathBuf> {
+    let stem = manifest
+        .file_stem()
+        .with_context(|| format!("manifest {} has no file name", manifest.display()))?;
+    Ok(Path::new("fits").join(stem))
+}
+
+/// The summary's file name.
+fn summary_name(shard: Option<Shard>) -> String {
+    match shard {
+        None => "summary.csv".into(),
+        Some(s) => format!("summary-{}-of-{}.csv", s.index, s.count),
+    }
+}
+
+/// How an entry ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Status {
+    Ok,
+    Unconverged,
+    Failed,
+    Skipped,
+}
+
+impl Status {
+    fn name(self) -> &'static str {
+        match self {
+            Status::Ok => "ok",
+            Status::Unconverged => "unconverged",
+            Status::Failed => "failed",
+            Status::Skipped => "skipped",
+        }
+    }
+}
+
+/// One row of the summary.
+#[derive(Debug, Clone)]
+struct EntryResult {
+    name: String,
+    status: Status,
+    objective: Option<f64>,
+    misfit_per_point: Option<f64>,
+    omega_min: Option<f64>,
+    omega_max: Option<f64>,
+    wall_time_s: Option<f64>,
+    converged: Option<bool>,
+    wlf: Option<(f64, f64)>,
+    message: String,
+}
+
+impl EntryResult {
+    fn failed(entry: &Entry, message: String) -> Self {
+        EntryResult {
+            name: entry.name.clone(),
+            status: Status::Failed,
+            objective: None,
+            misfit_per_point: None,
+            omega_min: None,
+            omega_max: None,
+            wall_time_s: None,
+            converged: None,
+            wlf: None,
+            message,
+        }
+    }
+
+    /// Counts against the exit status as not converged (a kept result that
+    /// did not converge counts too: the batch's status covers every entry).
+    fn unconverged(&self) -> bool {
+        self.converged == Some(false)
+    }
+
+    /// One line for the log.
+    fn line(&self) -> String {
+        let mut line = format!("{}: {}", self.name, self.status.name());
+        let mut details = Vec::new();
+        if let Some(m) = self.misfit_per_point {
+            details.push(format!("misfit per point {m:.4}"));
+        }
+        if let Some(t) = self.wall_time_s
+            && self.status != Status::Skipped
+        {
+            details.push(format!("{t:.2} s"));
+        }
+        if !details.is_empty() {
+            let _ = write!(line, " ({})", details.join(", "));
+        }
+        if !self.message.is_empty() {
+            let _ = write!(line, " — {}", self.message);
+        }
+        line
+    }
+}
+
+/// Runs the command.
+pub fn run(args: &Args) -> Result<()> {
+    // Everything is checked before the first fit starts.
+    manifest::check_settings(&args.settings).map_err(|e| match &e {
+        FitError::InvalidSetting { key, .. } => anyhow::anyhow!("command line: --{key}: {e}"),
+        _ => anyhow::anyhow!("command line: {e}"),
+    })?;
+    let manifest = manifest::load(&args.manifest)?;
+    let dir = match &args.output {
+        Some(dir) => dir.clone(),
+        None => default_output(&args.manifest)?,
+    };
+    if dir.exists() && !dir.is_dir() {
+        bail!(
+            "output {} exists and is not a folder; give a folder for the batch's results",
+            dir.display()
+        );
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.jobs.unwrap_or(0))
+        .thread_name(|i| format!("rollfit-batch-{i}"))
+        .build()
+        .context("cannot start the worker threads")?;
+
+    let selected: Vec<&Entry> = manifest
+        .entries
+        .iter()
+        .filter(|e| args.shard.is_none_or(|s| s.holds(e)))
+        .collect();
+    let shard_note = match args.shard {
+        Some(s) => format!(" (shard {}/{})", s.index, s.count),
+        None => String::new(),
+    };
+    eprintln!(
+        "batch {}: {} of {} entries{shard_note} on {} thread(s); results in {}",
+        args.manifest.display(),
+        selected.len(),
+        manifest.entries.len(),
+        pool.current_num_threads(),
+        dir.display()
+    );
+
+    let progress = Progress::new(selected.len());
+    let results: Vec<EntryResult> = pool.install(|| {
+        selected
+            .par_iter()
+            .with_max_len(1)
+            .map(|entry| {
+                let settings = manifest::layered(
+                    &entry.settings,
+                    &manifest::layered(&args.settings, &manifest.defaults),
+                );
+                let result = run_entry(entry, &dir, &settings, args.force);
+                progress.finished(&result);
+                result
+            })
+            .collect()
+    });
+    progress.finish();
+
+    let summary = dir.join(summary_name(args.shard));
+    output::write_atomically(&summary, &summary_csv(&results)?)?;
+    let count = |status: Status| results.iter().filter(|r| r.status == status).count();
+    eprintln!(
+        "wrote {}: {} ok, {} unconverged, {} failed, {} skipped",
+        summary.display(),
+        count(Status::Ok),
+        count(Status::Unconverged),
+        count(Status::Failed),
+        count(Status::Skipped)
+    );
+
+    let names = |pick: &dyn Fn(&EntryResult) -> bool| {
+        results
+            .iter()
+            .filter(|r| pick(r))
+            .map(|r| r.name.as_str())
+            .collect::<Vec<_>>()
+    };
+    let failed = names(&|r| r.status == Status::Failed);
+    let unconverged = names(&|r| r.unconverged());
+    if !unconverged.is_empty() && args.allow_unconverged {
+        eprintln!(
+            "warning: {} fit(s) did not converge ({}); accepted because of --allow-unconverged",
+            unconverged.len(),
+            unconverged.join(", ")
+        );
+    }
+    let mut problems = Vec::new();
+    if !failed.is_empty() {
+        problems.push(format!(
+            "{} of {} entries failed ({})",
+            failed.len(),
+            results.len(),
+            failed.join(", ")
+        ));
+    }
+    if !unconverged.is_empty() && !args.allow_unconverged {
+        problems.push(format!(
+            "{} fit(s) did not converge ({}); their results are kept, marked \"converged\": \
+             false (give --allow-unconverged to accept them)",
+            unconverged.len(),
+            unconverged.join(", ")
+        ));
+    }
+    if !problems.is_empty() {
+        bail!("{}; see {}", problems.join("; "), summary.display());
+    }
+    Ok(())
+}
+
+/// Runs (or skips) one entry; every error and panic becomes a failed row.
+fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> EntryResult {
+    let folder = dir.join(&entry.name);
+    let existing = folder.join("fit.json");
+    if existing.is_file() {
+        if !force {
+            return skipped(entry, &existing);
+        }
+        // Without its fit.json the folder reads as unfinished until the
+        // refit completes, also if the refit fails.
+        if let Err(e) = std::fs::remove_file(&existing) {
+            return EntryResult::failed(
+                entry,
+                format!("cannot remove the old {}: {e}", existing.display()),
+            );
+        }
+    }
+    let job = Job {
+        scene: &entry.scene,
+        data: &entry.data,
+        dir: &folder,
+        settings,
+    };
+    match panic::catch_unwind(AssertUnwindSafe(|| fit_files(&job, |_| {}))) {
+        Ok(Ok(outcome)) => {
+            let report = &outcome.report;
+            let (status, mut message) = if report.converged {
+                (Status::Ok, String::new())
+            } else {
+                (
+                    Status::Unconverged,
+                    format!("did not converge: {}", report.stop_reason),
+                )
+            };
+            for warning in &report.warnings {
+                if !message.is_empty() {
+                    message += "; ";
+                }
+                message += &format!("warning: {warning}");
+            }
+            EntryResult {
+                name: entry.name.clone(),
+                status,
+                objective: Some(report.objective),
+                misfit_per_point: Some(report.misfit_per_point),
+                omega_min: Some(report.window.omega_min),
+                omega_max: Some(report.window.omega_max),
+                wall_time_s: Some(report.wall_time_s),
+                converged: Some(report.converged),
+                wlf: report.shift.as_ref().and_then(|s| s.wlf_constants()),
+                message,
+            }
+        }
+        Ok(Err(error)) => EntryResult::failed(entry, format!("{error:#}")),
+        Err(payload) => {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown cause".into());
+            EntryResult::failed(
+                entry,
+                format!("internal error: the fit panicked ({what}); please report it"),
+            )
+        }
+    }
+}
+
+/// The row of an entry whose result exists, from its fit.json.
+fn skipped(entry: &Entry, path: &Path) -> EntryResult {
+    let report: Value = match std::fs::read(path)
+        .map_err(|e| e.to_string())
+        .and_then(|bytes| serde_json::from_slice(&bytes).map_err(|e| e.to_string()))
+    {
+        Ok(value) => value,
+        Err(e) => {
+            return EntryResult::failed(
+                entry,
+                format!(
+                    "cannot read the existing result {}: {e} (remove it or give --force to refit)",
+                    path.display()
+                ),
+            );
+        }
+    };
+    let number = |v: &Value| v.as_f64();
+    let converged = report["converged"].as_bool();
+    let mut message = String::from("existing result kept (--force refits)");
+    if converged == Some(false) {
+        let reason = report["stop_reason"].as_str().unwrap_or("no reason given");
+        message += &format!("; it did not converge: {reason}");
+    }
+    EntryResult {
+        name: entry.name.clone(),
+        status: Status::Skipped,
+        objective: number(&report["objective"]),
+        misfit_per_point: number(&report["misfit_per_point"]),
+        omega_min: number(&report["window"]["omega_min"]),
+        omega_max: number(&report["window"]["omega_max"]),
+        wall_time_s: number(&report["wall_time_s"]),
+        converged,
+        wlf: number(&report["shift"]["C1"]).zip(number(&report["shift"]["C2"])),
+        message,
+    }
+}
+
+fn summary_csv(results: &[EntryResult]) -> Result<Vec<u8>> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(SUMMARY_COLUMNS)?;
+    let cell = |x: Option<f64>| x.map(output::number).unwrap_or_default();
+    for r in results {
+        writer.write_record([
+            r.name.clone(),
+            r.status.name().to_string(),
+            cell(r.objective),
+            cell(r.misfit_per_point),
+            cell(r.omega_min),
+            cell(r.omega_max),
+            cell(r.wall_time_s),
+            r.converged.map(|c| c.to_string()).unwrap_or_default(),
+            cell(r.wlf.map(|w| w.0)),
+            cell(r.wlf.map(|w| w.1)),
+            r.message.clone(),
+        ])?;
+    }
+    writer.into_inner().context("cannot finish the summary CSV")
+}
+
+/// Progress on stderr: a bar at a terminal, else one line per finished
+/// entry.
+enum Progress {
+    Bar(ProgressBar),
+    Lines { done: AtomicUsize, total: usize },
+}
+
+impl Progress {
+    fn new(total: usize) -> Self {
+        if std::io::stderr().is_terminal() && total > 0 {
+            let bar = ProgressBar::new(total as u64);
+            if let Ok(style) = ProgressStyle::with_template(
+                "{bar:30} {pos}/{len} fits, {elapsed} elapsed, about {eta} left  {wide_msg}",
+            ) {
+                bar.set_style(style);
+            }
+            bar.enable_steady_tick(std::time::Duration::from_millis(500));
+            Progress::Bar(bar)
+        } else {
+            Progress::Lines {
+                done: AtomicUsize::new(0),
+                total,
+            }
+        }
+    }
+
+    fn finished(&self, result: &EntryResult) {
+        match self {
+            Progress::Bar(bar) => {
+                if matches!(result.status, Status::Failed | Status::Unconverged) {
+                    bar.println(result.line());
+                }
+                bar.set_message(format!("{}: {}", result.name, result.status.name()));
+                bar.inc(1);
+            }
+            Progress::Lines { done, total } => {
+                let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+                eprintln!("[{k}/{total}] {}", result.line());
+            }
+        }
+    }
+
+    fn finish(&self) {
+        if let Progress::Bar(bar) = self {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shard_forms() {
+        assert_eq!(parse_shard("0/1"), Ok(Shard { index: 0, count: 1 }));
+        assert_eq!(parse_shard("3/4"), Ok(Shard { index: 3, count: 4 }));
+        assert_eq!(parse_shard(" 1 / 2 "), Ok(Shard { index: 1, count: 2 }));
+        for bad in [
+            "4/4", "a/2", "1/0", "0/0", "-1/2", "1", "", "1/2/3", "1.0/2",
+        ] {
+            assert!(parse_shard(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn jobs_and_names() {
+        assert_eq!(parse_jobs("2"), Ok(2));
+        assert!(parse_jobs("0").is_err() && parse_jobs("x").is_err());
+        assert_eq!(summary_name(None), "summary.csv");
+        assert_eq!(
+            summary_name(Some(Shard { index: 1, count: 4 })),
+            "summary-1-of-4.csv"
+        );
+        assert_eq!(
+            default_output(Path::new("data/example-batch.toml")).unwrap(),
+            Path::new("fits").join("example-batch")
+        );
+    }
+}

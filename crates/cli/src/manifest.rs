@@ -1,0 +1,572 @@
+//! The batch manifest of `rollfit batch` (TOML): which fits to run.
+//!
+//! ```toml
+//! [defaults]              # optional: method, lambda, seed, starts, terms
+//! starts = 1
+//! [[entry]]
+//! name = "hn-rubber"      # unique, [A-Za-z0-9._-]+: the result folder
+//! scene = "hn-rubber.toml"
+//! data = "hn-rubber.csv"
+//! # optional: method, lambda, seed, starts, terms
+//! ```
+//!
+//! Paths are relative to the manifest's folder. The settings take the
+//! values of the `fit` flags (`--method`, `--lambda`, `--seed`, `--starts`,
+//! `--terms`): names and `"auto"` as strings, numbers as numbers (or as
+//! strings, e.g. `terms = "2/decade"`).
+//!
+//! Everything is checked before a fit runs: TOML syntax, unknown keys and
+//! bad setting values while deserializing (toml then points at the line),
+//! then what serde cannot see — missing keys, names, duplicates, files that
+//! do not exist. Every message names the entry (by name, else by its
+//! position) and its line; the caller adds the manifest's path. Only the
+//! contents of the scene and data files are left to the fits themselves: a
+//! broken scene fails its own entry, not the batch.
+
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, anyhow, bail};
+use rollfit_fit::{FitError, FitParams, Lambda, Method, RollingSetup, TermRule};
+use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
+use serde::Deserialize;
+use serde::de::{self, Deserializer, Visitor};
+use toml::Spanned;
+
+use crate::commands::fit::{self, Settings};
+
+/// A checked manifest.
+#[derive(Debug, Clone)]
+pub struct Manifest {
+    /// `[defaults]` (all unset without the table).
+    pub defaults: Settings,
+    /// The entries in file order.
+    pub entries: Vec<Entry>,
+}
+
+/// One fit of the batch.
+#[derive(Debug, Clone)]
+pub struct Entry {
+    /// Position in the manifest, counting from 0 (what `--shard` divides).
+    pub index: usize,
+    /// Unique name: the result folder.
+    pub name: String,
+    /// The scene file, resolved against the manifest's folder.
+    pub scene: PathBuf,
+    /// The data file, resolved against the manifest's folder.
+    pub data: PathBuf,
+    /// The entry's own settings (over the defaults and the flags).
+    pub settings: Settings,
+}
+
+/// Reads and checks the manifest at `path`; every error names `path`.
+pub fn load(path: &Path) -> Result<Manifest> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read manifest {}", path.display()))?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    parse(&text, base).with_context(|| format!("manifest {}", path.display()))
+}
+
+/// Parses and checks manifest text; `base` is the folder relative paths
+/// start from.
+pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
+    let raw: RawManifest = toml::from_str(text).map_err(|e| {
+        let message = e.to_string().trim_end().to_string();
+        match e.span().and_then(|span| locate_entry(text, span.start)) {
+            Some(entry) => anyhow!("{entry}: {message}"),
+            None => anyhow!("{message}"),
+        }
+    })?;
+    let defaults = raw.defaults.map(RawSettings::settings).unwrap_or_default();
+    if raw.entry.is_empty() {
+        bail!(
+            "no entries: list each fit as an [[entry]] with a name, a scene and a data file \
+             (see the README, \"Batches\")"
+        );
+    }
+
+    let total = raw.entry.len();
+    let mut problems = Vec::new();
+    let mut entries = Vec::new();
+    // (lower-cased name, its entry's description) of the names seen so far.
+    let mut seen: Vec<(String, String)> = Vec::new();
+    for (index, spanned) in raw.entry.into_iter().enumerate() {
+        let line = line_of(text, spanned.span().start);
+        let mut raw_entry = spanned.into_inner();
+        let name = raw_entry.name.as_ref().map(|n| n.get_ref().clone());
+        let who = describe(index, total, name.as_deref(), line);
+        let mut complete = true;
+        match &name {
+            None => {
+                problems.push(format!(
+                    "{who}: missing `name` (the result folder, e.g. name = \"sample-1\")"
+                ));
+                complete = false;
+            }
+            Some(name) => {
+                if let Err(why) = check_name(name) {
+                    problems.push(format!("{who}: name {name:?} {why}"));
+                    complete = false;
+                } else {
+                    let key = name.to_lowercase();
+                    if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
+                        let same = if first.contains(&format!("{name:?}")) {
+                            "the same name"
+                        } else {
+                            "a name that differs only in case (one folder on many file systems)"
+                        };
+                        problems.push(format!(
+                            "{who}: duplicate name: {first} has {same}; names must be unique, \
+                             each names a result folder"
+                        ));
+                        complete = false;
+                    } else {
+                        seen.push((key, who.clone()));
+                    }
+                }
+            }
+        }
+        let mut file = |key: &str, value: &Option<Spanned<String>>| match value {
+            None => {
+                problems.push(format!("{who}: missing `{key}` (path of the {key} file)"));
+                None
+            }
+            Some(value) => {
+                let path = base.join(value.get_ref());
+                let at = line_of(text, value.span().start);
+                if path.is_file() {
+                    Some(path)
+                } else {
+                    let what = if path.exists() {
+                        "is not a file"
+                    } else {
+                        "does not exist"
+                    };
+                    problems.push(format!(
+                        "{who}: line {at}: {key} file {} {what} (paths are relative to the \
+                         manifest's folder)",
+                        path.display()
+                    ));
+                    None
+                }
+            }
+        };
+        let scene = file("scene", &raw_entry.scene);
+        let data = file("data", &raw_entry.data);
+        if let (true, Some(name), Some(scene), Some(data)) = (complete, name, scene, data) {
+            entries.push(Entry {
+                index,
+                name,
+                scene,
+                data,
+                settings: raw_entry.settings(),
+            });
+        }
+    }
+    if !problems.is_empty() {
+        bail!("{}", problems.join("\n"));
+    }
+    Ok(Manifest { defaults, entries })
+}
+
+/// `settings` over `below`: each setting `settings` leaves unset comes from
+/// `below`.
+pub fn layered(settings: &Settings, below: &Settings) -> Settings {
+    Settings {
+        method: settings.method.or(below.method),
+        lambda: settings.lambda.or(below.lambda),
+        seed: settings.seed.or(below.seed),
+        starts: settings.starts.or(below.starts),
+        terms: settings.terms.clone().or_else(|| below.terms.clone()),
+    }
+}
+
+/// Checks the ranges of the given settings with the fit library's own rules
+/// (applied to the default settings, which are valid, so only a given
+/// setting can fail). The set-up is a neutral stand-in: none of these
+/// settings depends on it.
+pub fn check_settings(settings: &Settings) -> Result<(), FitError> {
+    let mut params = FitParams::default();
+    fit::apply_flags(settings, &mut params);
+    let setup = RollingSetup {
+        geometry: Geometry {
+            shape: Shape::Sphere,
+            radius: 0.005,
+            load: 1.0,
+        },
+        substrate: Substrate {
+            poisson: 0.5,
+            film_thickness: None,
+        },
+        contact: ContactSize::Dynamic,
+    };
+    params.check(setup).map(|_| ())
+}
+
+/// A name that can be a result folder on any system: [A-Za-z0-9._-]+, not
+/// starting with a dot (hidden; "." and ".." are not folders of their own),
+/// and not the name of a summary file.
+fn check_name(name: &str) -> Result<(), String> {
+    if name.is_empty() {
+        return Err("is empty".into());
+    }
+    if let Some(c) = name
+        .chars()
+        .find(|c| !(c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-')))
+    {
+        return Err(format!(
+            "contains {c:?}: use letters A-Z, a-z, digits and '.', '_', '-' (the name is a folder)"
+        ));
+    }
+    if name.starts_with('.') {
+        return Err("starts with '.': the name is a folder and must not be hidden".into());
+    }
+    if name.starts_with("summary") && name.ends_with(".csv") {
+        return Err("is reserved for the batch summary files".into());
+    }
+    Ok(())
+}
+
+/// "entry "NAME" (K of N, line L)" or "entry K of N (line L)".
+fn describe(index: usize, total: usize, name: Option<&str>, line: usize) -> String {
+    match name {
+        Some(name) => format!("entry {name:?} ({} of {total}, line {line})", index + 1),
+        None => format!("entry {} of {total} (line {line})", index + 1),
+    }
+}
+
+/// The 1-based line of byte `offset`.
+fn line_of(text: &str, offset: usize) -> usize {
+    let offset = offset.min(text.len());
+    text.as_bytes()[..offset]
+        .iter()
+        .filter(|b| **b == b'\n')
+        .count()
+        + 1
+}
+
+/// The entry a toml error at byte `offset` lies in, described for a
+/// message; None outside every entry.
+fn locate_entry(text: &str, offset: usize) -> Option<String> {
+    #[derive(Deserialize)]
+    struct Outline {
+        defaults: Option<Spanned<toml::Value>>,
+        #[serde(default)]
+        entry: Vec<Spanned<toml::Value>>,
+    }
+    match toml::from_str::<Outline>(text) {
+        Ok(outline) => {
+            if outline
+                .defaults
+                .is_some_and(|d| contains(&d.span(), offset))
+            {
+                return Some("[defaults]".into());
+            }
+            let total = outline.entry.len();
+            let (index, entry) = outline
+                .entry
+                .iter()
+                .enumerate()
+                .find(|(_, e)| contains(&e.span(), offset))?;
+            let name = entry.get_ref().get("name").and_then(toml::Value::as_str);
+            Some(describe(
+                index,
+                total,
+                name,
+                line_of(text, entry.span().start),
+            ))
+        }
+        // A syntax error: the [[entry]] header above it, by its number.
+        Err(_) => {
+            let mut start = 0;
+            let mut current = None;
+            let mut count = 0;
+            for (i, line) in text.split_inclusive('\n').enumerate() {
+                if start > offset {
+                    break;
+                }
+                let trimmed = line.trim();
+                if let Some(header) = trimmed
+                    .strip_prefix("[[")
+                    .and_then(|t| t.split("]]").next())
+                {
+                    count += 1;
+                    current = (header.trim() == "entry").then_some((count, i + 1));
+                } else if trimmed.starts_with('[') {
+                    current = None;
+                }
+                start += line.len();
+            }
+            current.map(|(k, line)| format!("entry {k} (line {line})"))
+        }
+    }
+}
+
+fn contains(span: &Range<usize>, offset: usize) -> bool {
+    span.start <= offset && offset < span.end
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawManifest {
+    defaults: Option<RawSettings>,
+    #[serde(default)]
+    entry: Vec<Spanned<RawEntry>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEntry {
+    name: Option<Spanned<String>>,
+    scene: Option<Spanned<String>>,
+    data: Option<Spanned<String>>,
+    // Spelled out rather than `#[serde(flatten)]`: flatten does not work
+    // with deny_unknown_fields.
+    method: Option<MethodValue>,
+    lambda: Option<LambdaValue>,
+    seed: Option<u64>,
+    starts: Option<StartsValue>,
+    terms: Option<TermsValue>,
+}
+
+impl RawEntry {
+    fn settings(&mut self) -> Settings {
+        RawSettings {
+            method: self.method.take(),
+            lambda: self.lambda.take(),
+            seed: self.seed.take(),
+            starts: self.starts.take(),
+            terms: self.terms.take(),
+        }
+        .settings()
+    }
+}
+
+/// `[defaults]` and the settings of an entry.
+#[derive(Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSettings {
+    method: Option<MethodValue>,
+    lambda: Option<LambdaValue>,
+    seed: Option<u64>,
+    starts: Option<StartsValue>,
+    terms: Option<TermsValue>,
+}
+
+impl RawSettings {
+    fn settings(self) -> Settings {
+        Settings {
+            method: self.method.map(|m| m.0),
+            lambda: self.lambda.map(|l| l.0),
+            seed: self.seed,
+            starts: self.starts.map(|s| s.0),
+            terms: self.terms.map(|t| t.0),
+        }
+    }
+}
+
+/// Runs `check_settings` on one setting, as a deserialization error (so
+/// that toml names the line).
+fn in_range<E: de::Error>(settings: Settings) -> Result<Settings, E> {
+    check_settings(&settings).map_err(E::custom)?;
+    Ok(settings)
+}
+
+struct MethodValue(Method);
+struct LambdaValue(Lambda);
+struct StartsValue(usize);
+struct TermsValue(TermRule);
+
+impl<'de> Deserialize<'de> for MethodValue {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl Visitor<'_> for V {
+            type Value = MethodValue;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a solver name: \"auto\", \"levenberg-marquardt\", \"lbfgs\" or \"nelder-mead\"")
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<MethodValue, E> {
+                fit::parse_method(v)
+                    .map(MethodValue)
+                    .map_err(|e| E::custom(format!("fit setting `method`: {e}")))
+            }
+        }
+        deserializer.deserialize_any(V)
+    }
+}
+
+impl<'de> Deserialize<'de> for LambdaValue {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl V {
+            fn number<E: de::Error>(l: f64) -> Result<LambdaValue, E> {
+                let settings = in_range(Settings {
+                    lambda: Some(Lambda::Fixed(l)),
+                    ..Settings::default()
+                })?;
+                Ok(LambdaValue(settings.lambda.unwrap_or(Lambda::Fixed(l))))
+            }
+        }
+        impl Visitor<'_> for V {
+            type Value = LambdaValue;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a number ≥ 0 or \"auto\"")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<LambdaValue, E> {
+                V::number(v)
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<LambdaValue, E> {
+                V::number(v as f64)
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<LambdaValue, E> {
+                V::number(v as f64)
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<LambdaValue, E> {
+                match fit::parse_lambda(v) {
+                    Ok(Lambda::Fixed(l)) => V::number(l),
+                    Ok(lambda) => Ok(LambdaValue(lambda)),
+                    Err(e) => Err(E::custom(format!("fit setting `lambda`: {e}"))),
+                }
+            }
+        }
+        deserializer.deserialize_any(V)
+    }
+}
+
+impl<'de> Deserialize<'de> for StartsValue {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl Visitor<'_> for V {
+            type Value = StartsValue;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a whole number of starts (1 to 100)")
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<StartsValue, E> {
+                let n = usize::try_from(v).map_err(|_| {
+                    E::custom(format!("fit setting `starts`: {v} starts: use 1 to 100"))
+                })?;
+                self.visit_u64(n as u64)
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<StartsValue, E> {
+                let n = usize::try_from(v).unwrap_or(usize::MAX);
+                in_range(Settings {
+                    starts: Some(n),
+                    ..Settings::default()
+                })?;
+                Ok(StartsValue(n))
+            }
+        }
+        deserializer.deserialize_any(V)
+    }
+}
+
+impl<'de> Deserialize<'de> for TermsValue {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl V {
+            fn checked<E: de::Error>(rule: TermRule) -> Result<TermsValue, E> {
+                in_range(Settings {
+                    terms: Some(rule.clone()),
+                    ..Settings::default()
+                })?;
+                Ok(TermsValue(rule))
+            }
+        }
+        impl Visitor<'_> for V {
+            type Value = TermsValue;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a whole number of terms, \"auto\" or a density such as \"2/decade\"")
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<TermsValue, E> {
+                match u64::try_from(v) {
+                    Ok(n) => self.visit_u64(n),
+                    Err(_) => Err(E::custom(format!(
+                        "fit setting `terms`: {v} terms: use 2 to 200"
+                    ))),
+                }
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<TermsValue, E> {
+                V::checked(TermRule::Count(usize::try_from(v).unwrap_or(usize::MAX)))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<TermsValue, E> {
+                match fit::parse_terms(v) {
+                    Ok(rule) => V::checked(rule),
+                    Err(e) => Err(E::custom(format!("fit setting `terms`: {e}"))),
+                }
+            }
+        }
+        deserializer.deserialize_any(V)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names() {
+        for good in ["a", "hn-rubber", "T_20.5", "A-1_b.c"] {
+            assert!(check_name(good).is_ok(), "{good}");
+        }
+        for bad in [
+            "",
+            "a b",
+            "a/b",
+            "..",
+            ".",
+            ".x",
+            "ä",
+            "summary.csv",
+            "summary-0-of-2.csv",
+        ] {
+            assert!(check_name(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn layers_and_checks() {
+        let top = Settings {
+            lambda: Some(Lambda::Fixed(1.0)),
+            ..Settings::default()
+        };
+        let below = Settings {
+            lambda: Some(Lambda::Auto),
+            starts: Some(2),
+            ..Settings::default()
+        };
+        let both = layered(&top, &below);
+        assert_eq!(both.lambda, Some(Lambda::Fixed(1.0)));
+        assert_eq!(both.starts, Some(2));
+        assert_eq!(both.method, None);
+        assert!(check_settings(&both).is_ok());
+        let zero = Settings {
+            starts: Some(0),
+            ..Settings::default()
+        };
+        assert!(matches!(
+            check_settings(&zero),
+            Err(FitError::InvalidSetting { key, .. }) if key == "starts"
+        ));
+    }
+
+    #[test]
+    fn lines_and_entries() {
+        let text = "[defaults]\nstarts = 1\n\n[[entry]]\nname = \"a\"\n[[entry]]\nname = \"b\"\n";
+        assert_eq!(line_of(text, 0), 1);
+        assert_eq!(line_of(text, text.find("name = \"b\"").unwrap()), 7);
+        let b = text.find("\"b\"").unwrap();
+        assert_eq!(
+            locate_entry(text, b).as_deref(),
+            Some("entry \"b\" (2 of 2, line 6)")
+        );
+        assert_eq!(locate_entry(text, 12).as_deref(), Some("[defaults]"));
+        // A syntax error: the entry by its number.
+        let broken = text.replace("\"b\"", "\"b");
+        let at = broken.find("\"b").unwrap();
+        assert_eq!(
+            locate_entry(&broken, at).as_deref(),
+            Some("entry 2 (line 6)")
+        );
+    }
+}
