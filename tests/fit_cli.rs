@@ -267,6 +267,30 @@ fn fits_the_bundled_temperature_set() {
     assert!(span > 15.0, "{span}");
 }
 
+/// data/hn-rubber-tset.csv is what its documented command makes
+/// (data/README.md).
+#[test]
+fn bundled_temperature_set_is_what_its_command_makes() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let dir = TempDir::new("tset-made");
+    let made = dir.path().join("made.csv");
+    let out = rollfit(&[
+        OsStr::new("forward"),
+        root.join("data/hn-rubber-tset-truth.toml").as_os_str(),
+        OsStr::new("--noise"),
+        OsStr::new("0.01"),
+        OsStr::new("--seed"),
+        OsStr::new("4"),
+        OsStr::new("-o"),
+        made.as_os_str(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert_eq!(
+        fs::read_to_string(&made).unwrap(),
+        fs::read_to_string(root.join("data/hn-rubber-tset.csv")).unwrap()
+    );
+}
+
 /// A free shift must be tied to a measured temperature.
 #[test]
 fn free_shift_at_an_unmeasured_reference_is_refused() {

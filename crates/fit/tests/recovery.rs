@@ -6,28 +6,16 @@
 
 mod common;
 
-use common::{hn_rubber, setup, synthetic};
+use common::{hn_rubber, setup, synthetic, window_errors};
 use rollfit_fit::{FitParams, FitReport, ScaleAnchor, fit};
 use rollfit_model::ViscoelasticModulus;
 
 /// RMS relative errors of tan δ and |E| against `truth` over the reported
 /// window shrunk by half a decade at each end.
 fn errors<M: ViscoelasticModulus>(report: &FitReport, truth: &M) -> (f64, f64) {
-    let lo = report.window.omega_min * 10f64.powf(0.5);
-    let hi = report.window.omega_max / 10f64.powf(0.5);
-    let (mut se_t, mut se_e, mut n) = (0.0, 0.0, 0);
-    for p in report
-        .curve
-        .iter()
-        .filter(|p| p.omega >= lo && p.omega <= hi)
-    {
-        let e = truth.modulus(p.omega);
-        se_t += (p.tan_delta / (e.im / e.re) - 1.0).powi(2);
-        se_e += (p.magnitude / e.norm() - 1.0).powi(2);
-        n += 1;
-    }
+    let (t, e, n) = window_errors(report, truth);
     assert!(n > 20, "window too small: {n} points");
-    ((se_t / n as f64).sqrt(), (se_e / n as f64).sqrt())
+    (t, e)
 }
 
 fn anchored(anchor: ScaleAnchor) -> rollfit_fit::ValidFitParams {

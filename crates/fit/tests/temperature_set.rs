@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::{hn_rubber, setup, temperature_set, wlf_truth};
+use common::{hn_rubber, setup, temperature_set, window_errors, wlf_truth};
 use rollfit_fit::{FitParams, FitReport, ScaleAnchor, ShiftKind, ShiftRecord, ShiftSettings, fit};
 use rollfit_model::ViscoelasticModulus;
 
@@ -36,22 +36,9 @@ fn params(kind: ShiftKind, cross_check: bool) -> rollfit_fit::ValidFitParams {
 /// RMS relative errors of tan δ and |E| over the reported (combined) window
 /// shrunk by half a decade at each end.
 fn errors(report: &FitReport) -> (f64, f64) {
-    let truth = hn_rubber();
-    let lo = report.window.omega_min * 10f64.powf(0.5);
-    let hi = report.window.omega_max / 10f64.powf(0.5);
-    let (mut se_t, mut se_e, mut n) = (0.0, 0.0, 0);
-    for p in report
-        .curve
-        .iter()
-        .filter(|p| p.omega >= lo && p.omega <= hi)
-    {
-        let e = truth.modulus(p.omega);
-        se_t += (p.tan_delta / (e.im / e.re) - 1.0).powi(2);
-        se_e += (p.magnitude / e.norm() - 1.0).powi(2);
-        n += 1;
-    }
+    let (t, e, n) = window_errors(report, &hn_rubber());
     assert!(n > 100, "window too small: {n} points");
-    ((se_t / n as f64).sqrt(), (se_e / n as f64).sqrt())
+    (t, e)
 }
 
 /// Issue 4's target for WLF: C1 and C2 within 5 %, tan δ and |E| within

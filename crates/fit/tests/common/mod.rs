@@ -7,7 +7,7 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use rollfit_fit::{Measurements, RollingSetup};
+use rollfit_fit::{FitReport, Measurements, RollingSetup};
 use rollfit_model::ViscoelasticModulus;
 use rollfit_model::{ContactSize, Geometry, HavriliakNegami, Scene, Shape, Substrate};
 
@@ -85,4 +85,25 @@ pub fn temperature_set<M: ViscoelasticModulus>(
         }
     }
     Measurements::new(v, mu, Some(sigma), Some(temps)).unwrap()
+}
+
+/// RMS relative errors of tan δ and |E| against `truth` over the reported
+/// window shrunk by half a decade at each end, and the number of curve
+/// points compared.
+pub fn window_errors<M: ViscoelasticModulus>(report: &FitReport, truth: &M) -> (f64, f64, usize) {
+    let lo = report.window.omega_min * 10f64.powf(0.5);
+    let hi = report.window.omega_max / 10f64.powf(0.5);
+    let (mut se_t, mut se_e, mut n) = (0.0, 0.0, 0);
+    for p in report
+        .curve
+        .iter()
+        .filter(|p| p.omega >= lo && p.omega <= hi)
+    {
+        let e = truth.modulus(p.omega);
+        se_t += (p.tan_delta / (e.im / e.re) - 1.0).powi(2);
+        se_e += (p.magnitude / e.norm() - 1.0).powi(2);
+        n += 1;
+    }
+    let n_f = n.max(1) as f64;
+    ((se_t / n_f).sqrt(), (se_e / n_f).sqrt(), n)
 }
