@@ -315,6 +315,32 @@ mod tests {
     use super::*;
     use crate::params::ModulusAnchor;
 
+    /// A problem at λ = 0.3 with a tight model tolerance and no budget.
+    fn test_problem<'a>(
+        setup: &'a RollingSetup,
+        data: &'a Measurements,
+        param: Parametrization,
+        shift: Option<ShiftParam>,
+        e1_max: f64,
+    ) -> Problem<'a> {
+        Problem {
+            setup,
+            data,
+            scales: data.residual_scales(),
+            param,
+            shift,
+            lambda: 0.3,
+            e1_max,
+            tolerance: 1e-10,
+            evaluations: Default::default(),
+            budget: Cell::new(usize::MAX),
+            best: Default::default(),
+            history: Default::default(),
+            abandon_above: Default::default(),
+            abandoned: Default::default(),
+        }
+    }
+
     /// The residual Jacobian against central finite differences, with and
     /// without scale anchors, on a fixed θ with the E1 bound active.
     #[test]
@@ -351,22 +377,7 @@ mod tests {
                     }
                 })
                 .collect();
-            let problem = Problem {
-                setup: &setup,
-                data: &data,
-                scales: data.residual_scales(),
-                param,
-                shift: None,
-                lambda: 0.3,
-                e1_max: 1e8,
-                tolerance: 1e-10,
-                evaluations: Default::default(),
-                budget: Cell::new(usize::MAX),
-                best: Default::default(),
-                history: Default::default(),
-                abandon_above: Default::default(),
-                abandoned: Default::default(),
-            };
+            let problem = test_problem(&setup, &data, param, None, 1e8);
             let e = problem.evaluate(&theta, true).unwrap();
             let jac = e.jacobian.unwrap();
             for j in 0..n {
@@ -426,22 +437,7 @@ mod tests {
                 .map(|k| 3.0 + 0.4 * (k as f64).sin())
                 .collect();
             theta.extend(shift.theta_of_wlf(8.86, 101.6));
-            let problem = Problem {
-                setup: &setup,
-                data: &data,
-                scales: data.residual_scales(),
-                param,
-                shift: Some(shift),
-                lambda: 0.3,
-                e1_max: 1e10,
-                tolerance: 1e-10,
-                evaluations: Default::default(),
-                budget: Cell::new(usize::MAX),
-                best: Default::default(),
-                history: Default::default(),
-                abandon_above: Default::default(),
-                abandoned: Default::default(),
-            };
+            let problem = test_problem(&setup, &data, param, Some(shift), 1e10);
             let jac = problem.evaluate(&theta, true).unwrap().jacobian.unwrap();
             for j in problem.param.free_count()..theta.len() {
                 let step = 1e-5;

@@ -668,14 +668,7 @@ pub(super) fn friction_with_gradient(
             let inv_e = 1.0 / e;
             let inv_e2 = inv_e * inv_e;
             for (q, out) in d_delta.iter_mut().enumerate() {
-                // g = ∂E*/∂p_q and ∂E0/∂p_q.
-                let (g, de0) = if q == 0 {
-                    (Complex64::new(1.0, 0.0), 1.0)
-                } else if q < np {
-                    (-factors[q - 1], -1.0)
-                } else {
-                    (log_slope, 0.0)
-                };
+                let (g, de0) = super::column_derivative(q, &factors, log_slope);
                 let d_loss = deficit.plane_strain * (g * inv_e2).im;
                 let d_ln_r = match deficit.static_size {
                     Some(_) => -de0 / (3.0 * e0),

@@ -56,6 +56,24 @@ pub struct FrictionJacobian {
     pub d_ln_speed: Vec<f64>,
 }
 
+/// The derivatives behind column q of a friction Jacobian: g = ∂E*/∂p_q
+/// and ∂E0/∂p_q, for p = (E1, H_1..H_n) and then the time scale ln a (see
+/// [`FrictionJacobian::d_ln_speed`]). `factors` holds 1/(1 + iωτ_k) at the
+/// node, `log_slope` dE*/d ln ω there.
+pub(crate) fn column_derivative(
+    q: usize,
+    factors: &[Complex64],
+    log_slope: Complex64,
+) -> (Complex64, f64) {
+    if q == 0 {
+        (Complex64::new(1.0, 0.0), 1.0)
+    } else if q <= factors.len() {
+        (-factors[q - 1], -1.0)
+    } else {
+        (log_slope, 0.0)
+    }
+}
+
 fn check_speeds(speeds: &[f64]) -> Result<(), ModelError> {
     for (i, &v) in speeds.iter().enumerate() {
         if !(v.is_finite() && v > 0.0) {
@@ -244,14 +262,7 @@ impl Scene<Prony> {
             let row_a = &mut d_a[idx * nq..(idx + 1) * nq];
             let row_s = &mut d_sigma[idx * nq..(idx + 1) * nq];
             for q in 0..nq {
-                // g = ∂E*/∂p_q and ∂E0/∂p_q.
-                let (g, de0) = if q == 0 {
-                    (Complex64::new(1.0, 0.0), 1.0)
-                } else if q < np {
-                    (-factors[q - 1], -1.0)
-                } else {
-                    (log_slope, 0.0)
-                };
+                let (g, de0) = column_derivative(q, &factors, log_slope);
                 let d_loss = setup.plane_strain * (g * inv2).im;
                 let d_ln_r = match setup.static_ln_size {
                     Some(_) => -de0 / (n * e0),
