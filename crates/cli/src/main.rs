@@ -61,6 +61,24 @@ enum Command {
     /// Exits non-zero if an entry failed or did not converge (unless
     /// --allow-unconverged).
     Batch(commands::batch::Args),
+    /// Draw the pictures of a fit and write DIR/report.html.
+    ///
+    /// Reads what `rollfit fit` wrote to DIR and writes, as PNG and SVG:
+    /// friction (μ(v) with relative residuals), master_curve (E′, E″ and
+    /// tan δ with the window and 1σ bands, DMA points with --dma), spectrum
+    /// (H_k against τ_k, undetermined terms marked), convergence (V against
+    /// evaluations per run), and for a temperature set temperatures (μ per
+    /// T), master_friction (μ against v·a_T) and shift (log a_T against T).
+    /// report.html holds them all inline, with the fit's table and, with
+    /// --dma, the comparison (also written to DIR/compare.json).
+    Report(commands::report::Args),
+    /// Compare the recovered master curve with DMA data.
+    ///
+    /// Prints, and writes to DIR/compare.json, the errors of tan δ, |E|,
+    /// E′ and E″ over the overlap of the fit's window and the DMA
+    /// frequencies, and how well a causal (Prony) model fits the DMA data
+    /// themselves (dma_kk_misfit_storage, dma_kk_misfit_loss).
+    Compare(commands::compare::Args),
 }
 
 fn main() -> ExitCode {
@@ -69,6 +87,8 @@ fn main() -> ExitCode {
         Command::Forward(args) => commands::forward::run(args),
         Command::Fit(args) => commands::fit::run(args),
         Command::Batch(args) => commands::batch::run(args),
+        Command::Report(args) => commands::report::run(args),
+        Command::Compare(args) => commands::compare::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
