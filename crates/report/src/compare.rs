@@ -1,1 +1,184 @@
-//! (being written)
+//! The recovered master curve against DMA data.
+//!
+//! The DMA points are moved to the fit's reference state
+//! ([`DmaData::shifted`]: reduced frequency ω_r = ω a_T) and compared with
+//! the recovered E*(ω) = [`FitDir::modulus_at`] at the N points whose ω_r
+//! lies in the fit's window [ω_min, ω_max] (fit.json `window`: outside it
+//! the μ(v) data do not determine the curve, so differences there say
+//! nothing about the fit). With r_i = (x_fit − x_DMA)/x_DMA:
+//!
+//! - `tan_delta_rms_rel` = √(mean r_i²) for x = tan δ = E″/E′,
+//!   `tan_delta_max_rel` = max |r_i|;
+//! - `abs_E_rms_rel`, `abs_E_max_rel` the same for x = |E*| = √(E′² + E″²);
+//! - `log10_E_storage_rms` = √(mean [log10 E′_fit − log10 E′_DMA]²)
+//!   (decades), `log10_E_loss_rms` the same for E″.
+//!
+//! All moduli are Young's (shear DMA data converted with the fit's ν). The
+//! comparison also carries the causality check of the DMA points
+//! ([`crate::causality`], over all of them, not only the overlap):
+//! `dma_kk_misfit_storage`, `dma_kk_misfit_loss`. When the window and the
+//! DMA frequencies do not overlap, N = 0 and every metric is null, with a
+//! warning giving both ranges.
+
+use serde::Serialize;
+
+use crate::causality::{self, CausalFit};
+use crate::dma::{DmaData, DmaOptions, DmaPoint};
+use crate::error::ReportError;
+use crate::fit_dir::FitDir;
+
+/// log10 a_T of one DMA isotherm.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct IsothermShift {
+    /// °C.
+    #[serde(rename = "T")]
+    pub temperature: f64,
+    /// log10 a_T towards the fit's reference state.
+    #[serde(rename = "log_aT")]
+    pub log_shift: f64,
+}
+
+/// The comparison; its JSON is compare.json (the contract keys
+/// first, then what helps reading them).
+#[derive(Debug, Clone, Serialize)]
+pub struct Comparison {
+    /// DMA points inside the fit's window.
+    pub n_points: usize,
+    /// Lowest reduced ω among them, rad/s.
+    pub omega_min: Option<f64>,
+    /// Highest reduced ω among them, rad/s.
+    pub omega_max: Option<f64>,
+    /// RMS relative error of tan δ.
+    pub tan_delta_rms_rel: Option<f64>,
+    /// Largest |relative error| of tan δ.
+    pub tan_delta_max_rel: Option<f64>,
+    /// RMS relative error of |E*|.
+    #[serde(rename = "abs_E_rms_rel")]
+    pub abs_modulus_rms_rel: Option<f64>,
+    /// Largest |relative error| of |E*|.
+    #[serde(rename = "abs_E_max_rel")]
+    pub abs_modulus_max_rel: Option<f64>,
+    /// RMS log10 error of E′, decades.
+    #[serde(rename = "log10_E_storage_rms")]
+    pub log10_storage_rms: Option<f64>,
+    /// RMS log10 error of E″, decades.
+    #[serde(rename = "log10_E_loss_rms")]
+    pub log10_loss_rms: Option<f64>,
+    /// RMS log10 misfit of the best causal fit to the DMA's E′, decades.
+    pub dma_kk_misfit_storage: f64,
+    /// RMS log10 misfit of the best causal fit to the DMA's E″, decades.
+    pub dma_kk_misfit_loss: f64,
+    /// The DMA file.
+    pub dma_file: String,
+    /// "csv" or "trios-lims".
+    pub dma_format: &'static str,
+    /// What the DMA file held: "young" or "shear".
+    pub modulus_kind: &'static str,
+    /// ν used for shear → Young's (the fit's).
+    pub poisson: f64,
+    /// The fit's window, rad/s.
+    pub fit_window: [f64; 2],
+    /// The DMA's reduced frequency range, rad/s.
+    pub dma_omega_range: [f64; 2],
+    /// All usable DMA points.
+    pub dma_points: usize,
+    /// The DMA isotherms and their shifts (empty without temperatures).
+    pub dma_shift: Vec<IsothermShift>,
+    /// The threshold of the causality warning, decades.
+    pub kk_misfit_threshold: f64,
+    /// Whether the window and the DMA frequencies miss each other.
+    pub overlap_empty: bool,
+    /// How the DMA points were shifted.
+    pub notes: Vec<String>,
+    /// Reading, causality and overlap warnings.
+    pub warnings: Vec<String>,
+    /// All DMA points at the reference state (reduced ω, Young's moduli),
+    /// ascending in ω: for plots.
+    #[serde(skip)]
+    pub points: Vec<DmaPoint>,
+    /// The causal fit of the DMA points: for plots.
+    #[serde(skip)]
+    pub causal: CausalFit,
+}
+
+/// RMS and max |·| of a set of errors; `None` for none.
+fn rms_max(errors: &[f64]) -> (Option<f64>, Option<f64>) {
+    if errors.is_empty() {
+        return (None, None);
+    }
+    let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
+    let max = errors.iter().map(|e| e.abs()).fold(0.0, f64::max);
+    (Some(rms), Some(max))
+}
+
+/// Compares the fit's master curve with `dma` (see the module doc).
+pub fn compare(
+    fit: &FitDir,
+    dma: &DmaData,
+    options: &DmaOptions,
+) -> Result<Comparison, ReportError> {
+    let shifted = dma.shifted(fit, options)?;
+    let points = shifted.points;
+    let causal = causality::check(&points)?;
+    let window = fit.summary.window;
+    let inside: Vec<&DmaPoint> = points
+        .iter()
+        .filter(|p| p.omega >= window.omega_min && p.omega <= window.omega_max)
+        .collect();
+    let (mut tan_delta, mut abs_modulus, mut storage, mut loss) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for p in &inside {
+        let e = fit.modulus_at(p.omega);
+        tan_delta.push((e.im / e.re - p.tan_delta()) / p.tan_delta());
+        abs_modulus.push((e.norm() - p.abs_modulus()) / p.abs_modulus());
+        storage.push((e.re / p.storage).log10());
+        loss.push((e.im / p.loss).log10());
+    }
+    let (tan_delta_rms_rel, tan_delta_max_rel) = rms_max(&tan_delta);
+    let (abs_modulus_rms_rel, abs_modulus_max_rel) = rms_max(&abs_modulus);
+    let omega_lo = points[0].omega;
+    let omega_hi = points[points.len() - 1].omega;
+    let mut warnings = dma.warnings.clone();
+    warnings.extend(causal.warnings.iter().cloned());
+    let overlap_empty = inside.is_empty();
+    if overlap_empty {
+        warnings.push(format!(
+            "no DMA point lies in the fit's window: the fit's window [{:.3e}, {:.3e}] rad/s and the DMA's [{omega_lo:.3e}, {omega_hi:.3e}] rad/s (at the fit's reference state) do not overlap; no metric can be computed",
+            window.omega_min, window.omega_max
+        ));
+    }
+    Ok(Comparison {
+        n_points: inside.len(),
+        omega_min: inside.first().map(|p| p.omega),
+        omega_max: inside.last().map(|p| p.omega),
+        tan_delta_rms_rel,
+        tan_delta_max_rel,
+        abs_modulus_rms_rel,
+        abs_modulus_max_rel,
+        log10_storage_rms: rms_max(&storage).0,
+        log10_loss_rms: rms_max(&loss).0,
+        dma_kk_misfit_storage: causal.misfit_storage,
+        dma_kk_misfit_loss: causal.misfit_loss,
+        dma_file: dma.path.display().to_string(),
+        dma_format: dma.format,
+        modulus_kind: dma.kind.name(),
+        poisson: fit.summary.poisson,
+        fit_window: [window.omega_min, window.omega_max],
+        dma_omega_range: [omega_lo, omega_hi],
+        dma_points: points.len(),
+        dma_shift: shifted
+            .log_shifts
+            .iter()
+            .map(|&(temperature, log_shift)| IsothermShift {
+                temperature,
+                log_shift,
+            })
+            .collect(),
+        kk_misfit_threshold: causality::KK_MISFIT_THRESHOLD,
+        overlap_empty,
+        notes: shifted.notes,
+        warnings,
+        points,
+        causal,
+    })
+}
