@@ -34,17 +34,35 @@
 //!
 //! m′ = √(mean_i [log10 E′_fit(ω_i) − log10 E′_i]²), m″ likewise,
 //!
-//! so that 0.01 means about 2.3 % RMS. Data generated from a causal Prony
-//! series (τ on or off the grid) give m′, m″ < 1e-3 (a test); 1 % noise
-//! gives about 0.004.
+//! so that 0.01 means about 2.3 % RMS, and the largest |log10 error| of each
+//! (with the point where it is, to name the isotherm).
 //!
-//! Threshold ([`KK_MISFIT_THRESHOLD`] = 0.03 decades, about 7 %): a good DMA
-//! master curve passes with room for noise and shift scatter (a synthetic
-//! broad rubber with 2 % noise: about 0.007/0.008; the causal-data tests:
-//! < 1e-3), while the 3M 468MP adhesive (shear, 20 isotherms −40 to
-//! 150 °C, shifted to 20 °C with WLF C1 = 9.06, C2 = 129.3 K estimated from
-//! the isotherms) gives m′ = 0.048, m″ = 0.093 decades: its tan δ near the
-//! peak is about 50 % above what the slope of E′ allows.
+//! Measured (3 τ per decade): data from a quasi-continuous causal spectrum
+//! (4 terms per decade, off the grid) give m′, m″ ≈ 1e-6; an isolated pair
+//! of Maxwell elements between grid nodes, the hardest causal case (a sum
+//! of non-negative neighbours cannot be as narrow as one element), about
+//! 3e-3/5e-3; Gaussian scatter of 1, 2 and 5 % on a broad rubber (340
+//! points) about 0.004, 0.0085 and 0.021, i.e. the noise itself. A broad
+//! rubber with E″ raised by 50 % within a decade of its loss peak gives
+//! m′ = 0.025, m″ = 0.040 and a largest E″ miss of 0.13 decades.
+//!
+//! Thresholds: RMS [`KK_MISFIT_THRESHOLD`] = 0.03 decades (7 %), largest
+//! [`KK_MAX_MISFIT_THRESHOLD`] = 0.1 decades (26 %) at one point. A good
+//! DMA master curve (up to ~5 % scatter) passes both; a global violation
+//! (the raised peak) fails the RMS, a local one (one bad isotherm) the
+//! largest miss, which hundreds of good points dilute in the RMS.
+//!
+//! The 3M 468MP adhesive (shear, ν = 0.5, 20 isotherms −40 to 150 °C, 339
+//! points after dropping one E″ < 0, shifted to 20 °C with WLF C1 = 9.06,
+//! C2 = 129.3 K estimated from its isotherms, 14.5 decades) gives
+//! m′ = 0.0105, m″ = 0.0163: causal to a few tenths of a per cent from
+//! 1e-5 to 1e7 rad/s, including the loss peak (tan δ ≈ 1.15), but not at
+//! the glassy end, where the −30 and −40 °C isotherms overlap: there the
+//! largest misses are 0.047 (E′) and 0.131 decades (E″), so the check
+//! warns. Near the peak the data's tan δ is ~40 % above the small-slope
+//! rule (π/2) d ln E′/d ln ω; that is the rule's error, not the data's
+//! (for E* ∝ (iω)^n, tan δ = tan(nπ/2), 1.33 × (π/2)n at n = 0.53), and
+//! the exact fit above matches both E′ and E″ there.
 //!
 //! Why our own NNLS: no well-kept NNLS crate works on nalgebra matrices
 //! (the Rust ones we know of are built on ndarray and would bring a second
@@ -70,20 +88,20 @@ use num_complex::Complex64;
 use crate::dma::DmaPoint;
 use crate::error::ReportError;
 
-/// Relaxation times per decade of the causal model: dense enough that a
-/// single Maxwell element between grid points is matched to < 1e-3
-/// decades, sparse enough for a fast NNLS.
+/// Relaxation times per decade of the causal model: a smooth spectrum off
+/// the grid is matched to ~1e-6 decades (denser grids do not help isolated
+/// elements, whose error depends on their distance to the nearest node).
 pub const TAU_PER_DECADE: f64 = 3.0;
 
 /// Above this RMS log10 misfit (decades) of E′ or E″ the DMA data are
 /// reported as not causal: a violation spread over the curve (see the
 /// module doc for the measured values).
-pub const KK_MISFIT_THRESHOLD: f64 = 0.02;
+pub const KK_MISFIT_THRESHOLD: f64 = 0.03;
 
 /// Above this largest |log10 misfit| (decades) of E′ or E″ at one point
 /// the DMA data are reported as not causal there: a local violation (one
 /// bad isotherm) that the RMS over hundreds of points dilutes.
-pub const KK_MAX_MISFIT_THRESHOLD: f64 = 0.08;
+pub const KK_MAX_MISFIT_THRESHOLD: f64 = 0.1;
 
 /// The best causal fit of DMA data.
 #[derive(Debug, Clone)]
@@ -112,12 +130,10 @@ impl CausalFit {
     /// E*(ω) of the causal model, Pa.
     pub fn modulus(&self, omega: f64) -> Complex64 {
         let i_omega = Complex64::new(0.0, omega);
-        self.tau
-            .iter()
-            .zip(&self.strengths)
-            .fold(Complex64::new(self.rubbery_modulus, 0.0), |sum, (tau, h)| {
-                sum + h * i_omega * tau / (1.0 + i_omega * tau)
-            })
+        self.tau.iter().zip(&self.strengths).fold(
+            Complex64::new(self.rubbery_modulus, 0.0),
+            |sum, (tau, h)| sum + h * i_omega * tau / (1.0 + i_omega * tau),
+        )
     }
 
     /// The causal curve at `count` log-spaced frequencies over the data's

@@ -68,6 +68,10 @@ pub struct Comparison {
     pub dma_kk_misfit_storage: f64,
     /// RMS log10 misfit of the best causal fit to the DMA's E″, decades.
     pub dma_kk_misfit_loss: f64,
+    /// Largest |log10 error| of the causal fit to the DMA's E′, decades.
+    pub dma_kk_max_storage: f64,
+    /// Largest |log10 error| of the causal fit to the DMA's E″, decades.
+    pub dma_kk_max_loss: f64,
     /// The DMA file.
     pub dma_file: String,
     /// "csv" or "trios-lims".
@@ -84,8 +88,10 @@ pub struct Comparison {
     pub dma_points: usize,
     /// The DMA isotherms and their shifts (empty without temperatures).
     pub dma_shift: Vec<IsothermShift>,
-    /// The threshold of the causality warning, decades.
+    /// RMS threshold of the causality warning, decades.
     pub kk_misfit_threshold: f64,
+    /// Largest-miss threshold, decades.
+    pub kk_max_misfit_threshold: f64,
     /// Whether the window and the DMA frequencies miss each other.
     pub overlap_empty: bool,
     /// How the DMA points were shifted.
@@ -159,6 +165,8 @@ pub fn compare(
         log10_loss_rms: rms_max(&loss).0,
         dma_kk_misfit_storage: causal.misfit_storage,
         dma_kk_misfit_loss: causal.misfit_loss,
+        dma_kk_max_storage: causal.max_misfit_storage.0,
+        dma_kk_max_loss: causal.max_misfit_loss.0,
         dma_file: dma.path.display().to_string(),
         dma_format: dma.format,
         modulus_kind: dma.kind.name(),
@@ -175,6 +183,7 @@ pub fn compare(
             })
             .collect(),
         kk_misfit_threshold: causality::KK_MISFIT_THRESHOLD,
+        kk_max_misfit_threshold: causality::KK_MAX_MISFIT_THRESHOLD,
         overlap_empty,
         notes: shifted.notes,
         warnings,

@@ -287,7 +287,10 @@ fn assert_points(data: &DmaData, expected: &[(f64, f64, f64)], temperature: Opti
     assert_eq!(data.points.len(), expected.len());
     for (p, &(omega, storage, loss)) in data.points.iter().zip(expected) {
         assert!(relative(p.omega, omega) < 1e-13, "{p:?} vs ω {omega}");
-        assert!(relative(p.storage, storage) < 1e-13, "{p:?} vs E′ {storage}");
+        assert!(
+            relative(p.storage, storage) < 1e-13,
+            "{p:?} vs E′ {storage}"
+        );
         assert!(relative(p.loss, loss) < 1e-13, "{p:?} vs E″ {loss}");
         match (p.temperature, temperature) {
             (Some(t), Some(e)) => assert!((t - e).abs() < 1e-12, "T {t} vs {e}"),
@@ -305,21 +308,43 @@ fn every_csv_form_reads_the_same_points() {
     // (file name, header, row maker, expected temperature)
     type Row = fn(f64, f64, f64) -> String;
     let forms: Vec<(&str, &str, Row, Option<f64>)> = vec![
-        ("plain.csv", "omega,E_storage,E_loss", |w, s, l| {
-            format!("{w:e},{s:e},{l:e}")
-        }, None),
-        ("hz.csv", "f,E_storage,E_loss,T", |w, s, l| {
-            format!("{:e},{s:e},{l:e},20", w / (2.0 * PI))
-        }, Some(20.0)),
-        ("suffixed.csv", "T_C,omega_rad_s,G_storage_Pa,G_loss_Pa,tan_delta", |w, s, l| {
-            format!("20,{w:e},{:e},{:e},{:e}", s / 3.0, l / 3.0, l / s)
-        }, Some(20.0)),
-        ("hz_mpa.csv", "sample,f_Hz,E_loss_MPa,E_storage_MPa,T_K", |w, s, l| {
-            format!("A-1,{:e},{:e},{:e},293.15", w / (2.0 * PI), l / 1e6, s / 1e6)
-        }, Some(20.0)),
-        ("shear_kpa.csv", "omega,G_storage_kPa,G_loss_GPa", |w, s, l| {
-            format!("{w:e},{:e},{:e}", s / 3e3, l / 3e9)
-        }, None),
+        (
+            "plain.csv",
+            "omega,E_storage,E_loss",
+            |w, s, l| format!("{w:e},{s:e},{l:e}"),
+            None,
+        ),
+        (
+            "hz.csv",
+            "f,E_storage,E_loss,T",
+            |w, s, l| format!("{:e},{s:e},{l:e},20", w / (2.0 * PI)),
+            Some(20.0),
+        ),
+        (
+            "suffixed.csv",
+            "T_C,omega_rad_s,G_storage_Pa,G_loss_Pa,tan_delta",
+            |w, s, l| format!("20,{w:e},{:e},{:e},{:e}", s / 3.0, l / 3.0, l / s),
+            Some(20.0),
+        ),
+        (
+            "hz_mpa.csv",
+            "sample,f_Hz,E_loss_MPa,E_storage_MPa,T_K",
+            |w, s, l| {
+                format!(
+                    "A-1,{:e},{:e},{:e},293.15",
+                    w / (2.0 * PI),
+                    l / 1e6,
+                    s / 1e6
+                )
+            },
+            Some(20.0),
+        ),
+        (
+            "shear_kpa.csv",
+            "omega,G_storage_kPa,G_loss_GPa",
+            |w, s, l| format!("{w:e},{:e},{:e}", s / 3e3, l / 3e9),
+            None,
+        ),
     ];
     for (name, header, row, temperature) in forms {
         let mut text = format!("# {name}: made for the test\n{header}\n");
@@ -335,7 +360,11 @@ fn every_csv_form_reads_the_same_points() {
         let shear = name.contains("shear") || name.contains("suffixed");
         assert_eq!(
             data.kind,
-            if shear { ModulusKind::Shear } else { ModulusKind::Young },
+            if shear {
+                ModulusKind::Shear
+            } else {
+                ModulusKind::Young
+            },
             "{name}"
         );
         // T_K: 293.15 − 273.15 is 20 only up to the rounding of the
@@ -355,7 +384,9 @@ fn shear_becomes_young_with_the_fits_poisson_ratio() {
         assert!(relative(data.points[0].storage, factor * 1e6) < 1e-15);
         assert!(relative(data.points[1].loss, factor * 5e5) < 1e-15);
         assert!(
-            data.warnings.iter().any(|w| w.contains(&format!("ν = {nu}"))),
+            data.warnings
+                .iter()
+                .any(|w| w.contains(&format!("ν = {nu}"))),
             "{:?}",
             data.warnings
         );
@@ -384,9 +415,9 @@ fn trios_lims_shear_export_with_its_units() {
     assert_eq!(data.kind, ModulusKind::Shear);
     assert_eq!(data.points.len(), 10);
     assert!(
-        data.warnings
-            .iter()
-            .any(|w| w.contains("shear") && w.contains("Oscillation torque") && w.contains("AresG2")),
+        data.warnings.iter().any(|w| w.contains("shear")
+            && w.contains("Oscillation torque")
+            && w.contains("AresG2")),
         "{:?}",
         data.warnings
     );
@@ -394,7 +425,9 @@ fn trios_lims_shear_export_with_its_units() {
     let omegas = [1.0, 3.16227766017, 10.0, 31.6227766017, 100.0]
         .into_iter()
         .chain([0.1, 0.5, 1.0, 5.0, 10.0].into_iter().map(|f| 2.0 * PI * f));
-    let temperatures = [20.01, 19.99, 20.02, 20.0, 19.98, 40.01, 39.99, 40.0, 40.02, 40.0];
+    let temperatures = [
+        20.01, 19.99, 20.02, 20.0, 19.98, 40.01, 39.99, 40.0, 40.02, 40.0,
+    ];
     for ((p, omega), t) in data.points.iter().zip(omegas).zip(temperatures) {
         let (g_storage, g_loss) = fixture_model(omega, t);
         assert!(relative(p.omega, omega) < 1e-11, "{p:?}");
@@ -421,10 +454,17 @@ fn trios_lims_tensile_export_and_utf16() {
     let path = fixture("trios_tensile.txt");
     let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
     assert_eq!(data.kind, ModulusKind::Young);
-    assert!(data.warnings.iter().any(|w| w.contains("Oscillation force")));
+    assert!(
+        data.warnings
+            .iter()
+            .any(|w| w.contains("Oscillation force"))
+    );
     for (p, omega) in data.points.iter().zip([1.0, 10.0, 100.0]) {
         let (s, l) = fixture_model(omega, 20.0);
-        assert!(relative(p.storage, s) < 1e-10 && relative(p.loss, l) < 1e-10, "{p:?}");
+        assert!(
+            relative(p.storage, s) < 1e-10 && relative(p.loss, l) < 1e-10,
+            "{p:?}"
+        );
     }
     // The same text as UTF-16 with a byte-order mark, as Windows tools
     // write it, and with a .csv name: the content decides.
@@ -452,24 +492,64 @@ fn bad_csv_files_are_refused_with_file_line_and_column() {
     assert_contains(&e, &["absent.csv"]);
 
     let e = error_text(read("noloss.csv", "omega,E_storage,T\n1,1e6,20\n"));
-    assert_contains(&e, &["noloss.csv", "no E_loss column", "the header has: omega, E_storage, T"]);
+    assert_contains(
+        &e,
+        &[
+            "noloss.csv",
+            "no E_loss column",
+            "the header has: omega, E_storage, T",
+        ],
+    );
     let e = error_text(read("nofreq.csv", "w,E_storage,E_loss\n1,1e6,1e5\n"));
-    assert_contains(&e, &["nofreq.csv", "no frequency column", "the header has: w, E_storage, E_loss"]);
+    assert_contains(
+        &e,
+        &[
+            "nofreq.csv",
+            "no frequency column",
+            "the header has: w, E_storage, E_loss",
+        ],
+    );
     let e = error_text(read("nomod.csv", "omega,storage,loss\n1,1e6,1e5\n"));
     assert_contains(&e, &["E_storage and E_loss (or G_storage and G_loss)"]);
     let e = error_text(read("half.csv", "omega,G_storage\n1,1e6\n"));
     assert_contains(&e, &["no G_loss column"]);
 
-    let e = error_text(read("text.csv", "# c\nomega,E_storage,E_loss\n1,1e6,1e5\n2,abc,1e5\n"));
-    assert_contains(&e, &["text.csv, line 4", "column 2 (E_storage)", "\"abc\" is not a number"]);
+    let e = error_text(read(
+        "text.csv",
+        "# c\nomega,E_storage,E_loss\n1,1e6,1e5\n2,abc,1e5\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "text.csv, line 4",
+            "column 2 (E_storage)",
+            "\"abc\" is not a number",
+        ],
+    );
     let e = error_text(read("nan.csv", "omega,E_storage,E_loss\n1,1e6,NaN\n"));
-    assert_contains(&e, &["nan.csv, line 2", "column 3 (E_loss)", "not a finite number"]);
+    assert_contains(
+        &e,
+        &[
+            "nan.csv, line 2",
+            "column 3 (E_loss)",
+            "not a finite number",
+        ],
+    );
     let e = error_text(read("inf.csv", "omega,E_storage,E_loss\ninf,1e6,1e5\n"));
-    assert_contains(&e, &["inf.csv, line 2", "column 1 (omega)", "not a finite number"]);
-    let e = error_text(read("zero.csv", "f,E_storage,E_loss\n1,1e6,1e5\n0,1e6,1e5\n"));
+    assert_contains(
+        &e,
+        &["inf.csv, line 2", "column 1 (omega)", "not a finite number"],
+    );
+    let e = error_text(read(
+        "zero.csv",
+        "f,E_storage,E_loss\n1,1e6,1e5\n0,1e6,1e5\n",
+    ));
     assert_contains(&e, &["zero.csv, line 3", "column 1 (f)", "not positive"]);
     let e = error_text(read("soft.csv", "omega,E_storage,E_loss\n1,-1e6,1e5\n"));
-    assert_contains(&e, &["soft.csv, line 2", "column 2 (E_storage)", "not positive"]);
+    assert_contains(
+        &e,
+        &["soft.csv, line 2", "column 2 (E_storage)", "not positive"],
+    );
     let e = error_text(read("short.csv", "omega,E_storage,E_loss\n1,1e6\n"));
     assert_contains(&e, &["short.csv, line 2", "2 fields", "3 columns"]);
     let e = error_text(read("empty.csv", "# nothing\nomega,E_storage,E_loss\n"));
@@ -482,9 +562,9 @@ fn bad_csv_files_are_refused_with_file_line_and_column() {
     let data = read("neg.csv", "omega,E_storage,E_loss\n1,1e6,1e5\n2,1e6,-3e4\n").unwrap();
     assert_eq!(data.points.len(), 1);
     assert!(
-        data.warnings
-            .iter()
-            .any(|w| w.contains("neg.csv, line 3") && w.contains("column 3 (E_loss)") && w.contains("dropped")),
+        data.warnings.iter().any(|w| w.contains("neg.csv, line 3")
+            && w.contains("column 3 (E_loss)")
+            && w.contains("dropped")),
         "{:?}",
         data.warnings
     );
@@ -500,18 +580,51 @@ fn bad_trios_files_are_refused_with_line_and_variable() {
     let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
 
     let e = error_text(read("unit.txt", &good.replacen("MPa\tMPa", "MPa\tpsi", 1)));
-    assert_contains(&e, &["unit.txt, line 21", "Loss modulus", "column 6", "\"psi\"", "Pa, kPa, MPa, GPa"]);
+    assert_contains(
+        &e,
+        &[
+            "unit.txt, line 21",
+            "Loss modulus",
+            "column 6",
+            "\"psi\"",
+            "Pa, kPa, MPa, GPa",
+        ],
+    );
     let e = error_text(read("hz.txt", &good.replacen("\trad/s\t", "\trpm\t", 1)));
     assert_contains(&e, &["hz.txt, line 21", "Angular frequency", "\"rpm\""]);
-    let e = error_text(read("novar.txt", &good.replace("\tLoss modulus", "\tComplex modulus")));
-    assert_contains(&e, &["novar.txt", "no step has the variables needed", "Complex modulus"]);
-    let e = error_text(read("num.txt", &good.replacen("Data point\t20\t1\t", "Data point\t20\tx\t", 1)));
-    assert_contains(&e, &["num.txt, line 22", "column 3 (Angular frequency)", "\"x\""]);
+    let e = error_text(read(
+        "novar.txt",
+        &good.replace("\tLoss modulus", "\tComplex modulus"),
+    ));
+    assert_contains(
+        &e,
+        &[
+            "novar.txt",
+            "no step has the variables needed",
+            "Complex modulus",
+        ],
+    );
+    let e = error_text(read(
+        "num.txt",
+        &good.replacen("Data point\t20\t1\t", "Data point\t20\tx\t", 1),
+    ));
+    assert_contains(
+        &e,
+        &["num.txt, line 22", "column 3 (Angular frequency)", "\"x\""],
+    );
     let undecided = good
         .replace("Oscillation force", "Amplitude")
         .replace("RSA-G2", "Mystery 3000");
     let e = error_text(read("kind.txt", &undecided));
-    assert_contains(&e, &["kind.txt", "shear (G) or tensile (E)", "Mystery 3000", "--dma-modulus"]);
+    assert_contains(
+        &e,
+        &[
+            "kind.txt",
+            "shear (G) or tensile (E)",
+            "Mystery 3000",
+            "--dma-modulus",
+        ],
+    );
     let told = DmaOptions {
         kind: Some(ModulusKind::Shear),
         wlf: None,
@@ -520,4 +633,464 @@ fn bad_trios_files_are_refused_with_line_and_variable() {
     assert_eq!(data.kind, ModulusKind::Shear);
     let e = error_text(read("nodata.txt", good.split("Data point").next().unwrap()));
     assert_contains(&e, &["nodata.txt", "without data points"]);
+}
+
+// ---------------------------------------------------------------- shifting
+
+const C1: f64 = 8.86;
+const C2: f64 = 101.6;
+
+/// A DMA file of the broad rubber measured at `temperatures` (°C), the
+/// master curve at 20 °C shifted by WLF (C1, C2): E*(ω, T) = E*_ref(ω a_T).
+fn multi_temperature_csv(dir: &TempDir, name: &str, temperatures: &[f64]) -> PathBuf {
+    let series = Series::broad_rubber();
+    let mut text = String::from("T,omega,E_storage,E_loss\n");
+    for &t in temperatures {
+        let a_t = 10f64.powf(wlf(t, 20.0, C1, C2));
+        for j in 0..9 {
+            let omega = 0.1 * 10f64.powf(j as f64 / 4.0);
+            let (s, l) = series.at(omega * a_t);
+            text.push_str(&format!("{t},{omega:e},{s:e},{l:e}\n"));
+        }
+    }
+    dir.write(name, &text)
+}
+
+/// The points lie on the master curve at their reduced frequency, and the
+/// reduced frequency is ω·a_T from the WLF written out here.
+fn assert_on_master_curve(points: &[DmaPoint], tolerance: f64) {
+    let series = Series::broad_rubber();
+    for pair in points.windows(2) {
+        assert!(pair[0].omega <= pair[1].omega, "not sorted by reduced ω");
+    }
+    for p in points {
+        let (s, l) = series.at(p.omega);
+        assert!(relative(p.storage, s) < tolerance, "{p:?}: E′ {s}");
+        assert!(relative(p.loss, l) < tolerance, "{p:?}: E″ {l}");
+    }
+}
+
+#[test]
+fn several_temperatures_are_shifted_back_onto_the_master_curve() {
+    let dir = TempDir::new("shift");
+    let temperatures = [0.0, 20.0, 40.0, 60.0];
+    let path = multi_temperature_csv(&dir, "dma.csv", &temperatures);
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.temperatures(), temperatures.to_vec());
+    let series = Series::broad_rubber();
+
+    // With the fit's WLF shift.
+    let shift = wlf_shift_json(20.0, C1, C2, &[0.0, 20.0, 40.0]);
+    let fit = fit_dir(&dir.path().join("wlf"), &series, (1e-3, 1e6), &shift, 0.5);
+    let points = data.at_reference(&fit, &DmaOptions::default()).unwrap();
+    assert_eq!(points.len(), 36);
+    assert_on_master_curve(&points, 1e-13);
+    let measured: Vec<f64> = data
+        .points
+        .iter()
+        .map(|p| p.omega * 10f64.powf(wlf(p.temperature.unwrap(), 20.0, C1, C2)))
+        .collect();
+    for p in &points {
+        assert!(
+            measured.iter().any(|m| relative(p.omega, *m) < 1e-14),
+            "{p:?}"
+        );
+    }
+    // 60 °C lies outside the fit's temperatures: extrapolated WLF, said so.
+    let shifted = data.shifted(&fit, &DmaOptions::default()).unwrap();
+    assert!(
+        shifted
+            .notes
+            .iter()
+            .any(|n| n.contains("60.0") && n.contains("extrapolated")),
+        "{:?}",
+        shifted.notes
+    );
+
+    // With the DMA's own WLF at another reference temperature: the same
+    // shifts (WLF re-referenced to 40 °C: C1′ = C1 C2/(C2 + 20), C2′ = C2 + 20).
+    let own = DmaOptions {
+        kind: None,
+        wlf: Some(DmaWlf {
+            t_ref: 40.0,
+            c1: C1 * C2 / (C2 + 20.0),
+            c2: C2 + 20.0,
+        }),
+    };
+    let again = data.at_reference(&fit, &own).unwrap();
+    for (a, b) in again.iter().zip(&points) {
+        assert!(relative(a.omega, b.omega) < 1e-13, "{a:?} {b:?}");
+    }
+    // On a fit without a shift the DMA's own WLF takes the fit to be at
+    // its T_ref (here 20 °C).
+    let plain = fit_dir(&dir.path().join("plain"), &series, (1e-3, 1e6), "", 0.5);
+    let own20 = DmaOptions {
+        kind: None,
+        wlf: Some(DmaWlf {
+            t_ref: 20.0,
+            c1: C1,
+            c2: C2,
+        }),
+    };
+    assert_on_master_curve(&data.at_reference(&plain, &own20).unwrap(), 1e-13);
+
+    // No shift anywhere: refused, with the flag to use.
+    let e = data
+        .at_reference(&plain, &DmaOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert_contains(
+        &e,
+        &[
+            "dma.csv",
+            "4 temperatures",
+            "0.0, 20.0, 40.0, 60.0",
+            "--dma-wlf T_REF,C1,C2",
+        ],
+    );
+
+    // A free shift says nothing outside its temperatures.
+    let free = r#"{"model": "free", "T_ref": 20.0, "log_aT": [{"T": 0.0, "log_aT": 2.0}, {"T": 20.0, "log_aT": 0.0}, {"T": 40.0, "log_aT": -1.5}]}"#;
+    let free_fit = fit_dir(&dir.path().join("free"), &series, (1e-3, 1e6), free, 0.5);
+    let e = data
+        .at_reference(&free_fit, &DmaOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert_contains(&e, &["60.0 °C", "free shift", "0 to 40 °C", "--dma-wlf"]);
+}
+
+#[test]
+fn isotherms_with_controller_scatter_take_a_free_shifts_listed_values() {
+    let dir = TempDir::new("free");
+    let text = "T,omega,E_storage,E_loss\n-0.02,1,1e7,1e6\n0.03,2,1e7,1e6\n39.98,1,1e7,1e6\n40.01,3,1e7,1e6\n";
+    let data = DmaData::read(&dir.write("dma.csv", text), 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.temperatures().len(), 2);
+    let free = r#"{"model": "free", "T_ref": 20.0, "log_aT": [{"T": 0.0, "log_aT": 2.0}, {"T": 20.0, "log_aT": 0.0}, {"T": 40.0, "log_aT": -1.5}]}"#;
+    let fit = fit_dir(
+        &dir.path().join("fit"),
+        &Series::broad_rubber(),
+        (1e-3, 1e6),
+        free,
+        0.5,
+    );
+    let omegas: Vec<f64> = data
+        .at_reference(&fit, &DmaOptions::default())
+        .unwrap()
+        .iter()
+        .map(|p| p.omega)
+        .collect();
+    let expected = [10f64.powf(-1.5), 3.0 * 10f64.powf(-1.5), 100.0, 200.0];
+    for (o, e) in omegas.iter().zip(expected) {
+        assert!(relative(*o, e) < 1e-14, "{omegas:?}");
+    }
+}
+
+#[test]
+fn one_temperature_is_used_as_measured_or_shifted_to_the_fits_reference() {
+    let dir = TempDir::new("single");
+    let path = multi_temperature_csv(&dir, "dma40.csv", &[40.0]);
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    let series = Series::broad_rubber();
+    let plain = fit_dir(&dir.path().join("plain"), &series, (1e-3, 1e6), "", 0.5);
+    let shifted = data.shifted(&plain, &DmaOptions::default()).unwrap();
+    for (a, b) in shifted.points.iter().zip(&data.points) {
+        assert_eq!(a.omega, b.omega);
+    }
+    assert!(shifted.notes.iter().any(|n| n.contains("as measured")));
+    let shift = wlf_shift_json(20.0, C1, C2, &[20.0, 40.0]);
+    let fit = fit_dir(&dir.path().join("wlf"), &series, (1e-3, 1e6), &shift, 0.5);
+    assert_on_master_curve(
+        &data.at_reference(&fit, &DmaOptions::default()).unwrap(),
+        1e-13,
+    );
+    // No temperature column at all: as measured, also on a temperature set.
+    let path = dir.write("not.csv", "omega,E_storage,E_loss\n1,1e7,1e6\n");
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    let points = data.at_reference(&fit, &DmaOptions::default()).unwrap();
+    assert_eq!(points[0].omega, 1.0);
+}
+
+// ---------------------------------------------------------------- causality
+
+/// Points of `series` at `count` log-spaced ω over [lo, hi] rad/s.
+fn sample(series: &Series, lo: f64, hi: f64, count: usize) -> Vec<DmaPoint> {
+    (0..count)
+        .map(|j| {
+            let omega = lo * (hi / lo).powf(j as f64 / (count - 1) as f64);
+            let (storage, loss) = series.at(omega);
+            DmaPoint {
+                omega,
+                storage,
+                loss,
+                temperature: None,
+            }
+        })
+        .collect()
+}
+
+/// A quasi-continuous spectrum: four terms per decade, log-normal
+/// strengths, shifted off the check's grid by `offset` decades.
+fn dense_rubber(offset: f64) -> Series {
+    let tau: Vec<f64> = (-48..=16)
+        .map(|k| 10f64.powf(k as f64 / 4.0 + offset))
+        .collect();
+    let weights: Vec<f64> = tau
+        .iter()
+        .map(|t| (-(t.log10() - offset + 4.0).powi(2) / 8.0).exp())
+        .collect();
+    let total: f64 = weights.iter().sum();
+    Series {
+        e1: 2e9,
+        h: weights.iter().map(|w| (2e9 - 2e6) * w / total).collect(),
+        tau,
+    }
+}
+
+#[test]
+fn causal_data_fit_a_causal_model_to_a_thousandth_of_a_decade() {
+    for offset in [0.37, 0.11] {
+        let series = dense_rubber(offset);
+        let points = sample(&series, 1e-2, 1e9, 80);
+        let check = causality::check(&points).unwrap();
+        println!(
+            "causal (offset {offset}): misfit E′ {:.2e}, E″ {:.2e} decades",
+            check.misfit_storage, check.misfit_loss
+        );
+        assert!(check.misfit_storage < 1e-4 && check.misfit_loss < 1e-4);
+        assert!(check.max_misfit_storage.0 < 1e-3 && check.max_misfit_loss.0 < 1e-3);
+        assert!(check.warnings.is_empty(), "{:?}", check.warnings);
+        // The fitted curve is the check's model: it follows the data.
+        for p in check.curve(50) {
+            let (s, l) = series.at(p.omega);
+            assert!(
+                relative(p.storage, s) < 1e-3 && relative(p.loss, l) < 1e-3,
+                "{p:?}"
+            );
+        }
+    }
+    // The hardest causal case: two isolated Maxwell elements between grid
+    // nodes (module doc: about 3e-3/5e-3 decades), still far from a warning.
+    let narrow = Series {
+        e1: 1e8,
+        h: vec![6e7, 3e7],
+        tau: vec![2.3e-3, 4.1e-2],
+    };
+    let check = causality::check(&sample(&narrow, 1e-1, 1e5, 80)).unwrap();
+    println!(
+        "isolated elements: misfit E′ {:.2e}, E″ {:.2e} decades",
+        check.misfit_storage, check.misfit_loss
+    );
+    assert!(check.misfit_storage < 1e-2 && check.misfit_loss < 1e-2);
+    assert!(check.warnings.is_empty(), "{:?}", check.warnings);
+}
+
+#[test]
+fn loss_inflated_near_the_peak_is_not_causal() {
+    let series = Series::broad_rubber();
+    let mut points = sample(&series, 1e-2, 1e9, 100);
+    // The loss peak of the broad rubber is near ω = 1/τ_centre = 1e4 rad/s.
+    let peak = points
+        .iter()
+        .max_by(|a, b| a.tan_delta().total_cmp(&b.tan_delta()))
+        .unwrap()
+        .omega;
+    for p in &mut points {
+        if (p.omega / peak).log10().abs() < 1.0 {
+            p.loss *= 1.5;
+        }
+    }
+    let check = causality::check(&points).unwrap();
+    println!(
+        "inflated: misfit E′ {:.4}, E″ {:.4}, max E″ {:.4} decades",
+        check.misfit_storage, check.misfit_loss, check.max_misfit_loss.0
+    );
+    assert!(check.misfit_loss > KK_MISFIT_THRESHOLD);
+    assert!(check.max_misfit_loss.0 > KK_MAX_MISFIT_THRESHOLD);
+    assert!(
+        check.warnings.iter().any(|w| w.contains("not causal")),
+        "{:?}",
+        check.warnings
+    );
+}
+
+/// Lawson–Hanson against the definition: the NNLS optimum is the best of
+/// the unconstrained least-squares solutions on every subset of columns
+/// that are feasible (x ≥ 0), found here by enumerating all 2^n subsets.
+#[test]
+fn nnls_matches_brute_force_enumeration() {
+    use nalgebra::{DMatrix, DVector};
+    // A fixed linear congruential sequence: reproducible, no dependency.
+    let mut state: u64 = 0x2545_F491_4F6C_DD1D;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    };
+    for _ in 0..20 {
+        let (m, n) = (9, 5);
+        let a = DMatrix::from_fn(m, n, |_, _| next());
+        let b = DVector::from_fn(m, |_, _| next());
+        let x = causality::nnls(&a, &b);
+        let mut best = f64::INFINITY;
+        for mask in 0u32..(1 << n) {
+            let cols: Vec<usize> = (0..n).filter(|j| mask & (1 << j) != 0).collect();
+            let mut z = DVector::zeros(n);
+            if !cols.is_empty() {
+                let sub = a.select_columns(&cols);
+                let s = (sub.transpose() * &sub).try_inverse().unwrap() * sub.transpose() * &b;
+                if s.iter().any(|v| *v < 0.0) {
+                    continue;
+                }
+                for (k, &j) in cols.iter().enumerate() {
+                    z[j] = s[k];
+                }
+            }
+            best = best.min((&a * z - &b).norm());
+        }
+        assert!(x.iter().all(|v| *v >= 0.0));
+        assert!(
+            ((&a * &x - &b).norm() - best).abs() < 1e-12,
+            "{} vs {best}",
+            (&a * &x - &b).norm()
+        );
+    }
+}
+
+// ---------------------------------------------------------------- compare
+
+const CONTRACT_KEYS: [&str; 11] = [
+    "n_points",
+    "omega_min",
+    "omega_max",
+    "tan_delta_rms_rel",
+    "tan_delta_max_rel",
+    "abs_E_rms_rel",
+    "abs_E_max_rel",
+    "log10_E_storage_rms",
+    "log10_E_loss_rms",
+    "dma_kk_misfit_storage",
+    "dma_kk_misfit_loss",
+];
+
+/// A DMA file made from the broad rubber (Young's, no temperature) at
+/// `count` ω over [lo, hi], E′ multiplied by `storage_factor`.
+fn own_curve_csv(
+    dir: &TempDir,
+    name: &str,
+    lo: f64,
+    hi: f64,
+    count: usize,
+    storage_factor: f64,
+) -> PathBuf {
+    let mut text = String::from("omega,E_storage,E_loss\n");
+    for p in sample(&Series::broad_rubber(), lo, hi, count) {
+        text.push_str(&format!(
+            "{:e},{:e},{:e}\n",
+            p.omega,
+            p.storage * storage_factor,
+            p.loss
+        ));
+    }
+    dir.write(name, &text)
+}
+
+#[test]
+fn a_dma_of_the_fits_own_curve_matches_to_rounding() {
+    let dir = TempDir::new("own");
+    let fit = fit_dir(
+        &dir.path().join("fit"),
+        &Series::broad_rubber(),
+        (0.09, 1.1e5),
+        "",
+        0.5,
+    );
+    // 41 points over 1e-3..1e7, four per decade: 25 inside the window.
+    let path = own_curve_csv(&dir, "own.csv", 1e-3, 1e7, 41, 1.0);
+    let dma = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    let c = compare(&fit, &dma, &DmaOptions::default()).unwrap();
+    assert_eq!(c.n_points, 25);
+    assert!(
+        relative(c.omega_min.unwrap(), 0.1) < 1e-12 && relative(c.omega_max.unwrap(), 1e5) < 1e-12
+    );
+    for value in [
+        c.tan_delta_rms_rel,
+        c.tan_delta_max_rel,
+        c.abs_modulus_rms_rel,
+        c.abs_modulus_max_rel,
+        c.log10_storage_rms,
+        c.log10_loss_rms,
+    ] {
+        assert!(value.unwrap() < 1e-12, "{value:?}");
+    }
+    assert!(c.dma_kk_misfit_storage < 1e-3 && c.dma_kk_misfit_loss < 1e-3);
+    assert!(!c.overlap_empty);
+    assert_eq!(c.points.len(), 41);
+    let json = serde_json::to_value(&c).unwrap();
+    for key in CONTRACT_KEYS {
+        assert!(
+            json.get(key).is_some_and(|v| !v.is_null()),
+            "{key} in {json}"
+        );
+    }
+    assert!(json.get("points").is_none() && json.get("causal").is_none());
+}
+
+#[test]
+fn ten_per_cent_more_storage_gives_the_analytic_errors() {
+    let dir = TempDir::new("offset");
+    let series = Series::broad_rubber();
+    let fit = fit_dir(&dir.path().join("fit"), &series, (0.09, 1.1e5), "", 0.5);
+    let path = own_curve_csv(&dir, "stiff.csv", 1e-1, 1e5, 25, 1.1);
+    let dma = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    let c = compare(&fit, &dma, &DmaOptions::default()).unwrap();
+    assert_eq!(c.n_points, 25);
+    // log10(E′_fit/E′_DMA) = −log10 1.1 at every point.
+    assert!((c.log10_storage_rms.unwrap() - 1.1f64.log10()).abs() < 1e-12);
+    assert!(c.log10_loss_rms.unwrap() < 1e-12);
+    // tan δ_fit/tan δ_DMA = 1.1 at every point: relative error 0.1.
+    assert!((c.tan_delta_rms_rel.unwrap() - 0.1).abs() < 1e-12);
+    assert!((c.tan_delta_max_rel.unwrap() - 0.1).abs() < 1e-12);
+    // |E*|: (√(E′² + E″²) − √(1.21 E′² + E″²))/√(1.21 E′² + E″²) per point.
+    let errors: Vec<f64> = sample(&series, 1e-1, 1e5, 25)
+        .iter()
+        .map(|p| {
+            let dma = (1.21 * p.storage * p.storage + p.loss * p.loss).sqrt();
+            (p.storage.hypot(p.loss) - dma) / dma
+        })
+        .collect();
+    let rms = (errors.iter().map(|e| e * e).sum::<f64>() / 25.0).sqrt();
+    let max = errors.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+    assert!(relative(c.abs_modulus_rms_rel.unwrap(), rms) < 1e-10);
+    assert!(relative(c.abs_modulus_max_rel.unwrap(), max) < 1e-10);
+}
+
+#[test]
+fn no_overlap_gives_null_metrics_and_says_why() {
+    let dir = TempDir::new("apart");
+    let fit = fit_dir(
+        &dir.path().join("fit"),
+        &Series::broad_rubber(),
+        (1e-1, 1e2),
+        "",
+        0.5,
+    );
+    let path = own_curve_csv(&dir, "high.csv", 1e4, 1e7, 10, 1.0);
+    let dma = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    let c = compare(&fit, &dma, &DmaOptions::default()).unwrap();
+    assert_eq!(c.n_points, 0);
+    assert!(c.overlap_empty);
+    let json = serde_json::to_value(&c).unwrap();
+    for key in &CONTRACT_KEYS[1..9] {
+        assert!(json[key].is_null(), "{key}: {}", json[key]);
+    }
+    assert_eq!(json["n_points"], 0);
+    assert!(json["dma_kk_misfit_storage"].is_number());
+    assert!(
+        c.warnings.iter().any(|w| w.contains("[1.000e-1, 1.000e2]")
+            && w.contains("[1.000e4, 1.000e7]")
+            && w.contains("do not overlap")),
+        "{:?}",
+        c.warnings
+    );
 }

@@ -184,7 +184,13 @@ impl DmaData {
         let text = trios::decode(&bytes);
         let (raw, kind, names, format, mut warnings) = if trios::is_lims(&text) {
             let file = trios::parse(path, &text, options)?;
-            (file.points, file.kind, file.names, "trios-lims", file.warnings)
+            (
+                file.points,
+                file.kind,
+                file.names,
+                "trios-lims",
+                file.warnings,
+            )
         } else {
             let file = csv_form::parse(path, &text)?;
             (file.points, file.kind, file.names, "csv", file.warnings)
@@ -260,7 +266,10 @@ fn check_points(
             return Err(ReportError::line(
                 path,
                 p.line,
-                format!("{}: storage modulus {} is not positive", names.storage, p.storage),
+                format!(
+                    "{}: storage modulus {} is not positive",
+                    names.storage, p.storage
+                ),
             ));
         }
         if p.loss <= 0.0 {

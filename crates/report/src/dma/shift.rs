@@ -96,7 +96,11 @@ pub(crate) fn to_reference(
 ) -> Result<Shifted, ReportError> {
     let file = data.path.display();
     let isotherms = isotherms(&data.points);
-    let without_t = data.points.iter().filter(|p| p.temperature.is_none()).count();
+    let without_t = data
+        .points
+        .iter()
+        .filter(|p| p.temperature.is_none())
+        .count();
     if without_t > 0 && without_t < data.points.len() {
         return Err(ReportError::format(
             &data.path,
@@ -133,7 +137,9 @@ pub(crate) fn to_reference(
         let listed: Vec<f64> = shift.log_shift.iter().map(|s| s.temperature).collect();
         let (lo, hi) = listed
             .iter()
-            .fold((shift.t_ref, shift.t_ref), |(lo, hi), &t| (lo.min(t), hi.max(t)));
+            .fold((shift.t_ref, shift.t_ref), |(lo, hi), &t| {
+                (lo.min(t), hi.max(t))
+            });
         let mut extrapolated = Vec::new();
         for iso in &isotherms {
             // A free shift is known at its listed temperatures; an isotherm

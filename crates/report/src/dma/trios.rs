@@ -354,7 +354,15 @@ fn decide_kind(
     } else {
         let lower = instrument.unwrap_or("").to_ascii_lowercase();
         let any = |names: &[&str]| names.iter().any(|n| lower.contains(n));
-        if any(&["ares", "dhr", "discovery hr", "ar-g2", "ar2000", "ar 2000", "hr-"]) {
+        if any(&[
+            "ares",
+            "dhr",
+            "discovery hr",
+            "ar-g2",
+            "ar2000",
+            "ar 2000",
+            "hr-",
+        ]) {
             (ModulusKind::Shear, "a rotational rheometer".to_string())
         } else if any(&["rsa", "dma", "q800"]) {
             (ModulusKind::Young, "a linear DMA".to_string())
