@@ -1,17 +1,260 @@
-//! `rollfit compare` (being written).
+//! `rollfit compare DIR DMA`: the master curve recovered by `rollfit fit`
+//! against DMA data (DESIGN.md §4).
+//!
+//! Reads DIR (fit.json, mu.csv, modulus.csv) and the DMA file (CSV or a
+//! TRIOS LIMS export), moves the DMA points to the fit's reference state
+//! (the fit's shift, or the DMA's own WLF with `--dma-wlf`), and prints the
+//! errors of tan δ, |E*|, E′ and E″ over the overlap of the fit's window
+//! and the DMA frequencies, plus the causality check of the DMA data, as a
+//! table on stdout; warnings go to stderr. The same numbers are written to
+//! DIR/compare.json (atomically). On any error nothing is written.
 
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result};
+use rollfit_report::FitDir;
+use rollfit_report::compare::{Comparison, compare};
+use rollfit_report::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind};
+
+use crate::output;
 
 /// Arguments of `rollfit compare`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Fit result folder.
+    /// Fit result folder (as written by `rollfit fit`).
     pub dir: PathBuf,
+    /// DMA file: CSV (omega or f; E_storage, E_loss or G_storage, G_loss;
+    /// optional T) or a TA Instruments TRIOS LIMS text export.
+    pub dma: PathBuf,
+    #[command(flatten)]
+    pub flags: DmaFlags,
+}
+
+/// How a TRIOS file's moduli are to be read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum DmaModulus {
+    /// Young's (tensile, bending, compression) moduli E′, E″.
+    Young,
+    /// Shear moduli G′, G″, converted with E = 2(1+ν)G.
+    Shear,
+}
+
+/// The DMA flags shared by `rollfit compare` and `rollfit report --dma`.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct DmaFlags {
+    /// Read a TRIOS file's Storage/Loss modulus as Young's or shear moduli
+    /// (default: decided from the file's torque or force variables and
+    /// instrument type). A CSV says it with its column names.
+    #[arg(long = "dma-modulus", value_enum, value_name = "KIND")]
+    pub dma_modulus: Option<DmaModulus>,
+    /// The DMA's own WLF shift, T_REF (°C), C1, C2 (K): moves its
+    /// temperatures to the fit's reference instead of the fit's shift.
+    /// Needed for DMA data at several temperatures when the fit is not a
+    /// temperature set.
+    #[arg(long = "dma-wlf", value_name = "T_REF,C1,C2", value_parser = parse_wlf)]
+    pub dma_wlf: Option<DmaWlf>,
+}
+
+impl DmaFlags {
+    /// The options of the report crate.
+    pub fn options(&self) -> DmaOptions {
+        DmaOptions {
+            kind: self.dma_modulus.map(|k| match k {
+                DmaModulus::Young => ModulusKind::Young,
+                DmaModulus::Shear => ModulusKind::Shear,
+            }),
+            wlf: self.dma_wlf,
+        }
+    }
+}
+
+/// Parses `T_REF,C1,C2`.
+fn parse_wlf(text: &str) -> Result<DmaWlf, String> {
+    let usage = "expected T_REF,C1,C2: reference temperature (°C), C1, C2 (K), e.g. 20,8.86,101.6";
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|v| v.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("\"{text}\": {usage}"))?;
+    let [t_ref, c1, c2] = values[..] else {
+        return Err(format!("\"{text}\" has {} numbers: {usage}", values.len()));
+    };
+    if !(t_ref.is_finite() && c1.is_finite() && c2.is_finite()) {
+        return Err(format!("\"{text}\": the numbers must be finite; {usage}"));
+    }
+    if c2 <= 0.0 {
+        return Err(format!(
+            "\"{text}\": C2 = {c2} K must be positive (WLF diverges at T = T_REF − C2)"
+        ));
+    }
+    Ok(DmaWlf { t_ref, c1, c2 })
+}
+
+/// Reads the fit and the DMA file and compares them (no output written).
+pub fn comparison(
+    dir: &std::path::Path,
+    dma: &std::path::Path,
+    flags: &DmaFlags,
+) -> Result<Comparison> {
+    let fit = FitDir::read(dir).context("cannot read the fit")?;
+    let options = flags.options();
+    let data =
+        DmaData::read(dma, fit.summary.poisson, &options).context("cannot read the DMA file")?;
+    compare(&fit, &data, &options).context("cannot compare the fit with the DMA data")
 }
 
 /// Runs the command.
-pub fn run(_args: &Args) -> Result<()> {
-    bail!("not built yet")
+pub fn run(args: &Args) -> Result<()> {
+    let result = comparison(&args.dir, &args.dma, &args.flags)?;
+    let mut json = serde_json::to_vec_pretty(&result).context("cannot format compare.json")?;
+    json.push(b'\n');
+    let target = args.dir.join("compare.json");
+    output::write_atomically(&target, &json)?;
+    for note in &result.notes {
+        eprintln!("note: {note}");
+    }
+    for warning in &result.warnings {
+        eprintln!("warning: {warning}");
+    }
+    output::write_stdout(table(&result).as_bytes())?;
+    eprintln!("wrote {}", target.display());
+    Ok(())
+}
+
+/// The readable table of stdout: one line per compare.json key.
+pub fn table(c: &Comparison) -> String {
+    // Small errors in exponent form: "0.0000" would hide a 1e-6.
+    let number = |v: Option<f64>| match v {
+        None => "—".to_string(),
+        Some(v) if v != 0.0 && v.abs() < 1e-3 => format!("{v:.3e}"),
+        Some(v) => format!("{v:.4}"),
+    };
+    let percent = |v: Option<f64>| v.map_or(String::new(), |v| format!("{:.1} %", 100.0 * v));
+    let decades = |v: Option<f64>| v.map_or(String::new(), |v| format!("×{:.3}", 10f64.powf(v)));
+    let mut out = format!(
+        "DMA {} ({}, {} moduli{}), {} points at the fit's reference state, ω = {:.3e} … {:.3e} rad/s\n",
+        c.dma_file,
+        c.dma_format,
+        c.modulus_kind,
+        if c.modulus_kind == "shear" {
+            format!(" → Young's with ν = {}", c.poisson)
+        } else {
+            String::new()
+        },
+        c.dma_points,
+        c.dma_omega_range[0],
+        c.dma_omega_range[1],
+    );
+    out.push_str(&format!(
+        "fit window {:.3e} … {:.3e} rad/s; overlap: {} points{}\n\n",
+        c.fit_window[0],
+        c.fit_window[1],
+        c.n_points,
+        match (c.omega_min, c.omega_max) {
+            (Some(lo), Some(hi)) => format!(", ω = {lo:.3e} … {hi:.3e} rad/s"),
+            _ => " (no metric)".to_string(),
+        }
+    ));
+    out.push_str(&format!(
+        "{:<24} {:>10}  {}\n",
+        "metric", "value", "meaning"
+    ));
+    let count = c.n_points.to_string();
+    out.push_str(&format!(
+        "{:<24} {count:>10}  DMA points inside the fit's window\n",
+        "n_points"
+    ));
+    for (key, value, meaning) in [
+        ("omega_min", c.omega_min, "lowest of them, rad/s (reduced)"),
+        ("omega_max", c.omega_max, "highest of them, rad/s (reduced)"),
+    ] {
+        let value = value.map_or("—".to_string(), |v| format!("{v:.3e}"));
+        out.push_str(&format!("{key:<24} {value:>10}  {meaning}\n"));
+    }
+    let rows: [(&str, Option<f64>, String); 10] = [
+        (
+            "tan_delta_rms_rel",
+            c.tan_delta_rms_rel,
+            format!(
+                "RMS relative error of tan δ ({})",
+                percent(c.tan_delta_rms_rel)
+            ),
+        ),
+        (
+            "tan_delta_max_rel",
+            c.tan_delta_max_rel,
+            format!(
+                "largest |relative error| of tan δ ({})",
+                percent(c.tan_delta_max_rel)
+            ),
+        ),
+        (
+            "abs_E_rms_rel",
+            c.abs_modulus_rms_rel,
+            format!(
+                "RMS relative error of |E*| ({})",
+                percent(c.abs_modulus_rms_rel)
+            ),
+        ),
+        (
+            "abs_E_max_rel",
+            c.abs_modulus_max_rel,
+            format!(
+                "largest |relative error| of |E*| ({})",
+                percent(c.abs_modulus_max_rel)
+            ),
+        ),
+        (
+            "log10_E_storage_rms",
+            c.log10_storage_rms,
+            format!(
+                "RMS log10 error of E′, decades ({})",
+                decades(c.log10_storage_rms)
+            ),
+        ),
+        (
+            "log10_E_loss_rms",
+            c.log10_loss_rms,
+            format!(
+                "RMS log10 error of E″, decades ({})",
+                decades(c.log10_loss_rms)
+            ),
+        ),
+        (
+            "dma_kk_misfit_storage",
+            Some(c.dma_kk_misfit_storage),
+            format!(
+                "causal fit to the DMA's E′, RMS decades (warn > {})",
+                c.kk_misfit_threshold
+            ),
+        ),
+        (
+            "dma_kk_misfit_loss",
+            Some(c.dma_kk_misfit_loss),
+            format!(
+                "causal fit to the DMA's E″, RMS decades (warn > {})",
+                c.kk_misfit_threshold
+            ),
+        ),
+        (
+            "dma_kk_max_storage",
+            Some(c.dma_kk_max_storage),
+            format!(
+                "causal fit to the DMA's E′, largest miss, decades (warn > {})",
+                c.kk_max_misfit_threshold
+            ),
+        ),
+        (
+            "dma_kk_max_loss",
+            Some(c.dma_kk_max_loss),
+            format!(
+                "causal fit to the DMA's E″, largest miss, decades (warn > {})",
+                c.kk_max_misfit_threshold
+            ),
+        ),
+    ];
+    for (key, value, meaning) in rows {
+        out.push_str(&format!("{key:<24} {:>10}  {meaning}\n", number(value)));
+    }
+    out
 }

@@ -192,7 +192,14 @@ impl DmaData {
                 file.warnings,
             )
         } else {
-            let file = csv_form::parse(path, &text)?;
+            let mut file = csv_form::parse(path, &text)?;
+            if options.kind.is_some_and(|k| k != file.kind) {
+                file.warnings.push(format!(
+                    "{}: the CSV's column names say {} moduli; the requested modulus kind applies to TRIOS files only and is ignored",
+                    path.display(),
+                    file.kind.name()
+                ));
+            }
             (file.points, file.kind, file.names, "csv", file.warnings)
         };
         let factor = match kind {
