@@ -391,6 +391,19 @@ fn shear_becomes_young_with_the_fits_poisson_ratio() {
             data.warnings
         );
     }
+    // A CSV says shear with its column names; a contrary request is
+    // ignored, with a warning.
+    let young = DmaOptions {
+        kind: Some(ModulusKind::Young),
+        wlf: None,
+    };
+    let data = DmaData::read(&path, 0.5, &young).unwrap();
+    assert_eq!(data.kind, ModulusKind::Shear);
+    assert!(
+        data.warnings.iter().any(|w| w.contains("ignored")),
+        "{:?}",
+        data.warnings
+    );
     let e = DmaData::read(&path, 0.7, &DmaOptions::default()).unwrap_err();
     assert_contains(&e.to_string(), &["0.7"]);
 }
