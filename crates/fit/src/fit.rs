@@ -221,7 +221,26 @@ fn record(stage: &str, lambda: f64, r: &SolverRun) -> RunRecord {
         wall_time_s: r.wall_time_s,
         converged: r.stop.converged(),
         stop_reason: r.stop.describe(),
+        history: improvements(&r.history),
     }
+}
+
+/// The points of a run's (evaluation, best V) record where V improved: the
+/// whole convergence curve as a staircase, without the flat stretches that
+/// would make fit.json grow with the budget.
+fn improvements(history: &[(usize, f64)]) -> Vec<[f64; 2]> {
+    let mut points: Vec<[f64; 2]> = Vec::new();
+    for &(evaluation, best) in history {
+        if points.last().is_none_or(|last| best < last[1]) {
+            points.push([evaluation as f64, best]);
+        }
+    }
+    if let (Some(&(evaluation, best)), Some(last)) = (history.last(), points.last())
+        && last[0] < evaluation as f64
+    {
+        points.push([evaluation as f64, best]);
+    }
+    points
 }
 
 /// The fit on one τ grid, from `warm` (a material θ of this grid's

@@ -97,6 +97,9 @@ pub struct RunRecord {
     pub converged: bool,
     /// How it ended.
     pub stop_reason: String,
+    /// (evaluations, best V so far) at each evaluation that improved V,
+    /// for convergence plots.
+    pub history: Vec<[f64; 2]>,
 }
 
 /// The time–temperature shift of a temperature set (DESIGN.md §2):

@@ -13,6 +13,8 @@ pub mod compare;
 pub mod dma;
 pub mod error;
 pub mod fit_dir;
+pub mod html;
+pub mod plot;
 
 pub use error::ReportError;
 pub use fit_dir::FitDir;

@@ -1,0 +1,390 @@
+//! DIR/report.html: one self-contained page (no network, no external
+//! files: the pictures are inline SVG) with the fit's table, its
+//! parameters and their uncertainty, the warnings, the pictures and, when
+//! DMA data were given, the comparison metrics.
+
+use std::fmt::Write as _;
+
+use crate::fit_dir::FitDir;
+use crate::plot::Picture;
+
+/// The page's style: readable without any external resource.
+const STYLE: &str = "
+body { font-family: 'DejaVu Sans', Verdana, Arial, sans-serif; margin: 2em auto; max-width: 1000px; color: #222; line-height: 1.45; padding: 0 1em; }
+h1 { font-size: 1.6em; margin-bottom: 0.2em; }
+h2 { font-size: 1.25em; border-bottom: 1px solid #ccc; padding-bottom: 0.2em; margin-top: 2em; }
+table { border-collapse: collapse; margin: 0.8em 0; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.7em; text-align: left; vertical-align: top; }
+th { background: #f3f3f3; font-weight: normal; color: #444; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+tr.undetermined td { color: #888; }
+.status { padding: 0.6em 1em; border-radius: 4px; margin: 1em 0; }
+.ok { background: #e8f5e9; border: 1px solid #a5d6a7; }
+.bad { background: #ffebee; border: 1px solid #ef9a9a; }
+.warnings { background: #fff8e1; border: 1px solid #ffe082; padding: 0.6em 1em 0.6em 2em; }
+figure { margin: 1.5em 0; }
+figure svg { max-width: 100%; height: auto; border: 1px solid #eee; }
+figcaption { color: #555; font-size: 0.92em; margin-top: 0.3em; }
+.meta { color: #666; font-size: 0.92em; }
+";
+
+/// Escapes text for HTML element content and attribute values.
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// A number with 4 significant digits, in exponent form outside
+/// 1e-3 … 1e5.
+fn num(v: f64) -> String {
+    if !v.is_finite() {
+        return v.to_string();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    if v != 0.0 && !(1e-3..1e5).contains(&v.abs()) {
+        return format!("{v:.3e}");
+    }
+    let digits = (3 - v.abs().log10().floor().max(-3.0) as i32).clamp(0, 6) as usize;
+    format!("{v:.digits$}")
+}
+
+/// The comparison with DMA data as the page shows it: the metrics as
+/// written to compare.json, plus warnings.
+pub struct ComparisonSection<'a> {
+    /// The DMA file's name.
+    pub dma_file: &'a str,
+    /// compare.json's content.
+    pub metrics: &'a serde_json::Value,
+    /// Warnings about the DMA data and the comparison.
+    pub warnings: &'a [String],
+}
+
+/// The whole page.
+pub fn report_html(
+    fit: &FitDir,
+    pictures: &[Picture],
+    comparison: Option<&ComparisonSection<'_>>,
+) -> String {
+    let s = &fit.summary;
+    let title = s
+        .input
+        .as_ref()
+        .and_then(|i| i.data.clone())
+        .unwrap_or_else(|| fit.dir.display().to_string());
+    let mut page = String::new();
+    let _ = write!(
+        page,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>rollfit report: {}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n",
+        escape(&title)
+    );
+    let _ = writeln!(page, "<h1>rollfit report: {}</h1>", escape(&title));
+    let mut meta = format!(
+        "Fit directory <code>{}</code>",
+        escape(&fit.dir.display().to_string())
+    );
+    if let Some(input) = &s.input {
+        if let Some(scene) = &input.scene {
+            let _ = write!(meta, "; scene <code>{}</code>", escape(scene));
+        }
+        if let Some(points) = input.points {
+            let _ = write!(meta, "; {points} data points");
+        }
+    }
+    let _ = writeln!(page, "<p class=\"meta\">{meta}.</p>");
+
+    let (class, text) = if s.converged {
+        (
+            "ok",
+            format!(
+                "Converged: {}.",
+                escape(
+                    s.stop_reason
+                        .as_deref()
+                        .unwrap_or("the final run met its tolerance")
+                )
+            ),
+        )
+    } else {
+        (
+            "bad",
+            format!(
+                "Not converged: {}.",
+                escape(
+                    s.stop_reason
+                        .as_deref()
+                        .unwrap_or("the final run stopped early")
+                )
+            ),
+        )
+    };
+    let _ = writeln!(page, "<div class=\"status {class}\">{text}</div>");
+    if !s.warnings.is_empty() {
+        page.push_str("<ul class=\"warnings\">\n");
+        for w in &s.warnings {
+            let _ = writeln!(page, "<li>{}</li>", escape(w));
+        }
+        page.push_str("</ul>\n");
+    }
+
+    page.push_str("<h2>Fit</h2>\n");
+    page.push_str(&fit_table(fit));
+    if let Some(section) = comparison {
+        page.push_str(&comparison_table(section));
+    }
+    page.push_str("<h2>Pictures</h2>\n");
+    for p in pictures {
+        let _ = writeln!(
+            page,
+            "<figure id=\"{name}\">\n{svg}\n<figcaption>{caption} (Also <a href=\"{name}.png\">{name}.png</a>, <a href=\"{name}.svg\">{name}.svg</a>.)</figcaption>\n</figure>",
+            name = p.name,
+            svg = inline_svg(&p.svg),
+            caption = escape(&p.caption)
+        );
+    }
+    page.push_str("<h2>Parameters</h2>\n");
+    page.push_str(&parameter_table(fit));
+    let _ = writeln!(
+        page,
+        "<p class=\"meta\">Written by rollfit {}.</p>\n</body>\n</html>",
+        env!("CARGO_PKG_VERSION")
+    );
+    page
+}
+
+/// An SVG document as an element inside HTML: without an XML declaration.
+fn inline_svg(svg: &str) -> &str {
+    let trimmed = svg.trim_start();
+    if trimmed.starts_with("<?xml") {
+        trimmed
+            .find("?>")
+            .map_or(trimmed, |end| trimmed[end + 2..].trim_start())
+    } else {
+        trimmed
+    }
+}
+
+fn row(out: &mut String, name: &str, value: &str) {
+    let _ = writeln!(out, "<tr><th>{}</th><td>{}</td></tr>", escape(name), value);
+}
+
+fn fit_table(fit: &FitDir) -> String {
+    let s = &fit.summary;
+    let m = &s.model;
+    let mut t = String::from("<table>\n");
+    let determined = if m.determined.is_empty() {
+        m.tau.len()
+    } else {
+        m.determined.iter().filter(|d| **d).count()
+    };
+    row(
+        &mut t,
+        "model",
+        &format!(
+            "Prony series, {} relaxation times ({} determined by the data)",
+            m.tau.len(),
+            determined
+        ),
+    );
+    let e0 = m.glassy_modulus - m.strengths.iter().sum::<f64>();
+    row(&mut t, "static modulus E0", &format!("{} Pa", num(e0)));
+    row(
+        &mut t,
+        "glassy modulus E1",
+        &format!("{} Pa", num(m.glassy_modulus)),
+    );
+    row(&mut t, "Poisson's ratio", &num(s.poisson));
+    row(
+        &mut t,
+        "window",
+        &format!(
+            "{} … {} rad/s",
+            num(s.window.omega_min),
+            num(s.window.omega_max)
+        ),
+    );
+    if let Some(shift) = &s.shift {
+        let text = match (shift.c1, shift.c2) {
+            (Some(c1), Some(c2)) => format!(
+                "WLF at T_ref = {} °C: C1 = {} ± {}, C2 = {} ± {} K",
+                num(shift.t_ref),
+                num(c1),
+                num(shift.c1_sigma.unwrap_or(f64::NAN)),
+                num(c2),
+                num(shift.c2_sigma.unwrap_or(f64::NAN))
+            ),
+            _ => format!("free, T_ref = {} °C", num(shift.t_ref)),
+        };
+        row(&mut t, "shift", &escape(&text));
+        let list: Vec<String> = shift
+            .log_shift
+            .iter()
+            .map(|p| {
+                format!(
+                    "{} °C: {} ± {}",
+                    num(p.temperature),
+                    num(p.log_shift),
+                    num(p.log_shift_sigma)
+                )
+            })
+            .collect();
+        row(&mut t, "log10 a_T", &escape(&list.join("; ")));
+    }
+    if let Some(anchor) = &s.anchor {
+        row(
+            &mut t,
+            "scale anchor",
+            &escape(&format!(
+                "{}: |E*| = {} Pa at ω = {} rad/s",
+                anchor.source,
+                num(anchor.modulus),
+                num(anchor.omega)
+            )),
+        );
+    } else {
+        row(
+            &mut t,
+            "scale anchor",
+            "none: the modulus scale is not determined by μ(v) alone",
+        );
+    }
+    row(&mut t, "method", &escape(&s.method));
+    row(&mut t, "objective V", &num(s.objective));
+    if let Some(m) = s.misfit_per_point {
+        row(&mut t, "misfit per point", &num(m));
+    }
+    if let Some(l) = &s.lambda {
+        let rule = l.rule.as_deref().unwrap_or("given");
+        row(
+            &mut t,
+            "smoothness λ",
+            &escape(&format!("{} ({rule})", num(l.value))),
+        );
+    }
+    if let Some(p) = s.effective_parameters {
+        row(&mut t, "effective parameters", &num(p));
+    }
+    row(&mut t, "iterations (final run)", &s.iterations.to_string());
+    if let Some(e) = s.evaluations {
+        row(&mut t, "evaluations (all runs)", &e.to_string());
+    }
+    row(&mut t, "solver runs", &s.runs.len().to_string());
+    row(&mut t, "wall time", &format!("{} s", num(s.wall_time_s)));
+    row(
+        &mut t,
+        "converged",
+        &if s.converged {
+            "yes".to_string()
+        } else {
+            format!(
+                "no: {}",
+                escape(s.stop_reason.as_deref().unwrap_or("unknown"))
+            )
+        },
+    );
+    t.push_str("</table>\n");
+    t
+}
+
+fn parameter_table(fit: &FitDir) -> String {
+    let m = &fit.summary.model;
+    let mut t = String::from(
+        "<table>\n<tr><th>k</th><th>τ_k (s)</th><th>H_k (Pa)</th><th>1σ of ln H_k</th><th>determined</th></tr>\n",
+    );
+    for (k, (tau, h)) in m.tau.iter().zip(&m.strengths).enumerate() {
+        let determined = m.determined.get(k).copied().unwrap_or(true);
+        let sigma = m
+            .ln_strength_sigma
+            .get(k)
+            .map_or_else(|| "–".to_string(), |s| num(*s));
+        let _ = writeln!(
+            t,
+            "<tr{}><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td></tr>",
+            if determined {
+                ""
+            } else {
+                " class=\"undetermined\""
+            },
+            k + 1,
+            num(*tau),
+            num(*h),
+            sigma,
+            if determined {
+                "yes"
+            } else {
+                "no (outside the window; not a result)"
+            }
+        );
+    }
+    t.push_str("</table>\n");
+    t
+}
+
+fn comparison_table(section: &ComparisonSection<'_>) -> String {
+    let mut t = format!(
+        "<h2>Comparison with DMA data</h2>\n<p>DMA file <code>{}</code>.</p>\n",
+        escape(section.dma_file)
+    );
+    if !section.warnings.is_empty() {
+        t.push_str("<ul class=\"warnings\">\n");
+        for w in section.warnings {
+            let _ = writeln!(t, "<li>{}</li>", escape(w));
+        }
+        t.push_str("</ul>\n");
+    }
+    t.push_str("<table>\n");
+    if let Some(map) = section.metrics.as_object() {
+        for (key, value) in map {
+            let text = match value {
+                serde_json::Value::Number(n) => n.as_f64().map_or_else(|| n.to_string(), num),
+                serde_json::Value::Null => "– (no overlap)".to_string(),
+                serde_json::Value::String(s) => escape(s),
+                serde_json::Value::Bool(b) => b.to_string(),
+                // Lists (warnings) are shown above the table.
+                serde_json::Value::Array(_) | serde_json::Value::Object(_) => continue,
+            };
+            let _ = writeln!(
+                t,
+                "<tr><th><code>{}</code></th><td class=\"num\">{text}</td></tr>",
+                escape(key)
+            );
+        }
+    }
+    t.push_str("</table>\n");
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_is_escaped() {
+        assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+    }
+
+    #[test]
+    fn numbers_keep_four_significant_digits() {
+        assert_eq!(num(0.123456), "0.1235");
+        assert_eq!(num(12.3456), "12.35");
+        assert_eq!(num(2.5e7), "2.500e7");
+        assert_eq!(num(0.0), "0");
+    }
+
+    #[test]
+    fn an_xml_declaration_is_dropped_for_inline_svg() {
+        assert_eq!(inline_svg("<?xml version=\"1.0\"?>\n<svg/>"), "<svg/>");
+        assert_eq!(inline_svg("<svg/>"), "<svg/>");
+    }
+}
