@@ -390,7 +390,11 @@ impl Table {
             let mut values = Vec::with_capacity(record.len());
             for (name, field) in names.iter().zip(record.iter()) {
                 let value: f64 = field.parse().map_err(|_| {
-                    ReportError::line(path, line, format!("column {name}: \"{field}\" is not a number"))
+                    ReportError::line(
+                        path,
+                        line,
+                        format!("column {name}: \"{field}\" is not a number"),
+                    )
                 })?;
                 if !value.is_finite() {
                     return Err(ReportError::line(

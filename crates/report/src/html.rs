@@ -104,29 +104,15 @@ pub fn report_html(
     }
     let _ = writeln!(page, "<p class=\"meta\">{meta}.</p>");
 
+    // stop_reason reads "converged (…)" or says why not; the box says it once.
+    let reason = s.stop_reason.as_deref().unwrap_or("");
+    let reason = reason.strip_prefix("converged").unwrap_or(reason).trim();
     let (class, text) = if s.converged {
-        (
-            "ok",
-            format!(
-                "Converged: {}.",
-                escape(
-                    s.stop_reason
-                        .as_deref()
-                        .unwrap_or("the final run met its tolerance")
-                )
-            ),
-        )
+        ("ok", format!("The fit converged {}.", escape(reason)))
     } else {
         (
             "bad",
-            format!(
-                "Not converged: {}.",
-                escape(
-                    s.stop_reason
-                        .as_deref()
-                        .unwrap_or("the final run stopped early")
-                )
-            ),
+            format!("The fit did not converge: {}.", escape(reason)),
         )
     };
     let _ = writeln!(page, "<div class=\"status {class}\">{text}</div>");

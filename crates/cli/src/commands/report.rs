@@ -12,12 +12,10 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use rollfit_report::FitDir;
-use rollfit_report::compare::compare;
-use rollfit_report::dma::DmaData;
 use rollfit_report::html::{ComparisonSection, report_html};
 use rollfit_report::plot::{self, master_curve::DmaMarker};
 
-use super::compare::DmaFlags;
+use super::compare::{DmaFlags, comparison};
 use crate::output;
 
 /// Arguments of `rollfit report`.
@@ -40,34 +38,34 @@ pub fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
     let fit = FitDir::read(&args.dir).context("cannot read the fit")?;
 
-    let mut markers = Vec::new();
-    let mut comparison = None;
-    if let Some(path) = &args.dma {
-        let options = args.dma_flags.options();
-        let dma = DmaData::read(path, fit.summary.poisson, &options)
-            .context("cannot read the DMA data")?;
-        let result = compare(&fit, &dma, &options).context("cannot compare with the DMA data")?;
-        markers = result
-            .points
+    let comparison = match &args.dma {
+        Some(path) => Some((path, comparison(&args.dir, path, &args.dma_flags)?)),
+        None => None,
+    };
+    let markers: Vec<DmaMarker> = comparison.as_ref().map_or_else(Vec::new, |(_, c)| {
+        c.points
             .iter()
             .map(|p| DmaMarker {
                 omega: p.omega,
                 storage: p.storage,
                 loss: p.loss,
             })
-            .collect();
-        let metrics = serde_json::to_value(&result).context("cannot serialise the comparison")?;
-        let mut warnings = dma.warnings.clone();
-        warnings.extend(result.warnings.iter().cloned());
-        comparison = Some((path.clone(), metrics, warnings));
-    }
+            .collect()
+    });
+    let metrics = match &comparison {
+        Some((_, c)) => Some(serde_json::to_value(c).context("cannot format compare.json")?),
+        None => None,
+    };
 
     let pictures = plot::pictures(&fit, &markers)?;
-    let section = comparison.as_ref().map(|(path, metrics, warnings)| ComparisonSection {
-        dma_file: path.to_str().unwrap_or("DMA file"),
-        metrics,
-        warnings,
-    });
+    let section = comparison
+        .as_ref()
+        .zip(metrics.as_ref())
+        .map(|((path, c), metrics)| ComparisonSection {
+            dma_file: path.to_str().unwrap_or("DMA file"),
+            metrics,
+            warnings: &c.warnings,
+        });
     let page = report_html(&fit, &pictures, section.as_ref());
 
     let mut written = Vec::new();
@@ -78,19 +76,23 @@ pub fn run(args: &Args) -> Result<()> {
             written.push(path);
         }
     }
-    if let Some((_, metrics, _)) = &comparison {
+    if let Some((_, c)) = &comparison {
+        // The same bytes as `rollfit compare` writes.
         let path = args.dir.join("compare.json");
-        let mut text = serde_json::to_string_pretty(metrics)?;
-        text.push('\n');
-        output::write_atomically(&path, text.as_bytes())?;
+        let mut json = serde_json::to_vec_pretty(c).context("cannot format compare.json")?;
+        json.push(b'\n');
+        output::write_atomically(&path, &json)?;
         written.push(path);
     }
     let html_path = args.dir.join("report.html");
     output::write_atomically(&html_path, page.as_bytes())?;
 
-    for (_, _, warnings) in &comparison {
-        for w in warnings {
-            eprintln!("warning: {w}");
+    if let Some((_, c)) = &comparison {
+        for note in &c.notes {
+            eprintln!("note: {note}");
+        }
+        for warning in &c.warnings {
+            eprintln!("warning: {warning}");
         }
     }
     eprintln!(

@@ -20,6 +20,9 @@ const OUTSIDE_DECADES: f64 = 2.0;
 /// Points of the drawn curve.
 const CURVE_POINTS: usize = 240;
 
+/// A curve as (log10 x, log10 y) points.
+type Curve = Vec<(f64, f64)>;
+
 /// One DMA point at the reference state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DmaMarker {
@@ -88,7 +91,7 @@ where
     DB::ErrorType: 'static,
 {
     let solid: Vec<(f64, f64)> = curve.iter().copied().filter(|p| inside(p.0)).collect();
-    let (below, above): (Vec<(f64, f64)>, Vec<(f64, f64)>) = curve
+    let (below, above): (Curve, Curve) = curve
         .iter()
         .copied()
         .filter(|p| !inside(p.0))
@@ -251,7 +254,7 @@ impl Figure for MasterCurveFigure<'_> {
             0.15,
             4.0..9.0,
         );
-        let clip = |band: (Vec<(f64, f64)>, Vec<(f64, f64)>), y: &Range<f64>| {
+        let clip = |band: (Curve, Curve), y: &Range<f64>| {
             let (lower, upper) = band;
             let lower = lower
                 .into_iter()
