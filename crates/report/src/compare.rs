@@ -185,7 +185,7 @@ pub fn compare(
         kk_misfit_threshold: causality::KK_MISFIT_THRESHOLD,
         kk_max_misfit_threshold: causality::KK_MAX_MISFIT_THRESHOLD,
         overlap_empty,
-        notes: shifted.notes,
+        notes: dma.notes.iter().cloned().chain(shifted.notes).collect(),
         warnings,
         points,
         causal,

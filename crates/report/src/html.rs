@@ -329,6 +329,15 @@ fn comparison_table(section: &ComparisonSection<'_>) -> String {
         }
         t.push_str("</ul>\n");
     }
+    if let Some(notes) = section.metrics.get("notes").and_then(|n| n.as_array())
+        && !notes.is_empty()
+    {
+        t.push_str("<ul class=\"meta\">\n");
+        for note in notes.iter().filter_map(|n| n.as_str()) {
+            let _ = writeln!(t, "<li>{}</li>", escape(note));
+        }
+        t.push_str("</ul>\n");
+    }
     t.push_str("<table>\n");
     if let Some(map) = section.metrics.as_object() {
         for (key, value) in map {

@@ -146,6 +146,9 @@ pub struct DmaData {
     /// Points dropped, columns or steps skipped, and how the file was
     /// read where that was a decision (shear or tensile, ν).
     pub warnings: Vec<String>,
+    /// How the file was read where the file itself said so (a CSV's shear
+    /// columns converted with ν): worth knowing, nothing to check.
+    pub notes: Vec<String>,
 }
 
 /// One point as a reader found it, before the checks common to all forms.
@@ -202,13 +205,21 @@ impl DmaData {
             }
             (file.points, file.kind, file.names, "csv", file.warnings)
         };
+        let mut notes = Vec::new();
         let factor = match kind {
             ModulusKind::Young => 1.0,
             ModulusKind::Shear => {
-                warnings.push(format!(
+                let conversion = format!(
                     "{}: shear moduli G′, G″ converted to Young's with E = 2(1+ν)G, ν = {poisson} (the fit's)",
                     path.display()
-                ));
+                );
+                // A TRIOS file's kind was inferred (a warning); a CSV's
+                // column names state it (a note).
+                if format == "csv" {
+                    notes.push(conversion);
+                } else {
+                    warnings.push(conversion);
+                }
                 2.0 * (1.0 + poisson)
             }
         };
@@ -219,6 +230,7 @@ impl DmaData {
             kind,
             format,
             warnings,
+            notes,
         })
     }
 
