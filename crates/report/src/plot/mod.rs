@@ -102,9 +102,11 @@ fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, png::Encod
         let mut encoder = png::Encoder::new(&mut bytes, width, height);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
-        // Plots are flat colours: the fast deflate level is both quick and
-        // small enough (about 60 kB a picture).
-        encoder.set_compression(png::Compression::Fast);
+        // The default deflate level with Paeth filtering: about 8 ms a
+        // picture and a fifth of the fast level's size (20–40 kB instead of
+        // 100–200 kB), which keeps the committed examples small.
+        encoder.set_compression(png::Compression::Default);
+        encoder.set_filter(png::FilterType::Paeth);
         let mut writer = encoder.write_header()?;
         writer.write_image_data(rgb)?;
     }
