@@ -27,6 +27,7 @@
 pub mod asymptotes;
 pub mod contact;
 pub mod error;
+pub mod exact;
 pub mod film;
 pub mod friction;
 pub mod kernel;

@@ -1,0 +1,306 @@
+//! The exact steady rolling of a rigid cylinder on a viscoelastic half-space
+//! (plane strain, frictionless, non-adhesive): the reference that Persson's
+//! Eq. (11) approximates.
+//!
+//! # Formulation
+//!
+//! The cylinder (radius R, load f_N per unit length) rolls at speed v in the
+//! +x direction; x is measured from its axis, so the leading edge is at
+//! x = a2 > 0 and the trailing one at a1 < 0. The solid's effective creep
+//! compliance is J_eff(t) = (1 − ν²) J(t) with, for a Prony series
+//! ([`CreepCompliance`]), J(t) = 1/E1 + Σ_j c_j (1 − e^{−t/λ_j}). In the
+//! frame moving with the cylinder the surface displacement into the solid
+//! is u(x) = ∫ G(x − s) p(s) ds with
+//!
+//!   G(x) = J_eff(0) G0(x) + ∫_0^∞ J̇_eff(t) G0(x + vt) dt,  G0(x) = −(2/π) ln|x|
+//!
+//! (Hunter 1961; Johnson §7.6): the material point now at x was at x + vt a
+//! time t ago. Inside the contact u = δ − x²/(2R); its derivative removes
+//! the approach δ:
+//!
+//!   (2/π) [J_eff(0) PV∫ p(s) ds/(x − s) + Σ_j c_j (1/ℓ_j) ∫_0^∞ e^{−ξ/ℓ_j} H(x + ξ) dξ] = x/R,
+//!
+//! with ℓ_j = vλ_j and H(y) = PV∫ p(s) ds/(y − s). Non-adhesive contact
+//! means p → 0 at both edges (p ≥ 0 inside, gap ≥ 0 outside follow for the
+//! solution with edges chosen this way).
+//!
+//! # Method
+//!
+//! Gauss–Chebyshev collocation with unknown edges (Erdogan & Gupta 1972):
+//! x = c + bt, p = b √(1 − t²) Σ_{n<N} α_n U_n(t), for which H is known in
+//! closed form inside and outside the contact; the memory integrals of the
+//! basis reduce to smooth one-dimensional integrals (see `kernel.rs`). The
+//! equation is collocated at the N + 1 zeros of T_{N+1} with one extra
+//! unknown, a tilt c0 added to the right-hand side: a pressure bounded at
+//! both edges exists only where c0 = 0. Newton's method on (c, b) then
+//! solves c0 = 0 and (π/2) b² α_0 = f_N. The solution φ(t) is analytic on
+//! [−1, 1], but the memory length ℓ = vλ puts boundary layers of relative
+//! width δ = ℓ/b at the edges (the material entering the contact responds
+//! glassily for a time λ). Chebyshev series resolve them with N ∝ δ^{−1/2}
+//! and then converge exponentially; the default chooses
+//! N = ⌈8 δ^{−1/2}⌉ in [32, 128] (see [`ExactSettings::automatic_terms`]).
+//! For δ below about 1e-4 (very low speed) N is capped and the layers are
+//! resolved only in part: μ is then good to about 1e-4 relative.
+//!
+//! Outputs: the load ∫p = (π/2) b² α_0 and the centroid
+//! x̄ = c + π b³ α_1/(4 f_N) are exact for the discrete pressure;
+//! μ = x̄/R (Persson 2010, Section 4: the moment of the pressure equals the
+//! rolling-resistance moment), positive for a pressure shifted to the
+//! leading side.
+//!
+//! # References
+//! - S.C. Hunter, "The rolling contact of a rigid cylinder with a
+//!   viscoelastic half space", J. Appl. Mech. 28 (1961) 611–617.
+//! - G. Carbone, C. Putignano, "A novel methodology to predict sliding and
+//!   rolling friction of viscoelastic materials: theory and experiments",
+//!   J. Mech. Phys. Solids 61 (2013) 1822–1834.
+//! - K.L. Johnson, *Contact Mechanics*, Cambridge 1985, §2.7 (inversion of
+//!   the singular integral equation), §6 and §7.6 (rolling on viscoelastic
+//!   solids).
+//! - F. Erdogan, G.D. Gupta, "On the numerical solution of singular integral
+//!   equations", Q. Appl. Math. 29 (1972) 525–534.
+//! - B.N.J. Persson, Eur. Phys. J. E 33 (2010) 327–333, Eq. (11).
+
+mod creep;
+mod kernel;
+mod solver;
+
+pub use creep::CreepCompliance;
+
+use std::f64::consts::PI;
+
+use crate::contact::{Shape, hertz_contact_size};
+use crate::error::{ModelError, require_positive};
+use crate::modulus::Prony;
+use kernel::MemoryQuadrature;
+
+/// Discretisation settings of the exact solution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExactSettings {
+    /// Number N of Chebyshev terms of the pressure; `None` chooses it from
+    /// the speed (see [`ExactSettings::automatic_terms`]).
+    pub terms: Option<usize>,
+    /// Upper bound of the automatic N.
+    pub max_terms: usize,
+    /// Gauss–Legendre nodes per panel of the memory integrals.
+    pub quadrature_order: usize,
+    /// Relative convergence tolerance of the contact edges.
+    pub tolerance: f64,
+}
+
+impl ExactSettings {
+    /// The automatic number of terms for a memory length ℓ = vλ_min and
+    /// contact half-width b: the pressure has boundary layers of relative
+    /// width δ = ℓ/b at the edges, which Chebyshev series resolve with
+    /// N ∝ δ^{−1/2}; N = ⌈8 δ^{−1/2}⌉ clamped to [32, `max_terms`].
+    pub fn automatic_terms(&self, memory_length: f64, half_width: f64) -> usize {
+        let delta = memory_length / half_width;
+        let n = (8.0 / delta.sqrt()).ceil();
+        if n.is_finite() {
+            (n as usize).clamp(32, self.max_terms.max(32))
+        } else {
+            32
+        }
+    }
+}
+
+impl Default for ExactSettings {
+    fn default() -> Self {
+        ExactSettings {
+            terms: None,
+            max_terms: 128,
+            quadrature_order: 24,
+            tolerance: 1e-12,
+        }
+    }
+}
+
+/// A rigid cylinder rolling on a viscoelastic half-space (plane strain).
+#[derive(Debug, Clone)]
+pub struct RollingCylinder {
+    compliance: CreepCompliance,
+    radius: f64,
+    load: f64,
+    settings: ExactSettings,
+    quadrature: MemoryQuadrature,
+}
+
+/// The steady rolling contact at one speed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RollingSolution {
+    /// Rolling speed v, m/s.
+    pub speed: f64,
+    /// Friction (rolling-resistance) coefficient μ = x̄/R.
+    pub mu: f64,
+    /// Pressure centroid x̄ relative to the axis, m (> 0: leading side).
+    pub centroid: f64,
+    /// Trailing edge a1, m (relative to the axis).
+    pub trailing_edge: f64,
+    /// Leading edge a2, m.
+    pub leading_edge: f64,
+    /// Chebyshev coefficients α_n: p = b √(1 − t²) Σ α_n U_n(t), 1/(Pa·m)·Pa.
+    pub coefficients: Vec<f64>,
+    /// Newton iterations used.
+    pub iterations: usize,
+}
+
+impl RollingSolution {
+    /// Contact centre c = (a1 + a2)/2, m.
+    pub fn center(&self) -> f64 {
+        0.5 * (self.trailing_edge + self.leading_edge)
+    }
+
+    /// Contact half-width b = (a2 − a1)/2, m.
+    pub fn half_width(&self) -> f64 {
+        0.5 * (self.leading_edge - self.trailing_edge)
+    }
+
+    /// The pressure p(x), Pa (zero outside the contact).
+    pub fn pressure(&self, x: f64) -> f64 {
+        let b = self.half_width();
+        let t = (x - self.center()) / b;
+        if t.abs() >= 1.0 {
+            return 0.0;
+        }
+        // Σ α_n U_n(t) by Clenshaw's recurrence.
+        let (mut b1, mut b2) = (0.0, 0.0);
+        for &a in self.coefficients.iter().rev() {
+            let b0 = a + 2.0 * t * b1 - b2;
+            b2 = b1;
+            b1 = b0;
+        }
+        b * (1.0 - t * t).sqrt() * b1
+    }
+
+    /// The pressure on `points` equally spaced positions from a1 to a2:
+    /// (x, p(x)).
+    pub fn pressure_profile(&self, points: usize) -> Vec<(f64, f64)> {
+        let n = points.max(2);
+        (0..n)
+            .map(|i| {
+                let x = self.trailing_edge
+                    + (self.leading_edge - self.trailing_edge) * i as f64 / (n - 1) as f64;
+                (x, self.pressure(x))
+            })
+            .collect()
+    }
+
+    /// ∫ p dx, N/m, of the discrete pressure (exact for the series).
+    pub fn load(&self) -> f64 {
+        let b = self.half_width();
+        0.5 * PI * b * b * self.coefficients[0]
+    }
+}
+
+impl RollingCylinder {
+    /// A cylinder of radius `radius` (m) under load `load` (N/m) on a solid
+    /// with Prony modulus `modulus` and Poisson ratio `poisson`, with the
+    /// default settings. A standard linear solid enters through
+    /// [`crate::StandardLinearSolid::to_prony`].
+    pub fn new(modulus: &Prony, poisson: f64, radius: f64, load: f64) -> Result<Self, ModelError> {
+        Self::with_settings(modulus, poisson, radius, load, ExactSettings::default())
+    }
+
+    /// As [`Self::new`] with explicit settings.
+    pub fn with_settings(
+        modulus: &Prony,
+        poisson: f64,
+        radius: f64,
+        load: f64,
+        settings: ExactSettings,
+    ) -> Result<Self, ModelError> {
+        require_positive("radius", radius)?;
+        require_positive("load", load)?;
+        if !(poisson.is_finite() && (0.0..=0.5).contains(&poisson)) {
+            return Err(ModelError::parameter(
+                "poisson",
+                poisson,
+                "must lie in [0, 0.5]",
+            ));
+        }
+        if settings.terms.is_some_and(|n| n < 2) || settings.quadrature_order < 4 {
+            return Err(ModelError::Evaluation(
+                "exact rolling cylinder: need at least 2 terms and 4 quadrature nodes".into(),
+            ));
+        }
+        let compliance = CreepCompliance::from_prony(modulus).scaled(1.0 - poisson * poisson);
+        Ok(RollingCylinder {
+            compliance,
+            radius,
+            load,
+            settings,
+            quadrature: MemoryQuadrature::new(settings.quadrature_order, 0.5),
+        })
+    }
+
+    /// The effective (plane-strain) creep compliance, 1/Pa.
+    pub fn compliance(&self) -> &CreepCompliance {
+        &self.compliance
+    }
+
+    /// Hertz half-width a0 (m) with the static effective modulus E_eff(0).
+    pub fn static_half_width(&self) -> f64 {
+        hertz_contact_size(
+            Shape::Cylinder,
+            self.radius,
+            self.load,
+            1.0 / self.compliance.equilibrium(),
+        )
+    }
+
+    /// Hertz half-width (m) with the glassy effective modulus E_eff(∞).
+    pub fn glassy_half_width(&self) -> f64 {
+        hertz_contact_size(
+            Shape::Cylinder,
+            self.radius,
+            self.load,
+            1.0 / self.compliance.instantaneous,
+        )
+    }
+
+    /// The steady rolling contact at speed `v` (m/s).
+    pub fn solve(&self, v: f64) -> Result<RollingSolution, ModelError> {
+        require_positive("v", v)?;
+        // Start from Hertz with the compliance the contact time a/v sees.
+        let mut b = self.static_half_width();
+        for _ in 0..3 {
+            let j = self.compliance.at(2.0 * b / v);
+            b = hertz_contact_size(Shape::Cylinder, self.radius, self.load, 1.0 / j);
+        }
+        // The shortest memory length that carries weight (c_j ≥ 1e-6 J(∞)).
+        let significant = 1e-6 * self.compliance.equilibrium();
+        let lambda_min = self
+            .compliance
+            .strengths
+            .iter()
+            .zip(&self.compliance.retardation_times)
+            .filter(|(c, _)| **c >= significant)
+            .map(|(_, l)| *l)
+            .fold(f64::INFINITY, f64::min);
+        let terms = self
+            .settings
+            .terms
+            .unwrap_or_else(|| self.settings.automatic_terms(v * lambda_min, b));
+        let (c, b, colloc, iterations) = solver::solve_edges(
+            &self.compliance,
+            &self.quadrature,
+            v,
+            self.radius,
+            self.load,
+            terms,
+            b,
+            self.settings.tolerance,
+        )?;
+        let alpha = colloc.alpha;
+        let centroid = c + PI * b * b * b * alpha[1] / (4.0 * self.load);
+        Ok(RollingSolution {
+            speed: v,
+            mu: centroid / self.radius,
+            centroid,
+            trailing_edge: c - b,
+            leading_edge: c + b,
+            coefficients: alpha,
+            iterations,
+        })
+    }
+}
