@@ -79,6 +79,14 @@ enum Command {
     /// frequencies, and how well a causal (Prony) model fits the DMA data
     /// themselves (dma_kk_misfit_storage, dma_kk_misfit_loss).
     Compare(commands::compare::Args),
+    /// Measure speed against accuracy: the forward model's rungs and
+    /// quadrature tolerances, and the fitting methods and their budgets.
+    ///
+    /// Writes DIR/forward.csv (rung, tolerance, time_per_mu_s,
+    /// max_rel_error, rms_rel_error), DIR/fit.csv (method, max_evaluations,
+    /// wall_time_s, evaluations, tan_delta_rms_rel, converged) and the
+    /// charts DIR/forward.{png,svg} and DIR/fit.{png,svg}.
+    Bench(commands::bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -89,6 +97,7 @@ fn main() -> ExitCode {
         Command::Batch(args) => commands::batch::run(args),
         Command::Report(args) => commands::report::run(args),
         Command::Compare(args) => commands::compare::run(args),
+        Command::Bench(args) => commands::bench::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

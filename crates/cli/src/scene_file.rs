@@ -828,7 +828,7 @@ impl MaterialSection {
     }
 
     /// The validated modulus at the reference temperature.
-    fn build(&self, base_dir: &Path) -> Result<Box<dyn ViscoelasticModulus>> {
+    pub(crate) fn build(&self, base_dir: &Path) -> Result<Box<dyn ViscoelasticModulus>> {
         self.check_keys()?;
         let value = |r: Option<Real>| r.map_or(f64::NAN, |r| r.0);
         let model = |e: ModelError| anyhow!("{e}");

@@ -1,6 +1,7 @@
 //! One module per `rollfit` subcommand.
 
 pub mod batch;
+pub mod bench;
 pub mod compare;
 pub mod fit;
 pub mod forward;

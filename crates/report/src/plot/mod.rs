@@ -14,6 +14,7 @@ pub mod convergence;
 pub mod friction;
 pub mod master_curve;
 pub mod spectrum;
+pub mod speed_accuracy;
 pub mod style;
 pub mod temperature_set;
 
@@ -24,6 +25,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::error::ReportError;
+
+/// Legend corners, for callers that place a chart's legend.
+pub use plotters::chart::SeriesLabelPosition;
 
 /// What a figure's drawing returns: plotters' errors differ per backend.
 pub type DrawResult = Result<(), Box<dyn Error>>;

@@ -1,0 +1,393 @@
+//! `rollfit bench [-o DIR]`: the speed–accuracy chart (issue 6).
+//!
+//! Forward model: for the scene (default data/paper-fig2-cylinder.toml, the
+//! paper's standard linear solid E1/E0 = 10 under a cylinder), every rung of
+//! the model ladder — the low-speed asymptote (Eqs. 18/19), the static and
+//! the dynamic contact size (Eq. 11, the paper) — at each quadrature
+//! tolerance of the dial, timed per μ and compared over the scene's sweep
+//! with the reference: the dynamic rung at tolerance 1e-11, i.e. the
+//! paper's theory computed to rounding (the asymptote only at speeds two
+//! decades and more below the friction maximum, where it is meant to hold). The error of the static rung and of
+//! the asymptote against it is their model error relative to the paper; the
+//! error of the dynamic rung is the quadrature's alone.
+//!
+//! Fitting: on the bundled example (data/hn-rubber.toml, hn-rubber.csv,
+//! truth in its [material]), each method — Levenberg–Marquardt, L-BFGS,
+//! Nelder–Mead — from the same neutral start at the same λ (the one the
+//! default fit chooses), one start, with a dial of evaluation budgets; the
+//! error is the RMS relative error of the recovered tan δ against the
+//! truth over the window shrunk by half a decade at each end.
+//!
+//! Writes DIR/forward.csv, DIR/fit.csv and the charts DIR/forward.{png,svg}
+//! and DIR/fit.{png,svg} (default DIR: fits/bench). Timings are wall time
+//! of this process on this machine; the CSVs say which.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow};
+use rollfit_fit::{Lambda, Method};
+use rollfit_model::{ContactSize, Prony, Scene, ViscoelasticModulus};
+use rollfit_report::plot::speed_accuracy::{CostPoint, SpeedAccuracyFigure};
+use rollfit_report::plot::{SeriesLabelPosition, render};
+
+use crate::output;
+use crate::{data_file, scene_file};
+
+/// Arguments of `rollfit bench`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Folder for forward.csv, fit.csv and the charts.
+    #[arg(short, long, value_name = "DIR", default_value = "fits/bench")]
+    pub output: PathBuf,
+    /// Scene of the forward-model chart (its [sweep] gives the speeds).
+    #[arg(
+        long,
+        value_name = "SCENE",
+        default_value = "data/paper-fig2-cylinder.toml"
+    )]
+    pub forward_scene: PathBuf,
+    /// Scene of the fitting chart; its [material] is the truth.
+    #[arg(long, value_name = "SCENE", default_value = "data/hn-rubber.toml")]
+    pub fit_scene: PathBuf,
+    /// Data of the fitting chart.
+    #[arg(long, value_name = "DATA", default_value = "data/hn-rubber.csv")]
+    pub fit_data: PathBuf,
+    /// Fewer settings and shorter timings (for tests).
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// Quadrature tolerances of the dial.
+const TOLERANCES: [f64; 6] = [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-8];
+/// The reference's tolerance.
+const REFERENCE_TOLERANCE: f64 = 1e-11;
+/// Evaluation budgets of the fitting dial (per solver run).
+const BUDGETS: [usize; 6] = [100, 300, 1000, 3000, 10_000, 20_000];
+
+/// One row of forward.csv.
+struct ForwardRow {
+    rung: &'static str,
+    tolerance: f64,
+    time_per_mu: f64,
+    max_error: f64,
+    rms_error: f64,
+}
+
+/// One row of fit.csv.
+struct FitRow {
+    method: &'static str,
+    budget: usize,
+    wall_time: f64,
+    evaluations: usize,
+    tan_delta_rms: f64,
+    converged: bool,
+}
+
+/// Runs the command.
+pub fn run(args: &Args) -> Result<()> {
+    let (tolerances, budgets, min_time): (&[f64], &[usize], f64) = if args.quick {
+        (&TOLERANCES[..2], &BUDGETS[..2], 0.005)
+    } else {
+        (&TOLERANCES, &BUDGETS, 0.2)
+    };
+    let forward = forward_rows(&args.forward_scene, tolerances, min_time)
+        .with_context(|| format!("scene file {}", args.forward_scene.display()))?;
+    let fits = fit_rows(&args.fit_scene, &args.fit_data, budgets)?;
+
+    let forward_points: Vec<CostPoint> = forward
+        .iter()
+        .map(|r| CostPoint {
+            series: r.rung.to_string(),
+            setting: if r.rung == "asymptote" {
+                "v ≤ v_peak/100".into()
+            } else {
+                format!("{:.0e}", r.tolerance)
+            },
+            cost: r.time_per_mu,
+            error: r.max_error,
+            ok: true,
+        })
+        .collect();
+    let fit_points: Vec<CostPoint> = fits
+        .iter()
+        .map(|r| CostPoint {
+            series: r.method.to_string(),
+            setting: r.budget.to_string(),
+            cost: r.wall_time,
+            error: r.tan_delta_rms,
+            ok: r.converged,
+        })
+        .collect();
+    let forward_chart = render(&SpeedAccuracyFigure {
+        name: "forward",
+        title: "Forward model: error against time per μ".into(),
+        caption: format!(
+            "Largest relative error of μ over the sweep of {} against the paper's theory computed to a tolerance of {REFERENCE_TOLERANCE:.0e}, against the time per μ, for each rung of the model ladder and each quadrature tolerance (labels).",
+            args.forward_scene.display()
+        ),
+        cost_description: "time per μ (s)",
+        error_description: "largest relative error of μ",
+        points: &forward_points,
+        legend: SeriesLabelPosition::LowerLeft,
+    })?;
+    let fit_chart = render(&SpeedAccuracyFigure {
+        name: "fit",
+        title: "Fitting: tan δ error against wall time".into(),
+        caption: format!(
+            "RMS relative error of the recovered tan δ against the truth of {} over its window, against the fit's wall time, for each method from the same start at the same λ and each evaluation budget (labels); hollow: the run did not converge.",
+            args.fit_data.display()
+        ),
+        cost_description: "wall time of the fit (s)",
+        error_description: "RMS relative error of tan δ",
+        points: &fit_points,
+        legend: SeriesLabelPosition::UpperRight,
+    })?;
+
+    let forward_csv = output::csv_bytes(
+        &[
+            "rung",
+            "tolerance",
+            "time_per_mu_s",
+            "max_rel_error",
+            "rms_rel_error",
+        ],
+        [],
+    )?;
+    let mut forward_text = String::from_utf8(forward_csv)?;
+    for r in &forward {
+        forward_text.push_str(&format!(
+            "{},{},{},{},{}\n",
+            r.rung,
+            output::number(r.tolerance),
+            output::number(r.time_per_mu),
+            output::number(r.max_error),
+            output::number(r.rms_error)
+        ));
+    }
+    let mut fit_text = String::from(
+        "method,max_evaluations,wall_time_s,evaluations,tan_delta_rms_rel,converged\n",
+    );
+    for r in &fits {
+        fit_text.push_str(&format!(
+            "{},{},{},{},{},{}\n",
+            r.method,
+            r.budget,
+            output::number(r.wall_time),
+            r.evaluations,
+            output::number(r.tan_delta_rms),
+            r.converged
+        ));
+    }
+    let dir = &args.output;
+    output::write_atomically(&dir.join("forward.csv"), forward_text.as_bytes())?;
+    output::write_atomically(&dir.join("fit.csv"), fit_text.as_bytes())?;
+    for p in [&forward_chart, &fit_chart] {
+        output::write_atomically(&dir.join(format!("{}.png", p.name)), &p.png)?;
+        output::write_atomically(&dir.join(format!("{}.svg", p.name)), p.svg.as_bytes())?;
+    }
+    eprintln!(
+        "wrote {} (forward.csv, fit.csv, forward.png/svg, fit.png/svg)",
+        dir.display()
+    );
+    Ok(())
+}
+
+/// Times `f` (one call evaluates `count` μ) until at least `min_time` has
+/// passed; seconds per μ.
+fn time_per_mu(count: usize, min_time: f64, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
+    let started = Instant::now();
+    let mut calls = 0usize;
+    loop {
+        f()?;
+        calls += 1;
+        let elapsed = started.elapsed().as_secs_f64();
+        if elapsed >= min_time {
+            return Ok(elapsed / (calls * count) as f64);
+        }
+    }
+}
+
+fn errors(values: &[f64], reference: &[f64]) -> (f64, f64) {
+    let relative: Vec<f64> = values
+        .iter()
+        .zip(reference)
+        .map(|(v, r)| ((v - r) / r).abs())
+        .collect();
+    let max = relative.iter().copied().fold(0.0, f64::max);
+    let rms = (relative.iter().map(|e| e * e).sum::<f64>() / relative.len() as f64).sqrt();
+    (max, rms)
+}
+
+fn forward_rows(path: &Path, tolerances: &[f64], min_time: f64) -> Result<Vec<ForwardRow>> {
+    let file = scene_file::load(path)?;
+    let section = file
+        .material
+        .as_ref()
+        .context("bench needs a [material] section")?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    let material: Arc<dyn ViscoelasticModulus> = Arc::from(section.build(base)?);
+    let speeds = file
+        .sweep
+        .as_ref()
+        .context("bench needs a [sweep] section")?
+        .speeds()?;
+    let setup = file.rolling_setup();
+    let scene =
+        |contact: ContactSize, tolerance: f64| -> Result<Scene<Arc<dyn ViscoelasticModulus>>> {
+            Scene::new(
+                setup.geometry,
+                setup.substrate,
+                contact,
+                Arc::clone(&material),
+            )
+            .and_then(|s| s.with_tolerance(tolerance))
+            .map_err(|e| anyhow!("{e}"))
+        };
+    let reference = scene(ContactSize::Dynamic, REFERENCE_TOLERANCE)?
+        .friction_sweep(&speeds)
+        .map_err(|e| anyhow!("{e}"))?;
+
+    let mut rows = Vec::new();
+    let asymptotic = scene(ContactSize::Static, tolerances[0])?;
+    let mut values = Vec::new();
+    let time = time_per_mu(speeds.len(), min_time, || {
+        values = speeds
+            .iter()
+            .map(|&v| asymptotic.low_speed_asymptote(v))
+            .collect();
+        Ok(())
+    })?;
+    // The asymptote is a low-speed law (μ ∝ v^p grows without bound): its
+    // error is measured where it is meant to hold, two decades and more
+    // below the speed of the friction maximum.
+    let peak = reference
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))
+        .map_or(0, |(i, _)| i);
+    let low = speeds
+        .iter()
+        .take_while(|&&v| v <= speeds[peak] / 100.0)
+        .count()
+        .max(1);
+    let (max_error, rms_error) = errors(&values[..low], &reference[..low]);
+    rows.push(ForwardRow {
+        rung: "asymptote",
+        tolerance: f64::NAN,
+        time_per_mu: time,
+        max_error,
+        rms_error,
+    });
+    for (rung, contact) in [
+        ("static", ContactSize::Static),
+        ("dynamic", ContactSize::Dynamic),
+    ] {
+        for &tolerance in tolerances {
+            let s = scene(contact, tolerance)?;
+            let mut values = Vec::new();
+            let time = time_per_mu(speeds.len(), min_time, || {
+                values = s.friction_sweep(&speeds).map_err(|e| anyhow!("{e}"))?;
+                Ok(())
+            })?;
+            let (max_error, rms_error) = errors(&values, &reference);
+            rows.push(ForwardRow {
+                rung,
+                tolerance,
+                time_per_mu: time,
+                max_error,
+                rms_error,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+fn fit_rows(scene_path: &Path, data_path: &Path, budgets: &[usize]) -> Result<Vec<FitRow>> {
+    let context = || format!("scene file {}", scene_path.display());
+    let file = scene_file::load(scene_path)?;
+    let base = scene_path.parent().unwrap_or(Path::new(""));
+    let truth = file
+        .material
+        .as_ref()
+        .context("the fitting chart needs the truth in the scene's [material]")
+        .with_context(context)?
+        .build(base)
+        .with_context(context)?;
+    let (setup, params) = file.fit_setup().with_context(context)?;
+    let data = data_file::read(data_path)?
+        .measurements()
+        .with_context(|| format!("data file {}", data_path.display()))?;
+    let fit = |method: Method, lambda: Lambda, starts: usize, budget: Option<usize>| {
+        let mut p = params.clone();
+        p.method = method;
+        p.lambda = lambda;
+        p.starts = starts;
+        p.max_evaluations = budget;
+        let valid = p.check(setup).map_err(|e| anyhow!("{e}"))?;
+        rollfit_fit::fit(&data, &valid).map_err(|e| anyhow!("{e}"))
+    };
+    // λ of the default fit, so that every method minimises the same V.
+    let default = fit(params.method, params.lambda, params.starts, None)?;
+    let lambda = Lambda::Fixed(default.lambda.value);
+
+    let mut rows: Vec<FitRow> = Vec::new();
+    for method in [
+        Method::LevenbergMarquardt,
+        Method::Lbfgs,
+        Method::NelderMead,
+    ] {
+        for &budget in budgets {
+            // A run that ended before its budget gives the same fit with
+            // any larger one.
+            if rows
+                .last()
+                .is_some_and(|r| r.method == method.name() && r.evaluations < r.budget)
+            {
+                continue;
+            }
+            let started = Instant::now();
+            let report = fit(method, lambda, 1, Some(budget))?;
+            let wall_time = started.elapsed().as_secs_f64();
+            let model = Prony::new(
+                report.model.glassy_modulus,
+                report.model.strengths.clone(),
+                report.model.tau.clone(),
+            )
+            .map_err(|e| anyhow!("{e}"))?;
+            rows.push(FitRow {
+                method: method.name(),
+                budget,
+                wall_time,
+                evaluations: report.evaluations,
+                tan_delta_rms: tan_delta_error(&model, truth.as_ref(), report.window),
+                converged: report.converged,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// RMS relative error of tan δ over the window shrunk by half a decade at
+/// each end (where the data fix the curve), 100 log-spaced frequencies.
+fn tan_delta_error(
+    fit: &Prony,
+    truth: &dyn ViscoelasticModulus,
+    window: rollfit_fit::report::Window,
+) -> f64 {
+    let (lo, hi) = (
+        window.omega_min.log10() + 0.5,
+        window.omega_max.log10() - 0.5,
+    );
+    let n = 100;
+    let sum: f64 = (0..n)
+        .map(|i| {
+            let omega = 10f64.powf(lo + (hi - lo) * i as f64 / (n - 1) as f64);
+            let (f, t) = (fit.modulus(omega), truth.modulus(omega));
+            let (tf, tt) = (f.im / f.re, t.im / t.re);
+            ((tf - tt) / tt).powi(2)
+        })
+        .sum();
+    (sum / n as f64).sqrt()
+}
