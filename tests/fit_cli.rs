@@ -691,3 +691,14 @@ fn output_that_is_a_file_is_refused() {
     );
     assert_eq!(fs::read_to_string(&out).unwrap(), "not a folder");
 }
+
+#[test]
+fn the_exact_contact_is_forward_only() {
+    let scene = edit(SCENE, "[substrate]", "[contact]\nsize = \"exact\"\n\n[substrate]");
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &["bad-scene.toml", "[contact]", "exact", "forward-only"],
+    );
+}

@@ -1527,3 +1527,82 @@ fn temperature_list_outside_a_free_shift_names_the_entry() {
         &["temperature[0] = -0.5 °C", "outside", "0 to 40 °C"],
     );
 }
+
+// ------------------------------------------------- the exact cylinder (issue 6)
+
+/// `[contact] size = "exact"`: the paper's Fig. 2 cylinder (standard linear
+/// solid, E1/E0 = 10) by the exact rolling-contact solution. Its friction
+/// maximum is a little above Eq. (11)'s (about 0.7 %, Persson 2010 Fig. 2
+/// and the error map in crates/model/tests/eq11_error_map.rs); both limits
+/// agree with Eq. (11); the contact edges straddle the axis, shifted to the
+/// leading side.
+#[test]
+fn exact_cylinder_scene_runs_and_sits_just_above_eq11_at_the_maximum() {
+    let dir = TempDir::new("exact");
+    let base = std::fs::read_to_string(data("paper-fig2-cylinder.toml")).unwrap();
+    let exact_scene = dir.write(
+        "exact.toml",
+        &edit(&base, "size = \"dynamic\"", "size = \"exact\""),
+    );
+    let header: Vec<&str> = HEADER
+        .iter()
+        .copied()
+        .chain(["contact_trailing_edge", "contact_leading_edge"])
+        .collect();
+    let exact = run_ok_with_header(&exact_scene, &header);
+    let paper = run_ok(&data("paper-fig2-cylinder.toml"));
+    let (mu_exact, mu_paper) = (exact.column("mu"), paper.column("mu"));
+    let max = |m: &[f64]| m.iter().copied().fold(0.0, f64::max);
+    let ratio = max(&mu_exact) / max(&mu_paper);
+    assert!(
+        (1.002..1.012).contains(&ratio),
+        "exact/Eq. (11) maximum: {ratio}"
+    );
+    let n = mu_exact.len();
+    for i in [0, n - 1] {
+        assert_close(mu_exact[i], mu_paper[i], 1e-3, "a speed limit");
+    }
+    let (trailing, leading) = (
+        exact.column("contact_trailing_edge"),
+        exact.column("contact_leading_edge"),
+    );
+    for i in 0..n {
+        assert!(trailing[i] < 0.0 && leading[i] > 0.0);
+        assert!(
+            leading[i] + trailing[i] > 0.0,
+            "centre on the leading side at row {i}"
+        );
+    }
+}
+
+#[test]
+fn exact_contact_is_refused_where_it_does_not_apply() {
+    let cylinder = edit(
+        &edit(SLS_SCENE, "shape = \"sphere\"", "shape = \"cylinder\""),
+        "size = \"dynamic\"",
+        "size = \"exact\"",
+    );
+    assert_rejected(
+        &edit(SLS_SCENE, "size = \"dynamic\"", "size = \"exact\""),
+        &[],
+        &["[contact]", "exact", "cylinder"],
+    );
+    assert_rejected(
+        &edit(
+            &cylinder,
+            "poisson = 0.0",
+            "poisson = 0.0\nthickness = 1e-3",
+        ),
+        &[],
+        &["[contact]", "exact", "half-space"],
+    );
+    assert_rejected(
+        &edit(
+            &cylinder,
+            "model = \"sls\"",
+            "model = \"havriliak-negami\"\nalpha = 0.5\nbeta = 0.5",
+        ),
+        &[],
+        &["[contact]", "exact", "\"sls\" or \"prony\""],
+    );
+}

@@ -16,6 +16,7 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result, anyhow, bail, ensure};
 use rollfit_fit::{FitParams, Lambda, Method, RollingSetup, ScaleAnchor, StartMaterial, TermRule};
+use rollfit_model::exact::RollingCylinder;
 use rollfit_model::modulus::FreeShift;
 use rollfit_model::{
     ContactSize, Geometry, HavriliakNegami, ModelError, Prony, Scene, Shape, Shifted,
@@ -329,13 +330,17 @@ pub enum ContactName {
     Dynamic,
     /// E_eff(0) for every frequency.
     Static,
+    /// The exact steady rolling contact (cylinder on a half-space, standard
+    /// linear solid or Prony series; forward only): the reference Eq. (11)
+    /// approximates.
+    Exact,
 }
 
 /// `[contact]`.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSection {
-    /// "dynamic" (default) or "static".
+    /// "dynamic" (default), "static" or "exact".
     pub size: Option<ContactName>,
 }
 
@@ -583,6 +588,9 @@ pub struct ShiftApplied {
 pub struct ForwardBlock {
     /// The scene, material already shifted to the block's temperature.
     pub scene: DynScene,
+    /// With `[contact] size = "exact"`: the exact rolling cylinder of the
+    /// same (shifted) material, which gives μ.
+    pub exact: Option<RollingCylinder>,
     /// The temperature shift, if the sweep asked for a temperature.
     pub shift: Option<ShiftApplied>,
 }
@@ -691,7 +699,19 @@ impl SceneFile {
                     .with_tolerance(tolerance)
                     .map_err(|e| anyhow!("[sweep]: {e}"))?;
             }
-            blocks.push(ForwardBlock { scene, shift });
+            let exact = match self.contact.size {
+                Some(ContactName::Exact) => Some(self.exact_cylinder(
+                    material_section,
+                    base_dir,
+                    shift.map(|s| s.log10_a_t),
+                )?),
+                _ => None,
+            };
+            blocks.push(ForwardBlock {
+                scene,
+                shift,
+                exact,
+            });
         }
         Ok(ForwardSetup { blocks, speeds })
     }
@@ -700,6 +720,56 @@ impl SceneFile {
 impl SceneFile {
     /// The body, substrate and contact rule of [geometry], [substrate] and
     /// [contact] (values unchecked: `Scene::new` checks them).
+    /// The exact rolling cylinder of `[contact] size = "exact"`: a cylinder
+    /// on a half-space, the material a standard linear solid or a Prony
+    /// series (shifted by log10 a_T: τ_k → τ_k a_T).
+    fn exact_cylinder(
+        &self,
+        material: &MaterialSection,
+        base_dir: &Path,
+        log10_a_t: Option<f64>,
+    ) -> Result<RollingCylinder> {
+        if self.geometry.shape != ShapeName::Cylinder {
+            bail!(
+                "[contact]: size = \"exact\" needs shape = \"cylinder\": the exact solution is the \
+                 plane-strain rolling cylinder (there is no three-dimensional one for a sphere)"
+            );
+        }
+        if self.substrate.thickness.is_some() {
+            bail!(
+                "[contact]: size = \"exact\" is for a half-space; remove [substrate] thickness \
+                 (films use size = \"dynamic\" or \"static\")"
+            );
+        }
+        let Some(prony) = material.prony(base_dir).context("[material]")? else {
+            bail!(
+                "[contact]: size = \"exact\" needs [material] model = \"sls\" or \"prony\" \
+                 (the exact solution works with the creep compliance of a Prony series)"
+            );
+        };
+        let prony = match log10_a_t {
+            Some(l) => {
+                let factor = 10f64.powf(l);
+                let tau = prony
+                    .relaxation_times()
+                    .iter()
+                    .map(|t| t * factor)
+                    .collect();
+                Prony::new(prony.glassy_modulus(), prony.strengths().to_vec(), tau)
+                    .map_err(|e| anyhow!("[material.shift]: {e}"))?
+            }
+            None => prony,
+        };
+        let setup = self.rolling_setup();
+        RollingCylinder::new(
+            &prony,
+            setup.substrate.poisson,
+            setup.geometry.radius,
+            setup.geometry.load,
+        )
+        .map_err(|e| anyhow!("[contact] exact: {e}"))
+    }
+
     pub fn rolling_setup(&self) -> RollingSetup {
         RollingSetup {
             geometry: Geometry {
@@ -714,8 +784,13 @@ impl SceneFile {
                 poisson: self.substrate.poisson.map_or(DEFAULT_POISSON, |r| r.0),
                 film_thickness: self.substrate.thickness.map(|r| r.0),
             },
+            // The exact solution has no contact-size rule; the columns
+            // forward writes beside its μ (asymptote, static contact) come
+            // from the paper's model with the dynamic size.
             contact: match self.contact.size {
-                None | Some(ContactName::Dynamic) => ContactSize::Dynamic,
+                None | Some(ContactName::Dynamic) | Some(ContactName::Exact) => {
+                    ContactSize::Dynamic
+                }
                 Some(ContactName::Static) => ContactSize::Static,
             },
         }
@@ -728,6 +803,12 @@ impl SceneFile {
     /// used. Ranges of the fit settings are checked later by
     /// [`FitParams::check`].
     pub fn fit_setup(&self) -> Result<(RollingSetup, FitParams)> {
+        if self.contact.size == Some(ContactName::Exact) {
+            bail!(
+                "[contact]: size = \"exact\" is a forward-only reference (its μ has no fast \
+                 gradient); fit with size = \"dynamic\" (the paper's) or \"static\""
+            );
+        }
         let setup = self.rolling_setup();
         // The model owns the ranges of the set-up; a placeholder material
         // lets it check them before any fitting starts.
@@ -961,6 +1042,34 @@ fn require_positive(key: &str, value: f64) -> Result<()> {
 }
 
 impl MaterialSection {
+    /// An "sls" (one term) or "prony" material as a Prony series; None for
+    /// other models.
+    fn prony(&self, base_dir: &Path) -> Result<Option<Prony>> {
+        let modulus = self.build(base_dir)?;
+        Ok(match self.model {
+            MaterialKind::Sls => {
+                let tau = match self.tau {
+                    Some(RealOrList::One(t)) => t,
+                    _ => f64::NAN,
+                };
+                let e1 = self.e1.map_or(f64::NAN, |r| r.0);
+                let sls = StandardLinearSolid::new(modulus.static_modulus(), e1, tau)
+                    .map_err(|e| anyhow!("{e}"))?;
+                Some(sls.to_prony())
+            }
+            MaterialKind::Prony => {
+                let tau = match &self.tau {
+                    Some(RealOrList::List(t)) => t.clone(),
+                    _ => Vec::new(),
+                };
+                let h = self.h.as_deref().map(reals).unwrap_or_default();
+                let e1 = self.e1.map_or(f64::NAN, |r| r.0);
+                Some(Prony::new(e1, h, tau).map_err(|e| anyhow!("{e}"))?)
+            }
+            _ => None,
+        })
+    }
+
     /// E0 and E1 of an "sls" or "prony" material, as the fit's starting
     /// point (other models give none).
     fn start(&self) -> Option<StartMaterial> {

@@ -124,32 +124,31 @@ pub fn run(args: &Args) -> Result<()> {
         .forward_setup(path)
         .with_context(|| format!("scene file {}", path.display()))?;
     // μ of each block, in row order.
-    let mu = setup
+    let solved = setup
         .blocks
         .iter()
         .map(|block| {
-            block
-                .scene
-                .friction_sweep(&setup.speeds)
-                .map_err(anyhow::Error::msg)
-                .with_context(|| {
-                    let at = block
-                        .shift
-                        .map(|s| format!(" at T = {} °C", s.temperature))
-                        .unwrap_or_default();
-                    format!("computing μ(v){at} for scene file {}", path.display())
-                })
+            solve_block(block, &setup.speeds).with_context(|| {
+                let at = block
+                    .shift
+                    .map(|s| format!(" at T = {} °C", s.temperature))
+                    .unwrap_or_default();
+                format!("computing μ(v){at} for scene file {}", path.display())
+            })
         })
         .collect::<Result<Vec<_>>>()?;
+    let (mu, edges): (Vec<Vec<f64>>, Vec<Option<Edges>>) = solved.into_iter().unzip();
+    let with_edges = edges.iter().any(Option::is_some);
 
     let with_temperature = setup.blocks.iter().any(|b| b.shift.is_some());
     let rows = setup
         .blocks
         .iter()
         .zip(&mu)
-        .flat_map(|(block, mu)| rows(block, &setup.speeds, mu));
+        .zip(&edges)
+        .flat_map(|((block, mu), edges)| rows(block, &setup.speeds, mu, edges.as_deref()));
     let bytes = match args.noise {
-        None => output::csv_bytes(&header(&COLUMNS, with_temperature), rows)?,
+        None => output::csv_bytes(&header(&COLUMNS, with_edges, with_temperature), rows)?,
         Some(rel) => {
             // One stream over the whole file, in row order.
             let exact: Vec<f64> = mu.iter().flatten().copied().collect();
@@ -169,7 +168,7 @@ pub fn run(args: &Args) -> Result<()> {
                 row.splice(1..1, [m, sigma]);
                 row
             });
-            output::csv_bytes(&header(&NOISY_COLUMNS, with_temperature), rows)?
+            output::csv_bytes(&header(&NOISY_COLUMNS, with_edges, with_temperature), rows)?
         }
     };
     match &args.output {
@@ -181,8 +180,49 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// `columns`, then [`TEMPERATURE_COLUMN`] if the rows carry a temperature.
-fn header(columns: &[&'static str], with_temperature: bool) -> Vec<&'static str> {
+/// Columns of the exact solution (`[contact] size = "exact"`): the contact
+/// edges relative to the cylinder's axis, m (trailing < 0 < leading).
+pub const EDGE_COLUMNS: [&str; 2] = ["contact_trailing_edge", "contact_leading_edge"];
+
+/// (trailing, leading) contact edges per speed, m.
+type Edges = Vec<[f64; 2]>;
+
+/// μ at every speed of one block, and with the exact solution its contact
+/// edges (solved in parallel: one speed takes milliseconds).
+fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<(Vec<f64>, Option<Edges>)> {
+    match &block.exact {
+        None => Ok((
+            block
+                .scene
+                .friction_sweep(speeds)
+                .map_err(anyhow::Error::msg)?,
+            None,
+        )),
+        Some(cylinder) => {
+            use rayon::prelude::*;
+            let solutions = speeds
+                .par_iter()
+                .map(|&v| cylinder.solve(v))
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(anyhow::Error::msg)?;
+            Ok((
+                solutions.iter().map(|s| s.mu).collect(),
+                Some(
+                    solutions
+                        .iter()
+                        .map(|s| [s.trailing_edge, s.leading_edge])
+                        .collect(),
+                ),
+            ))
+        }
+    }
+}
+
+fn header(columns: &[&'static str], with_edges: bool, with_temperature: bool) -> Vec<&'static str> {
     let mut header = columns.to_vec();
+    if with_edges {
+        header.extend(EDGE_COLUMNS);
+    }
     if with_temperature {
         header.push(TEMPERATURE_COLUMN);
     }
@@ -195,24 +235,32 @@ fn rows<'a>(
     block: &'a ForwardBlock,
     speeds: &'a [f64],
     mu: &'a [f64],
+    edges: Option<&'a [[f64; 2]]>,
 ) -> impl Iterator<Item = Vec<f64>> + 'a {
     let scene = &block.scene;
     let contact_size = scene.static_contact_size();
     let pressure = scene.static_mean_pressure();
     let temperature = block.shift.map(|s| s.temperature);
-    speeds.iter().zip(mu).map(move |(&v, &mu)| {
-        let mut row = vec![
-            v,
-            mu,
-            scene.low_speed_asymptote(v),
-            contact_size,
-            pressure,
-            scene.centroid_shift(mu),
-            scene.greenwood_tabor_alpha(mu),
-        ];
-        row.extend(temperature);
-        row
-    })
+    speeds
+        .iter()
+        .zip(mu)
+        .enumerate()
+        .map(move |(i, (&v, &mu))| {
+            let mut row = vec![
+                v,
+                mu,
+                scene.low_speed_asymptote(v),
+                contact_size,
+                pressure,
+                scene.centroid_shift(mu),
+                scene.greenwood_tabor_alpha(mu),
+            ];
+            if let Some(edges) = edges {
+                row.extend(edges[i]);
+            }
+            row.extend(temperature);
+            row
+        })
 }
 
 /// One line for a person at a terminal: the scene's static contact (the
@@ -259,7 +307,29 @@ fn summary(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
         first.static_contact_size(),
         first.static_mean_pressure()
     );
-    if let [block] = setup.blocks.as_slice() {
+    if setup.blocks.iter().any(|b| b.exact.is_some()) {
+        // The exact solution is not refined between samples (each μ is a
+        // contact solve); the summary gives the largest sampled value.
+        let peaks: Vec<String> = setup
+            .blocks
+            .iter()
+            .zip(mu)
+            .map(|(block, mu)| {
+                let at = block
+                    .shift
+                    .map(|s| format!("at {} °C ", s.temperature))
+                    .unwrap_or_default();
+                let i = (0..mu.len())
+                    .max_by(|&a, &b| mu[a].total_cmp(&mu[b]))
+                    .unwrap_or(0);
+                format!(
+                    "{at}exact solution: largest sampled μ = {:.4e} at v = {:.4e} m/s",
+                    mu[i], speeds[i]
+                )
+            })
+            .collect();
+        line += &peaks.join("; ");
+    } else if let [block] = setup.blocks.as_slice() {
         line += &peak_description(&block.scene, speeds, &mu[0]);
     } else {
         let peaks: Vec<String> = setup
