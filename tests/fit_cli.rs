@@ -694,7 +694,11 @@ fn output_that_is_a_file_is_refused() {
 
 #[test]
 fn the_exact_contact_is_forward_only() {
-    let scene = edit(SCENE, "[substrate]", "[contact]\nsize = \"exact\"\n\n[substrate]");
+    let scene = edit(
+        SCENE,
+        "[substrate]",
+        "[contact]\nsize = \"exact\"\n\n[substrate]",
+    );
     assert_refused(
         &scene,
         Some(SMALL_DATA),

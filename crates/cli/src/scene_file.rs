@@ -16,7 +16,7 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result, anyhow, bail, ensure};
 use rollfit_fit::{FitParams, Lambda, Method, RollingSetup, ScaleAnchor, StartMaterial, TermRule};
-use rollfit_model::exact::RollingCylinder;
+use rollfit_model::exact::{ExactSettings, RollingCylinder};
 use rollfit_model::modulus::FreeShift;
 use rollfit_model::{
     ContactSize, Geometry, HavriliakNegami, ModelError, Prony, Scene, Shape, Shifted,
@@ -729,6 +729,18 @@ impl SceneFile {
         base_dir: &Path,
         log10_a_t: Option<f64>,
     ) -> Result<RollingCylinder> {
+        let prony = self.exact_material(material, base_dir, log10_a_t)?;
+        self.exact_cylinder_with(&prony, ExactSettings::default())
+    }
+
+    /// The Prony series the exact solution of this scene uses, after
+    /// checking that it applies (cylinder, half-space, "sls" or "prony").
+    pub(crate) fn exact_material(
+        &self,
+        material: &MaterialSection,
+        base_dir: &Path,
+        log10_a_t: Option<f64>,
+    ) -> Result<Prony> {
         if self.geometry.shape != ShapeName::Cylinder {
             bail!(
                 "[contact]: size = \"exact\" needs shape = \"cylinder\": the exact solution is the \
@@ -747,7 +759,7 @@ impl SceneFile {
                  (the exact solution works with the creep compliance of a Prony series)"
             );
         };
-        let prony = match log10_a_t {
+        Ok(match log10_a_t {
             Some(l) => {
                 let factor = 10f64.powf(l);
                 let tau = prony
@@ -759,13 +771,23 @@ impl SceneFile {
                     .map_err(|e| anyhow!("[material.shift]: {e}"))?
             }
             None => prony,
-        };
+        })
+    }
+
+    /// The exact rolling cylinder of this scene's geometry and substrate
+    /// for `prony` with explicit discretisation settings.
+    pub(crate) fn exact_cylinder_with(
+        &self,
+        prony: &Prony,
+        settings: ExactSettings,
+    ) -> Result<RollingCylinder> {
         let setup = self.rolling_setup();
-        RollingCylinder::new(
-            &prony,
+        RollingCylinder::with_settings(
+            prony,
             setup.substrate.poisson,
             setup.geometry.radius,
             setup.geometry.load,
+            settings,
         )
         .map_err(|e| anyhow!("[contact] exact: {e}"))
     }

@@ -112,11 +112,13 @@ impl Figure for SpeedAccuracyFigure<'_> {
                 }))?
                 .label(name)
                 .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
-            chart.draw_series(members.iter().map(|m| {
+            // Labels alternate above and below their points, so neighbours
+            // at nearly the same cost stay readable.
+            chart.draw_series(members.iter().enumerate().map(|(k, m)| {
                 EmptyElement::at((m.0, m.1))
                     + Text::new(
                         m.2.setting.clone(),
-                        (7, -16),
+                        (7, if k % 2 == 0 { -16 } else { 5 }),
                         ("sans-serif", 12).into_font().color(&RGBColor(90, 90, 90)),
                     )
             }))?;
