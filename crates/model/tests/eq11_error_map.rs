@@ -1,6 +1,6 @@
 //! The error map of Persson's Eq. (11) against the exact rolling cylinder
 //! (issue 6): standard linear solids with E1/E0 = 2, 10, 100, 1000, speeds
-//! vτ/a0 = 1e-3 … 1e3 (half decades), the paper's cylinder (R = 1 cm,
+//! vτ/a0 = 1e-3 … 1e3 (quarter decades), the paper's cylinder (R = 1 cm,
 //! f_N = 100 N/m, E0 = 1 MPa, τ = 1 s, ν = 0), Eq. (11) with the dynamic
 //! contact size (the paper's) and with the static one.
 //!
@@ -40,7 +40,7 @@ fn eq11(material: StandardLinearSolid, contact: ContactSize, speeds: &[f64]) -> 
 
 #[test]
 fn eq11_against_the_exact_cylinder() {
-    let reduced: Vec<f64> = (0..13).map(|i| 10f64.powf(-3.0 + 0.5 * i as f64)).collect();
+    let reduced: Vec<f64> = (0..25).map(|i| 10f64.powf(-3.0 + 0.25 * i as f64)).collect();
     let mut worst_dynamic = Vec::new();
     let mut worst_static = Vec::new();
     for ratio in [2.0, 10.0, 100.0, 1000.0] {
@@ -82,12 +82,13 @@ fn eq11_against_the_exact_cylinder() {
     }
     eprintln!("worst |relative error| of Eq. (11), dynamic: {worst_dynamic:?}");
     eprintln!("worst |relative error| of Eq. (11), static: {worst_static:?}");
-    // Measured worst errors (dynamic 3.7, 4.8, 8.6, 10.5 %; static 18.8,
-    // 39.1, 52.4, 54.4 %), rounded up: the bound a user can rely on.
-    for ((_, d), bound) in worst_dynamic.iter().zip([0.04, 0.05, 0.09, 0.11]) {
+    // Measured worst errors at quarter-decade spacing (dynamic 4.0, 6.8,
+    // 8.6, 10.5 %; static 18.8, 42.1, 52.4, 54.4 %), rounded up: the bound
+    // a user can rely on.
+    for ((_, d), bound) in worst_dynamic.iter().zip([0.045, 0.075, 0.09, 0.11]) {
         assert!(*d < bound, "dynamic {d} ≥ {bound}");
     }
-    for ((_, s), bound) in worst_static.iter().zip([0.19, 0.40, 0.53, 0.55]) {
+    for ((_, s), bound) in worst_static.iter().zip([0.19, 0.43, 0.53, 0.55]) {
         assert!(*s < bound, "static {s} ≥ {bound}");
     }
     // The paper's remark: the difference grows with E1/E0.
