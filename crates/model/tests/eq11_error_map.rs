@@ -40,7 +40,9 @@ fn eq11(material: StandardLinearSolid, contact: ContactSize, speeds: &[f64]) -> 
 
 #[test]
 fn eq11_against_the_exact_cylinder() {
-    let reduced: Vec<f64> = (0..25).map(|i| 10f64.powf(-3.0 + 0.25 * i as f64)).collect();
+    let reduced: Vec<f64> = (0..25)
+        .map(|i| 10f64.powf(-3.0 + 0.25 * i as f64))
+        .collect();
     let mut worst_dynamic = Vec::new();
     let mut worst_static = Vec::new();
     for ratio in [2.0, 10.0, 100.0, 1000.0] {
