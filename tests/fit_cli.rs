@@ -705,4 +705,17 @@ fn the_exact_contact_is_forward_only() {
         &[],
         &["bad-scene.toml", "[contact]", "exact", "forward-only"],
     );
+    for rung in ["auto", "low-speed"] {
+        let scene = edit(
+            SCENE,
+            "[substrate]",
+            &format!("[contact]\nsize = \"{rung}\"\n\n[substrate]"),
+        );
+        assert_refused(
+            &scene,
+            Some(SMALL_DATA),
+            &[],
+            &["bad-scene.toml", "[contact]", rung, "forward only"],
+        );
+    }
 }

@@ -1530,6 +1530,20 @@ fn temperature_list_outside_a_free_shift_names_the_entry() {
 
 // ------------------------------------------------- the exact cylinder (issue 6)
 
+/// The columns of `[contact] size = "exact"`: [`HEADER`], the contact edges
+/// and the solution's error estimate.
+fn exact_header() -> Vec<&'static str> {
+    HEADER
+        .iter()
+        .copied()
+        .chain([
+            "contact_trailing_edge",
+            "contact_leading_edge",
+            "error_estimate",
+        ])
+        .collect()
+}
+
 /// `[contact] size = "exact"`: the paper's Fig. 2 cylinder (standard linear
 /// solid, E1/E0 = 10) by the exact rolling-contact solution. Its friction
 /// maximum is a little above Eq. (11)'s (about 0.7 %, Persson 2010 Fig. 2
@@ -1544,12 +1558,7 @@ fn exact_cylinder_scene_runs_and_sits_just_above_eq11_at_the_maximum() {
         "exact.toml",
         &edit(&base, "size = \"dynamic\"", "size = \"exact\""),
     );
-    let header: Vec<&str> = HEADER
-        .iter()
-        .copied()
-        .chain(["contact_trailing_edge", "contact_leading_edge"])
-        .collect();
-    let exact = run_ok_with_header(&exact_scene, &header);
+    let exact = run_ok_with_header(&exact_scene, &exact_header());
     let paper = run_ok(&data("paper-fig2-cylinder.toml"));
     let (mu_exact, mu_paper) = (exact.column("mu"), paper.column("mu"));
     let max = |m: &[f64]| m.iter().copied().fold(0.0, f64::max);
@@ -1604,5 +1613,129 @@ fn exact_contact_is_refused_where_it_does_not_apply() {
         ),
         &[],
         &["[contact]", "exact", "\"sls\" or \"prony\""],
+    );
+}
+
+// ------------------------------------------- the model ladder and auto (issue 6)
+
+/// Runs forward on `scene`, whose CSV ends with the text column `rung`:
+/// the numeric table without it, and the rungs.
+fn run_auto(scene: &Path) -> (Table, Vec<String>, String) {
+    let out = forward(scene, None);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "{}: {stderr}", scene.display());
+    let csv = text(&out.stdout);
+    let mut numbers = Vec::new();
+    let mut rungs = Vec::new();
+    for (i, line) in csv.lines().enumerate() {
+        let (rest, last) = line.rsplit_once(',').unwrap();
+        if i == 0 {
+            assert_eq!(last, "rung");
+        } else {
+            rungs.push(last.to_string());
+        }
+        numbers.push(rest.to_string());
+    }
+    (parse_csv(&numbers.join("\n")), rungs, stderr)
+}
+
+/// `[contact] size = "auto"` on the paper's cylinder: every μ within the
+/// requested accuracy of the exact rolling cylinder, each row saying which
+/// rung gave it and its estimated error, cheaper rungs at low speed, and
+/// the summary saying what was chosen.
+#[test]
+fn auto_scene_meets_its_accuracy_against_the_exact_rung() {
+    let dir = TempDir::new("auto");
+    let base = std::fs::read_to_string(data("paper-fig2-cylinder.toml")).unwrap();
+    let auto_scene = dir.write(
+        "auto.toml",
+        &edit(
+            &base,
+            "size = \"dynamic\"",
+            "size = \"auto\"\naccuracy = 1e-2",
+        ),
+    );
+    let exact_scene = dir.write(
+        "exact.toml",
+        &edit(&base, "size = \"dynamic\"", "size = \"exact\""),
+    );
+    let (auto, rungs, stderr) = run_auto(&auto_scene);
+    let header: Vec<&str> = HEADER.iter().copied().chain(["error_estimate"]).collect();
+    assert_eq!(auto.header, header);
+    assert!(stderr.contains("auto, accuracy 1e-2 against the exact rolling cylinder"));
+    assert!(stderr.contains("estimated error"), "{stderr}");
+    let exact = run_ok_with_header(&exact_scene, &exact_header());
+    let (mu, estimate, reference, reference_error) = (
+        auto.column("mu"),
+        auto.column("error_estimate"),
+        exact.column("mu"),
+        exact.column("error_estimate"),
+    );
+    for i in 0..mu.len() {
+        assert!(
+            ["low-speed", "dynamic", "exact"].contains(&rungs[i].as_str()),
+            "{}",
+            rungs[i]
+        );
+        assert!(estimate[i] <= 1e-2, "row {i}: estimate {}", estimate[i]);
+        let error = (mu[i] / reference[i] - 1.0).abs();
+        assert!(
+            error <= 1e-2 + reference_error[i],
+            "row {i} ({}): off the exact rung by {error:.2e}",
+            rungs[i]
+        );
+    }
+    assert_eq!(rungs[0], "low-speed");
+    assert!(rungs.iter().any(|r| r == "exact"));
+}
+
+/// `size = "low-speed"`: μ is the asymptote column.
+#[test]
+fn low_speed_rung_is_the_asymptote() {
+    let dir = TempDir::new("low");
+    let base = std::fs::read_to_string(data("paper-fig2-cylinder.toml")).unwrap();
+    let scene = dir.write(
+        "low.toml",
+        &edit(&base, "size = \"dynamic\"", "size = \"low-speed\""),
+    );
+    let out = forward(&scene, None);
+    assert!(out.status.success());
+    assert!(text(&out.stderr).contains("low-speed asymptote (Eqs. 18/19) at every speed"));
+    let table = parse_csv(&text(&out.stdout));
+    assert_eq!(table.column("mu"), table.column("mu_low_speed"));
+}
+
+#[test]
+fn auto_settings_are_checked() {
+    let auto = edit(SLS_SCENE, "size = \"dynamic\"", "size = \"auto\"");
+    assert_rejected(
+        &edit(
+            SLS_SCENE,
+            "size = \"dynamic\"",
+            "size = \"dynamic\"\naccuracy = 1e-3",
+        ),
+        &[],
+        &["[contact]", "accuracy", "size = \"auto\""],
+    );
+    for bad in ["0.0", "2.0", "1e-9"] {
+        assert_rejected(
+            &edit(
+                &auto,
+                "size = \"auto\"",
+                &format!("size = \"auto\"\naccuracy = {bad}"),
+            ),
+            &[],
+            &["[contact]", "accuracy", "between 1e-8 and 0.5"],
+        );
+    }
+    assert_rejected(
+        &edit(&auto, "[sweep]", "[sweep]\ntolerance = 1e-6"),
+        &[],
+        &["[sweep]", "tolerance", "auto"],
+    );
+    assert_rejected(
+        &edit(SLS_SCENE, "size = \"dynamic\"", "size = \"fastest\""),
+        &[],
+        &["size", "fastest"],
     );
 }

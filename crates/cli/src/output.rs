@@ -17,10 +17,23 @@ pub fn number(value: f64) -> String {
 
 /// CSV text (with a header row) from rows of numbers.
 pub fn csv_bytes(header: &[&str], rows: impl IntoIterator<Item = Vec<f64>>) -> Result<Vec<u8>> {
+    csv_text_bytes(
+        header,
+        rows.into_iter()
+            .map(|row| row.into_iter().map(number).collect()),
+    )
+}
+
+/// CSV text (with a header row) from rows of cells already formatted
+/// (numbers by [`number`]).
+pub fn csv_text_bytes(
+    header: &[&str],
+    rows: impl IntoIterator<Item = Vec<String>>,
+) -> Result<Vec<u8>> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record(header)?;
     for row in rows {
-        writer.write_record(row.into_iter().map(number))?;
+        writer.write_record(row)?;
     }
     writer.into_inner().context("cannot finish the CSV text")
 }

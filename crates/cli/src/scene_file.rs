@@ -322,7 +322,8 @@ pub struct SubstrateSection {
     pub thickness: Option<Real>,
 }
 
-/// Contact-size rule names as written in the file.
+/// The rungs of the model ladder as written in the file (`[contact] size`;
+/// DESIGN.md names "dynamic" and "static", the rest extend it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactName {
@@ -334,14 +335,61 @@ pub enum ContactName {
     /// linear solid or Prony series; forward only): the reference Eq. (11)
     /// approximates.
     Exact,
+    /// The low-speed asymptote, Eqs. (18)/(19) (forward only).
+    #[serde(rename = "low-speed")]
+    LowSpeed,
+    /// The cheapest rung that meets `[contact] accuracy`, per speed
+    /// (forward only; crates/model/src/ladder).
+    Auto,
 }
+
+/// Default `[contact] accuracy` of `size = "auto"`.
+pub const DEFAULT_ACCURACY: f64 = 1e-3;
 
 /// `[contact]`.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSection {
-    /// "dynamic" (default), "static" or "exact".
+    /// "dynamic" (default), "static", "exact", "low-speed" or "auto".
     pub size: Option<ContactName>,
+    /// Relative accuracy of μ that `size = "auto"` must meet (default 1e-3).
+    pub accuracy: Option<Real>,
+}
+
+impl ContactSection {
+    /// `accuracy` belongs to `size = "auto"`.
+    fn check(&self) -> Result<()> {
+        if let Some(Real(accuracy)) = self.accuracy {
+            if self.size != Some(ContactName::Auto) {
+                bail!(
+                    "[contact]: accuracy = {accuracy} is the target of size = \"auto\"; \
+                     add size = \"auto\" or remove accuracy"
+                );
+            }
+            if !(1e-8..=0.5).contains(&accuracy) {
+                bail!("[contact]: accuracy = {accuracy} must lie between 1e-8 and 0.5 (relative)");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How `rollfit forward` computes μ for a block.
+pub enum ForwardRung {
+    /// Eq. (11)/(17) with the scene's contact-size rule.
+    Paper,
+    /// The low-speed asymptote at every speed.
+    LowSpeed,
+    /// The exact rolling cylinder of the (shifted) material.
+    Exact(RollingCylinder),
+    /// `auto` with its accuracy and, where the scene has one, the exact
+    /// cylinder (else why not).
+    Auto {
+        /// Requested relative accuracy.
+        accuracy: f64,
+        /// The exact rolling cylinder, or why there is none.
+        exact: std::result::Result<RollingCylinder, String>,
+    },
 }
 
 /// Material model names as written in the file.
@@ -588,9 +636,8 @@ pub struct ShiftApplied {
 pub struct ForwardBlock {
     /// The scene, material already shifted to the block's temperature.
     pub scene: DynScene,
-    /// With `[contact] size = "exact"`: the exact rolling cylinder of the
-    /// same (shifted) material, which gives μ.
-    pub exact: Option<RollingCylinder>,
+    /// The rung that gives μ.
+    pub rung: ForwardRung,
     /// The temperature shift, if the sweep asked for a temperature.
     pub shift: Option<ShiftApplied>,
 }
@@ -622,6 +669,15 @@ pub fn parse(text: &str) -> Result<SceneFile> {
         if let Some(shift) = &material.shift {
             shift.check().context("[material.shift]")?;
         }
+    }
+    file.contact.check()?;
+    if file.contact.size == Some(ContactName::Auto)
+        && file.sweep.as_ref().is_some_and(|s| s.tolerance.is_some())
+    {
+        bail!(
+            "[sweep]: tolerance is set by size = \"auto\" itself (a tenth of [contact] \
+             accuracy); remove it, or choose a rung with size = \"dynamic\""
+        );
     }
     if let Some(fit) = &file.fit {
         fit.check().context("[fit]")?;
@@ -699,19 +755,28 @@ impl SceneFile {
                     .with_tolerance(tolerance)
                     .map_err(|e| anyhow!("[sweep]: {e}"))?;
             }
-            let exact = match self.contact.size {
-                Some(ContactName::Exact) => Some(self.exact_cylinder(
+            let log10_a_t = shift.map(|s| s.log10_a_t);
+            let rung = match self.contact.size {
+                Some(ContactName::Exact) => ForwardRung::Exact(self.exact_cylinder(
                     material_section,
                     base_dir,
-                    shift.map(|s| s.log10_a_t),
+                    log10_a_t,
                 )?),
-                _ => None,
+                Some(ContactName::LowSpeed) => ForwardRung::LowSpeed,
+                Some(ContactName::Auto) => ForwardRung::Auto {
+                    accuracy: self.contact.accuracy.map_or(DEFAULT_ACCURACY, |r| r.0),
+                    // auto may use the exact cylinder where a film is
+                    // negligible, so the film does not rule it out here.
+                    exact: self
+                        .exact_material_for(material_section, base_dir, log10_a_t, false)
+                        .and_then(|prony| {
+                            self.exact_cylinder_with(&prony, ExactSettings::default())
+                        })
+                        .map_err(|e| format!("{e:#}")),
+                },
+                None | Some(ContactName::Dynamic) | Some(ContactName::Static) => ForwardRung::Paper,
             };
-            blocks.push(ForwardBlock {
-                scene,
-                shift,
-                exact,
-            });
+            blocks.push(ForwardBlock { scene, shift, rung });
         }
         Ok(ForwardSetup { blocks, speeds })
     }
@@ -741,13 +806,25 @@ impl SceneFile {
         base_dir: &Path,
         log10_a_t: Option<f64>,
     ) -> Result<Prony> {
+        self.exact_material_for(material, base_dir, log10_a_t, true)
+    }
+
+    /// As [`Self::exact_material`]; `refuse_film`: a film rules the exact
+    /// solution out (it is for a half-space).
+    fn exact_material_for(
+        &self,
+        material: &MaterialSection,
+        base_dir: &Path,
+        log10_a_t: Option<f64>,
+        refuse_film: bool,
+    ) -> Result<Prony> {
         if self.geometry.shape != ShapeName::Cylinder {
             bail!(
                 "[contact]: size = \"exact\" needs shape = \"cylinder\": the exact solution is the \
                  plane-strain rolling cylinder (there is no three-dimensional one for a sphere)"
             );
         }
-        if self.substrate.thickness.is_some() {
+        if refuse_film && self.substrate.thickness.is_some() {
             bail!(
                 "[contact]: size = \"exact\" is for a half-space; remove [substrate] thickness \
                  (films use size = \"dynamic\" or \"static\")"
@@ -810,9 +887,11 @@ impl SceneFile {
             // forward writes beside its μ (asymptote, static contact) come
             // from the paper's model with the dynamic size.
             contact: match self.contact.size {
-                None | Some(ContactName::Dynamic) | Some(ContactName::Exact) => {
-                    ContactSize::Dynamic
-                }
+                None
+                | Some(ContactName::Dynamic)
+                | Some(ContactName::Exact)
+                | Some(ContactName::LowSpeed)
+                | Some(ContactName::Auto) => ContactSize::Dynamic,
                 Some(ContactName::Static) => ContactSize::Static,
             },
         }
@@ -825,11 +904,22 @@ impl SceneFile {
     /// used. Ranges of the fit settings are checked later by
     /// [`FitParams::check`].
     pub fn fit_setup(&self) -> Result<(RollingSetup, FitParams)> {
-        if self.contact.size == Some(ContactName::Exact) {
-            bail!(
+        match self.contact.size {
+            Some(ContactName::Exact) => bail!(
                 "[contact]: size = \"exact\" is a forward-only reference (its μ has no fast \
                  gradient); fit with size = \"dynamic\" (the paper's) or \"static\""
-            );
+            ),
+            Some(name @ (ContactName::LowSpeed | ContactName::Auto)) => bail!(
+                "[contact]: size = \"{}\" is for rollfit forward only (a fit needs one model \
+                 with a gradient at every speed); fit with size = \"dynamic\" (the paper's) \
+                 or \"static\"",
+                if name == ContactName::Auto {
+                    "auto"
+                } else {
+                    "low-speed"
+                }
+            ),
+            _ => {}
         }
         let setup = self.rolling_setup();
         // The model owns the ranges of the set-up; a placeholder material

@@ -16,6 +16,10 @@
 //!   the cylinder (Eq. 11), x²G(x) for the sphere (Eq. 17 reduced to one
 //!   frequency integral) — and their product-integration weights.
 //! - [`friction`]: μ(v) and its derivatives with respect to Prony parameters.
+//! - [`exact`]: the exact steady rolling cylinder (Hunter 1961), the
+//!   reference Eq. (11) approximates.
+//! - [`ladder`]: the rungs of model fidelity and `auto`, the cheapest rung
+//!   that meets a requested accuracy.
 //! - [`asymptotes`]: the low-speed limit (Eqs. 18/19, generalised to
 //!   E″ ∝ ω^p), Greenwood–Tabor α
 //!   (Eqs. 20–21), pressure-centroid shift, friction maximum.
@@ -31,6 +35,7 @@ pub mod exact;
 pub mod film;
 pub mod friction;
 pub mod kernel;
+pub mod ladder;
 pub mod modulus;
 pub mod scene;
 

@@ -209,6 +209,50 @@ fn grid_convergence() {
     }
 }
 
+/// Large E1/E0: the edge layer is as thin as v times the relaxation time
+/// τE0/E1, not the retardation time τ (the rule before 2026-11-23 used τ
+/// and was 6 % off at E1/E0 = 1000, vτ/a0 = 0.3, while calling itself
+/// converged). Where the default settings say they resolve the layers, μ
+/// agrees with N = 192 to 1e-5 (measured ≤ 3.6e-7); where they do not, they
+/// say so.
+#[test]
+fn grid_convergence_at_large_ratios() {
+    let mut rng = common::Lcg(99);
+    let solids = [
+        ("SLS 100", sls(100.0).to_prony()),
+        ("SLS 1000", sls(1000.0).to_prony()),
+        ("SLS 1e4", sls(1e4).to_prony()),
+        ("random Prony", common::random_prony(&mut rng, 6, -3.0, 0.5)),
+    ];
+    for (name, material) in solids {
+        let default_cyl = cylinder(&material, None);
+        let reference_cyl = cylinder(&material, Some(192));
+        let a0 = default_cyl.static_half_width();
+        let (mut worst, mut resolved, mut unresolved) = (0.0f64, 0, 0);
+        for k in 0..=12 {
+            let v = a0 * 10f64.powf(-3.0 + 0.5 * k as f64);
+            if !default_cyl.resolves_edge_layers(v) {
+                unresolved += 1;
+                continue;
+            }
+            resolved += 1;
+            let err =
+                (default_cyl.solve(v).unwrap().mu / reference_cyl.solve(v).unwrap().mu - 1.0).abs();
+            worst = worst.max(err);
+        }
+        println!("{name}: {resolved} speeds resolved (worst error {worst:.1e}), {unresolved} not");
+        assert!(worst < 1e-5, "{name}: {worst}");
+        assert!(resolved >= 4, "{name}");
+    }
+    // The speeds where the old rule was wrong are now flagged.
+    let stiff = sls(1000.0).to_prony();
+    let cyl = cylinder(&stiff, None);
+    let a0 = cyl.static_half_width();
+    for x in [0.03, 0.1, 0.3] {
+        assert!(!cyl.resolves_edge_layers(x * a0), "vτ/a0 = {x}");
+    }
+}
+
 /// Standard linear solid, E1/E0 = 10: one maximum of μR/a0 against vτ/a0,
 /// slightly above and at a slightly higher speed than Eq. (11)'s.
 #[test]

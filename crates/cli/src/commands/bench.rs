@@ -3,7 +3,8 @@
 //! Forward model: for the scene (default data/paper-fig2-cylinder.toml, the
 //! paper's standard linear solid E1/E0 = 10 under a cylinder), every rung of
 //! the model ladder — the low-speed asymptote (Eqs. 18/19), the static and
-//! the dynamic contact size (Eq. 11, the paper) — at each quadrature
+//! the dynamic contact size (Eq. 11, the paper), the exact cylinder, and
+//! `auto` at a dial of requested accuracies — at each quadrature
 //! tolerance of the dial, timed per μ and compared over the scene's sweep
 //! with the reference: the dynamic rung at tolerance 1e-11, i.e. the
 //! paper's theory computed to rounding (the asymptote only at speeds two
@@ -64,10 +65,28 @@ pub struct Args {
 const TOLERANCES: [f64; 6] = [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-8];
 /// Chebyshev terms of the exact rung's dial (None: the automatic choice).
 const TERMS: [Option<usize>; 6] = [Some(12), Some(16), Some(24), Some(32), Some(48), None];
+/// Requested accuracies of the auto rung.
+const ACCURACIES: [f64; 5] = [1e-1, 3e-2, 1e-2, 3e-3, 1e-3];
 /// The reference's tolerance.
 const REFERENCE_TOLERANCE: f64 = 1e-11;
 /// Evaluation budgets of the fitting dial (per solver run).
 const BUDGETS: [usize; 6] = [100, 300, 1000, 3000, 10_000, 20_000];
+
+/// The settings swept, and how long each is timed.
+struct Dials<'a> {
+    /// Quadrature tolerances of Eq. (11)/(17).
+    tolerances: &'a [f64],
+    /// Chebyshev terms of the exact rung (None: automatic).
+    terms: &'a [Option<usize>],
+    /// Requested accuracies of auto.
+    accuracies: &'a [f64],
+    /// Evaluation budgets of the fitting chart.
+    budgets: &'a [usize],
+    /// At most this many speeds of the forward scene.
+    max_speeds: usize,
+    /// Seconds each timing runs at least.
+    min_time: f64,
+}
 
 /// One row of forward.csv.
 struct ForwardRow {
@@ -95,20 +114,28 @@ struct FitRow {
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
     let quick_terms = [Some(16), None];
-    let (tolerances, terms, budgets, max_speeds, min_time): (
-        &[f64],
-        &[Option<usize>],
-        &[usize],
-        usize,
-        f64,
-    ) = if args.quick {
-        (&TOLERANCES[..2], &quick_terms, &BUDGETS[..2], 7, 0.005)
+    let dials = if args.quick {
+        Dials {
+            tolerances: &TOLERANCES[..2],
+            terms: &quick_terms,
+            accuracies: &ACCURACIES[..1],
+            budgets: &BUDGETS[..2],
+            max_speeds: 7,
+            min_time: 0.005,
+        }
     } else {
-        (&TOLERANCES, &TERMS, &BUDGETS, 31, 0.2)
+        Dials {
+            tolerances: &TOLERANCES,
+            terms: &TERMS,
+            accuracies: &ACCURACIES,
+            budgets: &BUDGETS,
+            max_speeds: 31,
+            min_time: 0.2,
+        }
     };
-    let forward = forward_rows(&args.forward_scene, tolerances, terms, max_speeds, min_time)
+    let forward = forward_rows(&args.forward_scene, &dials)
         .with_context(|| format!("scene file {}", args.forward_scene.display()))?;
-    let fits = fit_rows(&args.fit_scene, &args.fit_data, budgets)?;
+    let fits = fit_rows(&args.fit_scene, &args.fit_data, dials.budgets)?;
 
     let mut forward_points: Vec<CostPoint> = forward
         .rows
@@ -257,13 +284,15 @@ struct Forward {
     speeds: Vec<f64>,
 }
 
-fn forward_rows(
-    path: &Path,
-    tolerances: &[f64],
-    terms: &[Option<usize>],
-    max_speeds: usize,
-    min_time: f64,
-) -> Result<Forward> {
+fn forward_rows(path: &Path, dials: &Dials<'_>) -> Result<Forward> {
+    let Dials {
+        tolerances,
+        terms,
+        accuracies,
+        max_speeds,
+        min_time,
+        ..
+    } = *dials;
     let file = scene_file::load(path)?;
     let section = file
         .material
@@ -396,13 +425,13 @@ fn forward_rows(
             });
         }
     }
-    if let Some(prony) = prony {
+    if let Some(prony) = &prony {
         for &n in terms {
             let settings = ExactSettings {
                 terms: n,
                 ..ExactSettings::default()
             };
-            let cylinder = file.exact_cylinder_with(&prony, settings)?;
+            let cylinder = file.exact_cylinder_with(prony, settings)?;
             let mut values = Vec::new();
             // One speed after another: the time of one contact solve.
             let time = time_per_mu(speeds.len(), min_time, || {
@@ -423,6 +452,43 @@ fn forward_rows(
                 numerical_error: max_error,
             });
         }
+    }
+    // auto: the cheapest rung per speed for each requested accuracy, timed
+    // on one thread (its contact solves would otherwise share the cores,
+    // which the other rungs' timings do not).
+    let exact_for_auto = match &prony {
+        Some(p) => Ok(file.exact_cylinder_with(p, ExactSettings::default())?),
+        None => Err("no exact rung for this scene".to_string()),
+    };
+    let one_thread = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .context("cannot start a one-thread pool")?;
+    let auto_scene = scene(ContactSize::Dynamic, tolerances[0])?;
+    for &accuracy in accuracies {
+        let mut values = Vec::new();
+        let time = one_thread.install(|| {
+            time_per_mu(speeds.len(), min_time, || {
+                values = auto_scene
+                    .friction_auto(
+                        &speeds,
+                        accuracy,
+                        exact_for_auto.as_ref().map_err(Clone::clone),
+                    )
+                    .map_err(|e| anyhow!("{e}"))?
+                    .mu;
+                Ok(())
+            })
+        })?;
+        let (max_error, rms_error) = errors(&values, &reference);
+        rows.push(ForwardRow {
+            rung: "auto",
+            setting: format!("ε = {accuracy:.0e}"),
+            time_per_mu: time,
+            max_error,
+            rms_error,
+            numerical_error: f64::NAN,
+        });
     }
     Ok(Forward {
         rows,

@@ -25,9 +25,10 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rollfit_model::Shape;
+use rollfit_model::ladder::AutoSweep;
 
 use crate::output;
-use crate::scene_file::{self, DynScene, ForwardBlock, ForwardSetup};
+use crate::scene_file::{self, DynScene, ForwardBlock, ForwardRung, ForwardSetup};
 
 /// CSV columns, in order (DESIGN.md §4 fixes `v` and `mu`; the rest is ours):
 /// speed v (m/s); friction coefficient μ; its low-speed asymptote (Eqs.
@@ -137,18 +138,20 @@ pub fn run(args: &Args) -> Result<()> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    let (mu, edges): (Vec<Vec<f64>>, Vec<Option<Edges>>) = solved.into_iter().unzip();
-    let with_edges = edges.iter().any(Option::is_some);
-
-    let with_temperature = setup.blocks.iter().any(|b| b.shift.is_some());
+    let mu: Vec<Vec<f64>> = solved.iter().map(|s| s.mu.clone()).collect();
+    let extra = Extra {
+        edges: solved.iter().any(|s| s.edges.is_some()),
+        error: solved.iter().any(|s| s.error.is_some()),
+        auto: solved.iter().any(|s| s.auto.is_some()),
+        temperature: setup.blocks.iter().any(|b| b.shift.is_some()),
+    };
     let rows = setup
         .blocks
         .iter()
-        .zip(&mu)
-        .zip(&edges)
-        .flat_map(|((block, mu), edges)| rows(block, &setup.speeds, mu, edges.as_deref()));
+        .zip(&solved)
+        .flat_map(|(block, solved)| rows(block, &setup.speeds, solved));
     let bytes = match args.noise {
-        None => output::csv_bytes(&header(&COLUMNS, with_edges, with_temperature), rows)?,
+        None => output::csv_text_bytes(&header(&COLUMNS, extra), rows)?,
         Some(rel) => {
             // One stream over the whole file, in row order.
             let exact: Vec<f64> = mu.iter().flatten().copied().collect();
@@ -165,85 +168,144 @@ pub fn run(args: &Args) -> Result<()> {
             }
             let rows = rows.zip(noisy).map(|(mut row, (m, sigma))| {
                 // [v, mu_exact, rest.., (T)] → [v, mu, sigma, mu_exact, rest.., (T)]
-                row.splice(1..1, [m, sigma]);
+                row.splice(1..1, [output::number(m), output::number(sigma)]);
                 row
             });
-            output::csv_bytes(&header(&NOISY_COLUMNS, with_edges, with_temperature), rows)?
+            output::csv_text_bytes(&header(&NOISY_COLUMNS, extra), rows)?
         }
     };
     match &args.output {
         Some(out) => output::write_atomically(out, &bytes)?,
         None => output::write_stdout(&bytes)?,
     }
-    eprintln!("{}", summary(&setup, &mu));
+    eprintln!("{}", summary(&setup, &solved));
     Ok(())
 }
 
-/// `columns`, then [`TEMPERATURE_COLUMN`] if the rows carry a temperature.
 /// Columns of the exact solution (`[contact] size = "exact"`): the contact
 /// edges relative to the cylinder's axis, m (trailing < 0 < leading).
 pub const EDGE_COLUMNS: [&str; 2] = ["contact_trailing_edge", "contact_leading_edge"];
 
+/// Column of `[contact] size = "exact"` and `"auto"`: the estimated
+/// relative error of μ (the exact solution's discretisation error; for
+/// auto, against the exact physics, see crates/model/src/ladder).
+pub const ERROR_COLUMN: &str = "error_estimate";
+
+/// Column of `[contact] size = "auto"`: the rung that gave μ
+/// ("low-speed", "dynamic", "dynamic-film" or "exact").
+pub const RUNG_COLUMN: &str = "rung";
+
 /// (trailing, leading) contact edges per speed, m.
 type Edges = Vec<[f64; 2]>;
 
-/// μ at every speed of one block, and with the exact solution its contact
-/// edges (solved in parallel: one speed takes milliseconds).
-fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<(Vec<f64>, Option<Edges>)> {
-    match &block.exact {
-        None => Ok((
+/// μ of one block and what came with it.
+struct Solved {
+    mu: Vec<f64>,
+    /// Contact edges of the exact solution.
+    edges: Option<Edges>,
+    /// Estimated relative error of each μ (exact or auto).
+    error: Option<Vec<f64>>,
+    /// What `auto` chose.
+    auto: Option<AutoSweep>,
+}
+
+/// Which optional columns the file has.
+#[derive(Clone, Copy)]
+struct Extra {
+    edges: bool,
+    error: bool,
+    auto: bool,
+    temperature: bool,
+}
+
+/// μ at every speed of one block by its rung.
+fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
+    let mu_only = |mu| Solved {
+        mu,
+        edges: None,
+        error: None,
+        auto: None,
+    };
+    match &block.rung {
+        ForwardRung::Paper => Ok(mu_only(
             block
                 .scene
                 .friction_sweep(speeds)
                 .map_err(anyhow::Error::msg)?,
-            None,
         )),
-        Some(cylinder) => {
+        ForwardRung::LowSpeed => Ok(mu_only(
+            speeds
+                .iter()
+                .map(|&v| block.scene.low_speed_asymptote(v))
+                .collect(),
+        )),
+        ForwardRung::Auto { accuracy, exact } => {
+            let auto = block
+                .scene
+                .friction_auto(speeds, *accuracy, exact.as_ref().map_err(Clone::clone))
+                .map_err(anyhow::Error::msg)?;
+            Ok(Solved {
+                mu: auto.mu.clone(),
+                edges: None,
+                error: Some(auto.error_estimate.clone()),
+                auto: Some(auto),
+            })
+        }
+        ForwardRung::Exact(cylinder) => {
+            // One speed takes milliseconds: in parallel.
             use rayon::prelude::*;
             let solutions = speeds
                 .par_iter()
                 .map(|&v| cylinder.solve(v))
                 .collect::<Result<Vec<_>, _>>()
                 .map_err(anyhow::Error::msg)?;
-            Ok((
-                solutions.iter().map(|s| s.mu).collect(),
-                Some(
+            Ok(Solved {
+                mu: solutions.iter().map(|s| s.mu).collect(),
+                edges: Some(
                     solutions
                         .iter()
                         .map(|s| [s.trailing_edge, s.leading_edge])
                         .collect(),
                 ),
-            ))
+                error: Some(solutions.iter().map(|s| s.error_estimate).collect()),
+                auto: None,
+            })
         }
     }
 }
 
-fn header(columns: &[&'static str], with_edges: bool, with_temperature: bool) -> Vec<&'static str> {
+/// `columns`, then the edge, auto and temperature columns the file has.
+fn header(columns: &[&'static str], extra: Extra) -> Vec<&'static str> {
     let mut header = columns.to_vec();
-    if with_edges {
+    if extra.edges {
         header.extend(EDGE_COLUMNS);
     }
-    if with_temperature {
+    if extra.error {
+        header.push(ERROR_COLUMN);
+    }
+    if extra.auto {
+        header.push(RUNG_COLUMN);
+    }
+    if extra.temperature {
         header.push(TEMPERATURE_COLUMN);
     }
     header
 }
 
-/// The rows of one block: the columns of [`COLUMNS`], then the block's
-/// temperature if it has one.
+/// The rows of one block: the columns of [`COLUMNS`], the block's extra
+/// columns, then its temperature if it has one.
 fn rows<'a>(
     block: &'a ForwardBlock,
     speeds: &'a [f64],
-    mu: &'a [f64],
-    edges: Option<&'a [[f64; 2]]>,
-) -> impl Iterator<Item = Vec<f64>> + 'a {
+    solved: &'a Solved,
+) -> impl Iterator<Item = Vec<String>> + 'a {
     let scene = &block.scene;
     let contact_size = scene.static_contact_size();
     let pressure = scene.static_mean_pressure();
     let temperature = block.shift.map(|s| s.temperature);
     speeds
         .iter()
-        .zip(mu)
+        .zip(&solved.mu)
         .enumerate()
         .map(move |(i, (&v, &mu))| {
             let mut row = vec![
@@ -255,10 +317,17 @@ fn rows<'a>(
                 scene.centroid_shift(mu),
                 scene.greenwood_tabor_alpha(mu),
             ];
-            if let Some(edges) = edges {
+            if let Some(edges) = &solved.edges {
                 row.extend(edges[i]);
             }
-            row.extend(temperature);
+            if let Some(error) = &solved.error {
+                row.push(error[i]);
+            }
+            let mut row: Vec<String> = row.into_iter().map(output::number).collect();
+            if let Some(auto) = &solved.auto {
+                row.push(auto.rungs[i].name().to_string());
+            }
+            row.extend(temperature.map(output::number));
             row
         })
 }
@@ -267,7 +336,49 @@ fn rows<'a>(
 /// same at every temperature: a shift leaves the static modulus alone), the
 /// temperatures and, where the sweep brackets one, the friction maximum at
 /// each.
-fn summary(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
+fn summary(setup: &ForwardSetup, solved: &[Solved]) -> String {
+    let mu: Vec<Vec<f64>> = solved.iter().map(|s| s.mu.clone()).collect();
+    let mut line = summary_line(setup, &mu);
+    let shape = setup.blocks[0].scene.geometry().shape;
+    for (block, solved) in setup.blocks.iter().zip(solved) {
+        let at = block
+            .shift
+            .map(|s| format!("at {} °C: ", s.temperature))
+            .unwrap_or_default();
+        if let Some(auto) = &solved.auto {
+            line += &format!("\n{at}{}", auto.description(&setup.speeds, shape));
+        }
+        if let (ForwardRung::Exact(_), Some(error)) = (&block.rung, &solved.error) {
+            let unresolved: Vec<usize> = (0..error.len())
+                .filter(|&i| error[i] > rollfit_model::exact::RESOLVED_ERROR)
+                .collect();
+            if let (Some(&first), Some(&last)) = (unresolved.first(), unresolved.last()) {
+                let worst = unresolved.iter().map(|&i| error[i]).fold(0.0, f64::max);
+                line += &format!(
+                    "\nwarning: {at}the exact solution does not resolve the pressure's edge \
+                     layers at {} of {} speeds (v = {:.3e} … {:.3e} m/s: low speed, or large \
+                     E1/E0 below the friction maximum); estimated error there up to {worst:.1e} \
+                     (column error_estimate)",
+                    unresolved.len(),
+                    error.len(),
+                    setup.speeds[first],
+                    setup.speeds[last]
+                );
+            }
+        }
+        if matches!(block.rung, ForwardRung::LowSpeed) {
+            line += &format!(
+                "\n{at}μ is the low-speed asymptote (Eqs. 18/19) at every speed: exact as v → 0 \
+                 only (use size = \"auto\" to use it only where it is accurate)"
+            );
+            break;
+        }
+    }
+    line
+}
+
+/// The first line of the summary.
+fn summary_line(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
     let first = &setup.blocks[0].scene;
     let g = first.geometry();
     let (shape, load_unit, size_name) = match g.shape {
@@ -307,9 +418,14 @@ fn summary(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
         first.static_contact_size(),
         first.static_mean_pressure()
     );
-    if setup.blocks.iter().any(|b| b.exact.is_some()) {
-        // The exact solution is not refined between samples (each μ is a
-        // contact solve); the summary gives the largest sampled value.
+    if setup
+        .blocks
+        .iter()
+        .any(|b| !matches!(b.rung, ForwardRung::Paper))
+    {
+        // The exact solution, auto and the asymptote are not refined
+        // between samples (a contact solve a μ, a mix of rungs, no
+        // maximum); the summary gives the largest sampled value.
         let peaks: Vec<String> = setup
             .blocks
             .iter()
@@ -322,8 +438,14 @@ fn summary(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
                 let i = (0..mu.len())
                     .max_by(|&a, &b| mu[a].total_cmp(&mu[b]))
                     .unwrap_or(0);
+                let rung = match block.rung {
+                    ForwardRung::Exact(_) => "exact solution: ",
+                    ForwardRung::Auto { .. } => "auto: ",
+                    ForwardRung::LowSpeed => "low-speed asymptote: ",
+                    ForwardRung::Paper => "",
+                };
                 format!(
-                    "{at}exact solution: largest sampled μ = {:.4e} at v = {:.4e} m/s",
+                    "{at}{rung}largest sampled μ = {:.4e} at v = {:.4e} m/s",
                     mu[i], speeds[i]
                 )
             })

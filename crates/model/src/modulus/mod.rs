@@ -103,59 +103,41 @@ pub trait ViscoelasticModulus: Send + Sync {
     }
 }
 
-impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for Box<M> {
-    fn modulus(&self, omega: f64) -> Complex64 {
-        (**self).modulus(omega)
-    }
-    fn modulus_and_log_slope(&self, omega: f64) -> (Complex64, Complex64) {
-        (**self).modulus_and_log_slope(omega)
-    }
-    fn static_modulus(&self) -> f64 {
-        (**self).static_modulus()
-    }
-    fn loss_slope_at_zero(&self) -> f64 {
-        (**self).loss_slope_at_zero()
-    }
-    fn loss_exponent_at_zero(&self) -> f64 {
-        (**self).loss_exponent_at_zero()
-    }
-    fn low_frequency_loss_coefficient(&self) -> f64 {
-        (**self).low_frequency_loss_coefficient()
-    }
-    fn structure_range(&self) -> (f64, f64) {
-        (**self).structure_range()
-    }
-    fn relaxation_bound(&self) -> Option<f64> {
-        (**self).relaxation_bound()
-    }
+/// A pointer to a modulus is the modulus: `Box` and `Arc` for owned and
+/// shared materials, `&` for scenes built around a borrowed one (the rungs
+/// of crate::ladder evaluate the caller's material without a copy).
+macro_rules! modulus_through_pointer {
+    ($($pointer:ty),*) => {$(
+        impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for $pointer {
+            fn modulus(&self, omega: f64) -> Complex64 {
+                (**self).modulus(omega)
+            }
+            fn modulus_and_log_slope(&self, omega: f64) -> (Complex64, Complex64) {
+                (**self).modulus_and_log_slope(omega)
+            }
+            fn static_modulus(&self) -> f64 {
+                (**self).static_modulus()
+            }
+            fn loss_slope_at_zero(&self) -> f64 {
+                (**self).loss_slope_at_zero()
+            }
+            fn loss_exponent_at_zero(&self) -> f64 {
+                (**self).loss_exponent_at_zero()
+            }
+            fn low_frequency_loss_coefficient(&self) -> f64 {
+                (**self).low_frequency_loss_coefficient()
+            }
+            fn structure_range(&self) -> (f64, f64) {
+                (**self).structure_range()
+            }
+            fn relaxation_bound(&self) -> Option<f64> {
+                (**self).relaxation_bound()
+            }
+        }
+    )*};
 }
 
-impl<M: ViscoelasticModulus + ?Sized> ViscoelasticModulus for std::sync::Arc<M> {
-    fn modulus(&self, omega: f64) -> Complex64 {
-        (**self).modulus(omega)
-    }
-    fn modulus_and_log_slope(&self, omega: f64) -> (Complex64, Complex64) {
-        (**self).modulus_and_log_slope(omega)
-    }
-    fn static_modulus(&self) -> f64 {
-        (**self).static_modulus()
-    }
-    fn loss_slope_at_zero(&self) -> f64 {
-        (**self).loss_slope_at_zero()
-    }
-    fn loss_exponent_at_zero(&self) -> f64 {
-        (**self).loss_exponent_at_zero()
-    }
-    fn low_frequency_loss_coefficient(&self) -> f64 {
-        (**self).low_frequency_loss_coefficient()
-    }
-    fn structure_range(&self) -> (f64, f64) {
-        (**self).structure_range()
-    }
-    fn relaxation_bound(&self) -> Option<f64> {
-        (**self).relaxation_bound()
-    }
-}
+modulus_through_pointer!(Box<M>, std::sync::Arc<M>, &M);
 
 /// tan δ = E″/E′ of a complex modulus.
 pub fn tan_delta(e: Complex64) -> f64 {

@@ -1,0 +1,377 @@
+//! The ladder of model fidelities, and `auto`: the cheapest rung that meets
+//! a requested accuracy, chosen per speed.
+//!
+//! # The rungs, cheapest first
+//!
+//! 1. The low-speed asymptote, Eqs. (18)/(19) ([`crate::asymptotes`]): one
+//!    power of v, exact as v → 0 only.
+//! 2. Eq. (11)/(17) with the static contact size E_eff(0).
+//! 3. Eq. (11)/(17) with the dynamic contact size |E_eff(ω)| (the paper's).
+//! 4. The exact rolling cylinder ([`crate::exact`]): cylinder on a
+//!    half-space, Prony or standard-linear-solid modulus; milliseconds a
+//!    speed.
+//!
+//! and two dials: the quadrature tolerance of rungs 2–3, and, for a film,
+//! whether it is computed or neglected (a half-space). What each costs and
+//! how far it is from the next is measured by `rollfit bench` (fits/bench).
+//!
+//! # `auto`
+//!
+//! The reference is the most faithful rung the scene has: the exact
+//! cylinder where it applies, else Eq. (11)/(17) with the dynamic contact
+//! size and the film. Given a relative accuracy ε against it, the error
+//! budget is shared out as ε/10 to the quadrature (its tolerance), and 0.3 ε
+//! each to neglecting the film, to the low-speed asymptote and to the model
+//! error of Eq. (11), so that their sum stays below ε. Per speed of an
+//! increasing sweep:
+//!
+//! - the asymptote serves the leading run of speeds where it lies within
+//!   0.3 ε of the full model with the film ([`low_speed`], by probes);
+//! - elsewhere Eq. (11)/(17) with the dynamic size; a film is neglected
+//!   where the rigorous bound of [`film_bound`] on its effect is below
+//!   0.3 ε of the half-space μ, and computed elsewhere;
+//! - the exact cylinder replaces either where the model-error estimate of
+//!   [`model_error`], K μR/b, exceeds 0.3 ε and it applies (no film
+//!   computed at that speed).
+//!
+//! Each speed gets an error estimate against the exact physics: the
+//! quadrature tolerance, the film bound, the asymptote's probed deviation,
+//! the model-error estimate K μR/b (for a sphere by analogy with the
+//! cylinder), or the exact solution's own estimate of its grid error
+//! ([`crate::exact::RollingSolution::error_estimate`]; where that is no
+//! better than Eq. (11)'s, Eq. (11) is kept). Where the estimate exceeds ε — a
+//! sphere or film near the friction maximum, where no exact rung exists —
+//! the result says so rather than claiming the accuracy.
+//!
+//! The static contact size is never chosen: it costs what the dynamic one
+//! costs (one quadrature on the same grid) and is never closer to the
+//! exact cylinder (fits/bench, tests/eq11_error_map.rs).
+//!
+//! # References
+//! - B.N.J. Persson, Eur. Phys. J. E 33 (2010), Eqs. (11), (17)–(19).
+//! - S.C. Hunter, J. Appl. Mech. 28 (1961) 611–617 (the exact cylinder).
+
+mod film_bound;
+mod low_speed;
+mod model_error;
+
+pub use model_error::{MODEL_ERROR_FACTOR, dynamic_contact_size, model_error_estimate};
+
+use crate::contact::{ContactSize, Shape};
+use crate::error::ModelError;
+use crate::exact::RollingCylinder;
+use crate::modulus::ViscoelasticModulus;
+use crate::scene::{Scene, Substrate};
+use film_bound::FilmBound;
+use rayon::prelude::*;
+
+/// Share of the accuracy given to the quadrature tolerance.
+const QUADRATURE_SHARE: f64 = 0.1;
+/// Share given to each of: neglecting a film, the low-speed asymptote, the
+/// model error of Eq. (11).
+const RUNG_SHARE: f64 = 0.3;
+
+/// The rung `auto` chose at one speed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rung {
+    /// The low-speed asymptote, Eqs. (18)/(19).
+    LowSpeed,
+    /// Eq. (11)/(17), dynamic contact size, half-space (a film, if the
+    /// scene has one, neglected).
+    Dynamic,
+    /// Eq. (11)/(17), dynamic contact size, with the film.
+    DynamicFilm,
+    /// The exact rolling cylinder.
+    Exact,
+}
+
+impl Rung {
+    /// The name written to output files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rung::LowSpeed => "low-speed",
+            Rung::Dynamic => "dynamic",
+            Rung::DynamicFilm => "dynamic-film",
+            Rung::Exact => "exact",
+        }
+    }
+
+    /// A phrase for people.
+    fn description(self, shape: Shape) -> &'static str {
+        match (self, shape) {
+            (Rung::LowSpeed, _) => "the low-speed asymptote (Eqs. 18/19)",
+            (Rung::Dynamic, Shape::Cylinder) => "Eq. (11), dynamic contact size",
+            (Rung::Dynamic, Shape::Sphere) => "Eq. (17), dynamic contact size",
+            (Rung::DynamicFilm, Shape::Cylinder) => "Eq. (11) with the film",
+            (Rung::DynamicFilm, Shape::Sphere) => "Eq. (17) with the film",
+            (Rung::Exact, _) => "the exact rolling cylinder",
+        }
+    }
+}
+
+/// μ(v) by `auto`, with what it chose and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AutoSweep {
+    /// μ at each speed.
+    pub mu: Vec<f64>,
+    /// The rung used at each speed.
+    pub rungs: Vec<Rung>,
+    /// Estimated relative error of each μ against the exact physics (see
+    /// the module documentation).
+    pub error_estimate: Vec<f64>,
+    /// The requested relative accuracy ε.
+    pub accuracy: f64,
+    /// Quadrature tolerance used for Eq. (11)/(17).
+    pub tolerance: f64,
+    /// Why the exact cylinder is not available, if it is not.
+    pub exact_unavailable: Option<String>,
+    /// The film's thickness (m) and the largest bound on its effect where
+    /// it was neglected, if the scene has a film.
+    pub film: Option<(f64, Option<f64>)>,
+}
+
+impl AutoSweep {
+    /// Number of speeds whose error estimate exceeds the accuracy.
+    pub fn unmet(&self) -> usize {
+        self.error_estimate
+            .iter()
+            .filter(|&&e| e > self.accuracy)
+            .count()
+    }
+
+    /// What was chosen, in one paragraph, for `speeds` (m/s) of a `shape`.
+    pub fn description(&self, speeds: &[f64], shape: Shape) -> String {
+        let mut parts = Vec::new();
+        for rung in [
+            Rung::LowSpeed,
+            Rung::Dynamic,
+            Rung::DynamicFilm,
+            Rung::Exact,
+        ] {
+            let at: Vec<f64> = speeds
+                .iter()
+                .zip(&self.rungs)
+                .filter(|(_, r)| **r == rung)
+                .map(|(v, _)| *v)
+                .collect();
+            if let (Some(lo), Some(hi)) = (at.first(), at.last()) {
+                let range = if at.len() == 1 {
+                    format!("v = {lo:.3e} m/s")
+                } else {
+                    format!("v = {lo:.3e} … {hi:.3e} m/s")
+                };
+                parts.push(format!(
+                    "{} at {} speed{} ({range})",
+                    rung.description(shape),
+                    at.len(),
+                    if at.len() == 1 { "" } else { "s" }
+                ));
+            }
+        }
+        let reference = match &self.exact_unavailable {
+            None => "the exact rolling cylinder".to_string(),
+            Some(why) => format!(
+                "{} with the dynamic contact size (no exact rung: {why})",
+                match shape {
+                    Shape::Cylinder => "Eq. (11)",
+                    Shape::Sphere => "Eq. (17)",
+                }
+            ),
+        };
+        let mut text = format!(
+            "auto, accuracy {:.0e} against {reference}: {}; quadrature tolerance {:.0e}",
+            self.accuracy,
+            parts.join(", "),
+            self.tolerance
+        );
+        if let Some((d, neglected)) = self.film {
+            match neglected {
+                Some(bound) => {
+                    text += &format!(
+                        "; the film (d = {d:e} m) neglected where its effect is below {:.1e} \
+                     (largest bound {bound:.1e})",
+                        RUNG_SHARE * self.accuracy
+                    )
+                }
+                None => text += &format!("; the film (d = {d:e} m) computed at every speed"),
+            }
+        }
+        let worst = self.error_estimate.iter().copied().fold(0.0, f64::max);
+        let unmet = self.unmet();
+        if unmet == 0 {
+            text += &format!("; estimated error ≤ {worst:.1e} at every speed");
+        } else {
+            text += &format!(
+                "; NOT MET at {unmet} of {} speeds: estimated error up to {worst:.1e}",
+                speeds.len()
+            );
+            if self.exact_unavailable.is_some() {
+                text += " (the model error of Eq. (11)/(17) near the friction maximum, estimated \
+                         as 0.4 μR/b; only the exact cylinder on a half-space goes further)";
+            }
+        }
+        text
+    }
+}
+
+impl<M: ViscoelasticModulus> Scene<M> {
+    /// μ at each of `speeds` (m/s, strictly increasing) by the cheapest
+    /// rung that meets the relative `accuracy` (1e-8 … 0.5), per speed
+    /// (module documentation). `exact` is this scene's exact rolling
+    /// cylinder when the scene has one (cylinder, Prony modulus), else
+    /// `Err` with the reason. The scene's own tolerance and contact rule
+    /// are not used: auto sets the tolerance to accuracy/10 and uses the
+    /// dynamic contact size.
+    pub fn friction_auto(
+        &self,
+        speeds: &[f64],
+        accuracy: f64,
+        exact: Result<&RollingCylinder, String>,
+    ) -> Result<AutoSweep, ModelError> {
+        if !(accuracy.is_finite() && (1e-8..=0.5).contains(&accuracy)) {
+            return Err(ModelError::parameter(
+                "accuracy",
+                accuracy,
+                "must lie between 1e-8 and 0.5",
+            ));
+        }
+        for (i, w) in speeds.windows(2).enumerate() {
+            if w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater) {
+                return Err(ModelError::table(
+                    "speeds",
+                    format!(
+                        "auto needs strictly increasing speeds; v[{}] = {} follows {}",
+                        i + 1,
+                        w[1],
+                        w[0]
+                    ),
+                ));
+            }
+        }
+        let shape = self.geometry().shape;
+        let exact = match (exact, shape) {
+            (Ok(cylinder), Shape::Cylinder) => {
+                // The caller's cylinder must be this scene's.
+                let a0 = self.static_contact_size();
+                if (cylinder.static_half_width() / a0 - 1.0).abs() > 1e-8 {
+                    return Err(ModelError::Evaluation(format!(
+                        "auto: the exact cylinder's static half-width {:e} m is not the \
+                         scene's {a0:e} m",
+                        cylinder.static_half_width()
+                    )));
+                }
+                Ok(cylinder)
+            }
+            (Ok(_), Shape::Sphere) => Err("there is no exact solution for a sphere".to_string()),
+            (Err(why), _) => Err(why),
+        };
+        let tolerance = (QUADRATURE_SHARE * accuracy).clamp(1e-12, 1e-2);
+        let budget = RUNG_SHARE * accuracy;
+        let at = |film: Option<f64>| {
+            Scene::new(
+                *self.geometry(),
+                Substrate {
+                    film_thickness: film,
+                    ..*self.substrate()
+                },
+                ContactSize::Dynamic,
+                self.material(),
+            )?
+            .with_tolerance(tolerance)
+        };
+        let film = self.substrate().film_thickness;
+        let full = at(film)?;
+        let half_space = at(None)?;
+        let n = speeds.len();
+
+        // 1. The asymptote's run, against the full model.
+        let (low, low_deviation) = low_speed::asymptote_run(&full, speeds, budget)?;
+        let mut mu: Vec<f64> = speeds[..low]
+            .iter()
+            .map(|&v| full.low_speed_asymptote(v))
+            .collect();
+        let mut rungs = vec![Rung::LowSpeed; low];
+        let mut estimate = vec![low_deviation; low];
+
+        // 2. Eq. (11)/(17) above it; a film where it matters.
+        let rest = &speeds[low..];
+        let bound = film.map(|d| FilmBound::new(&full, d));
+        let half = half_space.friction_sweep(rest)?;
+        let mut film_speeds = Vec::new();
+        let mut neglected_bound: Option<f64> = None;
+        for (j, &v) in rest.iter().enumerate() {
+            let relative = bound.as_ref().map_or(0.0, |b| b.at(v) / half[j]);
+            if relative <= budget {
+                if bound.is_some() {
+                    neglected_bound = Some(neglected_bound.unwrap_or(0.0).max(relative));
+                }
+                mu.push(half[j]);
+                rungs.push(Rung::Dynamic);
+                estimate.push(tolerance + relative);
+            } else {
+                film_speeds.push(low + j);
+                mu.push(f64::NAN);
+                rungs.push(Rung::DynamicFilm);
+                estimate.push(tolerance);
+            }
+        }
+        if !film_speeds.is_empty() {
+            let v: Vec<f64> = film_speeds.iter().map(|&i| speeds[i]).collect();
+            for (&i, m) in film_speeds.iter().zip(full.friction_sweep(&v)?) {
+                mu[i] = m;
+            }
+        }
+
+        // 3. The model error of Eq. (11), and the exact cylinder where it
+        // is too large and applies (no film computed there).
+        let indicator: Vec<f64> = (0..n)
+            .map(|i| model_error_estimate(&half_space, speeds[i], mu[i]))
+            .collect();
+        // The exact cylinder is a half-space: with a film it may replace
+        // only the speeds where the film was neglected by its bound.
+        let exact_applies = |i: usize| match rungs[i] {
+            Rung::Dynamic => true,
+            Rung::LowSpeed => film.is_none(),
+            Rung::DynamicFilm | Rung::Exact => false,
+        };
+        let exact_speeds: Vec<usize> = match &exact {
+            Ok(_) => (0..n)
+                .filter(|&i| exact_applies(i) && indicator[i] > budget)
+                .collect(),
+            Err(_) => Vec::new(),
+        };
+        for i in 0..n {
+            estimate[i] += indicator[i];
+        }
+        if let Ok(cylinder) = &exact
+            && !exact_speeds.is_empty()
+        {
+            // Milliseconds a speed: worth the threads.
+            let solved = exact_speeds
+                .par_iter()
+                .map(|&i| cylinder.solve(speeds[i]))
+                .collect::<Result<Vec<_>, ModelError>>()?;
+            for (&i, solution) in exact_speeds.iter().zip(solved) {
+                // What the film adds where it was neglected stays.
+                let film_part = (estimate[i] - indicator[i] - tolerance).max(0.0);
+                let error = solution.error_estimate + film_part;
+                // Where its edge layers are thin the exact solution may be
+                // no better than Eq. (11): keep the better estimate.
+                if error < estimate[i] {
+                    mu[i] = solution.mu;
+                    rungs[i] = Rung::Exact;
+                    estimate[i] = error;
+                }
+            }
+        }
+        Ok(AutoSweep {
+            mu,
+            rungs,
+            error_estimate: estimate,
+            accuracy,
+            tolerance,
+            exact_unavailable: exact.err(),
+            film: film.map(|d| (d, neglected_bound)),
+        })
+    }
+}
