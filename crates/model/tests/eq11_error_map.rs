@@ -78,7 +78,7 @@ fn eq11_against_the_exact_cylinder() {
              exact's own error estimate"
         );
         for (i, &v) in speeds.iter().enumerate() {
-            let exact = cylinder.solve(v).unwrap();
+            let exact = cylinder.solve_with_error_estimate(v).unwrap();
             assert!(exact.mu.is_finite() && exact.mu > 0.0);
             let ed = dynamic[i] / exact.mu - 1.0;
             let es = stat[i] / exact.mu - 1.0;

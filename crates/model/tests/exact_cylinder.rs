@@ -253,6 +253,48 @@ fn grid_convergence_at_large_ratios() {
     }
 }
 
+/// A coarser layer resolution C (fewer terms, for `auto` at a loose
+/// accuracy) stays within the error it claims, against 192 terms.
+#[test]
+fn coarser_resolutions_meet_their_claimed_error() {
+    let mut rng = common::Lcg(5);
+    let solids = [
+        ("SLS 2", sls(2.0).to_prony()),
+        ("SLS 10", sls(10.0).to_prony()),
+        ("SLS 1000", sls(1000.0).to_prony()),
+        ("random Prony", common::random_prony(&mut rng, 5, -3.0, 0.5)),
+    ];
+    for (name, material) in solids {
+        let reference_cyl = cylinder(&material, Some(192));
+        let a0 = reference_cyl.static_half_width();
+        let speeds: Vec<f64> = (0..=10)
+            .map(|k| a0 * 10f64.powf(-2.0 + 0.5 * k as f64))
+            .collect();
+        let reference: Vec<f64> = speeds
+            .iter()
+            .map(|&v| reference_cyl.solve(v).unwrap().mu)
+            .collect();
+        for resolution in [1.5, 2.0, 3.0] {
+            let coarse = cylinder(&material, None).with_layer_resolution(resolution);
+            let claimed = coarse.settings().resolved_error();
+            let mut worst = 0.0f64;
+            for (&v, &r) in speeds.iter().zip(&reference) {
+                let sol = coarse.solve(v).unwrap();
+                if !sol.resolved {
+                    continue;
+                }
+                assert_eq!(sol.error_estimate, claimed);
+                worst = worst.max((sol.mu / r - 1.0).abs());
+            }
+            println!("{name}, C = {resolution}: worst {worst:.1e}, claimed {claimed:.1e}");
+            assert!(
+                worst <= claimed,
+                "{name}, C = {resolution}: {worst:e} > {claimed:e}"
+            );
+        }
+    }
+}
+
 /// Standard linear solid, E1/E0 = 10: one maximum of μR/a0 against vτ/a0,
 /// slightly above and at a slightly higher speed than Eq. (11)'s.
 #[test]

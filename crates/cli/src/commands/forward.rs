@@ -256,7 +256,7 @@ fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
             use rayon::prelude::*;
             let solutions = speeds
                 .par_iter()
-                .map(|&v| cylinder.solve(v))
+                .map(|&v| cylinder.solve_with_error_estimate(v))
                 .collect::<Result<Vec<_>, _>>()
                 .map_err(anyhow::Error::msg)?;
             Ok(Solved {

@@ -89,6 +89,9 @@ pub struct ExactSettings {
     pub terms: Option<usize>,
     /// Upper bound of the automatic N.
     pub max_terms: usize,
+    /// C in the automatic N = ⌈C δ^{−1/2}⌉, from 1.5 to 3.5; the grid error
+    /// it buys where N is not capped is [`ExactSettings::resolved_error`].
+    pub layer_resolution: f64,
     /// Gauss–Legendre nodes per panel of the memory integrals.
     pub quadrature_order: usize,
     /// Relative convergence tolerance of the contact edges.
@@ -96,10 +99,23 @@ pub struct ExactSettings {
 }
 
 impl ExactSettings {
-    /// C in N = ⌈C δ^{−1/2}⌉: about 1e-6 relative in μ where not capped
-    /// (measured against N = 192 for standard linear solids with E1/E0 =
-    /// 10 … 1000 and random Prony series, tests/exact_cylinder.rs).
+    /// The default C: μ to about 1e-6 where N is not capped.
     pub const LAYER_RESOLUTION: f64 = 3.5;
+
+    /// The error of μ claimed for a layer resolution C where N is not
+    /// capped: 1e-3·e^{−4(C − 1.5)}, at least 1e-5. Measured against 192
+    /// terms (standard linear solids E1/E0 = 2 … 1000, random Prony
+    /// series; tests/exact_cylinder.rs): ≤ 5.7e-4 at C = 1.5, ≤ 6e-5 at 2,
+    /// ≤ 3e-7 at 3 and ≤ 3.6e-7 at 3.5.
+    pub fn resolved_error(&self) -> f64 {
+        (1e-3 * (-4.0 * (self.layer_resolution - 1.5)).exp()).max(RESOLVED_ERROR)
+    }
+
+    /// The layer resolution C whose claimed error is at most `error`
+    /// (clamped to the calibrated 1.5 … 3.5).
+    pub fn resolution_for(error: f64) -> f64 {
+        (1.5 + (1e-3 / error).ln() / 4.0).clamp(1.5, Self::LAYER_RESOLUTION)
+    }
 
     /// The automatic number of terms for a layer length ℓ = v t_g (t_g the
     /// glassy time, see [`RollingCylinder::resolves_edge_layers`]) and
@@ -108,7 +124,7 @@ impl ExactSettings {
     /// N ∝ δ^{−1/2}; N = ⌈C δ^{−1/2}⌉ clamped to [24, `max_terms`].
     pub fn automatic_terms(&self, layer_length: f64, half_width: f64) -> usize {
         let delta = layer_length / half_width;
-        let n = (Self::LAYER_RESOLUTION / delta.sqrt()).ceil();
+        let n = (self.layer_resolution / delta.sqrt()).ceil();
         if n.is_finite() {
             (n as usize).clamp(24, self.max_terms.max(24))
         } else {
@@ -122,6 +138,7 @@ impl Default for ExactSettings {
         ExactSettings {
             terms: None,
             max_terms: 128,
+            layer_resolution: Self::LAYER_RESOLUTION,
             quadrature_order: 24,
             tolerance: 1e-12,
         }
@@ -160,8 +177,9 @@ pub struct RollingSolution {
     /// otherwise only to about 1e-4 … 3e-3.
     pub resolved: bool,
     /// Estimated relative error of μ from the discretisation: 1e-5 where
-    /// resolved; where not, ten times the change of μ from ¾N to N terms;
-    /// NaN with explicit `terms` (not estimated).
+    /// resolved; where not, 3e-3 (the measured worst), or from
+    /// [`RollingCylinder::solve_with_error_estimate`] ten times the change
+    /// of μ from ¾N to N terms; NaN with explicit `terms` (not estimated).
     pub error_estimate: f64,
 }
 
@@ -239,6 +257,13 @@ impl RollingCylinder {
                 "must lie in [0, 0.5]",
             ));
         }
+        if !(1.5..=ExactSettings::LAYER_RESOLUTION).contains(&settings.layer_resolution) {
+            return Err(ModelError::parameter(
+                "layer_resolution",
+                settings.layer_resolution,
+                "must lie between 1.5 and 3.5 (the calibrated range)",
+            ));
+        }
         if settings.terms.is_some_and(|n| n < 2) || settings.quadrature_order < 4 {
             return Err(ModelError::Evaluation(
                 "exact rolling cylinder: need at least 2 terms and 4 quadrature nodes".into(),
@@ -252,6 +277,19 @@ impl RollingCylinder {
             settings,
             quadrature: MemoryQuadrature::new(settings.quadrature_order, 0.5),
         })
+    }
+
+    /// The same cylinder with the automatic term count's layer resolution
+    /// set to C (clamped to 1.5 … 3.5): fewer terms for a looser accuracy.
+    pub fn with_layer_resolution(&self, resolution: f64) -> Self {
+        let mut cylinder = self.clone();
+        cylinder.settings.layer_resolution = resolution.clamp(1.5, ExactSettings::LAYER_RESOLUTION);
+        cylinder
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &ExactSettings {
+        &self.settings
     }
 
     /// The effective (plane-strain) creep compliance, 1/Pa.
@@ -324,7 +362,7 @@ impl RollingCylinder {
             return true;
         }
         let (b, terms) = self.discretisation(v);
-        let wanted = ExactSettings::LAYER_RESOLUTION / (v * self.glassy_time() / b).sqrt();
+        let wanted = self.settings.layer_resolution / (v * self.glassy_time() / b).sqrt();
         terms as f64 >= wanted.ceil() || !wanted.is_finite()
     }
 
@@ -337,17 +375,27 @@ impl RollingCylinder {
         solution.error_estimate = if self.settings.terms.is_some() {
             f64::NAN
         } else if solution.resolved {
-            RESOLVED_ERROR
+            self.settings.resolved_error()
         } else {
-            // A posteriori: the change from ¾N to N terms, times 10 (the
-            // convergence is not monotone where the layers are thin: at
-            // E1/E0 = 1000 the error against N = 512 was up to twice the
-            // change).
-            match self.solve_with(v, terms * 3 / 4, b) {
-                Ok(coarse) => (10.0 * (solution.mu / coarse.mu - 1.0).abs()).max(RESOLVED_ERROR),
-                Err(_) => UNRESOLVED_FALLBACK_ERROR,
-            }
+            UNRESOLVED_FALLBACK_ERROR
         };
+        Ok(solution)
+    }
+
+    /// As [`Self::solve`], with the error estimate of an unresolved
+    /// solution made a posteriori: ten times the change of μ from ¾N to N
+    /// terms (the convergence is not monotone where the layers are thin: at
+    /// E1/E0 = 1000 the error against N = 512 was up to twice the change).
+    /// Costs about half a solve more where the layers are not resolved.
+    pub fn solve_with_error_estimate(&self, v: f64) -> Result<RollingSolution, ModelError> {
+        let mut solution = self.solve(v)?;
+        if !solution.resolved && self.settings.terms.is_none() {
+            let (b, terms) = self.discretisation(v);
+            if let Ok(coarse) = self.solve_with(v, terms * 3 / 4, b) {
+                solution.error_estimate = (10.0 * (solution.mu / coarse.mu - 1.0).abs())
+                    .max(self.settings.resolved_error());
+            }
+        }
         Ok(solution)
     }
 
@@ -380,10 +428,12 @@ impl RollingCylinder {
     }
 }
 
-/// The error claimed for μ where the edge layers are resolved (measured
-/// ≤ 3.6e-7 against N = 192, tests/exact_cylinder.rs).
+/// The error claimed for μ where the edge layers are resolved at the
+/// default layer resolution (measured ≤ 3.6e-7 against N = 192,
+/// tests/exact_cylinder.rs).
 pub const RESOLVED_ERROR: f64 = 1e-5;
 
-/// The error claimed where the layers are not resolved and the a-posteriori
-/// estimate failed (measured up to 2.3e-3 against N = 192 at E1/E0 = 1000).
+/// The error claimed where the layers are not resolved and no a-posteriori
+/// estimate was made (measured up to 2.3e-3 against N = 192 at E1/E0 =
+/// 1000).
 const UNRESOLVED_FALLBACK_ERROR: f64 = 3e-3;

@@ -59,7 +59,7 @@ pub use model_error::{MODEL_ERROR_FACTOR, dynamic_contact_size, model_error_esti
 
 use crate::contact::{ContactSize, Shape};
 use crate::error::ModelError;
-use crate::exact::RollingCylinder;
+use crate::exact::{ExactSettings, RollingCylinder};
 use crate::modulus::ViscoelasticModulus;
 use crate::scene::{Scene, Substrate};
 use film_bound::FilmBound;
@@ -346,10 +346,17 @@ impl<M: ViscoelasticModulus> Scene<M> {
         if let Ok(cylinder) = &exact
             && !exact_speeds.is_empty()
         {
+            // As many Chebyshev terms as the model-error share needs, and
+            // no more (unless the caller asked for explicit terms).
+            let cylinder = if cylinder.settings().terms.is_none() {
+                cylinder.with_layer_resolution(ExactSettings::resolution_for(budget))
+            } else {
+                (*cylinder).clone()
+            };
             // Milliseconds a speed: worth the threads.
             let solved = exact_speeds
                 .par_iter()
-                .map(|&i| cylinder.solve(speeds[i]))
+                .map(|&i| cylinder.solve_with_error_estimate(speeds[i]))
                 .collect::<Result<Vec<_>, ModelError>>()?;
             for (&i, solution) in exact_speeds.iter().zip(solved) {
                 // What the film adds where it was neglected stays.
