@@ -107,6 +107,185 @@ pub struct Comparison {
     pub causal: CausalFit,
 }
 
+/// How a metric's value reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MetricKind {
+    /// A count.
+    Count,
+    /// An angular frequency, rad/s.
+    Frequency,
+    /// A relative error (also shown in per cent).
+    Relative,
+    /// A log10 error in decades (also shown as a factor).
+    Decades,
+    /// A causality misfit in decades, with its warning threshold.
+    Misfit(ThresholdKind),
+}
+
+/// Which causality threshold a misfit is held against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ThresholdKind {
+    /// The RMS threshold.
+    Rms,
+    /// The largest-miss threshold.
+    Largest,
+}
+
+/// One metric as people read it: its compare.json key, value and meaning.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MetricRow {
+    /// The compare.json key.
+    pub key: &'static str,
+    /// The value; `None` without overlap.
+    pub value: Option<f64>,
+    /// How to read it.
+    pub kind: MetricKind,
+    /// What it is, in words.
+    pub meaning: String,
+}
+
+impl Comparison {
+    /// The metrics in compare.json's order with their meanings: the one
+    /// list that the `compare` table and the report page both show.
+    pub fn metric_rows(&self) -> Vec<MetricRow> {
+        let row = |key, value, kind, meaning: &str| MetricRow {
+            key,
+            value,
+            kind,
+            meaning: meaning.to_string(),
+        };
+        let misfit = |key, value, which, meaning: &str| {
+            let threshold = match which {
+                ThresholdKind::Rms => self.kk_misfit_threshold,
+                ThresholdKind::Largest => self.kk_max_misfit_threshold,
+            };
+            MetricRow {
+                key,
+                value: Some(value),
+                kind: MetricKind::Misfit(which),
+                meaning: format!("{meaning} (warn > {threshold})"),
+            }
+        };
+        vec![
+            row(
+                "n_points",
+                Some(self.n_points as f64),
+                MetricKind::Count,
+                "DMA points inside the fit's window",
+            ),
+            row(
+                "omega_min",
+                self.omega_min,
+                MetricKind::Frequency,
+                "lowest of them, rad/s (reduced)",
+            ),
+            row(
+                "omega_max",
+                self.omega_max,
+                MetricKind::Frequency,
+                "highest of them, rad/s (reduced)",
+            ),
+            row(
+                "tan_delta_rms_rel",
+                self.tan_delta_rms_rel,
+                MetricKind::Relative,
+                "RMS relative error of tan δ",
+            ),
+            row(
+                "tan_delta_max_rel",
+                self.tan_delta_max_rel,
+                MetricKind::Relative,
+                "largest |relative error| of tan δ",
+            ),
+            row(
+                "abs_E_rms_rel",
+                self.abs_modulus_rms_rel,
+                MetricKind::Relative,
+                "RMS relative error of |E*|",
+            ),
+            row(
+                "abs_E_max_rel",
+                self.abs_modulus_max_rel,
+                MetricKind::Relative,
+                "largest |relative error| of |E*|",
+            ),
+            row(
+                "log10_E_storage_rms",
+                self.log10_storage_rms,
+                MetricKind::Decades,
+                "RMS log10 error of E′, decades",
+            ),
+            row(
+                "log10_E_loss_rms",
+                self.log10_loss_rms,
+                MetricKind::Decades,
+                "RMS log10 error of E″, decades",
+            ),
+            misfit(
+                "dma_kk_misfit_storage",
+                self.dma_kk_misfit_storage,
+                ThresholdKind::Rms,
+                "causal fit to the DMA's E′, RMS decades",
+            ),
+            misfit(
+                "dma_kk_misfit_loss",
+                self.dma_kk_misfit_loss,
+                ThresholdKind::Rms,
+                "causal fit to the DMA's E″, RMS decades",
+            ),
+            misfit(
+                "dma_kk_max_storage",
+                self.dma_kk_max_storage,
+                ThresholdKind::Largest,
+                "causal fit to the DMA's E′, largest miss, decades",
+            ),
+            misfit(
+                "dma_kk_max_loss",
+                self.dma_kk_max_loss,
+                ThresholdKind::Largest,
+                "causal fit to the DMA's E″, largest miss, decades",
+            ),
+        ]
+    }
+}
+
+impl MetricRow {
+    /// The value as the table shows it ("—" without one).
+    pub fn value_text(&self) -> String {
+        match (self.value, self.kind) {
+            (None, _) => "—".to_string(),
+            (Some(v), MetricKind::Count) => format!("{v:.0}"),
+            (Some(v), MetricKind::Frequency) => format!("{v:.3e}"),
+            // Small errors in exponent form: "0.0000" would hide a 1e-6.
+            (Some(v), _) if v != 0.0 && v.abs() < 1e-3 => format!("{v:.3e}"),
+            (Some(v), _) => format!("{v:.4}"),
+        }
+    }
+
+    /// The meaning with the value restated where that helps (per cent, a
+    /// factor).
+    pub fn meaning_text(&self) -> String {
+        match (self.value, self.kind) {
+            (Some(v), MetricKind::Relative) => format!("{} ({:.1} %)", self.meaning, 100.0 * v),
+            (Some(v), MetricKind::Decades) => {
+                format!("{} (×{:.3})", self.meaning, 10f64.powf(v))
+            }
+            _ => self.meaning.clone(),
+        }
+    }
+
+    /// Whether a causality misfit is above its warning threshold.
+    pub fn warns(&self, comparison: &Comparison) -> bool {
+        match (self.value, self.kind) {
+            (Some(v), MetricKind::Misfit(ThresholdKind::Rms)) => v > comparison.kk_misfit_threshold,
+            (Some(v), MetricKind::Misfit(ThresholdKind::Largest)) => {
+                v > comparison.kk_max_misfit_threshold
+            }
+            _ => false,
+        }
+    }
+}
+
 /// RMS and max |·| of a set of errors; `None` for none.
 fn rms_max(errors: &[f64]) -> (Option<f64>, Option<f64>) {
     if errors.is_empty() {

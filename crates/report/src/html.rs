@@ -5,6 +5,7 @@
 
 use std::fmt::Write as _;
 
+use crate::compare::Comparison;
 use crate::fit_dir::FitDir;
 use crate::plot::Picture;
 
@@ -18,6 +19,7 @@ th, td { border: 1px solid #ccc; padding: 0.25em 0.7em; text-align: left; vertic
 th { background: #f3f3f3; font-weight: normal; color: #444; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
 tr.undetermined td { color: #888; }
+tr.warn td { background: #fff3e0; }
 .status { padding: 0.6em 1em; border-radius: 4px; margin: 1em 0; }
 .ok { background: #e8f5e9; border: 1px solid #a5d6a7; }
 .bad { background: #ffebee; border: 1px solid #ef9a9a; }
@@ -60,15 +62,12 @@ fn num(v: f64) -> String {
     format!("{v:.digits$}")
 }
 
-/// The comparison with DMA data as the page shows it: the metrics as
-/// written to compare.json, plus warnings.
+/// The comparison with DMA data as the page shows it.
 pub struct ComparisonSection<'a> {
     /// The DMA file's name.
     pub dma_file: &'a str,
-    /// compare.json's content.
-    pub metrics: &'a serde_json::Value,
-    /// Warnings about the DMA data and the comparison.
-    pub warnings: &'a [String],
+    /// The comparison (compare.json's content).
+    pub comparison: &'a Comparison,
 }
 
 /// The whole page.
@@ -318,43 +317,49 @@ fn parameter_table(fit: &FitDir) -> String {
 }
 
 fn comparison_table(section: &ComparisonSection<'_>) -> String {
+    let c = section.comparison;
     let mut t = format!(
-        "<h2>Comparison with DMA data</h2>\n<p>DMA file <code>{}</code>.</p>\n",
-        escape(section.dma_file)
+        "<h2>Comparison with DMA data</h2>\n<p>DMA file <code>{}</code> ({}, {} moduli; {} points at the \
+         fit's reference state, ω = {} … {} rad/s; the fit's window {} … {} rad/s).</p>\n",
+        escape(section.dma_file),
+        escape(c.dma_format),
+        escape(c.modulus_kind),
+        c.dma_points,
+        num(c.dma_omega_range[0]),
+        num(c.dma_omega_range[1]),
+        num(c.fit_window[0]),
+        num(c.fit_window[1]),
     );
-    if !section.warnings.is_empty() {
+    if !c.warnings.is_empty() {
         t.push_str("<ul class=\"warnings\">\n");
-        for w in section.warnings {
+        for w in &c.warnings {
             let _ = writeln!(t, "<li>{}</li>", escape(w));
         }
         t.push_str("</ul>\n");
     }
-    if let Some(notes) = section.metrics.get("notes").and_then(|n| n.as_array())
-        && !notes.is_empty()
-    {
+    if !c.notes.is_empty() {
         t.push_str("<ul class=\"meta\">\n");
-        for note in notes.iter().filter_map(|n| n.as_str()) {
+        for note in &c.notes {
             let _ = writeln!(t, "<li>{}</li>", escape(note));
         }
         t.push_str("</ul>\n");
     }
-    t.push_str("<table>\n");
-    if let Some(map) = section.metrics.as_object() {
-        for (key, value) in map {
-            let text = match value {
-                serde_json::Value::Number(n) => n.as_f64().map_or_else(|| n.to_string(), num),
-                serde_json::Value::Null => "– (no overlap)".to_string(),
-                serde_json::Value::String(s) => escape(s),
-                serde_json::Value::Bool(b) => b.to_string(),
-                // Lists (warnings) are shown above the table.
-                serde_json::Value::Array(_) | serde_json::Value::Object(_) => continue,
-            };
-            let _ = writeln!(
-                t,
-                "<tr><th><code>{}</code></th><td class=\"num\">{text}</td></tr>",
-                escape(key)
-            );
-        }
+    if c.overlap_empty {
+        t.push_str(
+            "<p class=\"status bad\">The fit's window and the DMA frequencies do not overlap: \
+             no metric can be computed.</p>\n",
+        );
+    }
+    t.push_str("<table>\n<tr><th>metric</th><th>value</th><th>meaning</th></tr>\n");
+    for row in c.metric_rows() {
+        let class = if row.warns(c) { " class=\"warn\"" } else { "" };
+        let _ = writeln!(
+            t,
+            "<tr{class}><th><code>{}</code></th><td class=\"num\">{}</td><td>{}</td></tr>",
+            escape(row.key),
+            escape(&row.value_text()),
+            escape(&row.meaning_text())
+        );
     }
     t.push_str("</table>\n");
     t

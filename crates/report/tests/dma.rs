@@ -1100,6 +1100,15 @@ fn no_overlap_gives_null_metrics_and_says_why() {
     }
     assert_eq!(json["n_points"], 0);
     assert!(json["dma_kk_misfit_storage"].is_number());
+    // The readable rows (compare's table, the report page) follow the
+    // contract's keys and show no number where there is none.
+    let rows = c.metric_rows();
+    let keys: Vec<&str> = rows.iter().map(|r| r.key).collect();
+    assert_eq!(&keys[..11], &CONTRACT_KEYS[..]);
+    for row in &rows[1..9] {
+        assert_eq!(row.value_text(), "—", "{}", row.key);
+    }
+    assert_eq!(rows[0].value_text(), "0");
     assert!(
         c.warnings.iter().any(|w| w.contains("[1.000e-1, 1.000e2]")
             && w.contains("[1.000e4, 1.000e7]")

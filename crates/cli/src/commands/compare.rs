@@ -123,14 +123,6 @@ pub fn run(args: &Args) -> Result<()> {
 
 /// The readable table of stdout: one line per compare.json key.
 pub fn table(c: &Comparison) -> String {
-    // Small errors in exponent form: "0.0000" would hide a 1e-6.
-    let number = |v: Option<f64>| match v {
-        None => "—".to_string(),
-        Some(v) if v != 0.0 && v.abs() < 1e-3 => format!("{v:.3e}"),
-        Some(v) => format!("{v:.4}"),
-    };
-    let percent = |v: Option<f64>| v.map_or(String::new(), |v| format!("{:.1} %", 100.0 * v));
-    let decades = |v: Option<f64>| v.map_or(String::new(), |v| format!("×{:.3}", 10f64.powf(v)));
     let mut out = format!(
         "DMA {} ({}, {} moduli{}), {} points at the fit's reference state, ω = {:.3e} … {:.3e} rad/s\n",
         c.dma_file,
@@ -159,102 +151,13 @@ pub fn table(c: &Comparison) -> String {
         "{:<24} {:>10}  {}\n",
         "metric", "value", "meaning"
     ));
-    let count = c.n_points.to_string();
-    out.push_str(&format!(
-        "{:<24} {count:>10}  DMA points inside the fit's window\n",
-        "n_points"
-    ));
-    for (key, value, meaning) in [
-        ("omega_min", c.omega_min, "lowest of them, rad/s (reduced)"),
-        ("omega_max", c.omega_max, "highest of them, rad/s (reduced)"),
-    ] {
-        let value = value.map_or("—".to_string(), |v| format!("{v:.3e}"));
-        out.push_str(&format!("{key:<24} {value:>10}  {meaning}\n"));
-    }
-    let rows: [(&str, Option<f64>, String); 10] = [
-        (
-            "tan_delta_rms_rel",
-            c.tan_delta_rms_rel,
-            format!(
-                "RMS relative error of tan δ ({})",
-                percent(c.tan_delta_rms_rel)
-            ),
-        ),
-        (
-            "tan_delta_max_rel",
-            c.tan_delta_max_rel,
-            format!(
-                "largest |relative error| of tan δ ({})",
-                percent(c.tan_delta_max_rel)
-            ),
-        ),
-        (
-            "abs_E_rms_rel",
-            c.abs_modulus_rms_rel,
-            format!(
-                "RMS relative error of |E*| ({})",
-                percent(c.abs_modulus_rms_rel)
-            ),
-        ),
-        (
-            "abs_E_max_rel",
-            c.abs_modulus_max_rel,
-            format!(
-                "largest |relative error| of |E*| ({})",
-                percent(c.abs_modulus_max_rel)
-            ),
-        ),
-        (
-            "log10_E_storage_rms",
-            c.log10_storage_rms,
-            format!(
-                "RMS log10 error of E′, decades ({})",
-                decades(c.log10_storage_rms)
-            ),
-        ),
-        (
-            "log10_E_loss_rms",
-            c.log10_loss_rms,
-            format!(
-                "RMS log10 error of E″, decades ({})",
-                decades(c.log10_loss_rms)
-            ),
-        ),
-        (
-            "dma_kk_misfit_storage",
-            Some(c.dma_kk_misfit_storage),
-            format!(
-                "causal fit to the DMA's E′, RMS decades (warn > {})",
-                c.kk_misfit_threshold
-            ),
-        ),
-        (
-            "dma_kk_misfit_loss",
-            Some(c.dma_kk_misfit_loss),
-            format!(
-                "causal fit to the DMA's E″, RMS decades (warn > {})",
-                c.kk_misfit_threshold
-            ),
-        ),
-        (
-            "dma_kk_max_storage",
-            Some(c.dma_kk_max_storage),
-            format!(
-                "causal fit to the DMA's E′, largest miss, decades (warn > {})",
-                c.kk_max_misfit_threshold
-            ),
-        ),
-        (
-            "dma_kk_max_loss",
-            Some(c.dma_kk_max_loss),
-            format!(
-                "causal fit to the DMA's E″, largest miss, decades (warn > {})",
-                c.kk_max_misfit_threshold
-            ),
-        ),
-    ];
-    for (key, value, meaning) in rows {
-        out.push_str(&format!("{key:<24} {:>10}  {meaning}\n", number(value)));
+    for row in c.metric_rows() {
+        out.push_str(&format!(
+            "{:<24} {:>10}  {}\n",
+            row.key,
+            row.value_text(),
+            row.meaning_text()
+        ));
     }
     out
 }

@@ -52,20 +52,11 @@ pub fn run(args: &Args) -> Result<()> {
             })
             .collect()
     });
-    let metrics = match &comparison {
-        Some((_, c)) => Some(serde_json::to_value(c).context("cannot format compare.json")?),
-        None => None,
-    };
-
     let pictures = plot::pictures(&fit, &markers)?;
-    let section = comparison
-        .as_ref()
-        .zip(metrics.as_ref())
-        .map(|((path, c), metrics)| ComparisonSection {
-            dma_file: path.to_str().unwrap_or("DMA file"),
-            metrics,
-            warnings: &c.warnings,
-        });
+    let section = comparison.as_ref().map(|(path, c)| ComparisonSection {
+        dma_file: path.to_str().unwrap_or("DMA file"),
+        comparison: c,
+    });
     let page = report_html(&fit, &pictures, section.as_ref());
 
     let mut written = Vec::new();
