@@ -384,3 +384,30 @@ fn bad_requests_are_refused() {
     // Modulus use is by reference: the scene's material is untouched.
     assert_eq!(s.material().static_modulus(), 1e6);
 }
+
+/// Extremes (issue 6): E1/E0 = 1e4 from 1e-12 to 1e6 natural speeds a0/τ.
+/// Every μ is finite and positive with a finite estimate; the slowest
+/// speeds are the asymptote's; where even the exact cylinder cannot be
+/// resolved (the stiff solid near its maximum) the result says NOT MET
+/// rather than claiming the accuracy.
+#[test]
+fn auto_at_the_extremes_is_finite_and_says_what_it_cannot_meet() {
+    let material = sls(1e4, 1.0);
+    let cylinder = RollingCylinder::new(&material, 0.5, RADIUS, LOAD).unwrap();
+    let s = roller(material, None);
+    let a0 = s.static_contact_size();
+    let sweep: Vec<f64> = (0..=18).map(|k| a0 * 10f64.powi(k - 12)).collect();
+    let auto = s.friction_auto(&sweep, 1e-3, Ok(&cylinder)).unwrap();
+    for i in 0..sweep.len() {
+        assert!(
+            auto.mu[i].is_finite() && auto.mu[i] > 0.0,
+            "v = {:e}",
+            sweep[i]
+        );
+        assert!(auto.error_estimate[i].is_finite(), "v = {:e}", sweep[i]);
+    }
+    assert_eq!(auto.rungs[0], Rung::LowSpeed);
+    let text = auto.description(&sweep, Shape::Cylinder);
+    eprintln!("{text}");
+    assert_eq!(text.contains("NOT MET"), auto.unmet() > 0, "{text}");
+}
