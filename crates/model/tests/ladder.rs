@@ -398,13 +398,9 @@ fn auto_at_the_extremes_is_finite_and_says_what_it_cannot_meet() {
     let a0 = s.static_contact_size();
     let sweep: Vec<f64> = (0..=18).map(|k| a0 * 10f64.powi(k - 12)).collect();
     let auto = s.friction_auto(&sweep, 1e-3, Ok(&cylinder)).unwrap();
-    for i in 0..sweep.len() {
-        assert!(
-            auto.mu[i].is_finite() && auto.mu[i] > 0.0,
-            "v = {:e}",
-            sweep[i]
-        );
-        assert!(auto.error_estimate[i].is_finite(), "v = {:e}", sweep[i]);
+    for ((v, mu), estimate) in sweep.iter().zip(&auto.mu).zip(&auto.error_estimate) {
+        assert!(mu.is_finite() && *mu > 0.0, "v = {v:e}");
+        assert!(estimate.is_finite(), "v = {v:e}");
     }
     assert_eq!(auto.rungs[0], Rung::LowSpeed);
     let text = auto.description(&sweep, Shape::Cylinder);
