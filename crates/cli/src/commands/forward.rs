@@ -178,7 +178,7 @@ pub fn run(args: &Args) -> Result<()> {
         Some(out) => output::write_atomically(out, &bytes)?,
         None => output::write_stdout(&bytes)?,
     }
-    eprintln!("{}", summary(&setup, &solved));
+    eprintln!("{}", summary(&setup, &solved, &mu));
     Ok(())
 }
 
@@ -336,9 +336,8 @@ fn rows<'a>(
 /// same at every temperature: a shift leaves the static modulus alone), the
 /// temperatures and, where the sweep brackets one, the friction maximum at
 /// each.
-fn summary(setup: &ForwardSetup, solved: &[Solved]) -> String {
-    let mu: Vec<Vec<f64>> = solved.iter().map(|s| s.mu.clone()).collect();
-    let mut line = summary_line(setup, &mu);
+fn summary(setup: &ForwardSetup, solved: &[Solved], mu: &[Vec<f64>]) -> String {
+    let mut line = summary_line(setup, mu);
     let shape = setup.blocks[0].scene.geometry().shape;
     for (block, solved) in setup.blocks.iter().zip(solved) {
         let at = block

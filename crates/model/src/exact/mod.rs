@@ -121,16 +121,29 @@ impl ExactSettings {
     /// glassy time, see [`RollingCylinder::resolves_edge_layers`]) and
     /// contact half-width b: the pressure has boundary layers of relative
     /// width δ = ℓ/b at the edges, which Chebyshev series resolve with
-    /// N ∝ δ^{−1/2}; N = ⌈C δ^{−1/2}⌉ clamped to [24, `max_terms`].
-    pub fn automatic_terms(&self, layer_length: f64, half_width: f64) -> usize {
+    /// N ∝ δ^{−1/2}; N = ⌈C δ^{−1/2}⌉ clamped to [24, `max_terms`]. Also
+    /// returns whether that N resolves the layers, i.e. was not held at
+    /// `max_terms`.
+    pub fn automatic_terms(&self, layer_length: f64, half_width: f64) -> (usize, bool) {
         let delta = layer_length / half_width;
         let n = (self.layer_resolution / delta.sqrt()).ceil();
         if n.is_finite() {
-            (n as usize).clamp(24, self.max_terms.max(24))
+            let cap = self.max_terms.max(24);
+            ((n as usize).clamp(24, cap), n <= cap as f64)
         } else {
-            24
+            (24, true)
         }
     }
+}
+
+/// How one speed is discretised.
+struct Discretisation {
+    /// Starting half-width of Newton's method, m.
+    half_width: f64,
+    /// Chebyshev terms.
+    terms: usize,
+    /// Whether they resolve the edge layers (explicit terms count as such).
+    resolved: bool,
 }
 
 impl Default for ExactSettings {
@@ -317,20 +330,24 @@ impl RollingCylinder {
         )
     }
 
-    /// The starting half-width (m) and the number of Chebyshev terms at
-    /// speed `v` (m/s).
-    fn discretisation(&self, v: f64) -> (f64, usize) {
+    /// The starting half-width, the number of Chebyshev terms and whether
+    /// they resolve the edge layers at speed `v` (m/s).
+    fn discretisation(&self, v: f64) -> Discretisation {
         // Start from Hertz with the compliance the contact time a/v sees.
         let mut b = self.static_half_width();
         for _ in 0..3 {
             let j = self.compliance.at(2.0 * b / v);
             b = hertz_contact_size(Shape::Cylinder, self.radius, self.load, 1.0 / j);
         }
-        let terms = self
-            .settings
-            .terms
-            .unwrap_or_else(|| self.settings.automatic_terms(v * self.glassy_time(), b));
-        (b, terms)
+        let (terms, resolved) = match self.settings.terms {
+            Some(n) => (n, true),
+            None => self.settings.automatic_terms(v * self.glassy_time(), b),
+        };
+        Discretisation {
+            half_width: b,
+            terms,
+            resolved,
+        }
     }
 
     /// The glassy time t_g = J(0)/J̇(0) = J(0)/Σ_j (c_j/λ_j), s: how long
@@ -355,31 +372,17 @@ impl RollingCylinder {
     /// layers at speed `v` (m/s), i.e. is not held at `max_terms`: then μ is
     /// grid-converged to about 1e-6 (tests/exact_cylinder.rs), otherwise
     /// only to about 1e-4 … 3e-3 (measured 2.3e-3 against N = 192 for
-    /// E1/E0 = 1000 a decade and more below the friction maximum). Explicit `terms` count as resolved: their accuracy is the
-    /// caller's choice.
+    /// E1/E0 = 1000 a decade and more below the friction maximum).
+    /// Explicit `terms` count as resolved: their accuracy is the caller's
+    /// choice.
     pub fn resolves_edge_layers(&self, v: f64) -> bool {
-        if self.settings.terms.is_some() {
-            return true;
-        }
-        let (b, terms) = self.discretisation(v);
-        let wanted = self.settings.layer_resolution / (v * self.glassy_time() / b).sqrt();
-        terms as f64 >= wanted.ceil() || !wanted.is_finite()
+        self.discretisation(v).resolved
     }
 
     /// The steady rolling contact at speed `v` (m/s).
     pub fn solve(&self, v: f64) -> Result<RollingSolution, ModelError> {
         require_positive("v", v)?;
-        let (b, terms) = self.discretisation(v);
-        let mut solution = self.solve_with(v, terms, b)?;
-        solution.resolved = self.resolves_edge_layers(v);
-        solution.error_estimate = if self.settings.terms.is_some() {
-            f64::NAN
-        } else if solution.resolved {
-            self.settings.resolved_error()
-        } else {
-            UNRESOLVED_FALLBACK_ERROR
-        };
-        Ok(solution)
+        self.solve_discretised(v, &self.discretisation(v))
     }
 
     /// As [`Self::solve`], with the error estimate of an unresolved
@@ -388,14 +391,31 @@ impl RollingCylinder {
     /// E1/E0 = 1000 the error against N = 512 was up to twice the change).
     /// Costs about half a solve more where the layers are not resolved.
     pub fn solve_with_error_estimate(&self, v: f64) -> Result<RollingSolution, ModelError> {
-        let mut solution = self.solve(v)?;
-        if !solution.resolved && self.settings.terms.is_none() {
-            let (b, terms) = self.discretisation(v);
-            if let Ok(coarse) = self.solve_with(v, terms * 3 / 4, b) {
-                solution.error_estimate = (10.0 * (solution.mu / coarse.mu - 1.0).abs())
-                    .max(self.settings.resolved_error());
-            }
+        require_positive("v", v)?;
+        let d = self.discretisation(v);
+        let mut solution = self.solve_discretised(v, &d)?;
+        // Explicit terms count as resolved: only automatic ones get here.
+        if !d.resolved
+            && let Ok(coarse) = self.solve_with(v, d.terms * 3 / 4, d.half_width)
+        {
+            solution.error_estimate =
+                (10.0 * (solution.mu / coarse.mu - 1.0).abs()).max(self.settings.resolved_error());
         }
+        Ok(solution)
+    }
+
+    /// The contact at speed `v` as `d` discretises it, with the error
+    /// claimed for that discretisation.
+    fn solve_discretised(&self, v: f64, d: &Discretisation) -> Result<RollingSolution, ModelError> {
+        let mut solution = self.solve_with(v, d.terms, d.half_width)?;
+        solution.resolved = d.resolved;
+        solution.error_estimate = if self.settings.terms.is_some() {
+            f64::NAN
+        } else if d.resolved {
+            self.settings.resolved_error()
+        } else {
+            UNRESOLVED_FALLBACK_ERROR
+        };
         Ok(solution)
     }
 

@@ -292,6 +292,9 @@ impl<M: ViscoelasticModulus> Scene<M> {
             .collect();
         let mut rungs = vec![Rung::LowSpeed; low];
         let mut estimate = vec![low_deviation; low];
+        // The bound on a neglected film's effect, relative (0 where the
+        // film is computed or absent).
+        let mut film_effect = vec![0.0; low];
 
         // 2. Eq. (11)/(17) above it; a film where it matters.
         let rest = &speeds[low..];
@@ -308,11 +311,13 @@ impl<M: ViscoelasticModulus> Scene<M> {
                 mu.push(half[j]);
                 rungs.push(Rung::Dynamic);
                 estimate.push(tolerance + relative);
+                film_effect.push(relative);
             } else {
                 film_speeds.push(low + j);
                 mu.push(f64::NAN);
                 rungs.push(Rung::DynamicFilm);
                 estimate.push(tolerance);
+                film_effect.push(0.0);
             }
         }
         if !film_speeds.is_empty() {
@@ -360,8 +365,7 @@ impl<M: ViscoelasticModulus> Scene<M> {
                 .collect::<Result<Vec<_>, ModelError>>()?;
             for (&i, solution) in exact_speeds.iter().zip(solved) {
                 // What the film adds where it was neglected stays.
-                let film_part = (estimate[i] - indicator[i] - tolerance).max(0.0);
-                let error = solution.error_estimate + film_part;
+                let error = solution.error_estimate + film_effect[i];
                 // Where its edge layers are thin the exact solution may be
                 // no better than Eq. (11): keep the better estimate.
                 if error < estimate[i] {
