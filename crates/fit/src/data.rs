@@ -42,6 +42,22 @@ fn check_column(
     Ok(())
 }
 
+/// The fewest distinct speeds a fit accepts. Rows, not speeds, would let
+/// repeated measurements at one speed pass for information about the shape
+/// of μ(v); the smoothness penalty leaves a power-law spectrum (two
+/// parameters) and, unanchored, the modulus scale (a third) to the data, and
+/// the residuals need at least one degree of freedom of their own.
+pub const MIN_DISTINCT_SPEEDS: usize = 4;
+
+/// Number of distinct values (exact comparison: repeated rows at one speed
+/// carry the same number).
+fn distinct_count(values: &[f64]) -> usize {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted.dedup();
+    sorted.len()
+}
+
 impl Measurements {
     /// Speeds `v` (m/s), friction coefficients `mu`, optional standard
     /// deviations `sigma` of μ and temperatures `temperature` (°C), one
@@ -73,6 +89,15 @@ impl Measurements {
         }
         if let Some(t) = &temperature {
             check_column(t, "T", true)?;
+        }
+        let distinct = distinct_count(&speeds);
+        if distinct < MIN_DISTINCT_SPEEDS {
+            return Err(FitError::InsufficientData(format!(
+                "the data hold {distinct} distinct speed(s) in {n} row(s); a fit needs at least \
+                 {MIN_DISTINCT_SPEEDS} distinct speeds: with the smoothness penalty a power-law \
+                 spectrum (level and slope of ln H) and, without an anchor, the modulus scale \
+                 are free, and one more speed is needed to tell misfit from noise"
+            )));
         }
         Ok(Measurements {
             speeds,
@@ -120,6 +145,11 @@ impl Measurements {
             Some(s) => s.clone(),
             None => self.friction.clone(),
         }
+    }
+
+    /// Number of distinct speeds.
+    pub fn distinct_speeds(&self) -> usize {
+        distinct_count(&self.speeds)
     }
 
     /// Smallest and largest speed, m/s.

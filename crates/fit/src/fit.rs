@@ -21,7 +21,12 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-use crate::analysis::{curvature, modulus_point, probed_window};
+use rollfit_model::ViscoelasticModulus;
+
+use crate::analysis::{
+    DETERMINED_RELATIVE_SIGMA, add_bias, curvature, determined_stretch, modulus_point,
+    probed_window,
+};
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::parametrization::Parametrization;
@@ -255,24 +260,6 @@ fn fit_on_grid(
 ) -> Result<FitReport, FitError> {
     let param = Parametrization::new(tau, params.anchor);
     let free = param.free_count() + set.map_or(0, |s| s.param.count());
-    if data.len() < free {
-        return Err(FitError::InsufficientData(format!(
-            "{} data points cannot determine {free} free parameters ({} relaxation times{}); \
-             measure more speeds or give fewer terms (`terms`){}",
-            data.len(),
-            param.terms(),
-            if params.anchor.is_some() {
-                ""
-            } else {
-                " and the modulus scale"
-            },
-            if params.anchor.is_some() {
-                ""
-            } else {
-                " or a scale anchor"
-            }
-        )));
-    }
     let mut problem = Problem {
         setup: &params.setup,
         data,
@@ -326,12 +313,17 @@ fn fit_on_grid(
             FitError::InsufficientData("the forward model returned no Jacobian".into())
         })?;
         let c = curvature(jac, data.len(), e.misfit, sigma_known);
+        let bound = e.residuals[e.residuals.len() - 1];
         Ok((
             Trial {
                 lambda,
                 theta: r.theta.clone(),
                 misfit: e.misfit,
                 effective_parameters: c.effective_parameters,
+                penalised: e.objective() - bound * bound,
+                log_det: c.log_det,
+                penalty_rank: problem.param.terms().saturating_sub(2),
+                free: r.theta.len(),
             },
             r,
         ))
@@ -354,23 +346,58 @@ fn fit_on_grid(
             let rule = if sigma_known {
                 LambdaRule::Discrepancy
             } else {
-                LambdaRule::Gcv
+                LambdaRule::MarginalLikelihood
             };
             let n = data.len();
             let mut trials: Vec<(Trial, SolverRun)> = Vec::new();
+            let lambdas = path();
+            // The path starts from the best of the neutral and the bump
+            // starts at its largest λ: warm starts carry a poor local
+            // minimum down the whole path (a narrow rubber's flat start
+            // stalled at χ² 100 times the bumps' at every λ).
             let mut from = start.clone();
-            for lambda in path() {
+            if params.starts > 1 {
+                let mut best: Option<(Trial, SolverRun)> = None;
+                let candidates = std::iter::once(start.clone()).chain(
+                    bump_starts(&problem.param, params, range, &start_material)
+                        .into_iter()
+                        .map(&with_shift),
+                );
+                for (k, candidate) in candidates.enumerate() {
+                    let stage = if k == 0 {
+                        "path start: neutral".to_string()
+                    } else {
+                        format!("path start: bump {k}")
+                    };
+                    let (t, r) = solve_within(
+                        &mut problem,
+                        lambdas[0],
+                        &candidate,
+                        &stage,
+                        &mut runs,
+                        (budget / EXPLORATION_SHARE).max(1),
+                    )?;
+                    if best.as_ref().is_none_or(|b| r.objective < b.1.objective) {
+                        best = Some((t, r));
+                    }
+                }
+                if let Some((t, _)) = best {
+                    from = t.theta;
+                }
+            }
+            for lambda in lambdas {
                 let (t, r) = solve(&mut problem, lambda, &from, "lambda path", &mut runs)?;
                 from = t.theta.clone();
                 path_record.push([lambda, t.misfit, t.effective_parameters]);
                 let stop_now = match rule {
                     LambdaRule::Discrepancy => t.misfit <= discrepancy_target(n),
                     _ => {
-                        // Past the minimum by two decades of rising GCV.
+                        // Past the minimum by two decades of rising criterion.
                         let k = trials.len();
                         k >= 2
-                            && t.gcv(n) > trials[k - 1].0.gcv(n)
-                            && trials[k - 1].0.gcv(n) > trials[k - 2].0.gcv(n)
+                            && t.criterion(rule, n) > trials[k - 1].0.criterion(rule, n)
+                            && trials[k - 1].0.criterion(rule, n)
+                                > trials[k - 2].0.criterion(rule, n)
                     }
                 };
                 trials.push((t, r));
@@ -448,6 +475,21 @@ fn fit_on_grid(
         }
     }
 
+    // The smoothing bias of the bands: the fit at a tenth of λ (analysis).
+    let less_smoothed = if params.bands && chosen.lambda > 0.0 {
+        let from = chosen.theta.clone();
+        let (t, _) = solve(
+            &mut problem,
+            chosen.lambda / 10.0,
+            &from,
+            "band: λ/10",
+            &mut runs,
+        )?;
+        Some(t.theta)
+    } else {
+        None
+    };
+
     let mut report = analyse(
         data,
         params,
@@ -457,11 +499,36 @@ fn fit_on_grid(
         rule,
         path_record,
         runs,
+        less_smoothed.as_deref(),
     )?;
     if params.anchor.is_none() {
         profile_scale(data, params, &mut report, set)?;
     }
+    if params.bands {
+        restrict_to_determined(&mut report);
+    }
     Ok(report)
+}
+
+/// Cuts the window and the curve to the stretch the data determine
+/// ([`determined_stretch`]); when tan δ is determined to
+/// [`DETERMINED_RELATIVE_SIGMA`] nowhere, keeps the probed window and warns.
+fn restrict_to_determined(report: &mut FitReport) {
+    match determined_stretch(&report.curve) {
+        Some((first, last)) if last > first => {
+            report.curve.truncate(last + 1);
+            report.curve.drain(..first);
+            report.window = Window {
+                omega_min: report.curve[0].omega,
+                omega_max: report.curve[report.curve.len() - 1].omega,
+            };
+        }
+        _ => report.warnings.push(format!(
+            "the data determine tan δ to ±{:.0} % (1σ) at no frequency: the whole probed \
+             window is reported, and its bands are wide",
+            100.0 * DETERMINED_RELATIVE_SIGMA
+        )),
+    }
 }
 
 /// Scale factors of the profile along the weak direction, walked outward
@@ -502,7 +569,7 @@ fn profile_scale(
     set: Option<&ShiftStart>,
 ) -> Result<(), FitError> {
     let set = set.map(|s| s.with_theta(data, report.shift_theta.clone()));
-    use rollfit_model::{Prony, ViscoelasticModulus};
+    use rollfit_model::Prony;
     let omega_c = (report.window.omega_min * report.window.omega_max).sqrt();
     let m = &report.model;
     let fitted = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
@@ -534,6 +601,7 @@ fn profile_scale(
                 });
                 pinned.lambda = Lambda::Fixed(report.lambda.value * relax);
                 pinned.starts = 1;
+                pinned.bands = false;
                 pinned.terms = TermRule::Explicit(m.tau.clone());
                 let trial = match fit_on_grid(
                     data,
@@ -641,11 +709,12 @@ fn refine(
             }
             Ok(below)
         }
-        LambdaRule::Gcv | LambdaRule::Fixed => {
+        LambdaRule::Gcv | LambdaRule::MarginalLikelihood | LambdaRule::Fixed => {
+            let score = |t: &(Trial, SolverRun)| t.0.criterion(rule, n);
             let best = trials
                 .iter()
                 .enumerate()
-                .min_by(|a, b| a.1.0.gcv(n).total_cmp(&b.1.0.gcv(n)))
+                .min_by(|a, b| score(a.1).total_cmp(&score(b.1)))
                 .map(|(i, _)| i)
                 .unwrap_or(0);
             // Golden-section search in ln λ over the neighbouring path points.
@@ -663,14 +732,14 @@ fn refine(
                 let from = incumbent.0.theta.clone();
                 let tc = solve(c.exp(), &from)?;
                 let td = solve(d.exp(), &from)?;
-                if tc.0.gcv(n) < td.0.gcv(n) {
+                if score(&tc) < score(&td) {
                     b = d;
-                    if tc.0.gcv(n) < incumbent.0.gcv(n) {
+                    if score(&tc) < score(&incumbent) {
                         incumbent = tc;
                     }
                 } else {
                     a = c;
-                    if td.0.gcv(n) < incumbent.0.gcv(n) {
+                    if score(&td) < score(&incumbent) {
                         incumbent = td;
                     }
                 }
@@ -691,6 +760,7 @@ fn analyse(
     rule: LambdaRule,
     path_record: Vec<[f64; 3]>,
     runs: Vec<RunRecord>,
+    less_smoothed: Option<&[f64]>,
 ) -> Result<FitReport, FitError> {
     problem.lambda = chosen.lambda;
     problem.reset(usize::MAX);
@@ -736,10 +806,18 @@ fn analyse(
         .collect();
     let decades = (omega_max / omega_min).log10();
     let points = (decades * CURVE_DENSITY).ceil().max(1.0) as usize + 1;
+    let other = match less_smoothed {
+        Some(theta) => Some(param.prony(&param.map(&theta[..n_material]))?),
+        None => None,
+    };
     let curve = (0..points)
         .map(|i| {
             let omega = omega_min * (omega_max / omega_min).powf(i as f64 / (points - 1) as f64);
-            modulus_point(param, &mapped, &material_covariance, omega)
+            let mut point = modulus_point(param, &mapped, &material_covariance, omega);
+            if let Some(other) = &other {
+                add_bias(&mut point, other.modulus(omega));
+            }
+            point
         })
         .collect();
 
@@ -793,6 +871,10 @@ fn analyse(
         },
         poisson: params.setup.substrate.poisson,
         window: Window {
+            omega_min,
+            omega_max,
+        },
+        probed_window: Window {
             omega_min,
             omega_max,
         },

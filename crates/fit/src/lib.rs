@@ -15,6 +15,7 @@
 //! - `shift`: the time–temperature shift of a temperature set (WLF or free)
 //!   and shifts by overlapping curves.
 //! - `analysis`: the determined window, determined terms, uncertainty bands.
+//! - [`sanity`]: warnings for inputs and results outside the theory or any lab.
 //! - [`fit`]: the driver tying them together; [`report`]: its result.
 
 pub mod data;
@@ -23,6 +24,7 @@ pub mod fit;
 pub mod params;
 pub mod regularization;
 pub mod report;
+pub mod sanity;
 pub mod solvers;
 pub mod tau_grid;
 

@@ -229,6 +229,10 @@ pub struct ValidFitParams {
     pub(crate) start: Option<StartMaterial>,
     pub(crate) shift: ShiftSettings,
     pub(crate) setup: RollingSetup,
+    /// Whether the fit estimates the bands' smoothing bias and cuts the
+    /// window to what the data determine (off for the internal refits of a
+    /// scale profile, which need neither).
+    pub(crate) bands: bool,
 }
 
 impl ValidFitParams {
@@ -409,6 +413,7 @@ impl FitParams {
             start: self.start,
             shift: self.shift,
             setup,
+            bands: true,
         })
     }
 }

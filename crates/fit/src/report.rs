@@ -216,8 +216,13 @@ pub struct FitReport {
     pub model: ModelRecord,
     /// Poisson's ratio used.
     pub poisson: f64,
-    /// The window the data determine (at T_ref for a temperature set).
+    /// The window the data determine (at T_ref for a temperature set): the
+    /// part of the probed window where tan δ is known to better than
+    /// [`crate::analysis::DETERMINED_RELATIVE_SIGMA`] (1σ, bias included).
     pub window: Window,
+    /// The window the data's speeds probe (v_min/r … 20 v_max/r), of which
+    /// `window` is the determined part.
+    pub probed_window: Window,
     /// The time–temperature shift of a temperature set.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shift: Option<ShiftRecord>,

@@ -107,3 +107,78 @@ pub fn window_errors<M: ViscoelasticModulus>(report: &FitReport, truth: &M) -> (
     let n_f = n.max(1) as f64;
     ((se_t / n_f).sqrt(), (se_e / n_f).sqrt(), n)
 }
+
+/// A cylinder of radius 10 mm at 200 N/m on a thick rubber block, ν = 0.49,
+/// dynamic contact.
+pub fn cylinder_setup() -> RollingSetup {
+    RollingSetup {
+        geometry: Geometry {
+            shape: Shape::Cylinder,
+            radius: 0.01,
+            load: 200.0,
+        },
+        substrate: Substrate {
+            poisson: 0.49,
+            film_thickness: None,
+        },
+        contact: ContactSize::Dynamic,
+    }
+}
+
+/// A rubber with a narrower, more symmetric transition than [`hn_rubber`]:
+/// HN with E0 = 5 MPa, E1 = 1.5 GPa, τ = 10 µs, α = 0.7, β = 0.25.
+pub fn narrow_rubber() -> HavriliakNegami {
+    HavriliakNegami::new(5e6, 1.5e9, 1e-5, 0.7, 0.25).unwrap()
+}
+
+/// Laboratory-shaped data: `count` log-spaced speeds from `v_min` over
+/// `decades` decades, μ of `truth` under `setup` with multiplicative
+/// Gaussian noise of relative size `noise` (ChaCha8 with `seed`), and no
+/// sigma column.
+pub fn sparse<M: ViscoelasticModulus>(
+    setup: RollingSetup,
+    truth: M,
+    v_min: f64,
+    decades: f64,
+    count: usize,
+    noise: f64,
+    seed: u64,
+) -> Measurements {
+    let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, truth).unwrap();
+    let speeds: Vec<f64> = (0..count)
+        .map(|i| v_min * 10f64.powf(decades * i as f64 / (count - 1) as f64))
+        .collect();
+    let mu = scene.friction_sweep(&speeds).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let noisy: Vec<f64> = mu
+        .iter()
+        .map(|m| m * (1.0 + noise * normal.sample(&mut rng)))
+        .collect();
+    Measurements::new(speeds, noisy, None, None).unwrap()
+}
+
+/// Fraction of the reported curve's points inside the window shrunk by
+/// half a decade at each end where the truth lies within `k` reported σ, for
+/// tan δ and |E|.
+pub fn band_coverage<M: ViscoelasticModulus>(report: &FitReport, truth: &M, k: f64) -> (f64, f64) {
+    let lo = report.window.omega_min * 10f64.powf(0.5);
+    let hi = report.window.omega_max / 10f64.powf(0.5);
+    let (mut t, mut e, mut n) = (0, 0, 0);
+    for p in report
+        .curve
+        .iter()
+        .filter(|p| p.omega >= lo && p.omega <= hi)
+    {
+        let x = truth.modulus(p.omega);
+        if (p.tan_delta - x.im / x.re).abs() <= k * p.tan_delta_sigma {
+            t += 1;
+        }
+        if (p.magnitude - x.norm()).abs() <= k * p.magnitude_sigma {
+            e += 1;
+        }
+        n += 1;
+    }
+    let n = n.max(1) as f64;
+    (t as f64 / n, e as f64 / n)
+}
