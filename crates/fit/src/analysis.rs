@@ -84,7 +84,10 @@ pub(crate) fn add_bias(point: &mut ModulusPoint, other: Complex64) {
     let add = |sigma: &mut f64, bias: f64| *sigma = sigma.hypot(bias);
     add(&mut point.storage_sigma, other.re - point.storage);
     add(&mut point.loss_sigma, other.im - point.loss);
-    add(&mut point.tan_delta_sigma, other.im / other.re - point.tan_delta);
+    add(
+        &mut point.tan_delta_sigma,
+        other.im / other.re - point.tan_delta,
+    );
     add(&mut point.magnitude_sigma, other.norm() - point.magnitude);
 }
 

@@ -49,13 +49,18 @@ fn check_column(
 /// the residuals need at least one degree of freedom of their own.
 pub const MIN_DISTINCT_SPEEDS: usize = 4;
 
-/// Number of distinct values (exact comparison: repeated rows at one speed
-/// carry the same number).
-fn distinct_count(values: &[f64]) -> usize {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    sorted.dedup();
-    sorted.len()
+/// Number of distinct (speed, temperature) pairs (exact comparison:
+/// repeated rows at one speed carry the same number; one speed at two
+/// temperatures is two points of the master curve).
+fn distinct_count(speeds: &[f64], temperature: Option<&[f64]>) -> usize {
+    let mut pairs: Vec<(f64, f64)> = speeds
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (v, temperature.map_or(0.0, |t| t[i])))
+        .collect();
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    pairs.dedup();
+    pairs.len()
 }
 
 impl Measurements {
@@ -90,11 +95,11 @@ impl Measurements {
         if let Some(t) = &temperature {
             check_column(t, "T", true)?;
         }
-        let distinct = distinct_count(&speeds);
+        let distinct = distinct_count(&speeds, temperature.as_deref());
         if distinct < MIN_DISTINCT_SPEEDS {
             return Err(FitError::InsufficientData(format!(
-                "the data hold {distinct} distinct speed(s) in {n} row(s); a fit needs at least \
-                 {MIN_DISTINCT_SPEEDS} distinct speeds: with the smoothness penalty a power-law \
+                "the data hold {distinct} distinct speed(s) (per temperature) in {n} row(s); a \
+                 fit needs at least {MIN_DISTINCT_SPEEDS} distinct speeds: with the smoothness penalty a power-law \
                  spectrum (level and slope of ln H) and, without an anchor, the modulus scale \
                  are free, and one more speed is needed to tell misfit from noise"
             )));
@@ -147,9 +152,10 @@ impl Measurements {
         }
     }
 
-    /// Number of distinct speeds.
+    /// Number of distinct speeds (distinct (speed, temperature) pairs for a
+    /// temperature set).
     pub fn distinct_speeds(&self) -> usize {
-        distinct_count(&self.speeds)
+        distinct_count(&self.speeds, self.temperature.as_deref())
     }
 
     /// Smallest and largest speed, m/s.

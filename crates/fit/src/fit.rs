@@ -15,6 +15,7 @@
 //! Results are deterministic for a given seed: the solvers are
 //! deterministic and the perturbations come from ChaCha8 seeded with it.
 
+use std::cell::Cell;
 use std::time::Instant;
 
 use rand::SeedableRng;
@@ -32,11 +33,12 @@ use crate::error::FitError;
 use crate::parametrization::Parametrization;
 use crate::params::{Lambda, ModulusAnchor, TermRule, ValidFitParams};
 use crate::problem::Problem;
+use crate::quality::assess;
 use crate::regularization::{LambdaRule, REFINEMENTS, Trial, path};
 use crate::report::{
     AnchorRecord, FitReport, LambdaRecord, ModelRecord, RunRecord, TermsRecord, Window,
 };
-use crate::solvers::{SolverRun, default_budget, run};
+use crate::solvers::{SolverRun, Tolerance, default_budget, run};
 use crate::tau_grid::{SOFTEST_MODULUS, probed_band, relaxation_times};
 use crate::temperature_set::{ShiftStart, cross_check, temperature_set};
 
@@ -295,7 +297,9 @@ fn fit_on_grid(
     let sigma_known = data.sigma().is_some();
     let mut runs = Vec::new();
     let mut path_record = Vec::new();
+    let mut criterion_record = Vec::new();
 
+    let tolerance = Cell::new(Tolerance::Final);
     // Fit at one λ from θ₀; returns the trial and the run.
     let solve_within = |problem: &mut Problem<'_>,
                         lambda: f64,
@@ -305,7 +309,7 @@ fn fit_on_grid(
                         budget: usize|
      -> Result<(Trial, SolverRun), FitError> {
         problem.lambda = lambda;
-        let r = run(method, problem, from, budget);
+        let r = run(method, problem, from, budget, tolerance.get());
         runs.push(record(stage, lambda, &r));
         problem.reset(usize::MAX);
         let e = problem.evaluate(&r.theta, true)?;
@@ -337,9 +341,51 @@ fn fit_on_grid(
         solve_within(problem, lambda, from, stage, runs, budget)
     };
 
+    // The starting spectrum: the neutral start and the bumps, each probed
+    // briefly at the first λ to be fitted; the best begins. Warm starts
+    // would otherwise carry a poor local minimum down the whole λ path (a
+    // narrow rubber's flat start stalled at a misfit 100 times the bumps'
+    // at every λ).
+    let first_lambda = match params.lambda {
+        Lambda::Fixed(lambda) => lambda,
+        Lambda::Auto => path()[0],
+    };
+    let mut from = start.clone();
+    if params.starts > 1 {
+        tolerance.set(Tolerance::Path);
+        let mut best: Option<(f64, Vec<f64>)> = None;
+        let candidates = std::iter::once(start.clone()).chain(
+            bump_starts(&problem.param, params, range, &start_material)
+                .into_iter()
+                .map(&with_shift),
+        );
+        for (k, candidate) in candidates.enumerate() {
+            let stage = if k == 0 {
+                "start probe: neutral".to_string()
+            } else {
+                format!("start probe: bump {k}")
+            };
+            let (_, r) = solve_within(
+                &mut problem,
+                first_lambda,
+                &candidate,
+                &stage,
+                &mut runs,
+                PROBE_JACOBIANS * (free + 1),
+            )?;
+            if best.as_ref().is_none_or(|b| r.objective < b.0) {
+                best = Some((r.objective, r.theta));
+            }
+        }
+        if let Some((_, theta)) = best {
+            from = theta;
+        }
+    }
+
     let (rule, mut chosen, mut chosen_run) = match params.lambda {
         Lambda::Fixed(lambda) => {
-            let (t, r) = solve(&mut problem, lambda, &start, "fixed lambda", &mut runs)?;
+            tolerance.set(Tolerance::Final);
+            let (t, r) = solve(&mut problem, lambda, &from, "fixed lambda", &mut runs)?;
             (LambdaRule::Fixed, t, r)
         }
         Lambda::Auto => {
@@ -350,42 +396,10 @@ fn fit_on_grid(
             };
             let n = data.len();
             let mut trials: Vec<(Trial, SolverRun)> = Vec::new();
-            let lambdas = path();
-            // The path starts from the best of the neutral and the bump
-            // starts at its largest λ: warm starts carry a poor local
-            // minimum down the whole path (a narrow rubber's flat start
-            // stalled at χ² 100 times the bumps' at every λ).
-            let mut from = start.clone();
-            if params.starts > 1 {
-                let mut best: Option<(Trial, SolverRun)> = None;
-                let candidates = std::iter::once(start.clone()).chain(
-                    bump_starts(&problem.param, params, range, &start_material)
-                        .into_iter()
-                        .map(&with_shift),
-                );
-                for (k, candidate) in candidates.enumerate() {
-                    let stage = if k == 0 {
-                        "path start: neutral".to_string()
-                    } else {
-                        format!("path start: bump {k}")
-                    };
-                    let (t, r) = solve_within(
-                        &mut problem,
-                        lambdas[0],
-                        &candidate,
-                        &stage,
-                        &mut runs,
-                        (budget / EXPLORATION_SHARE).max(1),
-                    )?;
-                    if best.as_ref().is_none_or(|b| r.objective < b.1.objective) {
-                        best = Some((t, r));
-                    }
-                }
-                if let Some((t, _)) = best {
-                    from = t.theta;
-                }
-            }
-            for lambda in lambdas {
+            // The path is walked at the looser tolerance: its points only
+            // locate λ; the chosen one is polished below.
+            tolerance.set(Tolerance::Path);
+            for lambda in path() {
                 let (t, r) = solve(&mut problem, lambda, &from, "lambda path", &mut runs)?;
                 from = t.theta.clone();
                 path_record.push([lambda, t.misfit, t.effective_parameters]);
@@ -400,46 +414,45 @@ fn fit_on_grid(
                                 > trials[k - 2].0.criterion(rule, n)
                     }
                 };
+                if rule != LambdaRule::Discrepancy {
+                    criterion_record.push([lambda, t.criterion(rule, n)]);
+                }
                 trials.push((t, r));
                 if stop_now {
                     break;
                 }
             }
-            let (t, r) = refine(rule, n, trials, &mut |lambda, from: &[f64]| {
-                let (t, r) = solve(&mut problem, lambda, from, "refine lambda", &mut runs)?;
-                path_record.push([lambda, t.misfit, t.effective_parameters]);
-                Ok((t, r))
-            })?;
+            let (lambda, from) = match rule {
+                LambdaRule::Discrepancy => {
+                    let (t, _) = refine(rule, n, trials, &mut |lambda, from: &[f64]| {
+                        let (t, r) = solve(&mut problem, lambda, from, "refine lambda", &mut runs)?;
+                        path_record.push([lambda, t.misfit, t.effective_parameters]);
+                        Ok((t, r))
+                    })?;
+                    (t.lambda, t.theta)
+                }
+                _ => smoothest_acceptable(rule, n, &trials),
+            };
+            tolerance.set(Tolerance::Final);
+            let (t, r) = solve(&mut problem, lambda, &from, "chosen lambda", &mut runs)?;
+            path_record.push([lambda, t.misfit, t.effective_parameters]);
             (rule, t, r)
         }
     };
 
-    // Further starts at the chosen λ (unless only one start is asked for):
-    // bumps, then seeded perturbations.
+    // Seeded perturbations of the chosen fit's start at the chosen λ,
+    // abandoned early when hopeless.
     if params.starts > 1 {
         let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
         let normal = Normal::new(0.0, 1.0).map_err(|e| FitError::setting("seed", e.to_string()))?;
-        let mut others: Vec<Vec<f64>> = bump_starts(&problem.param, params, range, &start_material)
-            .into_iter()
-            .map(&with_shift)
-            .collect();
-        for _ in 1..params.starts {
+        for k in 1..params.starts {
             // The material only: the starting shift is already close.
-            others.push(with_shift(
+            let from = with_shift(
                 start_material
                     .iter()
                     .map(|t| t + normal.sample(&mut rng))
                     .collect(),
-            ));
-        }
-        for (k, from) in others.iter().enumerate() {
-            let stage = if k < BUMP_CENTRES.len() {
-                format!("bump start {}", k + 1)
-            } else {
-                format!("random start {}", k + 1 - BUMP_CENTRES.len())
-            };
-            // Exploratory: a quarter of the budget; a winner that has not
-            // converged is continued below.
+            );
             problem.abandon_above.set(Some((
                 ABANDON_AFTER * (free + 1),
                 ABANDON_FACTOR * chosen_run.objective,
@@ -447,8 +460,8 @@ fn fit_on_grid(
             let probe = solve_within(
                 &mut problem,
                 chosen.lambda,
-                from,
-                &stage,
+                &from,
+                &format!("random start {k}"),
                 &mut runs,
                 (budget / EXPLORATION_SHARE).max(1),
             );
@@ -500,6 +513,7 @@ fn fit_on_grid(
         path_record,
         runs,
         less_smoothed.as_deref(),
+        criterion_record,
     )?;
     if params.anchor.is_none() {
         profile_scale(data, params, &mut report, set)?;
@@ -671,6 +685,65 @@ fn discrepancy_target(n: usize) -> f64 {
     n as f64
 }
 
+/// Jacobians' worth of evaluations (n + 1 each, n free parameters) a start
+/// probe may spend: enough to tell a start that is stuck (a narrow rubber's
+/// flat start: misfit 100 times the bumps') from one that is not.
+const PROBE_JACOBIANS: usize = 1;
+
+/// How much worse than the best (in −2 ln p, twice the log Bayes factor)
+/// the chosen λ may be: the smoothest λ the data do not reject with strong
+/// evidence (2 ln B < 6 on the scale of Kass and Raftery). On 15 speeds the
+/// marginal likelihood's minimum is shallow toward small λ, and a noise
+/// draw that happens to look smooth pulls it there: in one seed of ten the
+/// fit then absorbed two thirds of the noise, estimated it at a third of
+/// its size and drew bands three times too narrow. Leaning to the smooth
+/// side within the evidence's own resolution avoids that; the smoothing
+/// bias it adds is in the bands (analysis).
+///
+/// # References
+/// - R.E. Kass, A.E. Raftery, "Bayes factors", J. Amer. Statist. Assoc.
+///   90 (1995) 773–795.
+const EVIDENCE_TOLERANCE: f64 = 6.0;
+
+/// The largest λ whose criterion is within [`EVIDENCE_TOLERANCE`] of the
+/// best path point (interpolated linearly in ln λ between the bracketing
+/// path points), with the θ of the nearest path point at or below it to
+/// start from.
+fn smoothest_acceptable(
+    rule: LambdaRule,
+    n: usize,
+    trials: &[(Trial, SolverRun)],
+) -> (f64, Vec<f64>) {
+    let score = |k: usize| trials[k].0.criterion(rule, n);
+    let best = (0..trials.len())
+        .min_by(|&a, &b| score(a).total_cmp(&score(b)))
+        .unwrap_or(0);
+    let limit = score(best) + EVIDENCE_TOLERANCE;
+    // The path runs from large to small λ: walk back from the best point to
+    // the first (largest-λ) point still within the limit.
+    let mut k = best;
+    while k > 0 && score(k - 1) <= limit {
+        k -= 1;
+    }
+    let from = trials[k].0.theta.clone();
+    if k == 0 {
+        return (trials[0].0.lambda, from);
+    }
+    // Between trials[k − 1] (above the limit) and trials[k] (within).
+    let (x0, x1) = (trials[k - 1].0.lambda.ln(), trials[k].0.lambda.ln());
+    let (y0, y1) = (score(k - 1), score(k));
+    let fraction = ((limit - y1) / (y0 - y1)).clamp(0.0, 1.0);
+    let x = x1 + fraction * (x0 - x1);
+    (
+        if x.is_finite() {
+            x.exp()
+        } else {
+            trials[k].0.lambda
+        },
+        from,
+    )
+}
+
 type Solve<'s> = dyn FnMut(f64, &[f64]) -> Result<(Trial, SolverRun), FitError> + 's;
 
 /// Refines λ between path points.
@@ -749,6 +822,27 @@ fn refine(
     }
 }
 
+/// The data's row indices by temperature (one group without a `T`
+/// column), each in order of speed: the order of the runs test.
+fn speed_ordered_groups(data: &Measurements) -> Vec<Vec<usize>> {
+    let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
+    for i in 0..data.len() {
+        let t = data.temperature().map_or(0.0, |t| t[i]);
+        match groups.iter_mut().find(|(g, _)| *g == t) {
+            Some((_, rows)) => rows.push(i),
+            None => groups.push((t, vec![i])),
+        }
+    }
+    let speeds = data.speeds();
+    groups
+        .into_iter()
+        .map(|(_, mut rows)| {
+            rows.sort_by(|&a, &b| speeds[a].total_cmp(&speeds[b]));
+            rows
+        })
+        .collect()
+}
+
 /// Curvature, window, determined terms, bands and the report.
 #[allow(clippy::too_many_arguments)]
 fn analyse(
@@ -761,6 +855,7 @@ fn analyse(
     path_record: Vec<[f64; 3]>,
     runs: Vec<RunRecord>,
     less_smoothed: Option<&[f64]>,
+    criterion: Vec<[f64; 2]>,
 ) -> Result<FitReport, FitError> {
     problem.lambda = chosen.lambda;
     problem.reset(usize::MAX);
@@ -858,6 +953,19 @@ fn analyse(
             determined.len()
         ));
     }
+    let fit_quality = assess(
+        &e.residuals.as_slice()[..data.len()],
+        &speed_ordered_groups(data),
+        c.effective_parameters,
+        sigma_known,
+        c.noise_variance.sqrt(),
+    );
+    warnings.extend(
+        fit_quality
+            .reasons
+            .iter()
+            .map(|r| format!("fit quality: {r}")),
+    );
     let method = chosen_run.method;
     Ok(FitReport {
         model: ModelRecord {
@@ -892,6 +1000,7 @@ fn analyse(
             value: chosen.lambda,
             rule,
             path: path_record,
+            criterion,
         },
         terms: TermsRecord {
             count: 0,
@@ -906,6 +1015,7 @@ fn analyse(
         }),
         effective_parameters: c.effective_parameters,
         noise: c.noise_variance.sqrt(),
+        fit_quality,
         seed: params.seed,
         warnings,
         runs,

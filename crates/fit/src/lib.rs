@@ -15,6 +15,7 @@
 //! - `shift`: the time–temperature shift of a temperature set (WLF or free)
 //!   and shifts by overlapping curves.
 //! - `analysis`: the determined window, determined terms, uncertainty bands.
+//! - [`quality`]: goodness of fit (χ² and runs tests).
 //! - [`sanity`]: warnings for inputs and results outside the theory or any lab.
 //! - [`fit`]: the driver tying them together; [`report`]: its result.
 
@@ -31,6 +32,7 @@ pub mod tau_grid;
 mod analysis;
 mod parametrization;
 mod problem;
+pub mod quality;
 mod shift;
 mod temperature_set;
 
@@ -41,4 +43,5 @@ pub use params::{
     FitParams, Lambda, Method, ModulusAnchor, RollingSetup, ScaleAnchor, ShiftKind, ShiftSettings,
     StartMaterial, TermRule, ValidFitParams,
 };
+pub use quality::FitQuality;
 pub use report::{CrossCheckRow, FitReport, LogShift, ModulusPoint, ShiftCrossCheck, ShiftRecord};

@@ -32,6 +32,16 @@ use crate::shift::ShiftParam;
 /// as a hundred standard deviations of misfit.
 const BOUND_WEIGHT: f64 = 1e3;
 
+/// Width (in ln E1) over which the bound residual turns from quadratic to
+/// linear.
+const BOUND_SOFTNESS: f64 = 0.01;
+
+/// x²/(x + δ) and its derivative, for x ≥ 0.
+fn smooth_excess(x: f64) -> (f64, f64) {
+    let d = BOUND_SOFTNESS;
+    (x * x / (x + d), x * (x + 2.0 * d) / ((x + d) * (x + d)))
+}
+
 /// The fit problem at one λ.
 pub(crate) struct Problem<'a> {
     pub setup: &'a RollingSetup,
@@ -213,13 +223,17 @@ impl<'a> Problem<'a> {
         let e1 = m.glassy_modulus();
         let excess = (e1 / self.e1_max).ln();
         if excess > 0.0 {
-            residuals[row] = BOUND_WEIGHT * excess;
+            // r = w x²/(x + δ): zero with zero slope at the bound, w x − w δ
+            // beyond it. The kink of w·max(0, x) stalled Levenberg–Marquardt
+            // on the bound (its step test fired with E1 pinned there).
+            let (value, slope) = smooth_excess(excess);
+            residuals[row] = BOUND_WEIGHT * value;
             if let Some(jac) = jacobian.as_mut() {
                 let ones = vec![1.0; self.param.terms() + 1];
                 let mut d = vec![0.0; n_material];
                 self.param.pullback(&m, &ones, &mut d);
                 for (j, dj) in d.iter().enumerate() {
-                    jac[(row, j)] = BOUND_WEIGHT * dj / e1;
+                    jac[(row, j)] = BOUND_WEIGHT * slope * dj / e1;
                 }
             }
         }

@@ -48,6 +48,9 @@ pub struct LambdaRecord {
     pub rule: LambdaRule,
     /// (λ, misfit, effective parameters) along the path, for L-curve plots.
     pub path: Vec<[f64; 3]>,
+    /// (λ, criterion) along the path for the marginal-likelihood and GCV
+    /// rules (−2 ln p(data | λ) up to a constant, or GCV).
+    pub criterion: Vec<[f64; 2]>,
 }
 
 /// How the number of terms was chosen.
@@ -256,6 +259,8 @@ pub struct FitReport {
     pub effective_parameters: f64,
     /// Estimated noise: √(s²), in σ units or relative.
     pub noise: f64,
+    /// Goodness of fit: χ² and runs tests, and the verdict.
+    pub fit_quality: crate::quality::FitQuality,
     /// Seed of the multi-start.
     pub seed: u64,
     /// Things the user must know.

@@ -64,11 +64,11 @@
 //!    radius above [`MAX_RADIUS`] = 0.5 m (a radius in mm read as m) or below
 //!    [`MIN_RADIUS`] = 10 µm (colloidal probes, where roughness and adhesion,
 //!    not Hertz, set the contact); a sphere load above [`MAX_SPHERE_LOAD`] =
-//!    1e4 N (ten times the largest lab load; a tonne on a ball this size
-//!    makes even a glassy polymer's contact reach R/5); a cylinder load per
-//!    length above [`MAX_CYLINDER_LOAD`] = 1e6 N/m (a hundred times a heavy
-//!    conveyor idler's; with a 25 mm roller on a glassy polymer,
-//!    |E| = 1 GPa, it gives a half-width of R/4).
+//!    1e4 N (ten times the largest lab load; on the largest lab ball,
+//!    R = 25 mm, it gives even a glassy polymer, |E| = 1 GPa, a contact of
+//!    R/5); a cylinder load per length above [`MAX_CYLINDER_LOAD`] = 1e6 N/m
+//!    (a hundred times a heavy conveyor idler's; with a 25 mm roller on the
+//!    same glassy polymer it gives a half-width of R/5).
 //!
 //! Which input a contact, pressure or μ warning names: the radius or the
 //! load if either is implausible on its own (check 6), else the modulus if
@@ -83,7 +83,7 @@
 //! # References
 //! - K.L. Johnson, *Contact Mechanics*, Cambridge University Press 1985,
 //!   §4.2 (Hertz theory: contact small against the radii, small strains,
-//!   half-space) and §9 (flash temperatures).
+//!   half-space).
 //! - B.N.J. Persson, "Rolling friction for hard cylinder and sphere on
 //!   viscoelastic solid", Eur. Phys. J. E 33 (2010): the small-contact
 //!   (Hertz, linear viscoelastic half-space) assumption, Eqs. (9), (14);
@@ -787,9 +787,15 @@ mod tests {
         // On its own (check 6) and as the cause of the soft fit (check 4).
         assert_eq!(radius.len(), 2, "{w:#?}");
         for w in radius {
-            assert!(w.message.contains("was it given in mm? (6.35 mm = 6.35e-3 m)"));
+            assert!(
+                w.message
+                    .contains("was it given in mm? (6.35 mm = 6.35e-3 m)")
+            );
         }
-        assert!(w.iter().any(|w| w.message.contains("E0 = 9.3 Pa")), "{w:#?}");
+        assert!(
+            w.iter().any(|w| w.message.contains("E0 = 9.3 Pa")),
+            "{w:#?}"
+        );
         assert_clean_text(&w);
     }
 
@@ -825,13 +831,9 @@ mod tests {
                 .map(|w| w.message.clone())
                 .unwrap()
         };
-        let dynamic = contact_message(&material_warnings(
-            &s, &speeds, &modulus, 2e6, 2e9, false,
-        ));
+        let dynamic = contact_message(&material_warnings(&s, &speeds, &modulus, 2e6, 2e9, false));
         s.contact = ContactSize::Static;
-        let stat = contact_message(&material_warnings(
-            &s, &speeds, &modulus, 2e6, 2e9, false,
-        ));
+        let stat = contact_message(&material_warnings(&s, &speeds, &modulus, 2e6, 2e9, false));
         assert!(stat.contains("at 41 of 41 speeds"), "{stat}");
         assert!(!dynamic.contains("at 41 of 41 speeds"), "{dynamic}");
         assert!(dynamic.contains("ω ≈ v/r"), "{dynamic}");
@@ -857,7 +859,11 @@ mod tests {
         // 300 N: r0 = 7.5 mm, contact too large, p_a = 1.7 MPa still below E0.
         let s = setup(Shape::Sphere, 0.005, 300.0, 0.5);
         let w = all(&s, &[1e-6], &hn_rubber(), 2e9, false);
-        assert!(!w.iter().any(|w| w.message.contains("pressure")), "{w:#?}");
+        assert!(
+            !w.iter()
+                .any(|w| w.message.contains("mean contact pressure")),
+            "{w:#?}"
+        );
     }
 
     #[test]
@@ -866,7 +872,11 @@ mod tests {
         let v = [1e-3, 1e-2, 1e-1];
         let w = input_warnings(&s, &v, Some(&[0.05, 0.8, 2.0]));
         assert_eq!(keys(&w), [Some("mu")]);
-        assert!(w[0].message.contains("reaches 2 at v = 0.1 m/s"), "{}", w[0]);
+        assert!(
+            w[0].message.contains("reaches 2 at v = 0.1 m/s"),
+            "{}",
+            w[0]
+        );
         assert!(w[0].message.contains("2 of 3 points"), "{}", w[0]);
         assert!(w[0].message.contains("sliding"));
         assert!(input_warnings(&s, &v, Some(&[0.05, 0.5, f64::NAN])).is_empty());
@@ -918,10 +928,26 @@ mod tests {
     fn implausible_inputs_alone_are_reported() {
         let v = [1e-3];
         let cases = [
-            (setup(Shape::Sphere, 6e-6, 1.0, 0.5), "geometry.radius", "check its unit (m)"),
-            (setup(Shape::Sphere, 0.6, 1.0, 0.5), "geometry.radius", "0.6 mm = 0.6e-3 m"),
-            (setup(Shape::Sphere, 0.005, 2e4, 0.5), "geometry.load", "20000 N"),
-            (setup(Shape::Cylinder, 0.01, 2e6, 0.5), "geometry.load", "N/m"),
+            (
+                setup(Shape::Sphere, 6e-6, 1.0, 0.5),
+                "geometry.radius",
+                "check its unit (m)",
+            ),
+            (
+                setup(Shape::Sphere, 0.6, 1.0, 0.5),
+                "geometry.radius",
+                "0.6 mm = 0.6e-3 m",
+            ),
+            (
+                setup(Shape::Sphere, 0.005, 2e4, 0.5),
+                "geometry.load",
+                "20000 N",
+            ),
+            (
+                setup(Shape::Cylinder, 0.01, 2e6, 0.5),
+                "geometry.load",
+                "N/m",
+            ),
         ];
         for (s, key, fragment) in cases {
             let w = input_warnings(&s, &v, None);
@@ -945,7 +971,12 @@ mod tests {
         let nan = |_: f64| Complex64::new(f64::NAN, f64::NAN);
         let speeds = [f64::MIN_POSITIVE, 1e-6, 1.0, 1e308, f64::INFINITY, f64::NAN];
         for shape in [Shape::Sphere, Shape::Cylinder] {
-            for (radius, load) in [(0.005, 1e308), (1e308, 1e308), (1e-300, 1e-300), (5e-3, 1.0)] {
+            for (radius, load) in [
+                (0.005, 1e308),
+                (1e308, 1e308),
+                (1e-300, 1e-300),
+                (5e-3, 1.0),
+            ] {
                 let s = setup(shape, radius, load, 0.5);
                 for m in [&modulus as &dyn Fn(f64) -> Complex64, &nan] {
                     for (e0, e1) in [(2e6, 2e9), (1e-300, 1e308), (f64::MAX, f64::INFINITY)] {

@@ -23,7 +23,7 @@ use std::cell::Cell;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
 use nalgebra::{DMatrix, DVector, Dyn, Owned};
 
-use super::{StopReason, stop_from_error};
+use super::{StopReason, Tolerance, stop_from_error};
 use crate::problem::{Evaluation, Problem};
 
 /// Relative reduction of V and relative step below which a run has
@@ -32,6 +32,14 @@ use crate::problem::{Evaluation, Problem};
 /// time where the problem is well conditioned, while tighter ones cost
 /// thousands of evaluations at small λ where it is not.
 const LM_TOLERANCE: f64 = 1e-8;
+
+/// The tolerance on the relative reduction of V of the fits along the λ
+/// path, which only locate λ: their criterion values change by far less
+/// than between path points. (The step tolerance stays at
+/// [`LM_TOLERANCE`]: MINPACK's step test fires as soon as the trust region
+/// has shrunk, and at 1e-5 it ended path fits after a few rejected steps,
+/// far from their minimum.)
+const PATH_TOLERANCE: f64 = 1e-6;
 
 /// Residual reported at trial points the forward model refuses.
 const REFUSED_RESIDUAL: f64 = 1e8;
@@ -88,7 +96,15 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Adapter<'_, '_> {
 }
 
 /// Minimises from `start`; returns (iterations, stop reason).
-pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReason) {
+pub(crate) fn minimize(
+    problem: &Problem<'_>,
+    start: &[f64],
+    tolerance: Tolerance,
+) -> (usize, StopReason) {
+    let tol = match tolerance {
+        Tolerance::Path => PATH_TOLERANCE,
+        Tolerance::Final => LM_TOLERANCE,
+    };
     let theta = DVector::from_column_slice(start);
     let mut adapter = Adapter {
         problem,
@@ -100,21 +116,18 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
     let n = start.len();
     let budget = problem.budget.get();
     let solver = LevenbergMarquardt::new()
-        .with_ftol(LM_TOLERANCE)
+        .with_ftol(tol)
         .with_xtol(LM_TOLERANCE)
         .with_gtol(1e-12)
         .with_stepbound(STEP_BOUND)
         .with_patience((budget / (n + 1)).max(1));
     let (adapter, report) = solver.minimize(adapter);
     let stop = match report.termination {
-        TerminationReason::Converged { ftol, xtol } => StopReason::Converged(
-            match (ftol, xtol) {
-                (true, true) => "relative reduction and step below 1e-8",
-                (true, false) => "relative reduction of V below 1e-8",
-                _ => "relative step below 1e-8",
-            }
-            .into(),
-        ),
+        TerminationReason::Converged { ftol, xtol } => StopReason::Converged(match (ftol, xtol) {
+            (true, true) => format!("relative reduction and step below {tol:e}"),
+            (true, false) => format!("relative reduction of V below {tol:e}"),
+            _ => format!("relative step below {LM_TOLERANCE:e}"),
+        }),
         TerminationReason::Orthogonal => {
             StopReason::Converged("residuals orthogonal to the Jacobian".into())
         }

@@ -77,6 +77,16 @@ pub struct SolverRun {
     pub history: Vec<(usize, f64)>,
 }
 
+/// How tightly a run converges: `Path` for the fits that only locate λ,
+/// `Final` for the fit that is reported.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tolerance {
+    /// Relative reduction of 1e-6 (step 1e-8).
+    Path,
+    /// Relative reduction and step of 1e-8.
+    Final,
+}
+
 /// Default evaluation budget of a method in `dimension` free parameters.
 pub fn default_budget(method: Method, dimension: usize) -> usize {
     match method {
@@ -92,11 +102,12 @@ pub(crate) fn run(
     problem: &Problem<'_>,
     start: &[f64],
     budget: usize,
+    tolerance: Tolerance,
 ) -> SolverRun {
     let clock = std::time::Instant::now();
     problem.reset(budget);
     let (iterations, mut stop) = match method {
-        Method::LevenbergMarquardt => levenberg_marquardt::minimize(problem, start),
+        Method::LevenbergMarquardt => levenberg_marquardt::minimize(problem, start, tolerance),
         Method::Lbfgs => lbfgs::minimize(problem, start),
         Method::NelderMead => nelder_mead::minimize(problem, start),
     };

@@ -1,0 +1,253 @@
+//! Does the fit describe the data? Two tests on the residuals at the
+//! optimum, so that a fit that "converged" far from the data says so.
+//!
+//! - χ² test (σ measured): with residuals r_i = (μ_fit − μ_i)/σ_i, the
+//!   misfit χ² = Σ r_i² of a model that describes the data follows a χ²
+//!   distribution with N − t degrees of freedom (t the effective number of
+//!   parameters of the regularised fit). The upper tail probability
+//!   p = P(χ²_{N−t} ≥ χ²) below [`POOR_P_VALUE`] marks the fit poor. When σ
+//!   is estimated from the same residuals (no sigma column), χ² equals its
+//!   degrees of freedom by construction and the test says nothing; the
+//!   estimated noise level itself is reported, and a relative scatter above
+//!   [`IMPLAUSIBLE_NOISE`] is a warning (no friction rig scatters that much;
+//!   a model that cannot follow the data leaves that much).
+//! - Runs test (either way): a model that describes the data leaves
+//!   residuals whose signs, in order of speed, change at random. A curve the
+//!   model cannot follow leaves long runs of one sign (the residuals of a
+//!   fit that cuts through a hump). With n₊ positive and n₋ negative
+//!   residuals among N, the number of runs R has mean 1 + 2n₊n₋/N and
+//!   variance 2n₊n₋(2n₊n₋ − N)/(N²(N − 1)) (Wald–Wolfowitz); for a
+//!   temperature set the runs of each temperature are counted separately
+//!   and their means and variances added. The lower tail probability of
+//!   the normal approximation below [`POOR_P_VALUE`] marks the fit poor.
+//!   Smoothing makes neighbouring residuals slightly alike, so a good
+//!   regularised fit has a little fewer runs than pure noise; the threshold
+//!   is set low enough that the synthetic rubbers of the tests (15–41
+//!   speeds, 1–5 % noise) never trip it.
+//!
+//! # References
+//! - A. Wald, J. Wolfowitz, "On a test whether two samples are from the
+//!   same population", Ann. Math. Statist. 11 (1940) 147–162.
+//! - W.H. Press et al., *Numerical Recipes*, 3rd ed., §15.1 (χ² and the
+//!   goodness of fit), §14.3.
+
+use serde::Serialize;
+use statrs::distribution::{ChiSquared, ContinuousCDF, Normal};
+
+/// p-value below which a test marks the fit poor.
+pub const POOR_P_VALUE: f64 = 1e-3;
+
+/// Relative scatter of μ (estimated, no sigma column) above which the noise
+/// is implausible for a friction measurement: lab rigs scatter by 1–10 %.
+pub const IMPLAUSIBLE_NOISE: f64 = 0.2;
+
+/// The runs test of the residual signs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RunsTest {
+    /// Runs of one sign, in order of speed (per temperature).
+    pub observed: usize,
+    /// Their expected number for random signs.
+    pub expected: f64,
+    /// (observed − expected)/standard deviation.
+    pub z: f64,
+    /// P(as few runs or fewer) in the normal approximation.
+    pub p_value: f64,
+}
+
+/// Goodness of fit, as written to fit.json (`fit_quality`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FitQuality {
+    /// "good" or "poor".
+    pub verdict: &'static str,
+    /// "measured" (a sigma column) or "estimated" (from the residuals).
+    pub noise_source: &'static str,
+    /// The noise level: 1 in units of the measured σ, else the estimated
+    /// relative scatter of μ.
+    pub noise: f64,
+    /// Σ r² in units of σ (measured or estimated).
+    pub chi2: f64,
+    /// N − t.
+    pub degrees_of_freedom: f64,
+    /// P(χ² ≥ observed) when σ is measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub chi2_p_value: Option<f64>,
+    /// The runs test (None with fewer than two residuals of each sign).
+    pub runs: Option<RunsTest>,
+    /// Why the verdict is "poor", or what to look at; empty for a clean fit.
+    pub reasons: Vec<String>,
+}
+
+impl FitQuality {
+    /// True when a test marked the fit poor.
+    pub fn is_poor(&self) -> bool {
+        self.verdict == "poor"
+    }
+}
+
+/// The runs test of `residuals` in groups (each group's indices in order of
+/// speed); None when either sign has fewer than two members.
+pub(crate) fn runs_test(residuals: &[f64], groups: &[Vec<usize>]) -> Option<RunsTest> {
+    let (mut observed, mut expected, mut variance) = (0usize, 0.0, 0.0);
+    let (mut total_plus, mut total_minus) = (0usize, 0usize);
+    for group in groups {
+        let signs: Vec<bool> = group
+            .iter()
+            .map(|&i| residuals[i])
+            .filter(|r| *r != 0.0)
+            .map(|r| r > 0.0)
+            .collect();
+        if signs.is_empty() {
+            continue;
+        }
+        let n = signs.len() as f64;
+        let plus = signs.iter().filter(|s| **s).count() as f64;
+        let minus = n - plus;
+        total_plus += plus as usize;
+        total_minus += minus as usize;
+        observed += 1 + signs.windows(2).filter(|w| w[0] != w[1]).count();
+        expected += 1.0 + 2.0 * plus * minus / n;
+        if n > 1.0 {
+            let product = 2.0 * plus * minus;
+            variance += product * (product - n) / (n * n * (n - 1.0));
+        }
+    }
+    if total_plus < 2 || total_minus < 2 || variance <= 0.0 {
+        return None;
+    }
+    let z = (observed as f64 - expected) / variance.sqrt();
+    let p_value = Normal::standard().cdf(z);
+    Some(RunsTest {
+        observed,
+        expected,
+        z,
+        p_value,
+    })
+}
+
+/// The goodness of fit of residuals `residuals` (in units of the measured
+/// σ when `sigma_known`, else relative) with `effective_parameters` t,
+/// estimated noise `noise` (relative; ignored when σ is measured), grouped
+/// for the runs test by `groups`.
+pub(crate) fn assess(
+    residuals: &[f64],
+    groups: &[Vec<usize>],
+    effective_parameters: f64,
+    sigma_known: bool,
+    noise: f64,
+) -> FitQuality {
+    let n = residuals.len() as f64;
+    let dof = (n - effective_parameters).max(1.0);
+    let misfit: f64 = residuals.iter().map(|r| r * r).sum();
+    let mut reasons = Vec::new();
+    let mut poor = false;
+    let (chi2, chi2_p_value) = if sigma_known {
+        let p = ChiSquared::new(dof).map_or(f64::NAN, |d| d.sf(misfit));
+        if p < POOR_P_VALUE {
+            poor = true;
+            reasons.push(format!(
+                "χ² = {misfit:.1} for {dof:.1} degrees of freedom (p = {p:.1e}): the residuals \
+                 are {:.1} times the measured σ; the model does not describe the data, or σ is \
+                 underestimated",
+                (misfit / dof).sqrt()
+            ));
+        } else if misfit < 0.25 * dof {
+            reasons.push(format!(
+                "χ² = {misfit:.1} for {dof:.1} degrees of freedom: the residuals are {:.2} times \
+                 the measured σ; σ looks overestimated, and the bands with it",
+                (misfit / dof).sqrt()
+            ));
+        }
+        (misfit, Some(p))
+    } else {
+        if noise > IMPLAUSIBLE_NOISE {
+            reasons.push(format!(
+                "the estimated scatter of μ is {:.0} % (no sigma column): far above what a \
+                 friction rig scatters; the model does not follow the data (check the scene's \
+                 geometry and units), or the data are not one friction curve",
+                100.0 * noise
+            ));
+        }
+        (misfit / (noise * noise).max(f64::MIN_POSITIVE), None)
+    };
+    let runs = runs_test(residuals, groups);
+    if let Some(r) = runs
+        && r.p_value < POOR_P_VALUE
+    {
+        poor = true;
+        reasons.push(format!(
+            "the residuals change sign {} times in order of speed where {:.1} are expected \
+             (runs test p = {:.1e}): the fit leaves a systematic pattern (see mu.csv's \
+             residual column or the report's friction picture)",
+            r.observed.saturating_sub(groups.len()),
+            r.expected - groups.len() as f64,
+            r.p_value
+        ));
+    }
+    FitQuality {
+        verdict: if poor { "poor" } else { "good" },
+        noise_source: if sigma_known { "measured" } else { "estimated" },
+        noise: if sigma_known { 1.0 } else { noise },
+        chi2,
+        degrees_of_freedom: dof,
+        chi2_p_value,
+        runs,
+        reasons,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+    use rand_chacha::ChaCha8Rng;
+    use rand_distr::{Distribution, Normal as Gauss};
+
+    fn one_group(n: usize) -> Vec<Vec<usize>> {
+        vec![(0..n).collect()]
+    }
+
+    /// The runs statistics against a count by hand and the exact small-N
+    /// formulas.
+    #[test]
+    fn runs_are_counted_and_their_moments_follow_wald_wolfowitz() {
+        let r = [1.0, 2.0, -1.0, -0.5, 3.0, -2.0, -1.0, -1.0];
+        let t = runs_test(&r, &one_group(8)).unwrap();
+        assert_eq!(t.observed, 4);
+        // n₊ = 3, n₋ = 5: E = 1 + 30/8, Var = 30(30 − 8)/(64·7).
+        assert!((t.expected - (1.0 + 30.0 / 8.0)).abs() < 1e-12);
+        let sd = (30.0 * 22.0 / (64.0 * 7.0f64)).sqrt();
+        assert!((t.z - (4.0 - 4.75) / sd).abs() < 1e-12);
+        // Two groups count their runs separately.
+        let t2 = runs_test(&r, &[vec![0, 1, 2, 3], vec![4, 5, 6, 7]]).unwrap();
+        assert_eq!(t2.observed, 4);
+        assert!(runs_test(&[1.0, 1.0, -1.0], &one_group(3)).is_none());
+    }
+
+    /// Gaussian residuals pass both tests at the stated rate; a smooth
+    /// systematic wave of the same size fails the runs test; χ² catches
+    /// residuals three times σ.
+    #[test]
+    fn noise_passes_and_patterns_fail() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let normal = Gauss::new(0.0, 1.0).unwrap();
+        let mut poor = 0;
+        for _ in 0..2000 {
+            let r: Vec<f64> = (0..15).map(|_| normal.sample(&mut rng)).collect();
+            if assess(&r, &one_group(15), 3.0, true, 1.0).is_poor() {
+                poor += 1;
+            }
+        }
+        // Two tests at p < 1e-3 each: a false alarm rate of a few per mille.
+        assert!(poor <= 12, "{poor} of 2000 pure-noise fits marked poor");
+        let wave: Vec<f64> = (0..15).map(|i| (i as f64 * 0.4).sin()).collect();
+        let q = assess(&wave, &one_group(15), 3.0, false, 0.3);
+        assert!(q.is_poor(), "{q:?}");
+        assert!(q.reasons.iter().any(|r| r.contains("runs test")));
+        assert!(q.reasons.iter().any(|r| r.contains("30 %")));
+        let big: Vec<f64> = (0..15)
+            .map(|i| 3.0 * if i % 2 == 0 { 1.0 } else { -1.0 })
+            .collect();
+        let q = assess(&big, &one_group(15), 3.0, true, 1.0);
+        assert!(q.is_poor() && q.chi2_p_value.unwrap() < 1e-6, "{q:?}");
+    }
+}
