@@ -263,6 +263,68 @@ fn paper_sphere_matches_the_reference_implementation() {
     }
 }
 
+// ------------------------------------------ sanity warnings (need μ)
+
+/// Runs forward on `scene`, which must succeed, and returns the `warning:`
+/// lines of its stderr.
+fn warning_lines(scene: &Path) -> Vec<String> {
+    let out = forward(scene, None);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "{}: {stderr}", scene.display());
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .map(String::from)
+        .collect()
+}
+
+/// The bundled example sphere with `from` replaced by `to` and 9 speeds.
+fn example_sphere_with(from: &str, to: &str) -> String {
+    let base = fs::read_to_string(data("example-sphere.toml")).unwrap();
+    edit(&edit(&base, from, to), "count = 41", "count = 9")
+}
+
+#[test]
+fn bundled_examples_print_no_sanity_warnings() {
+    for name in [
+        "example-sphere.toml",
+        "hn-rubber.toml",
+        "paper-fig2-cylinder.toml",
+    ] {
+        let lines = warning_lines(&data(name));
+        assert!(lines.is_empty(), "{name}: {lines:#?}");
+    }
+}
+
+#[test]
+fn contact_beyond_the_small_contact_theory_is_warned_about() {
+    // The case: 100 N on the example's 5 mm ball, r0 = 5.2 mm.
+    let dir = TempDir::new("sanity-load");
+    let scene = example_sphere_with("load = 1.0 ", "load = 100.0 ");
+    let lines = warning_lines(&dir.write("heavy.toml", &scene));
+    let contact: Vec<&String> = lines
+        .iter()
+        .filter(|l| l.contains("Hertz contact radius"))
+        .collect();
+    assert_eq!(contact.len(), 1, "{lines:#?}");
+    for fragment in ["r = 0.0052 m", "R/3", "geometry.load = 100 N"] {
+        assert!(contact[0].contains(fragment), "{fragment}: {}", contact[0]);
+    }
+}
+
+#[test]
+fn radius_in_millimetres_is_warned_about() {
+    let dir = TempDir::new("sanity-radius");
+    let scene = example_sphere_with("radius = 0.005 ", "radius = 5 ");
+    let lines = warning_lines(&dir.write("mm.toml", &scene));
+    assert!(
+        lines.iter().any(|l| l.contains("geometry.radius = 5 m")
+            && l.contains("was it given in mm? (5 mm = 5e-3 m)")),
+        "{lines:#?}"
+    );
+}
+
 // --------------------------------------------------- output file (need μ)
 
 #[test]

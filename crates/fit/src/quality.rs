@@ -8,9 +8,9 @@
 //!   p = P(χ²_{N−t} ≥ χ²) below [`POOR_P_VALUE`] marks the fit poor. When σ
 //!   is estimated from the same residuals (no sigma column), χ² equals its
 //!   degrees of freedom by construction and the test says nothing; the
-//!   estimated noise level itself is reported, and a relative scatter above
-//!   [`IMPLAUSIBLE_NOISE`] is a warning (no friction rig scatters that much;
-//!   a model that cannot follow the data leaves that much).
+//!   estimated noise level itself is the test: a relative scatter above
+//!   [`IMPLAUSIBLE_NOISE`] marks the fit poor (no friction rig scatters that
+//!   much; a model that cannot follow the data leaves that much).
 //! - Runs test (either way): a model that describes the data leaves
 //!   residuals whose signs, in order of speed, change at random. A curve the
 //!   model cannot follow leaves long runs of one sign (the residuals of a
@@ -160,6 +160,7 @@ pub(crate) fn assess(
         (misfit, Some(p))
     } else {
         if noise > IMPLAUSIBLE_NOISE {
+            poor = true;
             reasons.push(format!(
                 "the estimated scatter of μ is {:.0} % (no sigma column): far above what a \
                  friction rig scatters; the model does not follow the data (check the scene's \

@@ -24,8 +24,10 @@ use anyhow::{Context, Result};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
-use rollfit_model::Shape;
+use rollfit_fit::RollingSetup;
+use rollfit_fit::sanity;
 use rollfit_model::ladder::AutoSweep;
+use rollfit_model::{Shape, ViscoelasticModulus};
 
 use crate::output;
 use crate::scene_file::{self, DynScene, ForwardBlock, ForwardRung, ForwardSetup};
@@ -179,7 +181,66 @@ pub fn run(args: &Args) -> Result<()> {
         None => output::write_stdout(&bytes)?,
     }
     eprintln!("{}", summary(&setup, &solved, &mu));
+    for line in sanity_warnings(&setup, &mu) {
+        eprintln!("warning: {line}");
+    }
     Ok(())
+}
+
+/// The sanity checks of [`rollfit_fit::sanity`]: the scene's inputs, its
+/// material at each temperature and the predicted μ, one message each
+/// (warnings only: the exit status stays 0). A message the same at every
+/// temperature is given once; others name their temperature.
+fn sanity_warnings(setup: &ForwardSetup, mu: &[Vec<f64>]) -> Vec<String> {
+    let rolling = |scene: &DynScene| RollingSetup {
+        geometry: *scene.geometry(),
+        substrate: *scene.substrate(),
+        contact: scene.contact(),
+    };
+    let speeds = &setup.speeds;
+    let mut lines: Vec<String> =
+        sanity::input_warnings(&rolling(&setup.blocks[0].scene), speeds, None)
+            .into_iter()
+            .map(|w| w.message)
+            .collect();
+    let per_block: Vec<(Option<f64>, Vec<String>)> = setup
+        .blocks
+        .iter()
+        .zip(mu)
+        .map(|(block, mu)| {
+            let scene = &block.scene;
+            let material = scene.material();
+            let e0 = material.static_modulus();
+            // The glassy modulus: exact for a positive spectrum, else |E|
+            // three decades above the modulus's structure.
+            let e1 = material
+                .relaxation_bound()
+                .unwrap_or_else(|| material.modulus(1e3 * material.structure_range().1).norm());
+            let rolling = rolling(scene);
+            let modulus = |omega: f64| material.modulus(omega);
+            let mut w = sanity::material_warnings(&rolling, speeds, &modulus, e0, e1, false);
+            w.extend(sanity::predicted_friction_warnings(
+                &rolling, speeds, mu, e0, false,
+            ));
+            let messages = w.into_iter().map(|w| w.message).collect();
+            (block.shift.map(|s| s.temperature), messages)
+        })
+        .collect();
+    for (i, (temperature, messages)) in per_block.iter().enumerate() {
+        for m in messages {
+            if per_block.iter().all(|(_, other)| other.contains(m)) {
+                if i == 0 {
+                    lines.push(m.clone());
+                }
+            } else {
+                lines.push(match temperature {
+                    Some(t) => format!("at {t} °C: {m}"),
+                    None => m.clone(),
+                });
+            }
+        }
+    }
+    lines
 }
 
 /// Columns of the exact solution (`[contact] size = "exact"`): the contact
