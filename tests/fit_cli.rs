@@ -220,6 +220,72 @@ fn fits_a_synthetic_measurement_with_a_static_modulus_anchor() {
     assert_eq!(names, ["fit.json", "modulus.csv", "mu.csv"]);
 }
 
+/// The bundled measurement as a European spreadsheet exports it (a title
+/// line, ';' between the columns, decimal commas, the speed in mm/s, the
+/// friction as "COF", an extra row with an empty cell) gives the same fit as
+/// the plain CSV, and stderr says how the file was read.
+#[test]
+fn a_semicolon_decimal_comma_file_with_units_fits_like_the_plain_csv() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let (scene, plain) = (
+        root.join("data/hn-rubber.toml"),
+        root.join("data/hn-rubber.csv"),
+    );
+    let dir = TempDir::new("fit-european");
+    let table = fs::read_to_string(&plain).unwrap();
+    let mut lines = table.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header[..3], ["v", "mu", "sigma"]);
+    // m/s → mm/s by the decimal exponent, so that the reader's ×1e-3 gives
+    // back exactly the same numbers.
+    let mm = |v: &str| {
+        let (mantissa, exponent) = match v.split_once(['e', 'E']) {
+            Some((m, e)) => (m, e.parse::<i32>().unwrap()),
+            None => (v, 0),
+        };
+        format!("{mantissa}E{}", exponent + 3)
+    };
+    let mut european =
+        String::from("Rollreibung 2024-03-01;Probe HN\n\nvelocity (mm/s);COF;COF std;\n");
+    for (i, line) in lines.enumerate() {
+        let cells: Vec<&str> = line.split(',').collect();
+        let row = format!("{};{};{};\n", mm(cells[0]), cells[1], cells[2]);
+        european += &row.replace('.', ",");
+        if i == 10 {
+            european += "0,5;;0,001;\n";
+        }
+    }
+    let data = dir.write("european.csv", &european);
+
+    let out_plain = dir.path().join("plain");
+    fit_ok(&scene, &plain, &out_plain, &[]);
+    let out = dir.path().join("european");
+    let stderr = fit_ok(&scene, &data, &out, &[]);
+    for fragment in [
+        "note: data file ",
+        "european.csv: header on line 3; the 1 line above it (titles) ignored",
+        "european.csv: columns separated by ';', decimal commas read as decimal points",
+        "european.csv: column \"velocity (mm/s)\" read as v in mm/s, converted to m/s (×1e-3)",
+        "european.csv: column \"COF\" read as mu",
+        "european.csv: column \"COF std\" read as sigma",
+        "warning: data file ",
+        "european.csv: skipped 1 row with empty or NaN cells in mu: line 15",
+    ] {
+        assert!(stderr.contains(fragment), "{fragment:?} in {stderr}");
+    }
+    let (a, b) = (
+        json(&out_plain.join("fit.json")),
+        json(&out.join("fit.json")),
+    );
+    assert_eq!(a["model"], b["model"]);
+    assert_eq!(a["objective"], b["objective"]);
+    assert_eq!(a["input"]["points"], b["input"]["points"]);
+    assert_eq!(
+        fs::read_to_string(out_plain.join("mu.csv")).unwrap(),
+        fs::read_to_string(out.join("mu.csv")).unwrap()
+    );
+}
+
 /// The bundled temperature set (data/hn-rubber-tset.*, five temperatures,
 /// WLF truth C1 = 8.86, C2 = 101.6 K at 20 °C): fit.json carries the shift
 /// and its cross-check, mu.csv the reduced speeds.
@@ -391,7 +457,7 @@ fn an_unconverged_fit_writes_its_results_and_fails_unless_allowed() {
     let (_, data) = synthetic(&dir, SCENE);
     let scene = dir.write(
         "budget.toml",
-        &edit(SCENE, "[fit]\n", "[fit]\nmax_evaluations = 3\n"),
+        &edit(SCENE, "[fit]\n", "[fit]\nmax_evaluations = 1\n"),
     );
     let out = dir.path().join("result");
     let output = fit(&scene, &data, &out, &[]);
@@ -493,17 +559,51 @@ fn data_without_a_mu_column() {
         SCENE,
         Some("# speeds only\nv,friction\n1e-3,0.1\n"),
         &[],
-        &["bad-data.csv", "line 2", "no column `mu`", "`friction`"],
+        &[
+            "bad-data.csv",
+            "line 2 (header)",
+            "no friction column (mu, µ, COF",
+            "found \"v\", \"friction\" (delimiter ',')",
+        ],
     );
 }
 
 #[test]
-fn nan_speed() {
+fn speed_that_is_not_a_number() {
     assert_refused(
         SCENE,
-        Some("v,mu\n1e-3,0.1\n# next\nNaN,0.2\n"),
+        Some("v,mu\n1e-3,0.1\n# next\nabc,0.2\n"),
         &[],
-        &["bad-data.csv", "line 4", "column `v`", "NaN", "finite"],
+        &[
+            "bad-data.csv",
+            "line 4",
+            "column `v`",
+            "\"abc\" is not a number",
+        ],
+    );
+}
+
+#[test]
+fn sheet_flag_with_a_text_file() {
+    assert_refused(
+        SCENE,
+        Some("v,mu\n1e-3,0.1\n"),
+        &["--sheet", "Run 1"],
+        &[
+            "bad-data.csv",
+            "a sheet (\"Run 1\") was given",
+            "not a workbook",
+        ],
+    );
+}
+
+#[test]
+fn infinite_speed() {
+    assert_refused(
+        SCENE,
+        Some("v,mu\n1e-3,0.1\n# next\ninf,0.2\n"),
+        &[],
+        &["bad-data.csv", "line 4", "column `v`", "\"inf\"", "finite"],
     );
 }
 
@@ -554,11 +654,11 @@ fn empty_data() {
 fn temperature_set_with_one_point_per_temperature() {
     assert_refused(
         SCENE,
-        Some("v,mu,T\n1e-3,0.1,20\n1e-2,0.2,40\n"),
+        Some("v,mu,T\n1e-3,0.1,20\n1e-2,0.2,20\n1e-1,0.3,20\n1e-2,0.2,40\n"),
         &[],
         &[
             "bad-data.csv",
-            "T = 20 °C has 1 measurement",
+            "T = 40 °C has 1 measurement",
             "temperature set needs at least two speeds",
         ],
     );
@@ -613,12 +713,18 @@ fn anchor_above_the_glassy_bound() {
 }
 
 #[test]
-fn fewer_points_than_free_parameters() {
+fn fewer_than_four_distinct_speeds() {
     assert_refused(
         SCENE,
-        Some("v,mu\n1e-5,0.05\n1e-3,0.04\n1e-1,0.01\n"),
+        Some("v,mu\n1e-5,0.05\n1e-3,0.04\n1e-1,0.01\n1e-3,0.041\n"),
         &[],
-        &["bad-data.csv", "3 data points", "free parameters"],
+        &["bad-data.csv", "3 distinct speed", "4 row", "at least 4"],
+    );
+    assert_refused(
+        SCENE,
+        Some("v,mu\n1e-3,0.05\n1e-3,0.04\n1e-3,0.045\n1e-3,0.041\n1e-3,0.05\n"),
+        &[],
+        &["bad-data.csv", "1 distinct speed", "5 row"],
     );
 }
 

@@ -9,6 +9,11 @@
 //! 20 °C), 1 % noise, |E| at 10 rad/s as the anchor, default grid (two per
 //! decade over the combined ~16 decades, 48 terms), C1 and C2 fitted; with
 //! and without the single-temperature cross-check.
+//!
+//! And laboratory-shaped data (issue 13): 15 speeds over 5 decades of the
+//! bundled rubber under its ball, 3 % noise, no sigma column (λ by the
+//! marginal likelihood), |E| at the middle speed's contact frequency as the
+//! anchor.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rollfit_fit::{FitParams, ScaleAnchor, ShiftSettings, fit};
@@ -18,7 +23,7 @@ use std::hint::black_box;
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use common::{hn_rubber, setup, synthetic, temperature_set};
+use common::{hn_rubber, setup, sparse, synthetic, temperature_set};
 
 fn benches(c: &mut Criterion) {
     let params = FitParams {
@@ -32,6 +37,20 @@ fn benches(c: &mut Criterion) {
     group.sample_size(10);
     group.bench_function("anchored_regularised_41_points", |b| {
         b.iter(|| fit(black_box(&measured), &params).unwrap())
+    });
+    let lab = sparse(setup(), hn_rubber(), 1e-6, 5.0, 15, 0.03, 1);
+    let omega = 10f64.powf(-3.5) / rollfit_fit::tau_grid::contact_size(&setup(), 2e6);
+    let lab_params = FitParams {
+        anchor: Some(ScaleAnchor::ModulusAt {
+            omega,
+            modulus: hn_rubber().modulus(omega).norm(),
+        }),
+        ..FitParams::default()
+    }
+    .check(setup())
+    .unwrap();
+    group.bench_function("sparse_15_points_no_sigma", |b| {
+        b.iter(|| fit(black_box(&lab), &lab_params).unwrap())
     });
     let set = temperature_set(hn_rubber(), &[-20.0, 0.0, 20.0, 40.0, 60.0], 0.01, 1);
     for (name, cross_check) in [

@@ -34,11 +34,11 @@ use crate::parametrization::Parametrization;
 use crate::params::{Lambda, ModulusAnchor, TermRule, ValidFitParams};
 use crate::problem::Problem;
 use crate::quality::assess;
-use crate::sanity;
 use crate::regularization::{LambdaRule, REFINEMENTS, Trial, path};
 use crate::report::{
     AnchorRecord, FitReport, LambdaRecord, ModelRecord, RunRecord, TermsRecord, Window,
 };
+use crate::sanity;
 use crate::solvers::{SolverRun, Tolerance, default_budget, run};
 use crate::tau_grid::{SOFTEST_MODULUS, probed_band, relaxation_times};
 use crate::temperature_set::{ShiftStart, cross_check, temperature_set};
@@ -159,8 +159,7 @@ fn sanity_warnings(
         _ => data.speeds().to_vec(),
     };
     let m = &report.model;
-    let prony =
-        rollfit_model::Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
+    let prony = rollfit_model::Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
     let mut out = sanity::input_warnings(setup, data.speeds(), Some(data.friction()));
     out.extend(sanity::material_warnings(
         setup,

@@ -54,7 +54,9 @@ fn cases() -> Vec<(&'static str, RollingSetup, HavriliakNegami, f64)> {
 fn sparse_lab_data_are_recovered() {
     let mut over = Vec::new();
     for (name, s, truth, v_min) in cases() {
-        let params = anchored_at(s, &truth, v_min * 10f64.powf(2.5)).check(s).unwrap();
+        let params = anchored_at(s, &truth, v_min * 10f64.powf(2.5))
+            .check(s)
+            .unwrap();
         let mut coverage = 0.0;
         for seed in 0..10 {
             let data = sparse(s, truth.clone(), v_min, 5.0, 15, 0.03, seed);
@@ -94,11 +96,17 @@ fn distinct_speeds_count_not_rows() {
     let err = Measurements::new(vec![1e-3, 1e-2, 1e-3, 1e-1], vec![0.01; 4], None, None)
         .unwrap_err()
         .to_string();
-    assert!(err.contains("3 distinct speed") && err.contains("at least 4"), "{err}");
+    assert!(
+        err.contains("3 distinct speed") && err.contains("at least 4"),
+        "{err}"
+    );
     let err = Measurements::new(vec![1e-3; 50], vec![0.01; 50], None, None)
         .unwrap_err()
         .to_string();
-    assert!(err.contains("1 distinct speed") && err.contains("50 row"), "{err}");
+    assert!(
+        err.contains("1 distinct speed") && err.contains("50 row"),
+        "{err}"
+    );
 }
 
 /// A fit that cannot follow the data says so: three relaxation times and
@@ -136,13 +144,20 @@ fn wrong_units_in_the_scene_are_named() {
     mm.geometry.radius = 5.0;
     let report = fit(&data, &FitParams::default().check(mm).unwrap()).unwrap();
     assert!(
-        report.warnings.iter().any(|w| w.contains("radius") && w.contains("mm")),
+        report
+            .warnings
+            .iter()
+            .any(|w| w.contains("radius") && w.contains("mm")),
         "{:?}",
         report.warnings
     );
     let mut heavy = setup();
     heavy.geometry.load = 1000.0;
-    let report = fit(&data, &anchored_at(heavy, &truth, 1e-4).check(heavy).unwrap()).unwrap();
+    let report = fit(
+        &data,
+        &anchored_at(heavy, &truth, 1e-4).check(heavy).unwrap(),
+    )
+    .unwrap();
     assert!(
         report.warnings.iter().any(|w| w.contains("load")),
         "{:?}",

@@ -42,8 +42,15 @@ pub struct Args {
     /// Scene file (TOML): [geometry], optional [substrate], [contact],
     /// [material] (starting point) and [fit] (anchor and settings).
     pub scene: PathBuf,
-    /// Measured data (CSV): columns v (m/s) and mu, optional sigma and T.
+    /// Measured data: CSV (',', ';' or tab; decimal commas with ';' or tab)
+    /// or a workbook (.xlsx, .xlsm, .xls, .ods) with a speed column (v,
+    /// velocity, speed; m/s or a unit such as "velocity (mm/s)") and a
+    /// friction column (mu, µ, COF, friction coefficient), optional sigma and
+    /// T (°C, or a unit such as T_K).
     pub data: PathBuf,
+    /// The sheet of a workbook DATA to read (default: the first).
+    #[arg(long, value_name = "NAME")]
+    pub sheet: Option<String>,
     /// Folder for fit.json, modulus.csv and mu.csv (created if missing).
     /// Default: fits/<DATA file stem>.
     #[arg(short, long, value_name = "DIR")]
@@ -53,6 +60,10 @@ pub struct Args {
     /// Exit with status 0 even when the final solver run did not converge.
     #[arg(long)]
     pub allow_unconverged: bool,
+    /// Exit with status 0 even when the goodness-of-fit tests (χ², runs of
+    /// one-signed residuals) find that the fit does not describe the data.
+    #[arg(long)]
+    pub allow_poor_fit: bool,
 }
 
 /// Fit settings that override the scene's [fit] table (shared by `fit` and
@@ -165,6 +176,7 @@ pub fn run(args: &Args) -> Result<()> {
     let job = Job {
         scene: &args.scene,
         data: &args.data,
+        sheet: args.sheet.as_deref(),
         dir: &dir,
         settings: &args.settings,
     };
@@ -182,6 +194,24 @@ pub fn run(args: &Args) -> Result<()> {
             "note: a temperature set; the master curve is E*(ω) at T_ref = {} °C",
             shift.t_ref()
         );
+    }
+    // An unconverged fit is judged by the convergence gate below alone.
+    if report.converged && report.fit_quality.is_poor() {
+        if args.allow_poor_fit {
+            eprintln!(
+                "warning: the fit does not describe the data (fit_quality in fit.json); results \
+                 kept because of --allow-poor-fit"
+            );
+        } else {
+            bail!(
+                "the fit does not describe the data: {}; the results in {} are marked \
+                 \"fit_quality\": {{\"verdict\": \"poor\"}} (check the scene's units and \
+                 geometry, look at the residuals in mu.csv or `rollfit report`, or give \
+                 --allow-poor-fit to accept them)",
+                report.fit_quality.reasons.join("; "),
+                dir.display()
+            );
+        }
     }
     if !report.converged {
         if args.allow_unconverged {
@@ -206,6 +236,8 @@ pub fn run(args: &Args) -> Result<()> {
 pub struct Job<'a> {
     pub scene: &'a Path,
     pub data: &'a Path,
+    /// The sheet of a workbook data file (None: the first).
+    pub sheet: Option<&'a str>,
     pub dir: &'a Path,
     pub settings: &'a Settings,
 }
@@ -220,7 +252,8 @@ pub struct Outcome {
 /// Reads the scene and the data of `job`, fits, and writes DIR/mu.csv,
 /// DIR/modulus.csv and DIR/fit.json (fit.json last, each atomically). An
 /// unconverged fit is written and returned (the caller decides); `log`
-/// receives a line before the (possibly long) fit starts.
+/// receives the data file's notes and warnings (how it was read, rows
+/// skipped) and a line before the (possibly long) fit starts.
 pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     let (scene_path, data_path, dir) = (job.scene, job.data, job.dir);
     if dir.exists() && !dir.is_dir() {
@@ -235,7 +268,16 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         .fit_setup()
         .with_context(|| format!("scene file {}", scene_path.display()))?;
     let overridden = apply_flags(job.settings, &mut params);
-    let table = data_file::read(data_path)?;
+    let table = data_file::read_sheet(data_path, job.sheet)?;
+    for note in &table.notes {
+        log(&format!("note: data file {}: {note}", data_path.display()));
+    }
+    for warning in &table.warnings {
+        log(&format!(
+            "warning: data file {}: {warning}",
+            data_path.display()
+        ));
+    }
     let temperature =
         single_temperature(&table).with_context(|| format!("data file {}", data_path.display()))?;
     let data = table
@@ -439,9 +481,34 @@ pub fn summary(report: &FitReport, dir: &Path) -> String {
         report.runs.len()
     );
     text += &format!(
-        "objective V = {:.6e}; misfit per point {:.4} ({weights}), noise ≈ {:.3e}\n",
-        report.objective, report.misfit_per_point, report.noise
+        "objective V = {:.6e}; misfit per point {:.4} ({weights})\n",
+        report.objective, report.misfit_per_point
     );
+    let quality = &report.fit_quality;
+    text += &if report.sigma_weights {
+        format!(
+            "fit quality {}: χ² = {:.1} for {:.1} degrees of freedom{}",
+            quality.verdict,
+            quality.chi2,
+            quality.degrees_of_freedom,
+            quality
+                .chi2_p_value
+                .map_or(String::new(), |p| format!(" (p = {p:.2})"))
+        )
+    } else {
+        format!(
+            "fit quality {}: noise estimated from the residuals (no sigma column): {:.2} % of μ",
+            quality.verdict,
+            100.0 * report.noise
+        )
+    };
+    if let Some(runs) = &quality.runs {
+        text += &format!(
+            "; runs test p = {:.2} ({} runs, {:.1} expected)",
+            runs.p_value, runs.observed, runs.expected
+        );
+    }
+    text += "\n";
     text += &format!(
         "λ = {:.4e} ({}); {} effective parameters\n",
         report.lambda.value,
