@@ -7,6 +7,7 @@
 //! name = "hn-rubber"      # unique, [A-Za-z0-9._-]+: the result folder
 //! scene = "hn-rubber.toml"
 //! data = "hn-rubber.csv"
+//! # sheet = "Run 1"     # optional: the sheet of a workbook data file
 //! # optional: method, lambda, seed, starts, terms
 //! ```
 //!
@@ -56,6 +57,8 @@ pub struct Entry {
     pub scene: PathBuf,
     /// The data file, resolved against the manifest's folder.
     pub data: PathBuf,
+    /// The sheet of a workbook data file (None: the first).
+    pub sheet: Option<String>,
     /// The entry's own settings (over the defaults and the flags).
     pub settings: Settings,
 }
@@ -160,6 +163,7 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
                 name,
                 scene,
                 data,
+                sheet: raw_entry.sheet.take(),
                 settings: raw_entry.settings(),
             });
         }
@@ -321,6 +325,7 @@ struct RawEntry {
     name: Option<Spanned<String>>,
     scene: Option<Spanned<String>>,
     data: Option<Spanned<String>>,
+    sheet: Option<String>,
     // Spelled out rather than `#[serde(flatten)]`: flatten does not work
     // with deny_unknown_fields.
     method: Option<MethodValue>,
@@ -548,6 +553,17 @@ mod tests {
             check_settings(&zero),
             Err(FitError::InvalidSetting { key, .. }) if key == "starts"
         ));
+    }
+
+    #[test]
+    fn sheet_of_an_entry() {
+        let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+        let text = "[[entry]]\nname = \"a\"\nscene = \"hn-rubber.toml\"\ndata = \"hn-rubber.csv\"\n\
+                    sheet = \"Run 1\"\n[[entry]]\nname = \"b\"\nscene = \"hn-rubber.toml\"\n\
+                    data = \"hn-rubber.csv\"\n";
+        let manifest = parse(text, &base).unwrap();
+        assert_eq!(manifest.entries[0].sheet.as_deref(), Some("Run 1"));
+        assert_eq!(manifest.entries[1].sheet, None);
     }
 
     #[test]

@@ -110,7 +110,7 @@ fn a_single_temperature_fit_gets_four_pictures_with_every_series() {
         "fit",
         "v (m/s)",
         "μ",
-        "residual (%)",
+        "(μ_fit − μ_meas)/μ_meas (%)",
     ] {
         assert!(text.contains(label), "friction: no text {label:?}");
     }

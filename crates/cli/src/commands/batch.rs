@@ -353,6 +353,7 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> Ent
     let job = Job {
         scene: &entry.scene,
         data: &entry.data,
+        sheet: entry.sheet.as_deref(),
         dir: &folder,
         settings,
     };

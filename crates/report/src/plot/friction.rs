@@ -1,7 +1,8 @@
 //! Picture 1: the measured μ(v) (error bars where σ is known) with the
-//! fitted curve on log–log axes, and below it the relative residuals
-//! (μ_measured − μ_fit)/μ_fit in percent. A temperature set gets one colour
-//! per temperature.
+//! fitted curve on log–log axes, and below it the relative residuals in
+//! percent, 100 (μ_fit − μ_meas)/μ_meas — the `residual` column of mu.csv
+//! (README, "Fit results") — with error bars ±100 σ/μ_meas where σ is
+//! known. A temperature set gets one colour per temperature.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -47,9 +48,9 @@ impl Figure for FrictionFigure<'_> {
 
     fn caption(&self) -> String {
         if self.fit.is_temperature_set() {
-            "Measured μ(v) per temperature (points) and the joint fit (lines); relative residuals below.".into()
+            "Measured μ(v) per temperature (points) and the joint fit (lines); relative residuals (μ_fit − μ_meas)/μ_meas below.".into()
         } else {
-            "Measured μ(v) (points, ±1σ bars where σ is known) and the fit (line); relative residuals below.".into()
+            "Measured μ(v) (points, ±1σ bars where σ is known) and the fit (line); relative residuals (μ_fit − μ_meas)/μ_meas below.".into()
         }
     }
 
@@ -131,8 +132,9 @@ impl Figure for FrictionFigure<'_> {
         }
         draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
 
-        let residual = |r: &FrictionRow| 100.0 * (r.mu_measured - r.mu_fit) / r.mu_fit;
-        let bar = |r: &FrictionRow| r.sigma.map_or(0.0, |s| 100.0 * s / r.mu_fit);
+        // The convention of mu.csv's `residual` column, in percent.
+        let residual = |r: &FrictionRow| 100.0 * (r.mu_fit - r.mu_measured) / r.mu_measured;
+        let bar = |r: &FrictionRow| r.sigma.map_or(0.0, |s| 100.0 * s / r.mu_measured);
         let y_residual = axes::linear_range(
             rows.iter()
                 .flat_map(|r| [residual(r) - bar(r), residual(r) + bar(r)]),
@@ -143,7 +145,7 @@ impl Figure for FrictionFigure<'_> {
             .x_label_area_size(45)
             .y_label_area_size(75)
             .build_cartesian_2d(log_axis(x_range.clone()), y_residual)?;
-        draw_mesh(&mut chart, "v (m/s)", "residual (%)", false)?;
+        draw_mesh(&mut chart, "v (m/s)", "(μ_fit − μ_meas)/μ_meas (%)", false)?;
         chart.draw_series(std::iter::once(PathElement::new(
             vec![(x_range.start, 0.0), (x_range.end, 0.0)],
             BLACK.stroke_width(1),
