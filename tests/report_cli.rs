@@ -22,7 +22,9 @@ fn run(args: &[&OsStr]) -> std::process::Output {
     rollfit_in(Some(&workspace()), args)
 }
 
-/// A 15-term fit of the bundled example into `tmp/fit`.
+/// A 15-term fit of the bundled example into `tmp/fit` (0.9 terms per
+/// decade cannot follow the 1 % data to χ²/N = 1: it is judged poor, and
+/// accepted here with `--allow-poor-fit`, as the report must draw any fit).
 fn fifteen_term_fit(tmp: &TempDir) -> PathBuf {
     let dir = tmp.path().join("fit");
     let out = run(&[
@@ -31,6 +33,7 @@ fn fifteen_term_fit(tmp: &TempDir) -> PathBuf {
         "data/hn-rubber.csv".as_ref(),
         "--terms".as_ref(),
         "15".as_ref(),
+        "--allow-poor-fit".as_ref(),
         "-o".as_ref(),
         dir.as_os_str(),
     ]);
