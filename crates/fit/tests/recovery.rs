@@ -271,20 +271,9 @@ fn unanchored_fit_warns_and_its_band_covers_the_truth() {
 #[test]
 fn second_truth_under_a_cylinder_is_recovered() {
     use rollfit_fit::Measurements;
-    use rollfit_model::{ContactSize, Geometry, HavriliakNegami, Scene, Shape, Substrate};
-    let truth = HavriliakNegami::new(5e6, 1.5e9, 1e-5, 0.7, 0.25).unwrap();
-    let setup = rollfit_fit::RollingSetup {
-        geometry: Geometry {
-            shape: Shape::Cylinder,
-            radius: 0.01,
-            load: 200.0,
-        },
-        substrate: Substrate {
-            poisson: 0.49,
-            film_thickness: None,
-        },
-        contact: ContactSize::Dynamic,
-    };
+    use rollfit_model::Scene;
+    let truth = common::narrow_rubber();
+    let setup = common::cylinder_setup();
     let scene = Scene::new(
         setup.geometry,
         setup.substrate,
