@@ -28,6 +28,7 @@ use crate::analysis::{
     DETERMINED_RELATIVE_SIGMA, add_bias, curvature, determined_stretch, modulus_point,
     probed_window,
 };
+use crate::condense::condense;
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::parametrization::Parametrization;
@@ -41,7 +42,7 @@ use crate::report::{
 use crate::sanity;
 use crate::solvers::{SolverRun, Tolerance, default_budget, run};
 use crate::tau_grid::{SOFTEST_MODULUS, probed_band, relaxation_times};
-use crate::temperature_set::{ShiftStart, cross_check, temperature_set};
+use crate::temperature_set::{ShiftStart, cross_check, temperature_set, wlf_before_free};
 
 /// E1/E0 of the neutral start.
 const START_RATIO: f64 = 1000.0;
@@ -51,13 +52,20 @@ const START_MODULUS: f64 = 1e6;
 const CURVE_DENSITY: f64 = 10.0;
 
 /// Fits `data` under `params`.
-pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
+pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
     let clock = Instant::now();
+    let condensed = condense(rows)?;
+    let data = condensed.as_ref().map_or(rows, |c| &c.data);
     let set = temperature_set(data, params)?;
     let range = set.as_ref().map_or_else(|| data.speed_range(), |s| s.range);
     let set = set.as_ref();
-    let (mut report, candidates) = match &params.terms {
-        TermRule::Auto => {
+    let via_wlf = set.and_then(|s| wlf_before_free(data, params, s));
+    let (mut report, candidates) = match (&params.terms, via_wlf) {
+        (_, Some((wlf, start))) => {
+            let candidates = wlf.terms.candidates.clone();
+            (free_from_wlf(data, params, wlf, &start)?, candidates)
+        }
+        (TermRule::Auto, None) => {
             let mut best: Option<(f64, FitReport)> = None;
             let mut candidates = Vec::new();
             let mut runs = Vec::new();
@@ -83,7 +91,7 @@ pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
             r.runs = runs;
             (r, candidates)
         }
-        rule => (
+        (rule, None) => (
             fit_on_grid(data, params, grid(range, params, rule), None, set)?,
             Vec::new(),
         ),
@@ -129,9 +137,78 @@ pub fn fit(data: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
     report
         .warnings
         .extend(sanity_warnings(data, params, &report)?);
+    if let Some(c) = condensed {
+        report.mu_fit = fitted_friction(rows, params, &report)?;
+        report.warnings.push(c.note());
+        if c.record.scatter.is_some() {
+            report.fit_quality.noise_source = "scatter within bins";
+        }
+        report.condensed = Some(c.record);
+    }
     report.evaluations = report.runs.iter().map(|r| r.evaluations).sum();
     report.wall_time_s = clock.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// Free shifts fitted at the λ and on the τ grid of a joint fit with WLF
+/// shifts, from its material and shifts (see
+/// [`crate::temperature_set::wlf_before_free`] for why); the report keeps
+/// the WLF fit's λ rule, path and runs, and says what was done.
+fn free_from_wlf(
+    data: &Measurements,
+    params: &ValidFitParams,
+    wlf: FitReport,
+    start: &ShiftStart,
+) -> Result<FitReport, FitError> {
+    let m = &wlf.model;
+    let tau = m.tau.clone();
+    let param = Parametrization::new(tau.clone(), params.anchor);
+    let warm = param.theta_of(m.static_modulus, &m.strengths);
+    let mut fixed = params.clone();
+    fixed.lambda = Lambda::Fixed(wlf.lambda.value);
+    fixed.terms = TermRule::Explicit(tau.clone());
+    let mut report = fit_on_grid(data, &fixed, tau, Some(warm), Some(start))?;
+    report.lambda = LambdaRecord {
+        value: report.lambda.value,
+        ..wlf.lambda
+    };
+    report.runs = wlf.runs.into_iter().chain(report.runs).collect();
+    report.warnings.push(format!(
+        "free shifts: λ = {:.3e} and the τ grid were chosen with WLF shifts, and the free \
+         log10 a_T then fitted at that λ from the WLF solution (at the large λ where the λ path \
+         begins, free shifts slide along a power-law curve undetermined)",
+        report.lambda.value
+    ));
+    Ok(report)
+}
+
+/// The fitted μ at every row of `data` (the rows of condensed data): the
+/// fitted master curve at v·a_T.
+fn fitted_friction(
+    data: &Measurements,
+    params: &ValidFitParams,
+    report: &FitReport,
+) -> Result<Vec<f64>, FitError> {
+    let speeds = reduced_speeds(data, report);
+    let m = &report.model;
+    let prony = rollfit_model::Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
+    let setup = &params.setup;
+    let scene = rollfit_model::Scene::new(setup.geometry, setup.substrate, setup.contact, prony)?
+        .with_tolerance(params.model_tolerance)?;
+    Ok(scene.friction_sweep(&speeds)?)
+}
+
+/// The speeds of `data` on the master curve: v·a_T for a temperature set.
+fn reduced_speeds(data: &Measurements, report: &FitReport) -> Vec<f64> {
+    match (&report.shift, data.temperature()) {
+        (Some(shift), Some(temps)) => data
+            .speeds()
+            .iter()
+            .zip(temps)
+            .map(|(v, t)| v * 10f64.powf(shift.log_shift_at(*t).unwrap_or(0.0)))
+            .collect(),
+        _ => data.speeds().to_vec(),
+    }
 }
 
 /// The sanity checks of [`crate::sanity`] on the data and the fitted
@@ -142,22 +219,7 @@ fn sanity_warnings(
     report: &FitReport,
 ) -> Result<Vec<String>, FitError> {
     let setup = &params.setup;
-    let speeds: Vec<f64> = match (&report.shift, data.temperature()) {
-        (Some(shift), Some(temps)) => data
-            .speeds()
-            .iter()
-            .zip(temps)
-            .map(|(v, t)| {
-                let log_a = shift
-                    .log_shifts()
-                    .iter()
-                    .find(|s| s.temperature == *t)
-                    .map_or(0.0, |s| s.log_shift);
-                v * 10f64.powf(log_a)
-            })
-            .collect(),
-        _ => data.speeds().to_vec(),
-    };
+    let speeds = reduced_speeds(data, report);
     let m = &report.model;
     let prony = rollfit_model::Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
     let mut out = sanity::input_warnings(setup, data.speeds(), Some(data.friction()));
@@ -1088,6 +1150,7 @@ fn analyse(
         scale_profile: Vec::new(),
         shift,
         shift_cross_check: None,
+        condensed: None,
         shift_theta,
         mu_fit: e.mu.clone(),
     })

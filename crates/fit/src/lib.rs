@@ -5,7 +5,7 @@
 //! measurements μ(v).
 //!
 //! Where each piece lives:
-//! - [`data`]: validated measurements.
+//! - [`data`]: validated measurements; [`condense`]: dense rows to bins.
 //! - [`params`]: fit settings, checked before any numerics run.
 //! - [`tau_grid`]: the relaxation-time grid and the rule for its ends.
 //! - `parametrization`: θ ↦ Prony series, positivity and scale anchors.
@@ -19,6 +19,7 @@
 //! - [`sanity`]: warnings for inputs and results outside the theory or any lab.
 //! - [`fit`]: the driver tying them together; [`report`]: its result.
 
+pub mod condense;
 pub mod data;
 pub mod error;
 pub mod fit;

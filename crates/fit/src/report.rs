@@ -158,6 +158,14 @@ impl ShiftRecord {
         }
     }
 
+    /// log10 a_T at temperature `t` (°C), when `t` is one of the set's.
+    pub fn log_shift_at(&self, t: f64) -> Option<f64> {
+        self.log_shifts()
+            .iter()
+            .find(|s| (s.temperature - t).abs() <= crate::shift::SAME_TEMPERATURE)
+            .map(|s| s.log_shift)
+    }
+
     /// log10 a_T per measured temperature.
     pub fn log_shifts(&self) -> &[LogShift] {
         match self {
@@ -279,6 +287,9 @@ pub struct FitReport {
     /// temperature alone and overlapping the tan δ curves.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shift_cross_check: Option<ShiftCrossCheck>,
+    /// Dense data: how the rows were condensed to bins before the fit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub condensed: Option<crate::condense::CondensedRecord>,
     /// θ of the shift at the optimum (for refits that continue from it).
     #[serde(skip)]
     pub(crate) shift_theta: Vec<f64>,

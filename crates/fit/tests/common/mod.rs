@@ -68,9 +68,42 @@ pub fn temperature_set<M: ViscoelasticModulus>(
     noise: f64,
     seed: u64,
 ) -> Measurements {
+    let speeds: Vec<f64> = (0..41).map(|i| 1e-8 * 10f64.powf(i as f64 * 0.2)).collect();
+    shifted_set(truth, temperatures, &speeds, noise, seed, true)
+}
+
+/// A laboratory-shaped temperature set (issue 13): `count` speeds over
+/// `decades` from `v_min` at each of `temperatures`, the master curve
+/// `truth` at 20 °C shifted by the WLF truth, relative noise `noise`, no
+/// sigma column.
+pub fn sparse_temperature_set<M: ViscoelasticModulus>(
+    truth: M,
+    temperatures: &[f64],
+    v_min: f64,
+    decades: f64,
+    count: usize,
+    noise: f64,
+    seed: u64,
+) -> Measurements {
+    let speeds: Vec<f64> = (0..count)
+        .map(|i| v_min * 10f64.powf(decades * i as f64 / (count - 1) as f64))
+        .collect();
+    shifted_set(truth, temperatures, &speeds, noise, seed, false)
+}
+
+/// μ at `speeds` at each of `temperatures` (WLF truth about 20 °C), with
+/// multiplicative Gaussian noise drawn in row order, and σ = noise·μ when
+/// `with_sigma`.
+fn shifted_set<M: ViscoelasticModulus>(
+    truth: M,
+    temperatures: &[f64],
+    speeds: &[f64],
+    noise: f64,
+    seed: u64,
+    with_sigma: bool,
+) -> Measurements {
     let s = setup();
     let scene = Scene::new(s.geometry, s.substrate, s.contact, truth).unwrap();
-    let speeds: Vec<f64> = (0..41).map(|i| 1e-8 * 10f64.powf(i as f64 * 0.2)).collect();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let normal = Normal::new(0.0, 1.0).unwrap();
     let (mut v, mut mu, mut sigma, mut temps) = (vec![], vec![], vec![], vec![]);
@@ -84,7 +117,7 @@ pub fn temperature_set<M: ViscoelasticModulus>(
             temps.push(t);
         }
     }
-    Measurements::new(v, mu, Some(sigma), Some(temps)).unwrap()
+    Measurements::new(v, mu, with_sigma.then_some(sigma), Some(temps)).unwrap()
 }
 
 /// RMS relative errors of tan δ and |E| against `truth` over the reported
