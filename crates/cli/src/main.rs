@@ -58,8 +58,9 @@ enum Command {
     /// converged, C1, C2, message). Entries with an existing
     /// DIR/<name>/fit.json are skipped unless --force, so running the same
     /// command again resumes a batch; --shard i/n spreads it over machines.
-    /// Exits non-zero if an entry failed or did not converge (unless
-    /// --allow-unconverged).
+    /// Exits non-zero if an entry failed, did not converge (unless
+    /// --allow-unconverged) or converged to a fit that does not describe its
+    /// data (status "poor", unless --allow-poor-fit).
     Batch(commands::batch::Args),
     /// Draw the pictures of a fit and write DIR/report.html.
     ///

@@ -13,7 +13,8 @@
 //! And laboratory-shaped data (issue 13): 15 speeds over 5 decades of the
 //! bundled rubber under its ball, 3 % noise, no sigma column (λ by the
 //! marginal likelihood), |E| at the middle speed's contact frequency as the
-//! anchor.
+//! anchor; and the same sweep logged as 10 000 rows (condensed to bins of
+//! 1/20 decade before the fit).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rollfit_fit::{FitParams, ScaleAnchor, ShiftSettings, fit};
@@ -51,6 +52,10 @@ fn benches(c: &mut Criterion) {
     .unwrap();
     group.bench_function("sparse_15_points_no_sigma", |b| {
         b.iter(|| fit(black_box(&lab), &lab_params).unwrap())
+    });
+    let dense = sparse(setup(), hn_rubber(), 1e-6, 5.0, 10_000, 0.03, 1);
+    group.bench_function("dense_10000_rows_no_sigma", |b| {
+        b.iter(|| fit(black_box(&dense), &lab_params).unwrap())
     });
     let set = temperature_set(hn_rubber(), &[-20.0, 0.0, 20.0, 40.0, 60.0], 0.01, 1);
     for (name, cross_check) in [

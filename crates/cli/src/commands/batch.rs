@@ -10,11 +10,15 @@
 //! `--force`: running the same command again resumes an interrupted batch,
 //! and `--shard i/n` spreads one batch over several processes or machines
 //! that share DIR. DIR/summary.csv (DIR/summary-<i>-of-<n>.csv for a
-//! shard) has one row per entry run, in manifest order.
+//! shard) has one row per entry run, in manifest order. As for `rollfit
+//! fit`, an unconverged entry, or a converged one whose fit_quality verdict
+//! is poor, keeps its results but makes the exit status non-zero unless
+//! `--allow-unconverged` or `--allow-poor-fit`.
 //!
 //! Settings, from strongest to weakest: the entry's own keys, the command
 //! line's flags, the manifest's `[defaults]`, the scene's `[fit]` table.
 
+use std::cell::RefCell;
 use std::fmt::Write as _;
 use std::io::IsTerminal;
 use std::panic::{self, AssertUnwindSafe};
@@ -69,6 +73,11 @@ pub struct Args {
     /// Exit with status 0 even when some fits did not converge.
     #[arg(long)]
     pub allow_unconverged: bool,
+    /// Exit with status 0 even when the goodness-of-fit tests (χ², runs of
+    /// one-signed residuals) find that some converged fits do not describe
+    /// their data (status "poor"; a kept, skipped result counts too).
+    #[arg(long)]
+    pub allow_poor_fit: bool,
     /// Run only shard i of n (0 ≤ i < n): the entries whose position in the
     /// manifest, counting from 0, is i modulo n. The summary is then
     /// DIR/summary-<i>-of-<n>.csv.
@@ -147,6 +156,8 @@ fn summary_name(shard: Option<Shard>) -> String {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Status {
     Ok,
+    /// Converged, but the fit_quality verdict is poor.
+    Poor,
     Unconverged,
     Failed,
     Skipped,
@@ -156,6 +167,7 @@ impl Status {
     fn name(self) -> &'static str {
         match self {
             Status::Ok => "ok",
+            Status::Poor => "poor",
             Status::Unconverged => "unconverged",
             Status::Failed => "failed",
             Status::Skipped => "skipped",
@@ -174,6 +186,8 @@ struct EntryResult {
     omega_max: Option<f64>,
     wall_time_s: Option<f64>,
     converged: Option<bool>,
+    /// The fit_quality verdict is "poor" (also of a kept result).
+    poor_fit: bool,
     wlf: Option<(f64, f64)>,
     message: String,
 }
@@ -189,6 +203,7 @@ impl EntryResult {
             omega_max: None,
             wall_time_s: None,
             converged: None,
+            poor_fit: false,
             wlf: None,
             message,
         }
@@ -198,6 +213,13 @@ impl EntryResult {
     /// did not converge counts too: the batch's status covers every entry).
     fn unconverged(&self) -> bool {
         self.converged == Some(false)
+    }
+
+    /// Counts against the exit status as a poor fit: converged (the
+    /// convergence gate judges an unconverged one), but the goodness-of-fit
+    /// tests find that it does not describe the data (a kept result too).
+    fn poor(&self) -> bool {
+        self.poor_fit && !self.unconverged()
     }
 
     /// One line for the log.
@@ -286,9 +308,10 @@ pub fn run(args: &Args) -> Result<()> {
     output::write_atomically(&summary, &summary_csv(&results)?)?;
     let count = |status: Status| results.iter().filter(|r| r.status == status).count();
     eprintln!(
-        "wrote {}: {} ok, {} unconverged, {} failed, {} skipped",
+        "wrote {}: {} ok, {} poor, {} unconverged, {} failed, {} skipped",
         summary.display(),
         count(Status::Ok),
+        count(Status::Poor),
         count(Status::Unconverged),
         count(Status::Failed),
         count(Status::Skipped)
@@ -303,11 +326,20 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let failed = names(&|r| r.status == Status::Failed);
     let unconverged = names(&|r| r.unconverged());
+    let poor = names(&|r| r.poor());
     if !unconverged.is_empty() && args.allow_unconverged {
         eprintln!(
             "warning: {} fit(s) did not converge ({}); accepted because of --allow-unconverged",
             unconverged.len(),
             unconverged.join(", ")
+        );
+    }
+    if !poor.is_empty() && args.allow_poor_fit {
+        eprintln!(
+            "warning: {} fit(s) do not describe their data ({}); accepted because of \
+             --allow-poor-fit",
+            poor.len(),
+            poor.join(", ")
         );
     }
     let mut problems = Vec::new();
@@ -325,6 +357,15 @@ pub fn run(args: &Args) -> Result<()> {
              false (give --allow-unconverged to accept them)",
             unconverged.len(),
             unconverged.join(", ")
+        ));
+    }
+    if !poor.is_empty() && !args.allow_poor_fit {
+        problems.push(format!(
+            "{} fit(s) do not describe their data ({}); their results are kept, marked \
+             \"fit_quality\": {{\"verdict\": \"poor\"}} (see the reasons in the summary's \
+             message column; give --allow-poor-fit to accept them)",
+            poor.len(),
+            poor.join(", ")
         ));
     }
     if !problems.is_empty() {
@@ -357,23 +398,46 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> Ent
         dir: &folder,
         settings,
     };
-    match panic::catch_unwind(AssertUnwindSafe(|| fit_files(&job, |_| {}))) {
+    // The data file's notes and warnings (unit conversions, skipped rows),
+    // which `rollfit fit` prints on stderr, go into the entry's message; the
+    // log's other line ("fitting N point(s) …") is left out.
+    let data_notes = RefCell::new(Vec::new());
+    let outcome = panic::catch_unwind(AssertUnwindSafe(|| {
+        fit_files(&job, |line| {
+            if line.starts_with("note: ") || line.starts_with("warning: ") {
+                data_notes.borrow_mut().push(line.to_string());
+            }
+        })
+    }));
+    let data_notes = data_notes.into_inner();
+    let with_notes = |head: String| {
+        let mut parts = Vec::with_capacity(1 + data_notes.len());
+        if !head.is_empty() {
+            parts.push(head);
+        }
+        parts.extend(data_notes.iter().cloned());
+        parts
+    };
+    match outcome {
         Ok(Ok(outcome)) => {
             let report = &outcome.report;
-            let (status, mut message) = if report.converged {
-                (Status::Ok, String::new())
-            } else {
+            // An unconverged fit is judged by the convergence gate alone.
+            let (status, head) = if !report.converged {
                 (
                     Status::Unconverged,
                     format!("did not converge: {}", report.stop_reason),
                 )
+            } else if report.fit_quality.is_poor() {
+                // The reasons follow among the warnings ("fit quality: …").
+                (
+                    Status::Poor,
+                    "the fit does not describe the data (fit_quality poor)".to_string(),
+                )
+            } else {
+                (Status::Ok, String::new())
             };
-            for warning in &report.warnings {
-                if !message.is_empty() {
-                    message += "; ";
-                }
-                message += &format!("warning: {warning}");
-            }
+            let mut parts = with_notes(head);
+            parts.extend(report.warnings.iter().map(|w| format!("warning: {w}")));
             EntryResult {
                 name: entry.name.clone(),
                 status,
@@ -383,11 +447,12 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> Ent
                 omega_max: Some(report.window.omega_max),
                 wall_time_s: Some(report.wall_time_s),
                 converged: Some(report.converged),
+                poor_fit: report.fit_quality.is_poor(),
                 wlf: report.shift.as_ref().and_then(|s| s.wlf_constants()),
-                message,
+                message: parts.join("; "),
             }
         }
-        Ok(Err(error)) => EntryResult::failed(entry, format!("{error:#}")),
+        Ok(Err(error)) => EntryResult::failed(entry, with_notes(format!("{error:#}")).join("; ")),
         Err(payload) => {
             let what = payload
                 .downcast_ref::<&str>()
@@ -426,6 +491,18 @@ fn skipped(entry: &Entry, path: &Path) -> EntryResult {
         let reason = report["stop_reason"].as_str().unwrap_or("no reason given");
         message += &format!("; it did not converge: {reason}");
     }
+    // Results written before fit_quality existed have no verdict.
+    let poor_fit = report["fit_quality"]["verdict"].as_str() == Some("poor");
+    if poor_fit && converged != Some(false) {
+        let reasons: Vec<&str> = report["fit_quality"]["reasons"]
+            .as_array()
+            .map(|r| r.iter().filter_map(Value::as_str).collect())
+            .unwrap_or_default();
+        message += "; it does not describe the data (fit_quality poor)";
+        for reason in reasons {
+            message += &format!("; fit quality: {reason}");
+        }
+    }
     EntryResult {
         name: entry.name.clone(),
         status: Status::Skipped,
@@ -435,6 +512,7 @@ fn skipped(entry: &Entry, path: &Path) -> EntryResult {
         omega_max: number(&report["window"]["omega_max"]),
         wall_time_s: number(&report["wall_time_s"]),
         converged,
+        poor_fit,
         wlf: number(&report["shift"]["C1"]).zip(number(&report["shift"]["C2"])),
         message,
     }
@@ -491,7 +569,10 @@ impl Progress {
     fn finished(&self, result: &EntryResult) {
         match self {
             Progress::Bar(bar) => {
-                if matches!(result.status, Status::Failed | Status::Unconverged) {
+                if matches!(
+                    result.status,
+                    Status::Failed | Status::Unconverged | Status::Poor
+                ) {
                     bar.println(result.line());
                 }
                 bar.set_message(format!("{}: {}", result.name, result.status.name()));
