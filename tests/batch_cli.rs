@@ -187,7 +187,7 @@ fn three_entries_write_three_folders_and_a_summary() {
         assert!(stderr.contains(&format!("{name}: ok")), "{stderr}");
     }
     assert!(stderr.contains("[3/3]"), "one line per entry: {stderr}");
-    assert!(stderr.contains("3 ok, 0 unconverged, 0 failed, 0 skipped"));
+    assert!(stderr.contains("3 ok, 0 poor, 0 unconverged, 0 failed, 0 skipped"));
 
     let mut expected = vec!["summary.csv".to_string()];
     expected.extend(NAMES.iter().map(|n| n.to_string()));
@@ -334,7 +334,7 @@ fn a_second_run_skips_finished_entries_and_force_refits() {
 
     let stderr = batch_ok(&manifest, &out, &[]);
     assert!(
-        stderr.contains("0 ok, 0 unconverged, 0 failed, 3 skipped"),
+        stderr.contains("0 ok, 0 poor, 0 unconverged, 0 failed, 3 skipped"),
         "{stderr}"
     );
     let second = summary(&out.join("summary.csv"));
@@ -369,7 +369,7 @@ fn a_second_run_skips_finished_entries_and_force_refits() {
     // --force refits every entry, the marked one too.
     let stderr = batch_ok(&manifest, &out, &["--force"]);
     assert!(
-        stderr.contains("3 ok, 0 unconverged, 0 failed, 0 skipped"),
+        stderr.contains("3 ok, 0 poor, 0 unconverged, 0 failed, 0 skipped"),
         "{stderr}"
     );
     let forced = summary(&out.join("summary.csv"));
@@ -468,6 +468,12 @@ fn an_unconverged_entry_fails_the_batch_unless_allowed() {
         rows[2].get("message")
     );
     assert!(out.join("seed3").join("fit.json").is_file(), "results kept");
+    // Three evaluations leave it poor as well, but an unconverged fit is
+    // judged by the convergence gate alone (--allow-unconverged accepts it
+    // below without --allow-poor-fit).
+    let report = json(&out.join("seed3").join("fit.json"));
+    assert_eq!(report["fit_quality"]["verdict"], "poor");
+    assert!(!stderr.contains("do not describe their data"), "{stderr}");
 
     // The kept result still counts when it is skipped, unless allowed.
     let again = batch(&manifest, &out, &[]);
@@ -480,6 +486,144 @@ fn an_unconverged_entry_fails_the_batch_unless_allowed() {
     let rows = summary(&out.join("summary.csv"));
     assert_eq!(statuses(&rows), ["skipped", "skipped", "skipped"]);
     assert_eq!(rows[2].get("converged"), "false");
+}
+
+/// Two entries: seed2 as usual, and the bundled measurement with 15 terms
+/// (0.9 per decade cannot follow the 1 % data: judged poor, as in
+/// report_cli.rs).
+const POOR: &str = r#"
+[[entry]]
+name = "seed2"
+scene = "hn-rubber.toml"
+data = "hn-rubber-seed2.csv"
+
+[[entry]]
+name = "fifteen"
+scene = "hn-rubber.toml"
+data = "hn-rubber.csv"
+terms = 15
+"#;
+
+#[test]
+fn a_poor_entry_fails_the_batch_unless_allowed() {
+    let dir = bundled("poor");
+    let manifest = dir.write("poor.toml", &format!("{DEFAULTS}{POOR}"));
+    let out = dir.path().join("results");
+    let output = batch(&manifest, &out, &[]);
+    let stderr = text(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(stderr.contains("fifteen: poor"), "{stderr}");
+    assert!(
+        stderr.contains("1 ok, 1 poor, 0 unconverged, 0 failed, 0 skipped"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("do not describe their data (fifteen)")
+            && stderr.contains("--allow-poor-fit"),
+        "{stderr}"
+    );
+    let rows = summary(&out.join("summary.csv"));
+    assert_eq!(entries(&rows), ["seed2", "fifteen"]);
+    assert_eq!(statuses(&rows), ["ok", "poor"]);
+    assert_eq!(rows[1].get("converged"), "true");
+    let message = rows[1].get("message");
+    assert!(
+        message.contains("does not describe the data") && message.contains("fit quality: "),
+        "the reasons: {message}"
+    );
+    // The results are written all the same.
+    assert_eq!(
+        files(&out.join("fifteen")),
+        ["fit.json", "modulus.csv", "mu.csv"]
+    );
+    let report = json(&out.join("fifteen").join("fit.json"));
+    assert_eq!(report["fit_quality"]["verdict"], "poor");
+    assert_eq!(report["terms"]["count"], 15);
+    assert_eq!(report["converged"], true);
+
+    // The kept result still counts when it is skipped, unless allowed.
+    let again = batch(&manifest, &out, &[]);
+    let stderr = text(&again.stderr);
+    assert_eq!(again.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("do not describe their data (fifteen)"),
+        "{stderr}"
+    );
+    let rows = summary(&out.join("summary.csv"));
+    assert_eq!(statuses(&rows), ["skipped", "skipped"]);
+    assert!(
+        rows[1].get("message").contains("fit quality: "),
+        "{}",
+        rows[1].get("message")
+    );
+    let stderr = batch_ok(&manifest, &out, &["--allow-poor-fit"]);
+    assert!(
+        stderr.contains("warning: 1 fit(s) do not describe their data (fifteen)"),
+        "{stderr}"
+    );
+
+    // A fresh run with --allow-poor-fit: exit 0, still marked poor.
+    let stderr = batch_ok(&manifest, &out, &["--force", "--allow-poor-fit"]);
+    assert!(
+        stderr.contains("1 ok, 1 poor, 0 unconverged, 0 failed, 0 skipped"),
+        "{stderr}"
+    );
+    let rows = summary(&out.join("summary.csv"));
+    assert_eq!(statuses(&rows), ["ok", "poor"]);
+    assert!(out.join("fifteen").join("fit.json").is_file());
+    // --allow-unconverged does not accept a poor fit.
+    let output = batch(&manifest, &out, &["--allow-unconverged"]);
+    assert_eq!(output.status.code(), Some(1), "{}", text(&output.stderr));
+}
+
+#[test]
+fn data_file_notes_and_warnings_reach_the_message() {
+    // The bundled measurement with the speed in mm/s, the friction named
+    // COF and one row without a μ: a unit conversion and a column name
+    // (notes) and a skipped row (a warning), as `rollfit fit` prints them.
+    let dir = bundled("notes");
+    let table = Table::read(&dir.path().join("hn-rubber.csv"));
+    let mut csv = String::from("v (mm/s),COF,sigma\n");
+    for (i, ((v, mu), sigma)) in table
+        .column("v")
+        .into_iter()
+        .zip(table.column("mu"))
+        .zip(table.column("sigma"))
+        .enumerate()
+    {
+        let mu = if i == 3 {
+            "NaN".to_string()
+        } else {
+            mu.to_string()
+        };
+        csv += &format!("{},{mu},{sigma}\n", v * 1e3);
+    }
+    dir.write("mm.csv", &csv);
+    let manifest = dir.write(
+        "notes.toml",
+        &format!(
+            "{DEFAULTS}[[entry]]\nname = \"mm\"\nscene = \"hn-rubber.toml\"\ndata = \"mm.csv\"\n"
+        ),
+    );
+    let out = dir.path().join("results");
+    let stderr = batch_ok(&manifest, &out, &[]);
+    let rows = summary(&out.join("summary.csv"));
+    assert_eq!(statuses(&rows), ["ok"]);
+    let message = rows[0].get("message");
+    for fragment in [
+        "note: data file",
+        "mm.csv: column \"v (mm/s)\" read as v in mm/s, converted to m/s",
+        "column \"COF\" read as mu",
+        "warning: data file",
+        "skipped 1 row with empty or NaN cells in mu",
+    ] {
+        assert!(message.contains(fragment), "{fragment:?} in {message}");
+        assert!(stderr.contains(fragment), "{fragment:?} in {stderr}");
+    }
+    assert!(!message.contains("fitting "), "{message}");
+    let report = json(&out.join("mm").join("fit.json"));
+    assert_eq!(report["input"]["points"], 40);
 }
 
 #[test]

@@ -42,7 +42,9 @@ use crate::report::{
 use crate::sanity;
 use crate::solvers::{SolverRun, Tolerance, default_budget, run};
 use crate::tau_grid::{SOFTEST_MODULUS, probed_band, relaxation_times};
-use crate::temperature_set::{ShiftStart, cross_check, temperature_set, wlf_before_free};
+use crate::temperature_set::{
+    ShiftStart, cross_check, material_first, temperature_set, wlf_before_free,
+};
 
 /// The forward model's relative tolerance on the λ path, in the start
 /// probes and in the restarts: those runs only locate λ and a basin, and a
@@ -69,12 +71,21 @@ pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
     let range = set.as_ref().map_or_else(|| data.speed_range(), |s| s.range);
     let set = set.as_ref();
     let via_wlf = set.and_then(|s| wlf_before_free(data, params, s));
-    let (mut report, candidates) = match (&params.terms, via_wlf) {
-        (_, Some((wlf, start))) => {
+    let first = match (&via_wlf, set) {
+        (None, Some(s)) => material_first(data, params, s),
+        _ => None,
+    };
+    let (mut report, candidates) = match (&params.terms, via_wlf, first) {
+        (_, Some((wlf, start)), _) => {
             let candidates = wlf.terms.candidates.clone();
             (free_from_wlf(data, params, wlf, &start)?, candidates)
         }
-        (TermRule::Auto, None) => {
+        (_, None, Some(first)) => {
+            let candidates = first.terms.candidates.clone();
+            let start = set.ok_or_else(|| FitError::setting("shift", "no temperature set"))?;
+            (joint_from_material(data, params, first, start)?, candidates)
+        }
+        (TermRule::Auto, None, None) => {
             let mut best: Option<(f64, FitReport)> = None;
             let mut candidates = Vec::new();
             let mut runs = Vec::new();
@@ -100,7 +111,7 @@ pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
             r.runs = runs;
             (r, candidates)
         }
-        (rule, None) => (
+        (rule, None, None) => (
             fit_on_grid(data, params, grid(range, params, rule), None, set)?,
             Vec::new(),
         ),
@@ -187,6 +198,56 @@ fn free_from_wlf(
          log10 a_T then fitted at that λ from the WLF solution (at the large λ where the λ path \
          begins, free shifts slide along a power-law curve undetermined)",
         report.lambda.value
+    ));
+    Ok(report)
+}
+
+/// The λ path: [`path`], or from `params.path_top` down.
+fn lambda_path(params: &ValidFitParams) -> Vec<f64> {
+    match params.path_top {
+        Some(top) => std::iter::once(top)
+            .chain(path().into_iter().filter(|&l| l < top * 0.999))
+            .collect(),
+        None => path(),
+    }
+}
+
+/// The joint fit of a temperature set from a fit of its rows as one curve at
+/// the start shift's reduced speeds ([`crate::temperature_set::material_first`]):
+/// on that fit's τ grid, from its material and the start shift, with the λ
+/// path beginning at its λ. The report keeps the joint fit's λ choice and
+/// every run.
+fn joint_from_material(
+    data: &Measurements,
+    params: &ValidFitParams,
+    first: FitReport,
+    start: &ShiftStart,
+) -> Result<FitReport, FitError> {
+    let m = &first.model;
+    let tau = m.tau.clone();
+    let param = Parametrization::new(tau.clone(), params.anchor);
+    let warm = param.theta_of(m.static_modulus, &m.strengths);
+    let mut joint = params.clone();
+    if params.lambda == Lambda::Auto {
+        joint.path_top = Some(first.lambda.value.max(path()[path().len() - 1]));
+    }
+    let mut report = fit_on_grid(data, &joint, tau, Some(warm), Some(start))?;
+    report.runs = first
+        .runs
+        .into_iter()
+        .map(|mut r| {
+            r.stage = format!("one curve: {}", r.stage);
+            r
+        })
+        .chain(report.runs)
+        .collect();
+    report.warnings.push(format!(
+        "temperature set: the τ grid and the top of the λ path (λ = {:.3e}) come from a fit of \
+         all rows as one curve at the starting shifts; the shift and the material were then \
+         fitted together from there (at the large λ where the path otherwise begins the \
+         spectrum is nearly a power law, along which the temperatures' curves slide \
+         undetermined)",
+        first.lambda.value
     ));
     Ok(report)
 }
@@ -465,7 +526,7 @@ fn fit_on_grid(
     // at every λ).
     let first_lambda = match params.lambda {
         Lambda::Fixed(lambda) => lambda,
-        Lambda::Auto => path()[0],
+        Lambda::Auto => lambda_path(params)[0],
     };
     let mut from = start.clone();
     // Unanchored fits keep the neutral start: the scale profile that bounds
@@ -521,7 +582,7 @@ fn fit_on_grid(
             // The path is walked at the looser tolerance: its points only
             // locate λ; the chosen one is polished below.
             tolerance.set(Tolerance::Path);
-            for lambda in path() {
+            for lambda in lambda_path(params) {
                 let (t, r) = solve(&mut problem, lambda, &from, "lambda path", &mut runs)?;
                 from = t.theta.clone();
                 path_record.push([lambda, t.misfit, t.effective_parameters]);

@@ -233,6 +233,9 @@ pub struct ValidFitParams {
     /// window to what the data determine (off for the internal refits of a
     /// scale profile, which need neither).
     pub(crate) bands: bool,
+    /// The largest λ of the λ path (None: the path's own top): a temperature
+    /// set's joint fit starts where its shifts are determined.
+    pub(crate) path_top: Option<f64>,
 }
 
 impl ValidFitParams {
@@ -414,6 +417,7 @@ impl FitParams {
             shift: self.shift,
             setup,
             bands: true,
+            path_top: None,
         })
     }
 }

@@ -168,6 +168,41 @@ pub(crate) fn wlf_before_free(
     Some((report, free))
 }
 
+/// The fit of all rows of a set as one curve at the start shift's reduced
+/// speeds v·a_T (no shift fitted), which gives the joint fit its τ grid, its
+/// starting material and the top of its λ path ([`crate::fit`]). `None`
+/// when that fit fails; the joint fit then walks the whole λ path.
+///
+/// Why: at the large λ where the λ path begins, the spectrum is nearly a
+/// power law and so is μ(v); the temperatures' curves slide along it, and
+/// a laboratory set (5 temperatures × 15 speeds over 4 decades) walked down
+/// from there ended with WLF's C1 and C2 both near 1e189 (their linear
+/// limit) and a 40 % misfit.
+pub(crate) fn material_first(
+    data: &Measurements,
+    params: &ValidFitParams,
+    start: &ShiftStart,
+) -> Option<FitReport> {
+    let (ln_a, _) = start.param.point_shifts(&start.theta);
+    let reduced: Vec<f64> = data
+        .speeds()
+        .iter()
+        .zip(&ln_a)
+        .map(|(v, l)| v * l.exp())
+        .collect();
+    let one_curve = Measurements::new(
+        reduced,
+        data.friction().to_vec(),
+        data.sigma().map(|s| s.to_vec()),
+        None,
+    )
+    .ok()?;
+    let mut single = params.clone();
+    single.bands = false;
+    single.shift.cross_check = false;
+    crate::fit::fit(&one_curve, &single).ok()
+}
+
 /// The cross-check of `report`'s shift: single-temperature fits overlapped
 /// by tan δ. `Err` carries a reason the check could not be made (reported
 /// as a warning, not a failure of the joint fit).

@@ -171,8 +171,11 @@ impl ShiftParam {
                         let dt = t - self.t_ref;
                         let den = c2 + dt;
                         let value = -c1 * dt / den;
-                        // ∂/∂ln C1 = value; ∂/∂θ2 = excess · C1 ΔT/den².
-                        (value, vec![value, excess * c1 * dt / (den * den)])
+                        // ∂/∂ln C1 = value; ∂/∂θ2 = excess · C1 ΔT/den², as
+                        // (C1/den)(excess/den) ΔT: C1 and C2 can both grow
+                        // without bound at a fixed ratio (WLF's linear
+                        // limit), where the product form overflows to NaN.
+                        (value, vec![value, (c1 / den) * (excess / den) * dt])
                     })
                     .unzip()
             }
