@@ -41,11 +41,14 @@ enum Command {
     ///
     /// Reads the scene's [geometry], [substrate], [contact], optional
     /// [material] (starting point) and [fit] (scale anchor, settings) and a
-    /// CSV with columns v (m/s), mu, optional sigma and T. Writes
+    /// table (CSV, `;` or tab, decimal commas, unit-suffixed headers) or
+    /// workbook with columns v (m/s), mu, optional sigma and T. Writes
     /// DIR/fit.json, DIR/modulus.csv (omega, E_storage, E_loss, tan_delta,
-    /// abs_E and their 1σ bands, over the window the data determine) and
+    /// abs_E and their bands, over the window the data determine) and
     /// DIR/mu.csv (v, mu_measured, mu_fit, [sigma], residual). Exits
-    /// non-zero if the fit did not converge, unless --allow-unconverged.
+    /// non-zero if the fit did not converge, unless --allow-unconverged, or
+    /// if it does not describe the data (fit_quality poor), unless
+    /// --allow-poor-fit.
     Fit(commands::fit::Args),
     /// Run many fits in parallel: one per entry of a manifest.
     ///
