@@ -120,18 +120,23 @@ fn shifted_set<M: ViscoelasticModulus>(
     Measurements::new(v, mu, with_sigma.then_some(sigma), Some(temps)).unwrap()
 }
 
+/// The reported curve's points inside the window shrunk by half a decade
+/// at each end.
+fn inner_window(report: &FitReport) -> impl Iterator<Item = &rollfit_fit::ModulusPoint> {
+    let lo = report.window.omega_min * 10f64.powf(0.5);
+    let hi = report.window.omega_max / 10f64.powf(0.5);
+    report
+        .curve
+        .iter()
+        .filter(move |p| p.omega >= lo && p.omega <= hi)
+}
+
 /// RMS relative errors of tan δ and |E| against `truth` over the reported
 /// window shrunk by half a decade at each end, and the number of curve
 /// points compared.
 pub fn window_errors<M: ViscoelasticModulus>(report: &FitReport, truth: &M) -> (f64, f64, usize) {
-    let lo = report.window.omega_min * 10f64.powf(0.5);
-    let hi = report.window.omega_max / 10f64.powf(0.5);
     let (mut se_t, mut se_e, mut n) = (0.0, 0.0, 0);
-    for p in report
-        .curve
-        .iter()
-        .filter(|p| p.omega >= lo && p.omega <= hi)
-    {
+    for p in inner_window(report) {
         let e = truth.modulus(p.omega);
         se_t += (p.tan_delta / (e.im / e.re) - 1.0).powi(2);
         se_e += (p.magnitude / e.norm() - 1.0).powi(2);
@@ -195,14 +200,8 @@ pub fn sparse<M: ViscoelasticModulus>(
 /// half a decade at each end where the truth lies within `k` reported σ, for
 /// tan δ and |E|.
 pub fn band_coverage<M: ViscoelasticModulus>(report: &FitReport, truth: &M, k: f64) -> (f64, f64) {
-    let lo = report.window.omega_min * 10f64.powf(0.5);
-    let hi = report.window.omega_max / 10f64.powf(0.5);
     let (mut t, mut e, mut n) = (0, 0, 0);
-    for p in report
-        .curve
-        .iter()
-        .filter(|p| p.omega >= lo && p.omega <= hi)
-    {
+    for p in inner_window(report) {
         let x = truth.modulus(p.omega);
         if (p.tan_delta - x.im / x.re).abs() <= k * p.tan_delta_sigma {
             t += 1;
