@@ -189,7 +189,9 @@ fn three_entries_write_three_folders_and_a_summary() {
     assert!(stderr.contains("[3/3]"), "one line per entry: {stderr}");
     assert!(stderr.contains("3 ok, 0 poor, 0 unconverged, 0 failed, 0 skipped"));
 
-    let mut expected = vec!["summary.csv".to_string()];
+    // The lock file stays: removing it while another batch may be opening
+    // it would let two batches lock two different files.
+    let mut expected = vec![".rollfit-batch.lock".to_string(), "summary.csv".to_string()];
     expected.extend(NAMES.iter().map(|n| n.to_string()));
     expected.sort();
     assert_eq!(files(&out), expected);

@@ -452,7 +452,7 @@ fn repeated_speeds_unsorted_rows_and_comments_are_accepted() {
 }
 
 #[test]
-fn an_unconverged_fit_writes_its_results_and_fails_unless_allowed() {
+fn an_unconverged_fit_writes_nothing_and_fails_unless_allowed() {
     let dir = TempDir::new("unconverged");
     let (_, data) = synthetic(&dir, SCENE);
     let scene = dir.write(
@@ -465,7 +465,17 @@ fn an_unconverged_fit_writes_its_results_and_fails_unless_allowed() {
     assert_eq!(output.status.code(), Some(1), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(
-        stderr.contains("did not converge") && stderr.contains("--allow-unconverged"),
+        stderr.contains("did not converge")
+            && stderr.contains("nothing was written")
+            && stderr.contains("--allow-unconverged"),
+        "{stderr}"
+    );
+    // A non-zero exit leaves the output as it was (issue 14).
+    assert!(!out.exists());
+
+    let stderr = fit_ok(&scene, &data, &out, &["--allow-unconverged"]);
+    assert!(
+        stderr.contains("warning: the fit did not converge"),
         "{stderr}"
     );
     let report = json(&out.join("fit.json"));
@@ -476,12 +486,6 @@ fn an_unconverged_fit_writes_its_results_and_fails_unless_allowed() {
         report["stop_reason"]
     );
     assert!(out.join("modulus.csv").is_file() && out.join("mu.csv").is_file());
-
-    let stderr = fit_ok(&scene, &data, &out, &["--allow-unconverged"]);
-    assert!(
-        stderr.contains("warning: the fit did not converge"),
-        "{stderr}"
-    );
 }
 
 #[test]

@@ -938,7 +938,7 @@ fn missing_table_file() {
     let stderr = assert_rejected(
         TABLE_SCENE,
         &[],
-        &["modulus.csv", "cannot open modulus table"],
+        &["modulus.csv", "cannot read modulus table"],
     );
     assert!(stderr.contains("[material]"), "{stderr}");
 }
@@ -1232,11 +1232,15 @@ fn noise_columns_and_statistics_are_sane() {
     assert!(mean.abs() < 0.2, "mean of z = {mean}");
     assert!((sd - 1.0).abs() < 0.15, "standard deviation of z = {sd}");
     assert!(z.iter().all(|x| x.abs() < 6.0));
-    // No noise at all is the exact curve.
-    let (zero, _) = forward_with(&scene, &["--noise", "0"]);
-    let zero = parse_csv(&zero);
-    assert_eq!(zero.column("mu"), exact.column("mu"));
-    assert!(zero.column("sigma").iter().all(|s| *s == 0.0));
+    // No noise at all would write σ = 0, which `fit` refuses: the
+    // noiseless curve is `forward` without --noise (issue 14).
+    let out = rollfit(&[
+        std::ffi::OsStr::new("forward"),
+        scene.as_os_str(),
+        std::ffi::OsStr::new("--noise"),
+        std::ffi::OsStr::new("0"),
+    ]);
+    assert_failure(&out, &["--noise", "greater than zero", "leave --noise out"]);
 }
 
 #[test]

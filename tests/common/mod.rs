@@ -6,6 +6,7 @@
 //! rest would be reported as dead code in that crate.
 #![allow(dead_code)]
 
+use std::collections::BTreeMap;
 use std::ffi::OsStr;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -134,4 +135,67 @@ pub fn parse_csv(csv: &str) -> Table {
         assert_eq!(row.len(), header.len());
     }
     Table { header, rows }
+}
+
+/// A small laboratory-shaped scene: the bundled example's ball and rubber
+/// (data/hn-rubber.toml) at `count` speeds from 1 µm/s to 1 cm/s, anchored
+/// at |E(10 rad/s)|; its fits take a fraction of a second.
+pub fn small_scene(count: usize) -> String {
+    format!(
+        r#"[geometry]
+shape = "sphere"
+radius = 0.005      # m
+load = 1.0          # N
+
+[substrate]
+poisson = 0.5
+
+[contact]
+size = "dynamic"
+
+[material]
+model = "havriliak-negami"
+E0 = 2.0e6
+E1 = 2.0e9
+tau = 1.0e-3
+alpha = 0.55
+beta = 0.4
+
+[sweep]
+v_min = 1e-6
+v_max = 1e-2
+count = {count}
+
+[fit]
+E_at = {{ omega = 10.0, E = 6.26e7 }}
+"#
+    )
+}
+
+/// Every file under `path` (a file or a folder tree): relative name →
+/// content; empty when absent.
+pub fn snapshot(path: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    fn walk(root: &Path, at: &Path, files: &mut BTreeMap<PathBuf, Vec<u8>>) {
+        if at.is_dir() {
+            for entry in fs::read_dir(at).unwrap().flatten() {
+                walk(root, &entry.path(), files);
+            }
+        } else if let Ok(bytes) = fs::read(at) {
+            files.insert(at.strip_prefix(root).unwrap().to_path_buf(), bytes);
+        }
+    }
+    let mut files = BTreeMap::new();
+    walk(path, path, &mut files);
+    files
+}
+
+/// Replaces the folder `to` by a copy of the folder `from`.
+pub fn copy_tree(from: &Path, to: &Path) {
+    let _ = fs::remove_dir_all(to);
+    fs::create_dir_all(to).unwrap();
+    for (name, bytes) in snapshot(from) {
+        let target = to.join(name);
+        fs::create_dir_all(target.parent().unwrap()).unwrap();
+        fs::write(target, bytes).unwrap();
+    }
 }

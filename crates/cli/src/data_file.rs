@@ -53,6 +53,9 @@ use std::path::Path;
 use anyhow::{Context, Result, bail, ensure};
 use rollfit_fit::Measurements;
 
+use crate::output;
+use rollfit_fit::data::{MIN_RELATIVE_SIGMA, SIGMA_REQUIREMENT, column_requirement};
+
 use headers::{Conversion, Header, Quantity};
 
 /// A measurement as read, in file order, with the file line of each row.
@@ -460,11 +463,6 @@ impl Column {
             format!("`{}` ({key})", self.raw)
         }
     }
-
-    /// Values must be greater than zero (v, mu and sigma).
-    fn positive(&self) -> bool {
-        self.quantity != Quantity::Temperature
-    }
 }
 
 /// The columns found in `rows` as a list for messages: `"a", "b"`.
@@ -619,8 +617,9 @@ fn table(
                 continue;
             };
             let value = column.conversion.apply(number.value, &number.decimal);
-            if column.positive() && value.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            if let Some(requirement) = column_requirement(column.quantity.key(), value) {
                 let why = match column.quantity {
+                    _ if value > 0.0 => "",
                     Quantity::Friction => {
                         " (the fit weighs residuals relative to μ and needs μ > 0)"
                     }
@@ -629,11 +628,17 @@ fn table(
                     }
                     _ => "",
                 };
-                bail!(
-                    "{} = {}: must be greater than zero{why}",
-                    at(),
-                    number.shown
-                );
+                // A range bound on a converted value: show what it became.
+                let converted = if column.conversion.is_identity() || value <= 0.0 {
+                    String::new()
+                } else {
+                    format!(
+                        " ({} {} in SI)",
+                        output::number(value),
+                        column.quantity.key()
+                    )
+                };
+                bail!("{} = {}{converted}: {requirement}{why}", at(), number.shown);
             }
             read[column.quantity as usize] = Some(value);
         }
@@ -641,6 +646,22 @@ fn table(
         if wanted.clone().any(|q| read[q].is_none()) {
             skipped.push(row.number);
             continue;
+        }
+        if let (Some(sigma), Some(mu)) = (
+            read[Quantity::Sigma as usize],
+            read[Quantity::Friction as usize],
+        ) && sigma < MIN_RELATIVE_SIGMA * mu
+        {
+            let column = columns
+                .iter()
+                .find(|c| c.quantity == Quantity::Sigma)
+                .expect("a sigma value comes from a sigma column");
+            bail!(
+                "{}: column {} = {}: {SIGMA_REQUIREMENT}",
+                source.cell(row.number, column.index),
+                column.display(),
+                output::number(sigma)
+            );
         }
         for q in wanted {
             values[q].extend(read[q]);
@@ -930,6 +951,38 @@ mod tests {
         let m = message("v,mu\n1,inf\n");
         assert!(
             m.contains("line 2: column `mu`: \"inf\" is not a finite number"),
+            "{m}"
+        );
+    }
+
+    /// Values no measurement reaches, which would overflow the weighted
+    /// residuals (issue 14: μ = 1e300 and σ = 1e-300 once gave an infinite
+    /// objective and a fit.json with null in it).
+    #[test]
+    fn values_outside_a_rolling_measurement_are_refused() {
+        let m = message("v,mu\n1e-3,0.01\n1e-2,1e300\n");
+        assert!(
+            m.contains("line 3: column `mu` = 1e300: must be below 10"),
+            "{m}"
+        );
+        let m = message("v,mu,sigma\n1e-3,0.01,1e-300\n");
+        assert!(
+            m.contains("line 2: column `sigma` = 1e-300: must be at least 1e-9 of the row's mu"),
+            "{m}"
+        );
+        let m = message("v,mu\n1e300,0.01\n");
+        assert!(
+            m.contains("line 2: column `v` = 1e300: must be at most 1000 m/s"),
+            "{m}"
+        );
+        let m = message("v_mm_s,mu\n2e9,0.01\n");
+        assert!(
+            m.contains("line 2: column `v_mm_s` (v) = 2e9 (2e6 v in SI): must be at most 1000 m/s"),
+            "{m}"
+        );
+        let m = message("v,mu,T\n1e-3,0.01,-300\n");
+        assert!(
+            m.contains("line 2: column `T` = -300: must be above absolute zero"),
             "{m}"
         );
     }

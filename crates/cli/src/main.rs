@@ -9,6 +9,7 @@ mod manifest;
 mod output;
 mod scene_file;
 mod table_file;
+mod text_file;
 
 use std::process::ExitCode;
 

@@ -65,8 +65,7 @@ pub struct Entry {
 
 /// Reads and checks the manifest at `path`; every error names `path`.
 pub fn load(path: &Path) -> Result<Manifest> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read manifest {}", path.display()))?;
+    let text = crate::text_file::read_utf8(path, "manifest")?;
     let base = path.parent().unwrap_or(Path::new(""));
     parse(&text, base).with_context(|| format!("manifest {}", path.display()))
 }

@@ -653,8 +653,7 @@ pub struct ForwardSetup {
 
 /// Reads, parses and validates a scene file; every error names `path`.
 pub fn load(path: &Path) -> Result<SceneFile> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read scene file {}", path.display()))?;
+    let text = crate::text_file::read_utf8(path, "scene file")?;
     parse(&text).with_context(|| format!("scene file {}", path.display()))
 }
 
@@ -1350,6 +1349,18 @@ impl FitSection {
     }
 }
 
+/// The speeds `rollfit fit` accepts ([`rollfit_fit::data::SPEED_RANGE`]),
+/// so that a synthetic measurement can be fitted back.
+fn in_speed_range(key: &str, v: f64) -> Result<()> {
+    let (low, high) = rollfit_fit::data::SPEED_RANGE;
+    ensure!(
+        (low..=high).contains(&v),
+        "{key} = {v:e}: speeds must lie between {low:e} and {high:e} m/s (the range of a rolling \
+         measurement that `rollfit fit` accepts)"
+    );
+    Ok(())
+}
+
 impl SweepSection {
     /// The speeds (m/s), strictly increasing: log-spaced from the range or
     /// the explicit list.
@@ -1363,6 +1374,7 @@ impl SweepSection {
             let speeds = reals(list);
             for (i, &v) in speeds.iter().enumerate() {
                 ensure!(v > 0.0, "v[{i}] = {v}: speeds must be greater than zero");
+                in_speed_range(&format!("v[{i}]"), v)?;
             }
             if let Some(i) = speeds.windows(2).position(|w| w[1] <= w[0]) {
                 bail!(
@@ -1384,6 +1396,8 @@ impl SweepSection {
             .0;
         require_positive("v_min", v_min)?;
         require_positive("v_max", v_max)?;
+        in_speed_range("v_min", v_min)?;
+        in_speed_range("v_max", v_max)?;
         ensure!(
             v_min < v_max,
             "v_min = {v_min} must be less than v_max = {v_max}"

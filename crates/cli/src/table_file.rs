@@ -33,10 +33,17 @@ pub struct ModulusTable {
 
 /// Reads and checks the modulus table at `path`; errors name the file.
 pub fn read(path: &Path) -> Result<ModulusTable> {
-    let file = std::fs::File::open(path)
-        .with_context(|| format!("cannot open modulus table {}", path.display()))?;
-    parse(file).with_context(|| format!("modulus table {}", path.display()))
+    let text = crate::text_file::read_utf8(path, "modulus table")?;
+    parse(text.as_bytes()).with_context(|| format!("modulus table {}", path.display()))
 }
+
+/// The largest accepted E′ or E″, Pa: above any solid's modulus, and small
+/// enough that the contact map ω·a(ω) built from the table stays finite.
+const MAX_MODULUS: f64 = 1e13;
+
+/// Accepted angular frequencies, rad/s: wider than any master curve, far
+/// inside the floating-point range the contact map needs.
+const OMEGA_RANGE: (f64, f64) = (1e-30, 1e30);
 
 /// Which kind of frequency the table gives.
 #[derive(Clone, Copy)]
@@ -107,10 +114,24 @@ pub fn parse<R: Read>(input: R) -> Result<ModulusTable> {
                  (the table is interpolated in log-log)"
             );
         }
+        for (value, name) in values.iter().zip(&names).skip(1) {
+            ensure!(
+                *value <= MAX_MODULUS,
+                "line {line}: column `{name}` = {value:e}: above 1e13 Pa, stiffer than any solid \
+                 (diamond: about 1.2e12 Pa); is the column in Pa?"
+            );
+        }
         let omega = match frequency {
             Frequency::Angular => values[0],
             Frequency::Hertz => 2.0 * PI * values[0],
         };
+        ensure!(
+            (OMEGA_RANGE.0..=OMEGA_RANGE.1).contains(&omega),
+            "line {line}: frequency {} = {:e}: outside 1e-30 … 1e30 rad/s, beyond any master \
+             curve",
+            names[0],
+            values[0]
+        );
         if let Some(&last) = table.omega.last() {
             ensure!(
                 omega > last,

@@ -210,6 +210,24 @@ pub struct ModulusPoint {
     pub magnitude_sigma: f64,
 }
 
+impl ModulusPoint {
+    /// The numbers in modulus.csv's column order: ω, E′, E″, tan δ, |E*|
+    /// and their 1σ in the same order.
+    pub fn values(&self) -> [f64; 9] {
+        [
+            self.omega,
+            self.storage,
+            self.loss,
+            self.tan_delta,
+            self.magnitude,
+            self.storage_sigma,
+            self.loss_sigma,
+            self.tan_delta_sigma,
+            self.magnitude_sigma,
+        ]
+    }
+}
+
 /// E*(ω) on the fitted series with its linearised 1σ band.
 pub(crate) fn modulus_point(
     param: &Parametrization,

@@ -289,7 +289,7 @@ mod tests {
     #[test]
     fn sparse_data_are_not_condensed() {
         let speeds: Vec<f64> = (0..300)
-            .map(|i| 1e-8 * 10f64.powf(i as f64 / 19.0))
+            .map(|i| 1e-14 * 10f64.powf(i as f64 / 19.0))
             .collect();
         let data = Measurements::new(speeds, vec![0.1; 300], None, None).unwrap();
         assert!(condense(&data).unwrap().is_none());

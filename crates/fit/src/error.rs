@@ -36,6 +36,13 @@ pub enum FitError {
     },
     /// A solver used up its budget of objective evaluations (internal: the
     /// solver drivers turn it into a stop reason, it never reaches a user).
+    /// The fit ended with a number that is not finite (the key names it);
+    /// no result can be trusted or written.
+    #[error(
+        "the fit produced a number that is not finite ({0}); the data or the scene hold values \
+         the model cannot represent"
+    )]
+    NonFinite(String),
     #[error("the budget of {0} objective evaluations is used up")]
     BudgetExhausted(usize),
     /// The forward model refused a scene or a material.

@@ -167,6 +167,9 @@ pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
     }
     report.evaluations = report.runs.iter().map(|r| r.evaluations).sum();
     report.wall_time_s = clock.elapsed().as_secs_f64();
+    if let Some(what) = report.first_non_finite() {
+        return Err(FitError::NonFinite(what));
+    }
     Ok(report)
 }
 

@@ -301,3 +301,110 @@ pub struct FitReport {
     #[serde(skip)]
     pub mu_fit: Vec<f64>,
 }
+
+impl FitReport {
+    /// The first number of the report that is not finite, by its key in
+    /// fit.json (`curve` and `mu_fit` name modulus.csv's and mu.csv's
+    /// columns): JSON has no NaN or ∞, and a reader of the result files must
+    /// be able to trust every number in them.
+    pub fn first_non_finite(&self) -> Option<String> {
+        let bad = |x: &f64| !x.is_finite();
+        let pairs = |v: &[[f64; 2]]| v.iter().flatten().any(bad);
+        let mut scalars: Vec<(&str, f64)> = vec![
+            ("objective", self.objective),
+            ("misfit", self.misfit),
+            ("misfit_per_point", self.misfit_per_point),
+            ("noise", self.noise),
+            ("effective_parameters", self.effective_parameters),
+            ("poisson", self.poisson),
+            ("window.omega_min", self.window.omega_min),
+            ("window.omega_max", self.window.omega_max),
+            ("probed_window.omega_min", self.probed_window.omega_min),
+            ("probed_window.omega_max", self.probed_window.omega_max),
+            ("lambda.value", self.lambda.value),
+            ("terms.per_decade", self.terms.per_decade),
+            ("model.glassy_modulus", self.model.glassy_modulus),
+            ("model.static_modulus", self.model.static_modulus),
+            ("wall_time_s", self.wall_time_s),
+        ];
+        if let Some(a) = &self.anchor {
+            scalars.extend([("anchor.omega", a.omega), ("anchor.modulus", a.modulus)]);
+        }
+        if let Some(ShiftRecord::Wlf {
+            t_ref,
+            c1,
+            c2,
+            c1_sigma,
+            c2_sigma,
+            ..
+        }) = &self.shift
+        {
+            scalars.extend([
+                ("shift.T_ref", *t_ref),
+                ("shift.C1", *c1),
+                ("shift.C2", *c2),
+                ("shift.C1_sigma", *c1_sigma),
+                ("shift.C2_sigma", *c2_sigma),
+            ]);
+        }
+        if let Some((key, value)) = scalars.iter().find(|(_, x)| bad(x)) {
+            return Some(format!("{key} = {value}"));
+        }
+        let vectors: [(&str, bool); 9] = [
+            ("model.tau", self.model.tau.iter().any(bad)),
+            ("model.strengths", self.model.strengths.iter().any(bad)),
+            (
+                "model.ln_strength_sigma",
+                self.model.ln_strength_sigma.iter().any(bad),
+            ),
+            (
+                "shift.log_aT",
+                self.shift.as_ref().is_some_and(|s| {
+                    s.log_shifts()
+                        .iter()
+                        .any(|l| bad(&l.log_shift) || bad(&l.log_shift_sigma))
+                }),
+            ),
+            (
+                "runs (objective, lambda, history)",
+                self.runs.iter().any(|r| {
+                    bad(&r.objective) || bad(&r.lambda) || bad(&r.wall_time_s) || pairs(&r.history)
+                }),
+            ),
+            (
+                "lambda.path, lambda.criterion, terms.candidates, history or scale_profile",
+                self.lambda.path.iter().flatten().any(bad)
+                    || pairs(&self.lambda.criterion)
+                    || pairs(&self.terms.candidates)
+                    || pairs(&self.history)
+                    || self.scale_profile.iter().flatten().any(bad),
+            ),
+            (
+                "curve (modulus.csv)",
+                self.curve.iter().any(|p| p.values().iter().any(bad)),
+            ),
+            ("mu_fit (mu.csv)", self.mu_fit.iter().any(bad)),
+            (
+                "shift_cross_check",
+                self.shift_cross_check.as_ref().is_some_and(|c| {
+                    bad(&c.rms_difference)
+                        || bad(&c.max_difference)
+                        || c.temperatures.iter().any(|r| {
+                            [
+                                r.log_shift_joint,
+                                r.log_shift_single,
+                                r.difference,
+                                r.single_misfit_per_point,
+                            ]
+                            .iter()
+                            .any(bad)
+                        })
+                }),
+            ),
+        ];
+        vectors
+            .iter()
+            .find(|(_, b)| *b)
+            .map(|(key, _)| format!("{key} holds a value that is not finite"))
+    }
+}

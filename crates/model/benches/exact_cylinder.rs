@@ -7,11 +7,34 @@
 //! terms), 1 (near the friction maximum) and 100 (24 terms each); and the stiff
 //! solid E1/E0 = 1000 at vτ/a0 = 1 (its edge layers follow the relaxation
 //! time τE0/E1: 106 terms).
+//!
+//! Issue 14 target (one point with a 200-term Prony series in ≤ 0.5 s; it
+//! took 15 s): `prony200_v*`, a broad rubber (relaxation times log-spaced
+//! over 1e-12 … 1e8 s, E0 = 2 MPa, E1 = 2 GPa, ν = 0.5) under the same
+//! cylinder at 1e-6, 1e-3 and 1 m/s (128 terms each: its glassy time is
+//! far below a microsecond).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rollfit_model::StandardLinearSolid;
 use rollfit_model::exact::RollingCylinder;
+use rollfit_model::{Prony, StandardLinearSolid};
 use std::hint::black_box;
+
+/// The issue-14 rubber: 200 relaxation times log-spaced over 1e-12 … 1e8 s,
+/// the strengths a log-normal bump around 1e-5 s on a floor.
+fn rubber_200() -> Prony {
+    let n = 200;
+    let tau: Vec<f64> = (0..n)
+        .map(|k| 10f64.powf(-12.0 + 20.0 * k as f64 / (n - 1) as f64))
+        .collect();
+    let w: Vec<f64> = tau
+        .iter()
+        .map(|t| (-0.5 * ((t.log10() + 5.0) / 3.0).powi(2)).exp() + 1e-3)
+        .collect();
+    let total: f64 = w.iter().sum();
+    let (e0, e1) = (2e6, 2e9);
+    let h = w.iter().map(|x| (e1 - e0) * x / total).collect();
+    Prony::new(e1, h, tau).unwrap()
+}
 
 fn benches(c: &mut Criterion) {
     let sls = StandardLinearSolid::new(1e6, 1e7, 1.0).unwrap().to_prony();
@@ -41,5 +64,19 @@ fn benches(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(exact, benches);
+fn many_terms(c: &mut Criterion) {
+    let cylinder = RollingCylinder::new(&rubber_200(), 0.5, 0.01, 100.0).unwrap();
+    let mut group = c.benchmark_group("exact_cylinder");
+    group.sample_size(10);
+    for (name, v) in [
+        ("prony200_v1e-6", 1e-6),
+        ("prony200_v1e-3", 1e-3),
+        ("prony200_v1", 1.0),
+    ] {
+        group.bench_function(name, |b| b.iter(|| cylinder.solve(black_box(v)).unwrap()));
+    }
+    group.finish();
+}
+
+criterion_group!(exact, benches, many_terms);
 criterion_main!(exact);

@@ -10,7 +10,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum ModelError {
     /// A scalar parameter is outside its physical range.
-    #[error("{name} = {value}: {requirement}")]
+    #[error("{name} = {}: {requirement}", shown(*value))]
     InvalidParameter {
         /// Parameter name as used in scene files (e.g. `radius`).
         name: String,
@@ -30,6 +30,17 @@ pub enum ModelError {
     /// The evaluation cannot proceed for this combination of inputs.
     #[error("{0}")]
     Evaluation(String),
+}
+
+/// A value as a message shows it: as written for ordinary magnitudes,
+/// in exponent form for the extreme ones (1e308 rather than 309 digits).
+fn shown(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude == 0.0 || !magnitude.is_finite() || (1e-4..1e9).contains(&magnitude) {
+        value.to_string()
+    } else {
+        format!("{value:e}")
+    }
 }
 
 impl ModelError {

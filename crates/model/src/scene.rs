@@ -6,6 +6,10 @@ use crate::contact::{ContactSize, Shape, hertz_contact_size, mean_pressure};
 use crate::error::{ModelError, require_positive};
 use crate::modulus::ViscoelasticModulus;
 
+/// Accepted radii R, m: a nanometre (below it no continuum contact exists)
+/// to a kilometre (beyond it the ratios of contact size to R underflow).
+pub const RADIUS_RANGE: (f64, f64) = (1e-9, 1e3);
+
 /// Default relative tolerance of the friction quadrature.
 pub const DEFAULT_TOLERANCE: f64 = 1e-6;
 
@@ -62,13 +66,37 @@ impl<M: ViscoelasticModulus> Scene<M> {
         }
         let e0 = material.static_modulus();
         require_positive("static modulus E(0)", e0)?;
-        Ok(Scene {
+        if !(RADIUS_RANGE.0..=RADIUS_RANGE.1).contains(&geometry.radius) {
+            return Err(ModelError::parameter(
+                "radius",
+                geometry.radius,
+                "must lie between 1e-9 m and 1000 m, a nanometre and a kilometre (is it in m?)",
+            ));
+        }
+        let scene = Scene {
             geometry,
             substrate,
             contact,
             material,
             tolerance: DEFAULT_TOLERANCE,
-        })
+        };
+        // A load far outside any contact overflows (or underflows) the Hertz
+        // contact's size or pressure; everything downstream would be ∞ or 0.
+        let (size, pressure) = (scene.static_contact_size(), scene.static_mean_pressure());
+        let usable = |x: f64| x.is_finite() && x > f64::MIN_POSITIVE;
+        if !(usable(size) && usable(pressure)) {
+            return Err(ModelError::parameter(
+                "load",
+                geometry.load,
+                &format!(
+                    "gives a static Hertz contact of size {size:e} m and mean pressure \
+                     {pressure:e} Pa with radius {:e} m and E(0) = {e0:e} Pa, which a \
+                     floating-point number cannot represent: check the load's unit",
+                    geometry.radius
+                ),
+            ));
+        }
+        Ok(scene)
     }
 
     /// The same scene with another requested relative tolerance of μ

@@ -198,6 +198,14 @@ pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
             a.column_mut(k).scale_mut(1.0 / norm);
         }
     }
+    // 1/E″ of a subnormal E″ overflows; the SVD would panic on it.
+    if a.iter().any(|x| !x.is_finite()) {
+        return Err(ReportError::Unanswerable(
+            "causality check: the DMA moduli span more than a floating-point number can weigh \
+             (a modulus near 1e-308?)"
+                .to_string(),
+        ));
+    }
     let b = DVector::from_element(2 * n, 1.0);
     let x = nnls(&a, &b);
     let scaled: Vec<f64> = x

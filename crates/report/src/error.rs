@@ -1,6 +1,6 @@
 //! The one error type of the report crate.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
@@ -79,4 +79,46 @@ impl ReportError {
             source,
         }
     }
+
+    /// Bytes that are not text in the file's encoding: the line, the byte
+    /// offset in the file (from 0) and the byte of the line (from 1), so
+    /// that a hex editor and a text editor both find it. `offset` indexes
+    /// `bytes`, the whole file; `what` says what was expected there.
+    pub(crate) fn encoding(path: &Path, bytes: &[u8], offset: usize, what: &str) -> Self {
+        let before = &bytes[..offset.min(bytes.len())];
+        let line_start = before
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |i| i + 1);
+        let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+        let found = bytes
+            .get(offset)
+            .map_or("the end of the file".to_string(), |b| {
+                format!("byte 0x{b:02X}")
+            });
+        ReportError::line(
+            path,
+            line,
+            format!(
+                "{what}: {found} at byte offset {offset} (byte {} of the line)",
+                offset - line_start + 1
+            ),
+        )
+    }
+}
+
+/// The text of a file that must be UTF-8 (what rollfit writes), or an
+/// error naming the line and byte offset of the first invalid byte rather
+/// than the system's bare "stream did not contain valid UTF-8".
+pub(crate) fn read_utf8(path: &Path) -> Result<String, ReportError> {
+    let bytes = std::fs::read(path).map_err(|e| ReportError::io(path, e))?;
+    String::from_utf8(bytes).map_err(|e| {
+        let offset = e.utf8_error().valid_up_to();
+        let what = if e.utf8_error().error_len().is_none() {
+            "not UTF-8 (a character cut off by the end of the file)"
+        } else {
+            "not UTF-8"
+        };
+        ReportError::encoding(path, e.as_bytes(), offset, what)
+    })
 }

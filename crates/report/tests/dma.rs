@@ -649,6 +649,293 @@ fn bad_trios_files_are_refused_with_line_and_variable() {
     assert_contains(&e, &["nodata.txt", "without data points"]);
 }
 
+/// Issue 14, hole 1: `f` and `omega` together, or a frequency whose
+/// name and unit disagree, was read as one of them without a word.
+#[test]
+fn csv_with_two_frequency_columns_or_contradictory_units_is_refused() {
+    let dir = TempDir::new("freq");
+    let options = DmaOptions::default();
+    let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
+
+    let e = error_text(read(
+        "both.csv",
+        "# f and omega\nf,omega,E_storage,E_loss\n1,6.283185307179586,1e6,1e5\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "both.csv, line 2",
+            "two frequency columns, column 1 (f) and column 2 (omega)",
+            "keep one",
+        ],
+    );
+    let e = error_text(read(
+        "suffixed.csv",
+        "omega_rad_s,E_storage,E_loss,f_Hz\n6.283185307179586,1e6,1e5,1\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "suffixed.csv, line 1",
+            "column 1 (omega_rad_s) and column 4 (f_Hz)",
+        ],
+    );
+    let e = error_text(read(
+        "omega_hz.csv",
+        "T,omega_Hz,E_storage,E_loss\n20,1,1e6,1e5\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "omega_hz.csv, line 1",
+            "column 2 (omega_Hz)",
+            "`omega` is an angular frequency, in rad/s, but the suffix says Hz",
+        ],
+    );
+    let e = error_text(read("f_rad.csv", "f_rad_s,E_storage,E_loss\n1,1e6,1e5\n"));
+    assert_contains(
+        &e,
+        &[
+            "f_rad.csv, line 1",
+            "column 1 (f_rad_s)",
+            "`f` is a frequency, in Hz, but the suffix says rad/s",
+        ],
+    );
+    // The same for the moduli and the temperature: which of two is meant
+    // is a guess with a factor 10⁶ or 273.15 K on it.
+    let e = error_text(read(
+        "two_storage.csv",
+        "omega,E_storage,E_loss,E_storage_MPa\n1,1e6,1e5,1\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "two_storage.csv, line 1",
+            "two E_storage columns, column 2 (E_storage) and column 4 (E_storage_MPa)",
+        ],
+    );
+    let e = error_text(read(
+        "two_t.csv",
+        "omega,E_storage,E_loss,T_C,T_K\n1,1e6,1e5,20,293.15\n",
+    ));
+    assert_contains(
+        &e,
+        &["two_t.csv, line 1", "column 4 (T_C) and column 5 (T_K)"],
+    );
+}
+
+/// Issue 14, hole 2: a TRIOS export cut off was read in part; its
+/// `Number of points` was never checked.
+#[test]
+fn truncated_trios_export_is_refused() {
+    let dir = TempDir::new("trios-cut");
+    let good = fs::read_to_string(fixture("trios_shear_two_steps.txt")).unwrap();
+    let options = DmaOptions::default();
+    let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
+    let lines: Vec<&str> = good.lines().collect();
+    // The first `n` lines, each with its line break.
+    let head = |n: usize| {
+        lines[..n]
+            .iter()
+            .map(|l| format!("{l}\n"))
+            .collect::<String>()
+    };
+
+    // Cut inside the second step's Variables line (line 30): the first
+    // isotherm alone used to be read.
+    let cut = format!("{}Variables\tTemperature\tFreq", head(29));
+    let e = error_text(read("variables.txt", &cut));
+    assert_contains(
+        &e,
+        &[
+            "variables.txt, line 29",
+            "step \"Frequency sweep (40.0 °C)\" (line 27)",
+            "Number of points says 5",
+            "without data points",
+            "truncated",
+        ],
+    );
+    // Cut between rows: two of five rows left.
+    let e = error_text(read("rows.txt", &head(33)));
+    assert_contains(
+        &e,
+        &[
+            "rows.txt, line 29",
+            "step \"Frequency sweep (40.0 °C)\" (line 27)",
+            "Number of points says 5, but 2 data point rows follow (lines 32 to 33)",
+            "it ends at line 33",
+        ],
+    );
+    // Cut in the last row's last number (5000121.77315 → 5000121.7):
+    // the row count matches and the number parses.
+    let mid_number = format!(
+        "{}Data point\t313.15\t10\t50\t0.00617224643619\t6166024.9",
+        head(35)
+    );
+    let e = error_text(read("number.txt", &mid_number));
+    assert_contains(
+        &e,
+        &[
+            "number.txt, line 36",
+            "step \"Frequency sweep (40.0 °C)\" (line 27)",
+            "without a line break",
+            "cut off",
+        ],
+    );
+    // Cut mid-row, before the used columns end.
+    let mid_row = format!("{}Data point\t313.15\t10\t50\t0.006", head(35));
+    let e = error_text(read("row.txt", &mid_row));
+    assert_contains(&e, &["row.txt, line 36", "without a line break"]);
+    // More rows than declared, and a count that is not one.
+    let extra = good.replacen("Number of points\t5", "Number of points\t4", 1);
+    let e = error_text(read("extra.txt", &extra));
+    assert_contains(
+        &e,
+        &[
+            "extra.txt, line 19",
+            "step \"Frequency sweep (20.0 °C)\" (line 17)",
+            "Number of points says 4, but 5 data point rows follow (lines 22 to 26)",
+        ],
+    );
+    let e = error_text(read(
+        "count.txt",
+        &good.replacen("Number of points\t5", "Number of points\tfive", 1),
+    ));
+    assert_contains(
+        &e,
+        &[
+            "count.txt, line 19",
+            "Number of points \"five\" is not a count",
+        ],
+    );
+    // The whole file, with and without CRLF line breaks, still reads.
+    assert_eq!(read("whole.txt", &good).unwrap().points.len(), 10);
+    let crlf = good.replace('\n', "\r\n");
+    assert_eq!(read("crlf.txt", &crlf).unwrap().points.len(), 10);
+}
+
+/// Issue 14, hole 3: a CSV cut inside its last row.
+#[test]
+fn csv_cut_in_its_last_row_is_refused_or_flagged() {
+    let dir = TempDir::new("csv-cut");
+    let options = DmaOptions::default();
+    let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
+    let head = "omega,E_storage,E_loss\n1,1e6,1e5\n";
+
+    let e = error_text(read("cells.csv", &format!("{head}2,1.2e")));
+    assert_contains(
+        &e,
+        &[
+            "cells.csv, line 3",
+            "2 fields, but the header has 3 columns",
+            "no value for column 3 (E_loss)",
+            "cut off",
+        ],
+    );
+    let e = error_text(read("exponent.csv", &format!("{head}2,1e6,1.2e")));
+    assert_contains(
+        &e,
+        &[
+            "exponent.csv, line 3",
+            "column 3 (E_loss)",
+            "\"1.2e\" is not a number",
+        ],
+    );
+    let e = error_text(read("dot.csv", &format!("{head}2,1e6,1.2e+")));
+    assert_contains(&e, &["dot.csv, line 3", "column 3 (E_loss)", "\"1.2e+\""]);
+    // A number cut to one that still parses: only the missing line break
+    // tells, and CSV files without one are common: read, with a warning.
+    let data = read("digits.csv", &format!("{head}2,1e6,1.2")).unwrap();
+    assert_eq!(data.points.len(), 2);
+    assert!(
+        data.warnings
+            .iter()
+            .any(|w| w.contains("digits.csv, line 3") && w.contains("without a line break")),
+        "{:?}",
+        data.warnings
+    );
+    let data = read("whole.csv", &format!("{head}2,1e6,1.2e5\n")).unwrap();
+    assert!(data.warnings.is_empty(), "{:?}", data.warnings);
+}
+
+/// Issue 14, hole 4: invalid bytes were "stream did not contain valid
+/// UTF-8" (fit folder) or quietly read as Latin-1 (DMA); now the file, the
+/// line and the byte offset.
+#[test]
+fn invalid_bytes_in_dma_files_are_located_by_line_and_offset() {
+    let dir = TempDir::new("bytes");
+    let options = DmaOptions::default();
+    let write = |name: &str, bytes: &[u8]| {
+        let path = dir.path().join(name);
+        fs::write(&path, bytes).unwrap();
+        path
+    };
+
+    // UTF-8 (the ° of line 1) with a stray 0xFF in line 3, byte 3.
+    let mut bytes = "# 20 °C\nomega,E_storage,E_loss\n1,".as_bytes().to_vec();
+    let offset = bytes.len();
+    bytes.extend(b"\xFF,1e5\n");
+    let e = error_text(DmaData::read(&write("mixed.csv", &bytes), 0.5, &options));
+    assert_contains(
+        &e,
+        &[
+            "mixed.csv, line 3",
+            "invalid UTF-8",
+            &format!("byte 0xFF at byte offset {offset} (byte 3 of the line)"),
+        ],
+    );
+    // A UTF-8 mark says UTF-8 for the whole file.
+    let mut marked = vec![0xEF, 0xBB, 0xBF];
+    marked.extend(b"omega,E_storage,E_loss\n1,1e6,1e5\n2,1e6,");
+    let offset = marked.len();
+    marked.extend(b"\xB05\n");
+    let e = error_text(DmaData::read(&write("bom.csv", &marked), 0.5, &options));
+    assert_contains(
+        &e,
+        &[
+            "bom.csv, line 3",
+            "byte-order mark",
+            &format!("byte 0xB0 at byte offset {offset} (byte 7 of the line)"),
+        ],
+    );
+    // Latin-1 throughout is still read (° as 0xB0 in a comment).
+    let latin1 = b"# 20 \xB0C\nomega,E_storage,E_loss\n1,1e6,1e5\n";
+    let data = DmaData::read(&write("latin1.csv", latin1), 0.5, &options).unwrap();
+    assert_eq!(data.points.len(), 1);
+
+    // UTF-16: an unpaired surrogate in line 2, and an odd byte count.
+    let text = fs::read_to_string(fixture("trios_tensile.txt")).unwrap();
+    let units: Vec<u16> = text.encode_utf16().collect();
+    let second_line = units.iter().position(|&u| u == u16::from(b'\n')).unwrap() + 1;
+    let mut bad = units.clone();
+    bad[second_line + 3] = 0xD800;
+    let utf16 = |units: &[u16]| {
+        let mut bytes = vec![0xFF, 0xFE];
+        bytes.extend(units.iter().flat_map(|u| u.to_le_bytes()));
+        bytes
+    };
+    let e = error_text(DmaData::read(
+        &write("surrogate.txt", &utf16(&bad)),
+        0.5,
+        &options,
+    ));
+    assert_contains(
+        &e,
+        &[
+            "surrogate.txt, line 2",
+            "unpaired surrogate 0xD800",
+            &format!("byte offset {}", 2 + 2 * (second_line + 3)),
+        ],
+    );
+    let mut odd = utf16(&units);
+    odd.pop();
+    let e = error_text(DmaData::read(&write("odd.txt", &odd), 0.5, &options));
+    assert_contains(
+        &e,
+        &["odd.txt, line 24", "odd number of bytes", "truncated"],
+    );
+}
+
 // ---------------------------------------------------------------- shifting
 
 const C1: f64 = 8.86;
@@ -1132,5 +1419,44 @@ fn the_bundled_dma_sweep_is_the_truth_of_the_example() {
         let e = truth.modulus(p.omega);
         assert!(relative(p.storage, e.re) < 1e-5, "E′ at {}", p.omega);
         assert!(relative(p.loss, e.im) < 1e-5, "E″ at {}", p.omega);
+    }
+}
+
+/// Found while fixing issue 14: the csv crate's record position is where
+/// it began to read, before skipped comment and blank lines and, in CRLF
+/// files (the 468MP CSV is one), a line early; messages named the wrong
+/// line.
+#[test]
+fn csv_errors_name_the_right_line_below_comments_blank_lines_and_in_crlf_files() {
+    let dir = TempDir::new("lines");
+    let cases = [
+        (
+            "comment.csv",
+            "omega,E_storage,E_loss\n1,1e6,1e5\n# mid\n2,abc,1e5\n",
+            4,
+        ),
+        (
+            "blank.csv",
+            "omega,E_storage,E_loss\n1,1e6,1e5\n\n\n2,abc,1e5\n",
+            5,
+        ),
+        (
+            "crlf.csv",
+            "omega,E_storage,E_loss\r\n1,1e6,1e5\r\n2,abc,1e5\r\n",
+            3,
+        ),
+        (
+            "crlf_comment.csv",
+            "\r\n# x\r\n\r\nomega,E_storage,E_loss\r\n1,1e6,1e5\r\n# y\r\n2,abc,1e5\r\n",
+            7,
+        ),
+    ];
+    for (name, text, line) in cases {
+        let e = error_text(DmaData::read(
+            &dir.write(name, text),
+            0.5,
+            &DmaOptions::default(),
+        ));
+        assert_contains(&e, &[&format!("{name}, line {line}:"), "\"abc\""]);
     }
 }

@@ -5,15 +5,19 @@
 //! scene and a data file into DIR/<entry name>/ — the same files, made by
 //! the same [`fit_files`]. The entries run on a local rayon pool
 //! (`--jobs`); a failing entry is reported and does not stop the others.
-//! An entry whose DIR/<name>/fit.json exists is skipped (fit_files writes
-//! fit.json last and atomically, so it marks a complete result) unless
+//! An entry whose DIR/<name>/fit.json exists is skipped (an entry's folder
+//! is replaced as a whole, so fit.json marks a complete result) unless
 //! `--force`: running the same command again resumes an interrupted batch,
 //! and `--shard i/n` spreads one batch over several processes or machines
-//! that share DIR. DIR/summary.csv (DIR/summary-<i>-of-<n>.csv for a
-//! shard) has one row per entry run, in manifest order. As for `rollfit
-//! fit`, an unconverged entry, or a converged one whose fit_quality verdict
-//! is poor, keeps its results but makes the exit status non-zero unless
-//! `--allow-unconverged` or `--allow-poor-fit`.
+//! that share DIR. A batch holds DIR's lock (`.rollfit-batch.lock`; shards
+//! share it and each holds its own), so a second batch into DIR is refused
+//! at once, and removes what killed runs left (temporary files and
+//! folders). DIR/summary.csv (DIR/summary-<i>-of-<n>.csv for a shard) has
+//! one row per entry run, in manifest order, its numbers read back from
+//! each entry's fit.json. Unlike `rollfit fit`, which then writes nothing,
+//! an unconverged entry, or a converged one whose fit_quality verdict is
+//! poor, keeps its results (marked in fit.json) but makes the exit status
+//! non-zero unless `--allow-unconverged` or `--allow-poor-fit`.
 //!
 //! Settings, from strongest to weakest: the entry's own keys, the command
 //! line's flags, the manifest's `[defaults]`, the scene's `[fit]` table.
@@ -34,6 +38,9 @@ use serde_json::Value;
 use crate::commands::fit::{Job, Settings, fit_files};
 use crate::manifest::{self, Entry};
 use crate::output;
+
+/// The lock file of a batch's output folder.
+const BATCH_LOCK: &str = ".rollfit-batch.lock";
 
 /// Columns of summary.csv.
 pub const SUMMARY_COLUMNS: [&str; 11] = [
@@ -262,6 +269,27 @@ pub fn run(args: &Args) -> Result<()> {
             dir.display()
         );
     }
+    // Two batches writing one folder would mix their results: a whole batch
+    // holds the folder's lock alone, the shards of one share it and each
+    // holds its own. Taking it also proves the folder writable before the
+    // first fit.
+    let _locks = match args.shard {
+        None => vec![output::FolderLock::take(&dir, BATCH_LOCK, true)?],
+        Some(s) => vec![
+            output::FolderLock::take(&dir, BATCH_LOCK, false)?,
+            output::FolderLock::take(
+                &dir,
+                &format!(".rollfit-batch-{}-of-{}.lock", s.index, s.count),
+                true,
+            )?,
+        ],
+    };
+    // What killed runs left: staging folders beside the entries, and
+    // temporary files inside them.
+    output::remove_stale(&dir);
+    for entry in &manifest.entries {
+        output::remove_stale(&dir.join(&entry.name));
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.jobs.unwrap_or(0))
         .thread_name(|i| format!("rollfit-batch-{i}"))
@@ -375,22 +403,21 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// Runs (or skips) one entry; every error and panic becomes a failed row.
+/// The row's numbers are read back from the fit.json on disk, so that the
+/// summary describes the files it points to.
 fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> EntryResult {
     let folder = dir.join(&entry.name);
     let existing = folder.join("fit.json");
-    if existing.is_file() {
-        if !force {
-            return skipped(entry, &existing);
-        }
-        // Without its fit.json the folder reads as unfinished until the
-        // refit completes, also if the refit fails.
-        if let Err(e) = std::fs::remove_file(&existing) {
-            return EntryResult::failed(
-                entry,
-                format!("cannot remove the old {}: {e}", existing.display()),
-            );
-        }
+    if existing.is_file() && !force {
+        return from_disk(
+            entry,
+            &existing,
+            Status::Skipped,
+            vec!["existing result kept (--force refits)".into()],
+        );
     }
+    // A refit replaces the folder as a whole when it is written; until then,
+    // and if it fails, the previous result stays as it was.
     let job = Job {
         scene: &entry.scene,
         data: &entry.data,
@@ -403,11 +430,13 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> Ent
     // log's other line ("fitting N point(s) …") is left out.
     let data_notes = RefCell::new(Vec::new());
     let outcome = panic::catch_unwind(AssertUnwindSafe(|| {
-        fit_files(&job, |line| {
+        let outcome = fit_files(&job, |line| {
             if line.starts_with("note: ") || line.starts_with("warning: ") {
                 data_notes.borrow_mut().push(line.to_string());
             }
-        })
+        })?;
+        outcome.commit(&folder)?;
+        Ok::<_, anyhow::Error>(outcome)
     }));
     let data_notes = data_notes.into_inner();
     let with_notes = |head: String| {
@@ -438,19 +467,7 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> Ent
             };
             let mut parts = with_notes(head);
             parts.extend(report.warnings.iter().map(|w| format!("warning: {w}")));
-            EntryResult {
-                name: entry.name.clone(),
-                status,
-                objective: Some(report.objective),
-                misfit_per_point: Some(report.misfit_per_point),
-                omega_min: Some(report.window.omega_min),
-                omega_max: Some(report.window.omega_max),
-                wall_time_s: Some(report.wall_time_s),
-                converged: Some(report.converged),
-                poor_fit: report.fit_quality.is_poor(),
-                wlf: report.shift.as_ref().and_then(|s| s.wlf_constants()),
-                message: parts.join("; "),
-            }
+            from_disk(entry, &existing, status, parts)
         }
         Ok(Err(error)) => EntryResult::failed(entry, with_notes(format!("{error:#}")).join("; ")),
         Err(payload) => {
@@ -467,8 +484,10 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> Ent
     }
 }
 
-/// The row of an entry whose result exists, from its fit.json.
-fn skipped(entry: &Entry, path: &Path) -> EntryResult {
+/// The row of an entry from the fit.json at `path`: its numbers, and for a
+/// kept result (`Status::Skipped`) its convergence and verdict in the
+/// message after `parts`.
+fn from_disk(entry: &Entry, path: &Path, status: Status, parts: Vec<String>) -> EntryResult {
     let report: Value = match std::fs::read(path)
         .map_err(|e| e.to_string())
         .and_then(|bytes| serde_json::from_slice(&bytes).map_err(|e| e.to_string()))
@@ -478,7 +497,7 @@ fn skipped(entry: &Entry, path: &Path) -> EntryResult {
             return EntryResult::failed(
                 entry,
                 format!(
-                    "cannot read the existing result {}: {e} (remove it or give --force to refit)",
+                    "cannot read the result {}: {e} (remove it or give --force to refit)",
                     path.display()
                 ),
             );
@@ -486,26 +505,28 @@ fn skipped(entry: &Entry, path: &Path) -> EntryResult {
     };
     let number = |v: &Value| v.as_f64();
     let converged = report["converged"].as_bool();
-    let mut message = String::from("existing result kept (--force refits)");
-    if converged == Some(false) {
-        let reason = report["stop_reason"].as_str().unwrap_or("no reason given");
-        message += &format!("; it did not converge: {reason}");
-    }
+    let mut message = parts.join("; ");
     // Results written before fit_quality existed have no verdict.
     let poor_fit = report["fit_quality"]["verdict"].as_str() == Some("poor");
-    if poor_fit && converged != Some(false) {
-        let reasons: Vec<&str> = report["fit_quality"]["reasons"]
-            .as_array()
-            .map(|r| r.iter().filter_map(Value::as_str).collect())
-            .unwrap_or_default();
-        message += "; it does not describe the data (fit_quality poor)";
-        for reason in reasons {
-            message += &format!("; fit quality: {reason}");
+    if status == Status::Skipped {
+        if converged == Some(false) {
+            let reason = report["stop_reason"].as_str().unwrap_or("no reason given");
+            message += &format!("; it did not converge: {reason}");
+        }
+        if poor_fit && converged != Some(false) {
+            let reasons: Vec<&str> = report["fit_quality"]["reasons"]
+                .as_array()
+                .map(|r| r.iter().filter_map(Value::as_str).collect())
+                .unwrap_or_default();
+            message += "; it does not describe the data (fit_quality poor)";
+            for reason in reasons {
+                message += &format!("; fit quality: {reason}");
+            }
         }
     }
     EntryResult {
         name: entry.name.clone(),
-        status: Status::Skipped,
+        status,
         objective: number(&report["objective"]),
         misfit_per_point: number(&report["misfit_per_point"]),
         omega_min: number(&report["window"]["omega_min"]),

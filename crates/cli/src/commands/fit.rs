@@ -182,7 +182,14 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let outcome = fit_files(&job, |line| eprintln!("{line}"))?;
     let report = &outcome.report;
-    eprint!("{}", summary(report, &dir));
+    // Only an accepted fit is written: a non-zero exit leaves the output
+    // folder as it was.
+    let accepted = (report.converged || args.allow_unconverged)
+        && (!report.converged || !report.fit_quality.is_poor() || args.allow_poor_fit);
+    if accepted {
+        outcome.commit(&dir)?;
+    }
+    eprint!("{}", summary(report, &dir, accepted));
     if let Some(t) = outcome.temperature {
         eprintln!(
             "note: every point was measured at T = {t} °C; the master curve is E*(ω) at that \
@@ -204,10 +211,10 @@ pub fn run(args: &Args) -> Result<()> {
             );
         } else {
             bail!(
-                "the fit does not describe the data: {}; the results in {} are marked \
-                 \"fit_quality\": {{\"verdict\": \"poor\"}} (check the scene's units and \
-                 geometry, look at the residuals in mu.csv or `rollfit report`, or give \
-                 --allow-poor-fit to accept them)",
+                "the fit does not describe the data: {}; nothing was written to {} (check the \
+                 scene's units and geometry, or give --allow-poor-fit to write the results, \
+                 marked \"fit_quality\": {{\"verdict\": \"poor\"}}, and look at the \
+                 residuals in mu.csv or `rollfit report`)",
                 report.fit_quality.reasons.join("; "),
                 dir.display()
             );
@@ -221,9 +228,9 @@ pub fn run(args: &Args) -> Result<()> {
             );
         } else {
             bail!(
-                "the fit did not converge: {}; the results in {} are marked \"converged\": false \
-                 (give --allow-unconverged to accept them, or try another --method, more --starts \
-                 or a larger [fit] max_evaluations)",
+                "the fit did not converge: {}; nothing was written to {} (try another --method, \
+                 more --starts or a larger [fit] max_evaluations, or give --allow-unconverged to \
+                 write the results, marked \"converged\": false)",
                 report.stop_reason,
                 dir.display()
             );
@@ -242,26 +249,37 @@ pub struct Job<'a> {
     pub settings: &'a Settings,
 }
 
-/// What a finished fit returns besides its files.
+/// A finished fit and its result files, encoded but not yet written.
 pub struct Outcome {
     pub report: FitReport,
     /// The one temperature of the data's `T` column, °C.
     pub temperature: Option<f64>,
+    /// fit.json, modulus.csv and mu.csv.
+    files: [(&'static str, Vec<u8>); 3],
 }
 
-/// Reads the scene and the data of `job`, fits, and writes DIR/mu.csv,
-/// DIR/modulus.csv and DIR/fit.json (fit.json last, each atomically). An
-/// unconverged fit is written and returned (the caller decides); `log`
+impl Outcome {
+    /// Writes the result files, replacing the folder `dir` as a whole
+    /// ([`output::replace_folder`]): a reader finds either the previous
+    /// complete result or this one.
+    pub fn commit(&self, dir: &Path) -> Result<()> {
+        let files: Vec<(&str, &[u8])> = self
+            .files
+            .iter()
+            .map(|(name, bytes)| (*name, bytes.as_slice()))
+            .collect();
+        output::replace_folder(dir, &files)
+    }
+}
+
+/// Reads the scene and the data of `job`, fits, and encodes DIR/mu.csv,
+/// DIR/modulus.csv and DIR/fit.json; [`Outcome::commit`] writes them (the
+/// caller decides whether an unconverged or poor fit is kept). `log`
 /// receives the data file's notes and warnings (how it was read, rows
 /// skipped) and a line before the (possibly long) fit starts.
 pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     let (scene_path, data_path, dir) = (job.scene, job.data, job.dir);
-    if dir.exists() && !dir.is_dir() {
-        bail!(
-            "output {} exists and is not a folder; give a folder for fit.json, modulus.csv and mu.csv",
-            dir.display()
-        );
-    }
+    output::check_replaceable(dir)?;
 
     let file = scene_file::load(scene_path)?;
     let (setup, mut params) = file
@@ -306,10 +324,23 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         ),
     })?;
 
-    write_results(job, &table, &report, temperature)?;
+    if let Some(what) = report.first_non_finite() {
+        bail!(
+            "fitting data file {}: {}",
+            data_path.display(),
+            FitError::NonFinite(what)
+        );
+    }
+    // Everything is encoded before the disk is touched.
+    let files = [
+        ("mu.csv", mu_csv(&table, &report)?),
+        ("modulus.csv", modulus_csv(&report)?),
+        ("fit.json", fit_json(job, &report, temperature)?),
+    ];
     Ok(Outcome {
         report,
         temperature,
+        files,
     })
 }
 
@@ -375,19 +406,7 @@ fn fit_json(job: &Job<'_>, report: &FitReport, temperature: Option<f64>) -> Resu
 fn modulus_csv(report: &FitReport) -> Result<Vec<u8>> {
     output::csv_bytes(
         &MODULUS_COLUMNS,
-        report.curve.iter().map(|p| {
-            vec![
-                p.omega,
-                p.storage,
-                p.loss,
-                p.tan_delta,
-                p.magnitude,
-                p.storage_sigma,
-                p.loss_sigma,
-                p.tan_delta_sigma,
-                p.magnitude_sigma,
-            ]
-        }),
+        report.curve.iter().map(|p| p.values().to_vec()),
     )
 }
 
@@ -441,27 +460,8 @@ fn mu_csv(table: &DataTable, report: &FitReport) -> Result<Vec<u8>> {
     output::csv_bytes(&header, rows)
 }
 
-/// Writes the three result files, each atomically; fit.json last, so that
-/// its presence marks a complete result.
-fn write_results(
-    job: &Job<'_>,
-    table: &DataTable,
-    report: &FitReport,
-    temperature: Option<f64>,
-) -> Result<()> {
-    // Encode everything before touching the disk.
-    let mu = mu_csv(table, report)?;
-    let modulus = modulus_csv(report)?;
-    let json = fit_json(job, report, temperature)?;
-    let dir = job.dir;
-    output::write_atomically(&dir.join("mu.csv"), &mu)?;
-    output::write_atomically(&dir.join("modulus.csv"), &modulus)?;
-    output::write_atomically(&dir.join("fit.json"), &json)?;
-    Ok(())
-}
-
 /// A few lines for a person at a terminal.
-pub fn summary(report: &FitReport, dir: &Path) -> String {
+pub fn summary(report: &FitReport, dir: &Path, written: bool) -> String {
     let mut text = String::new();
     let weights = if report.sigma_weights {
         "χ² with the measured sigma"
@@ -574,7 +574,9 @@ pub fn summary(report: &FitReport, dir: &Path) -> String {
     for warning in &report.warnings {
         text += &format!("warning: {warning}\n");
     }
-    text += &format!("wrote {} (fit.json, modulus.csv, mu.csv)\n", dir.display());
+    if written {
+        text += &format!("wrote {} (fit.json, modulus.csv, mu.csv)\n", dir.display());
+    }
     text
 }
 

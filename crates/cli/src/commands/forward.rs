@@ -87,17 +87,20 @@ pub struct Args {
     pub seed: Option<u64>,
 }
 
-/// `--noise`: a finite relative standard deviation, zero or greater.
+/// `--noise`: a finite relative standard deviation greater than zero. Zero
+/// would write σ = 0, which `rollfit fit` refuses (infinite weight): the
+/// noiseless μ is what `forward` writes without --noise.
 fn parse_noise(text: &str) -> Result<f64, String> {
     let rel: f64 = text
         .trim()
         .parse()
         .map_err(|_| format!("expected a number such as 0.01 (1 % noise), got {text:?}"))?;
-    if rel.is_finite() && rel >= 0.0 {
+    if rel.is_finite() && rel > 0.0 {
         Ok(rel)
     } else {
         Err(format!(
-            "the relative noise must be a finite number, zero or greater (0.01 = 1 %), got {rel}"
+            "the relative noise must be a finite number greater than zero (0.01 = 1 %), got \
+             {rel}; leave --noise out for the noiseless μ"
         ))
     }
 }
@@ -152,8 +155,16 @@ pub fn run(args: &Args) -> Result<()> {
         .iter()
         .zip(&solved)
         .flat_map(|(block, solved)| rows(block, &setup.speeds, solved));
+    let refuse = |e: anyhow::Error| {
+        e.context(format!(
+            "scene file {}: the model gives a number that is not finite; check [geometry] \
+             radius and load and the material's moduli for values far outside a rolling \
+             contact",
+            path.display()
+        ))
+    };
     let bytes = match args.noise {
-        None => output::csv_text_bytes(&header(&COLUMNS, extra), rows)?,
+        None => output::csv_text_bytes(&header(&COLUMNS, extra), rows).map_err(refuse)?,
         Some(rel) => {
             // One stream over the whole file, in row order.
             let exact: Vec<f64> = mu.iter().flatten().copied().collect();
@@ -173,7 +184,7 @@ pub fn run(args: &Args) -> Result<()> {
                 row.splice(1..1, [output::number(m), output::number(sigma)]);
                 row
             });
-            output::csv_text_bytes(&header(&NOISY_COLUMNS, extra), rows)?
+            output::csv_text_bytes(&header(&NOISY_COLUMNS, extra), rows).map_err(refuse)?
         }
     };
     match &args.output {
@@ -577,7 +588,7 @@ mod tests {
     #[test]
     fn noise_level_is_checked() {
         assert_eq!(parse_noise("0.01"), Ok(0.01));
-        assert_eq!(parse_noise("0"), Ok(0.0));
+        assert!(parse_noise("0").is_err());
         for bad in ["-0.01", "nan", "inf", "1%", ""] {
             assert!(parse_noise(bad).is_err(), "{bad}");
         }

@@ -11,16 +11,22 @@
 //!
 //! A suffix follows the name after an underscore: `omega_rad_s`, `f_Hz`,
 //! `G_storage_Pa`, `E_loss_MPa`, `T_C`, `T_K`. Without one the column is in
-//! the default unit (ω in rad/s, f in Hz, moduli in Pa, T in °C). When both
-//! `omega` and `f` are present `omega` is used (no conversion); when both
-//! Young's and shear columns are present the Young's ones are (no ν needed).
-//! ω = 2π f.
+//! the default unit (ω in rad/s, f in Hz, moduli in Pa, T in °C). ω = 2π f.
+//! When both Young's and shear columns are present the Young's ones are
+//! used (no ν needed).
+//!
+//! Refused, naming the columns: two columns for one quantity (`f` and
+//! `omega`, or `E_storage` and `E_storage_MPa`), since which one is meant
+//! is a guess and a factor 2π or 10⁶ rides on it; and the contradictory
+//! `omega_Hz` or `f_rad_s` (ω is rad/s and f is Hz by name: the name or
+//! the unit is wrong, and nothing says which).
 
 use std::f64::consts::PI;
 use std::path::Path;
 
 use super::{FieldNames, ModulusKind, RawPoint};
 use crate::error::ReportError;
+use crate::fit_dir::csv_line;
 
 /// What the CSV reader found.
 pub(crate) struct CsvFile {
@@ -40,24 +46,52 @@ struct Column {
     offset: f64,
 }
 
-/// The column among `header` named `base` or `base_UNIT` with UNIT one of
-/// `units` ((suffix, factor, offset) to the SI unit), the first one found.
-fn find(header: &[String], base: &str, units: &[(&str, f64, f64)]) -> Option<Column> {
-    header.iter().enumerate().find_map(|(index, name)| {
-        let (factor, offset) = if name == base {
-            (units[0].1, units[0].2)
-        } else {
-            let suffix = name.strip_prefix(base)?.strip_prefix('_')?;
-            let unit = units.iter().find(|u| u.0 == suffix)?;
-            (unit.1, unit.2)
-        };
-        Some(Column {
-            index,
-            name: name.clone(),
-            factor,
-            offset,
+/// The columns among `header` named `base` or `base_UNIT` with UNIT one of
+/// `units` ((suffix, factor, offset) to the SI unit), in header order.
+fn find_all(header: &[String], base: &str, units: &[(&str, f64, f64)]) -> Vec<Column> {
+    header
+        .iter()
+        .enumerate()
+        .filter_map(|(index, name)| {
+            let (factor, offset) = if name == base {
+                (units[0].1, units[0].2)
+            } else {
+                let suffix = name.strip_prefix(base)?.strip_prefix('_')?;
+                let unit = units.iter().find(|u| u.0 == suffix)?;
+                (unit.1, unit.2)
+            };
+            Some(Column {
+                index,
+                name: name.clone(),
+                factor,
+                offset,
+            })
         })
-    })
+        .collect()
+}
+
+/// The one column of `what` among `found`, or an error naming two.
+fn one(
+    path: &Path,
+    header_line: usize,
+    what: &str,
+    found: Vec<Column>,
+    advice: &str,
+) -> Result<Option<Column>, ReportError> {
+    match found.as_slice() {
+        [a, b, ..] => Err(ReportError::line(
+            path,
+            header_line,
+            format!(
+                "two {what} columns, column {} ({}) and column {} ({}): keep one{advice}",
+                a.index + 1,
+                a.name,
+                b.index + 1,
+                b.name
+            ),
+        )),
+        _ => Ok(found.into_iter().next()),
+    }
 }
 
 const MODULUS_UNITS: [(&str, f64, f64); 4] = [
@@ -76,33 +110,64 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<CsvFile, ReportError> {
         .flexible(true)
         .from_reader(text.as_bytes());
     let mut records = reader.records();
-    let header: Vec<String> = loop {
+    let (header_line, header): (usize, Vec<String>) = loop {
         match records.next() {
             None => return Err(ReportError::format(path, "empty: no header line")),
-            Some(Err(e)) => return Err(not_csv(path, &e)),
+            Some(Err(e)) => return Err(not_csv(path, text, &e)),
             Some(Ok(r)) if r.iter().all(str::is_empty) => continue,
-            Some(Ok(r)) => break r.iter().map(str::to_string).collect(),
+            Some(Ok(r)) => {
+                let line = csv_line(text, r.position());
+                break (line, r.iter().map(str::to_string).collect());
+            }
         }
     };
     let listed = header.join(", ");
-    let omega = find(&header, "omega", &[("rad_s", 1.0, 0.0), ("Hz", 2.0 * PI, 0.0)])
-        .or_else(|| find(&header, "f", &[("Hz", 2.0 * PI, 0.0), ("rad_s", 1.0, 0.0)]))
-        .ok_or_else(|| {
-            ReportError::format(
+    for (index, name) in header.iter().enumerate() {
+        let contradiction = match name.as_str() {
+            "omega_Hz" => Some("`omega` is an angular frequency, in rad/s, but the suffix says Hz"),
+            "f_rad_s" => Some("`f` is a frequency, in Hz, but the suffix says rad/s"),
+            _ => None,
+        };
+        if let Some(contradiction) = contradiction {
+            return Err(ReportError::line(
                 path,
+                header_line,
                 format!(
-                    "no frequency column: need `omega` (rad/s) or `f` (Hz), optionally with a unit suffix such as omega_rad_s or f_Hz (the header has: {listed})"
+                    "column {} ({name}): {contradiction}: name it f_Hz if it holds hertz or omega_rad_s if it holds rad/s",
+                    index + 1
                 ),
-            )
-        })?;
-    let young = (
-        find(&header, "E_storage", &MODULUS_UNITS),
-        find(&header, "E_loss", &MODULUS_UNITS),
-    );
-    let shear = (
-        find(&header, "G_storage", &MODULUS_UNITS),
-        find(&header, "G_loss", &MODULUS_UNITS),
-    );
+            ));
+        }
+    }
+    let mut frequencies = find_all(&header, "omega", &[("rad_s", 1.0, 0.0)]);
+    frequencies.extend(find_all(&header, "f", &[("Hz", 2.0 * PI, 0.0)]));
+    frequencies.sort_by_key(|c| c.index);
+    let frequency = one(
+        path,
+        header_line,
+        "frequency",
+        frequencies,
+        " (f in Hz or omega in rad/s)",
+    )?;
+    let Some(omega) = frequency else {
+        return Err(ReportError::format(
+            path,
+            format!(
+                "no frequency column: need `omega` (rad/s) or `f` (Hz), optionally with a unit suffix such as omega_rad_s or f_Hz (the header has: {listed})"
+            ),
+        ));
+    };
+    let modulus = |base: &str| {
+        one(
+            path,
+            header_line,
+            base,
+            find_all(&header, base, &MODULUS_UNITS),
+            "",
+        )
+    };
+    let young = (modulus("E_storage")?, modulus("E_loss")?);
+    let shear = (modulus("G_storage")?, modulus("G_loss")?);
     let both = young.0.is_some() && young.1.is_some() && shear.0.is_some() && shear.1.is_some();
     let (kind, storage, loss) = match (young, shear) {
         ((Some(s), Some(l)), _) => (ModulusKind::Young, s, l),
@@ -131,7 +196,13 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<CsvFile, ReportError> {
             ));
         }
     };
-    let temperature = find(&header, "T", &[("C", 1.0, 0.0), ("K", 1.0, -273.15)]);
+    let temperature = one(
+        path,
+        header_line,
+        "temperature",
+        find_all(&header, "T", &[("C", 1.0, 0.0), ("K", 1.0, -273.15)]),
+        "",
+    )?;
     let mut warnings = Vec::new();
     if both {
         warnings.push(format!(
@@ -140,22 +211,51 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<CsvFile, ReportError> {
         ));
     }
 
+    // A file cut off inside its last row loses that row's tail: cells (a
+    // count that no longer matches the header) or digits (which may still
+    // parse). Only a missing final line break tells the second kind, and
+    // CSV files written by hand lack one often enough that it is a warning.
+    let unterminated = (!text.ends_with(['\n', '\r']))
+        .then(|| text.lines().count())
+        .filter(|&n| n > 0);
     let mut points = Vec::new();
     for record in records {
-        let record = record.map_err(|e| not_csv(path, &e))?;
-        let line = record.position().map_or(0, |p| p.line() as usize);
+        let record = record.map_err(|e| not_csv(path, text, &e))?;
+        let line = csv_line(text, record.position());
         if record.iter().all(str::is_empty) {
             continue;
         }
+        let last_and_cut = unterminated == Some(line);
         if record.len() != header.len() {
+            let missing = if record.len() < header.len() {
+                let names: Vec<String> = header[record.len()..]
+                    .iter()
+                    .enumerate()
+                    .map(|(i, n)| format!("column {} ({n})", record.len() + i + 1))
+                    .collect();
+                format!("; no value for {}", names.join(", "))
+            } else {
+                String::new()
+            };
+            let cut = if last_and_cut {
+                "; the file ends in this line without a line break: it looks cut off"
+            } else {
+                ""
+            };
             return Err(ReportError::line(
                 path,
                 line,
                 format!(
-                    "{} fields, but the header has {} columns",
+                    "{} fields, but the header has {} columns{missing}{cut}",
                     record.len(),
                     header.len()
                 ),
+            ));
+        }
+        if last_and_cut {
+            warnings.push(format!(
+                "{}, line {line}: the file ends without a line break after this row: if the file was cut off, its last number may be incomplete",
+                path.display()
             ));
         }
         let value = |c: &Column| -> Result<f64, ReportError> {
@@ -208,7 +308,6 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<CsvFile, ReportError> {
     })
 }
 
-fn not_csv(path: &Path, e: &csv::Error) -> ReportError {
-    let line = e.position().map_or(0, |p| p.line() as usize);
-    ReportError::line(path, line, format!("not CSV: {e}"))
+fn not_csv(path: &Path, text: &str, e: &csv::Error) -> ReportError {
+    ReportError::line(path, csv_line(text, e.position()), format!("not CSV: {e}"))
 }

@@ -26,7 +26,9 @@
 //! measured at (ω, T) lies on the master curve at the reduced frequency
 //! ω a_T.
 //!
-//! What is checked when reading: ω > 0, E′ > 0, every number finite. A
+//! What is checked when reading: the file is whole and in one encoding
+//! (a cut-off or damaged file is refused with its line, see [`csv_form`]
+//! and [`trios`]), ω > 0, E′ > 0, every number finite. A
 //! point with E″ ≤ 0 is dropped with a warning naming its line and column
 //! rather than refusing the whole file: a negative loss modulus is not
 //! physical (E″ ≥ 0 for a passive solid), and real exports carry one now
@@ -179,12 +181,14 @@ impl DmaData {
     /// with `poisson` (the fit's ν).
     pub fn read(path: &Path, poisson: f64, options: &DmaOptions) -> Result<DmaData, ReportError> {
         if !(poisson > -1.0 && poisson <= 0.5) {
+            // Not the DMA file's fault: say whose number it is.
             return Err(ReportError::Unanswerable(format!(
-                "Poisson's ratio {poisson} is outside (−1, 0.5]: cannot convert shear to Young's moduli"
+                "the fit's Poisson's ratio {poisson} is outside (−1, 0.5]: cannot convert the shear moduli of {} to Young's moduli",
+                path.display()
             )));
         }
         let bytes = std::fs::read(path).map_err(|e| ReportError::io(path, e))?;
-        let text = trios::decode(&bytes);
+        let text = trios::decode(path, &bytes)?;
         let (raw, kind, names, format, mut warnings) = if trios::is_lims(&text) {
             let file = trios::parse(path, &text, options)?;
             (
@@ -261,6 +265,18 @@ impl DmaData {
     }
 }
 
+/// Accepted angular frequencies, rad/s.
+const OMEGA_RANGE: (f64, f64) = (1e-30, 1e30);
+
+/// The largest accepted modulus, Pa (after a shear modulus is converted).
+const MAX_MODULUS: f64 = 1e13;
+
+/// E″/E′ below which a point is dropped as unresolved.
+const MIN_TAN_DELTA: f64 = 1e-9;
+
+/// The smallest accepted storage modulus, Pa.
+const MIN_STORAGE: f64 = 1e-3;
+
 /// The checks common to all forms: ω > 0, E′ > 0 (errors); E″ ≤ 0 (point
 /// dropped with a warning); at least one point left. Multiplies the moduli
 /// by `factor` (2(1+ν) for shear).
@@ -291,10 +307,57 @@ fn check_points(
                 ),
             ));
         }
-        if p.loss <= 0.0 {
+        // Far outside any DMA measurement, and beyond what the causality
+        // check's τ grid and least squares can represent.
+        if !(OMEGA_RANGE.0..=OMEGA_RANGE.1).contains(&p.omega) {
+            return Err(ReportError::line(
+                path,
+                p.line,
+                format!(
+                    "{}: frequency {:e} rad/s is outside 1e-30 … 1e30 rad/s, beyond any master \
+                     curve",
+                    names.omega, p.omega
+                ),
+            ));
+        }
+        for (name, value) in [(&names.storage, p.storage), (&names.loss, p.loss)] {
+            if factor * value > MAX_MODULUS {
+                return Err(ReportError::line(
+                    path,
+                    p.line,
+                    format!(
+                        "{name}: modulus {value:e} is above 1e13 Pa, stiffer than any solid \
+                         (diamond: about 1.2e12 Pa); is the column in Pa?"
+                    ),
+                ));
+            }
+        }
+        if factor * p.storage < MIN_STORAGE {
+            return Err(ReportError::line(
+                path,
+                p.line,
+                format!(
+                    "{}: storage modulus {:e} is below 1e-3 Pa, softer than any solid; is the \
+                     column in Pa?",
+                    names.storage, p.storage
+                ),
+            ));
+        }
+        if let Some(t) = p.temperature
+            && !(t > -273.15 && t <= 1000.0)
+        {
+            return Err(ReportError::line(
+                path,
+                p.line,
+                format!("temperature {t} °C is outside (−273.15, 1000] °C"),
+            ));
+        }
+        // No instrument resolves tan δ below about 1e-4; a smaller E″ is
+        // noise around zero (and 1/E″ weights overflow near 1e-308).
+        if p.loss <= MIN_TAN_DELTA * p.storage {
             dropped += 1;
             warnings.push(format!(
-                "{}, line {}: {}: loss modulus {} ≤ 0 (not physical; below the instrument's phase resolution?): point dropped",
+                "{}, line {}: {}: loss modulus {} ≤ 0 or below 1e-9 E′ (not physical; below the instrument's phase resolution?): point dropped",
                 path.display(),
                 p.line,
                 names.loss,

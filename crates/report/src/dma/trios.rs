@@ -32,6 +32,13 @@
 //! TRIOS writes UTF-8, but older versions and Windows tools write UTF-16
 //! (with a byte-order mark) or Latin-1 (° as byte 0xB0): [`decode`] reads
 //! all three.
+//!
+//! A cut-off export is refused, not read in part: each step's `Number of
+//! points` must match its `Data point` rows (a file cut between rows, or
+//! inside the `Variables` line of a later step, would otherwise read as
+//! fewer isotherms without a word), and a file whose last line inside a
+//! step has no line break is taken as cut inside that line (TRIOS ends
+//! every line with one; a number cut short still parses).
 
 use std::f64::consts::PI;
 use std::path::Path;
@@ -48,29 +55,86 @@ pub(crate) struct TriosFile {
 }
 
 /// Text of a file: UTF-16 when it starts with a byte-order mark, UTF-8
-/// when valid (a UTF-8 mark dropped), Latin-1 otherwise.
-pub(crate) fn decode(bytes: &[u8]) -> String {
-    let utf16 = |little: bool| {
-        let units: Vec<u16> = bytes[2..]
-            .chunks_exact(2)
-            .map(|c| {
-                if little {
-                    u16::from_le_bytes([c[0], c[1]])
-                } else {
-                    u16::from_be_bytes([c[0], c[1]])
+/// when valid (a UTF-8 mark dropped), Latin-1 when nothing in it is UTF-8
+/// beyond ASCII.
+///
+/// Refused, with the line and byte offset: a UTF-16 file with an unpaired
+/// surrogate or an odd number of bytes (cut off), and invalid UTF-8 in a
+/// file that is UTF-8 elsewhere or says so with its mark: that is damage
+/// or two encodings spliced, and reading it as Latin-1 would quietly turn
+/// every "°C" of it into "Â°C".
+pub(crate) fn decode(path: &Path, bytes: &[u8]) -> Result<String, ReportError> {
+    let utf16 = |little: bool| -> Result<String, ReportError> {
+        let body = &bytes[2..];
+        let units = body.chunks_exact(2).map(|c| {
+            if little {
+                u16::from_le_bytes([c[0], c[1]])
+            } else {
+                u16::from_be_bytes([c[0], c[1]])
+            }
+        });
+        let mut text = String::with_capacity(body.len() / 2);
+        let mut unit = 0usize;
+        for c in char::decode_utf16(units) {
+            match c {
+                Ok(c) => {
+                    text.push(c);
+                    unit += c.len_utf16();
                 }
-            })
-            .collect();
-        String::from_utf16_lossy(&units)
+                Err(e) => {
+                    return Err(ReportError::line(
+                        path,
+                        text.matches('\n').count() + 1,
+                        format!(
+                            "not UTF-16 although the file starts with a UTF-16 byte-order mark: unpaired surrogate 0x{:04X} at byte offset {}",
+                            e.unpaired_surrogate(),
+                            2 + 2 * unit
+                        ),
+                    ));
+                }
+            }
+        }
+        if body.len() % 2 == 1 {
+            return Err(ReportError::line(
+                path,
+                text.matches('\n').count() + 1,
+                format!(
+                    "UTF-16 file (byte-order mark) with an odd number of bytes ({}): the last character is cut off at byte offset {}; the file looks truncated",
+                    bytes.len(),
+                    bytes.len() - 1
+                ),
+            ));
+        }
+        Ok(text)
     };
     match bytes {
         [0xFF, 0xFE, ..] => utf16(true),
         [0xFE, 0xFF, ..] => utf16(false),
         _ => {
-            let bytes = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
-            match std::str::from_utf8(bytes) {
-                Ok(text) => text.to_string(),
-                Err(_) => bytes.iter().map(|&b| char::from(b)).collect(),
+            let marked = bytes.starts_with(&[0xEF, 0xBB, 0xBF]);
+            let body = if marked { &bytes[3..] } else { bytes };
+            match std::str::from_utf8(body) {
+                Ok(text) => Ok(text.to_string()),
+                Err(e) => {
+                    let offset = (bytes.len() - body.len()) + e.valid_up_to();
+                    if marked {
+                        Err(ReportError::encoding(
+                            path,
+                            bytes,
+                            offset,
+                            "invalid UTF-8 in a file marked UTF-8 (byte-order mark)",
+                        ))
+                    } else if body.utf8_chunks().any(|c| !c.valid().is_ascii()) {
+                        Err(ReportError::encoding(
+                            path,
+                            bytes,
+                            offset,
+                            "invalid UTF-8 in a file that is UTF-8 elsewhere (damaged, or pieces in two encodings)",
+                        ))
+                    } else {
+                        Ok(body.iter().map(|&b| char::from(b)).collect())
+                    }
+                }
             }
         }
     }
@@ -91,6 +155,8 @@ struct Step<'a> {
     /// Line of `[Step]`.
     line: usize,
     name: Option<&'a str>,
+    /// (line, count) of `Number of points`.
+    declared: Option<(usize, usize)>,
     variables: Option<(usize, Vec<&'a str>)>,
     units: Option<(usize, Vec<&'a str>)>,
     rows: Vec<(usize, Vec<&'a str>)>,
@@ -132,8 +198,10 @@ pub(crate) fn parse(
     let mut steps: Vec<Step> = Vec::new();
     let mut instrument: Option<&str> = None;
     let mut in_step = false;
+    let mut last_line = 0;
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
+        last_line = line;
         let trimmed = raw.trim();
         if trimmed.starts_with('[') && trimmed.ends_with(']') {
             in_step = trimmed == "[Step]";
@@ -159,8 +227,64 @@ pub(crate) fn parse(
             "Variables" => step.variables = Some((line, fields)),
             "Units" => step.units = Some((line, fields)),
             "Data point" => step.rows.push((line, fields)),
+            "Number of points" => {
+                let value = fields.get(1).map_or("", |s| s.trim());
+                let count = value.parse().map_err(|_| {
+                    ReportError::line(
+                        path,
+                        line,
+                        format!(
+                            "{}: Number of points \"{value}\" is not a count",
+                            step.label()
+                        ),
+                    )
+                })?;
+                step.declared = Some((line, count));
+            }
             _ => {}
         }
+    }
+    for step in &steps {
+        let Some((line, declared)) = step.declared else {
+            continue;
+        };
+        let found = step.rows.len();
+        if found != declared {
+            let rows = match (step.rows.first(), step.rows.last()) {
+                (Some((first, _)), Some((last, _))) => {
+                    format!("{found} data point rows follow (lines {first} to {last})")
+                }
+                _ => "the step is without data points".to_string(),
+            };
+            let why = if found < declared {
+                format!(
+                    "rows are missing: the file looks truncated (it ends at line {last_line}) or was edited"
+                )
+            } else {
+                "the file was edited or steps were merged".to_string()
+            };
+            return Err(ReportError::line(
+                path,
+                line,
+                format!(
+                    "{}: Number of points says {declared}, but {rows}; {why}",
+                    step.label()
+                ),
+            ));
+        }
+    }
+    let cut =
+        !text.ends_with(['\n', '\r']) && text.lines().last().is_some_and(|l| !l.trim().is_empty());
+    if in_step && cut {
+        let step = steps.last().expect("in a step");
+        return Err(ReportError::line(
+            path,
+            last_line,
+            format!(
+                "the file ends inside {} without a line break after this line: the export looks cut off in the middle of it (a row or a number may be incomplete); if the file is complete, end it with a line break",
+                step.label()
+            ),
+        ));
     }
 
     let mut warnings = Vec::new();
