@@ -23,6 +23,7 @@ pub mod condense;
 pub mod data;
 pub mod error;
 pub mod fit;
+pub mod isotherms;
 pub mod params;
 pub mod regularization;
 pub mod report;

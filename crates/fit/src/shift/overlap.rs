@@ -47,23 +47,37 @@ impl Curve {
     }
 }
 
-/// Mean squared mismatch of upper(x) against lower(x + s) and the number of
-/// overlapping points.
-fn mismatch(lower: &Curve, upper: &Curve, s: f64) -> (f64, usize) {
-    let (mut sum, mut n) = (0.0, 0);
-    for (&x, &y) in upper.x.iter().zip(&upper.y) {
-        if let Some(yl) = lower.at(x + s) {
-            sum += (y - yl).powi(2);
-            n += 1;
+/// Mean squared mismatch of upper(x) against lower(x + s), summed over the
+/// pairs of curves (e.g. log E′ and log tan δ of two isotherms), and the
+/// number of overlapping points of the first pair.
+fn mismatch(lower: &[&Curve], upper: &[&Curve], s: f64) -> (f64, usize) {
+    let mut total = 0.0;
+    let mut first = None;
+    for (lower, upper) in lower.iter().zip(upper) {
+        let (mut sum, mut n) = (0.0, 0);
+        for (&x, &y) in upper.x.iter().zip(&upper.y) {
+            if let Some(yl) = lower.at(x + s) {
+                sum += (y - yl).powi(2);
+                n += 1;
+            }
         }
+        total += if n > 0 { sum / n as f64 } else { f64::INFINITY };
+        first.get_or_insert(n);
     }
-    (if n > 0 { sum / n as f64 } else { f64::INFINITY }, n)
+    (total, first.unwrap_or(0))
 }
 
 /// The shift s with upper(x) ≈ lower(x + s), or None if the curves never
 /// overlap on at least a fifth of `upper`'s points (and four points).
 pub(crate) fn relative_shift(lower: &Curve, upper: &Curve) -> Option<f64> {
-    let need = (upper.x.len() / 5).max(4);
+    joint_relative_shift(&[lower], &[upper])
+}
+
+/// The one shift s with upper_k(x) ≈ lower_k(x + s) for every pair k (the
+/// summed mean squared mismatches least), or None if the first pair never
+/// overlaps on at least a fifth of its upper curve's points (and four).
+pub(crate) fn joint_relative_shift(lower: &[&Curve], upper: &[&Curve]) -> Option<f64> {
+    let need = (upper[0].x.len() / 5).max(4);
     let cost = |s: f64| {
         let (m, n) = mismatch(lower, upper, s);
         if n >= need { m } else { f64::INFINITY }
