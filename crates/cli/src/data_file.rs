@@ -52,9 +52,9 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail, ensure};
 use rollfit_fit::Measurements;
+use rollfit_fit::data::{MIN_RELATIVE_SIGMA, SIGMA_REQUIREMENT, column_requirement};
 
 use crate::output;
-use rollfit_fit::data::{MIN_RELATIVE_SIGMA, SIGMA_REQUIREMENT, column_requirement};
 
 use headers::{Conversion, Header, Quantity};
 

@@ -85,18 +85,15 @@ pub fn check_target(path: &Path) -> Result<()> {
 /// folder (a rename is atomic only within one file system), which is then
 /// renamed into place. Creates missing parent folders.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let parent = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let parent = parent_of(path);
     fs::create_dir_all(&parent)
         .with_context(|| format!("cannot create the folder {}", parent.display()))?;
     check_target(path)?;
-    let file_name = path
-        .file_name()
-        .with_context(|| format!("{} does not name a file", path.display()))?;
+    if path.file_name().is_none() {
+        bail!("{} does not name a file", path.display());
+    }
 
-    let (temporary, mut file) = create_temporary(&parent, &file_name.to_string_lossy())?;
+    let (temporary, mut file) = create_temporary(&parent)?;
     let written = file
         .write_all(bytes)
         .and_then(|()| file.sync_all())
@@ -114,7 +111,7 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
 /// A new, exclusively created temporary file next to the target. The name
 /// is hidden and ends in `.tmp` so that a crash leaves nothing that looks
 /// like a result.
-fn create_temporary(folder: &Path, _name: &str) -> Result<(PathBuf, fs::File)> {
+fn create_temporary(folder: &Path) -> Result<(PathBuf, fs::File)> {
     loop_temporary(folder, |candidate| {
         OpenOptions::new()
             .write(true)

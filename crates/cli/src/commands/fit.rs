@@ -324,13 +324,6 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         ),
     })?;
 
-    if let Some(what) = report.first_non_finite() {
-        bail!(
-            "fitting data file {}: {}",
-            data_path.display(),
-            FitError::NonFinite(what)
-        );
-    }
     // Everything is encoded before the disk is touched.
     let files = [
         ("mu.csv", mu_csv(&table, &report)?),
