@@ -5,7 +5,9 @@
 mod commands;
 mod csv_columns;
 mod data_file;
+mod dma_master;
 mod manifest;
+mod material_file;
 mod output;
 mod scene_file;
 mod table_file;
@@ -84,6 +86,20 @@ enum Command {
     /// frequencies, and how well a causal (Prony) model fits the DMA data
     /// themselves (dma_kk_misfit_storage, dma_kk_misfit_loss).
     Compare(commands::compare::Args),
+    /// Build a master curve from DMA isotherms by time–temperature
+    /// superposition, and the material a scene can use.
+    ///
+    /// Reads a DMA file (CSV or TRIOS LIMS export, shear or Young's),
+    /// finds the shift factors a_T from the overlap of neighbouring
+    /// isotherms in log E′ and log tan δ (and b_T with --vertical), fits
+    /// WLF or Arrhenius to them with standard errors, and fits a smooth
+    /// causal Prony series to the shifted E′ and E″. Writes DIR/master.csv
+    /// (omega, E_storage, E_loss, tan_delta, T, omega_measured),
+    /// DIR/shift.csv (T, log_aT, log_aT_measured, log_bT, points),
+    /// DIR/modulus.csv (the series: omega, E_storage, E_loss, tan_delta),
+    /// DIR/material.toml ([material] model = "prony" with
+    /// [material.shift]), DIR/master.json and DIR/master.{png,svg}.
+    Master(commands::master::Args),
     /// Measure speed against accuracy: the forward model's rungs and
     /// quadrature tolerances, and the fitting methods and their budgets.
     ///
@@ -102,6 +118,7 @@ fn main() -> ExitCode {
         Command::Batch(args) => commands::batch::run(args),
         Command::Report(args) => commands::report::run(args),
         Command::Compare(args) => commands::compare::run(args),
+        Command::Master(args) => commands::master::run(args),
         Command::Bench(args) => commands::bench::run(args),
     };
     match result {

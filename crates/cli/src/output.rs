@@ -203,13 +203,21 @@ pub fn remove_stale(folder: &Path) -> usize {
 }
 
 /// Files a result folder's writers own: the fit's three, the report's page,
-/// pictures and comparison. A refit replaces the folder without them (the
+/// pictures and comparison, and what `rollfit master` writes. A refit replaces the folder without them (the
 /// report of an old fit would not describe the new one); anything else
 /// found there is carried over.
 fn owned_by_rollfit(name: &str) -> bool {
     matches!(
         name,
-        "fit.json" | "modulus.csv" | "mu.csv" | "report.html" | "compare.json"
+        "fit.json"
+            | "modulus.csv"
+            | "mu.csv"
+            | "report.html"
+            | "compare.json"
+            | "master.csv"
+            | "shift.csv"
+            | "material.toml"
+            | "master.json"
     ) || name.ends_with(".png")
         || name.ends_with(".svg")
 }

@@ -17,7 +17,7 @@ use std::sync::Arc;
 use anyhow::{Context, Result, anyhow, bail, ensure};
 use rollfit_fit::{FitParams, Lambda, Method, RollingSetup, ScaleAnchor, StartMaterial, TermRule};
 use rollfit_model::exact::{ExactSettings, RollingCylinder};
-use rollfit_model::modulus::FreeShift;
+use rollfit_model::modulus::{Arrhenius, FreeShift};
 use rollfit_model::{
     ContactSize, Geometry, HavriliakNegami, ModelError, Prony, Scene, Shape, Shifted,
     StandardLinearSolid, Substrate, TabulatedModulus, ViscoelasticModulus, Wlf,
@@ -25,6 +25,7 @@ use rollfit_model::{
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
+use crate::dma_master::{self, DmaMaster};
 use crate::table_file;
 
 /// The scene the forward model runs on: any material behind one pointer, so
@@ -405,6 +406,9 @@ pub enum MaterialKind {
     /// Havriliak–Negami: E0, E1, tau, alpha, beta.
     #[serde(rename = "havriliak-negami", alias = "hn")]
     HavriliakNegami,
+    /// DMA isotherms made into a master curve in memory (as `rollfit
+    /// master` does): file, optional T_ref, modulus, shift_law, vertical.
+    Dma,
 }
 
 impl MaterialKind {
@@ -414,6 +418,7 @@ impl MaterialKind {
             MaterialKind::Prony => "prony",
             MaterialKind::Table => "table",
             MaterialKind::HavriliakNegami => "havriliak-negami",
+            MaterialKind::Dma => "dma",
         }
     }
 
@@ -423,6 +428,7 @@ impl MaterialKind {
             MaterialKind::Prony => "E1, H, tau",
             MaterialKind::Table => "file",
             MaterialKind::HavriliakNegami => "E0, E1, tau, alpha, beta",
+            MaterialKind::Dma => "file, and optionally T_ref, modulus, shift_law, vertical",
         }
     }
 }
@@ -453,10 +459,64 @@ pub struct MaterialSection {
     /// Prony strengths H_k, Pa ("prony").
     #[serde(rename = "H")]
     pub h: Option<Vec<Real>>,
-    /// Modulus table, relative to the scene file's folder ("table").
+    /// Modulus table ("table") or DMA file ("dma"), relative to the scene
+    /// file's folder.
     pub file: Option<PathBuf>,
+    /// Reference temperature of the master curve, °C ("dma"; default as
+    /// `rollfit master`).
+    #[serde(rename = "T_ref")]
+    pub t_ref: Option<Real>,
+    /// What a TRIOS file's moduli are ("dma", "table"): "shear" or
+    /// "young" (a CSV says it with its column names).
+    pub modulus: Option<ModulusName>,
+    /// The law of the DMA shift factors ("dma"): "wlf" (default), "free"
+    /// or "arrhenius".
+    pub shift_law: Option<ShiftKind>,
+    /// Whether to find vertical shift factors ("dma"; default false).
+    pub vertical: Option<bool>,
     /// `[material.shift]`: time–temperature shift.
     pub shift: Option<ShiftSection>,
+    /// The master curve of a "dma" material, built once.
+    #[serde(skip)]
+    pub(crate) dma: DmaCache,
+}
+
+/// `modulus` as written in the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ModulusName {
+    /// G′, G″, converted with E = 2(1+ν)G.
+    Shear,
+    /// E′, E″.
+    Young,
+}
+
+impl ModulusName {
+    fn kind(self) -> rollfit_report::dma::ModulusKind {
+        match self {
+            ModulusName::Shear => rollfit_report::dma::ModulusKind::Shear,
+            ModulusName::Young => rollfit_report::dma::ModulusKind::Young,
+        }
+    }
+}
+
+/// The master curve of a "dma" material, built on first use (a forward
+/// sweep over several temperatures, the exact cylinder and the shift all
+/// need it), with the scene's Poisson's ratio that converts shear moduli.
+#[derive(Clone, Default)]
+pub(crate) struct DmaCache {
+    /// [substrate] poisson (set when the scene is parsed).
+    poisson: Option<f64>,
+    built: std::sync::OnceLock<Arc<DmaMaster>>,
+}
+
+impl fmt::Debug for DmaCache {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("DmaCache")
+            .field("poisson", &self.poisson)
+            .field("built", &self.built.get().is_some())
+            .finish()
+    }
 }
 
 /// Shift model names as written in the file.
@@ -467,13 +527,15 @@ pub enum ShiftKind {
     Wlf,
     /// One log10 a_T per temperature: T_ref, log_aT = [{T, log_aT}, ..].
     Free,
+    /// Arrhenius: T_ref, E_a (J/mol).
+    Arrhenius,
 }
 
 /// `[material.shift]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ShiftSection {
-    /// "wlf" or "free".
+    /// "wlf", "free" or "arrhenius".
     pub model: ShiftKind,
     /// Reference temperature of `[material]`, °C.
     #[serde(rename = "T_ref")]
@@ -487,6 +549,9 @@ pub struct ShiftSection {
     /// Free shift: log10 a_T at each listed temperature.
     #[serde(rename = "log_aT")]
     pub log_at: Option<Vec<ShiftPoint>>,
+    /// Arrhenius activation energy, J/mol.
+    #[serde(rename = "E_a")]
+    pub activation_energy: Option<Real>,
 }
 
 /// One entry of a free shift.
@@ -661,8 +726,12 @@ pub fn load(path: &Path) -> Result<SceneFile> {
 /// the model checks physical ranges when the scene is built).
 pub fn parse(text: &str) -> Result<SceneFile> {
     // toml's message already carries "line L, column C" and the offending line.
-    let file: SceneFile =
+    let mut file: SceneFile =
         toml::from_str(text).map_err(|e| anyhow!("{}", e.to_string().trim_end()))?;
+    let poisson = file.substrate.poisson.map_or(DEFAULT_POISSON, |r| r.0);
+    if let Some(material) = &mut file.material {
+        material.dma.poisson = Some(poisson);
+    }
     if let Some(material) = &file.material {
         material.check_keys()?;
         if let Some(shift) = &material.shift {
@@ -685,7 +754,11 @@ pub fn parse(text: &str) -> Result<SceneFile> {
         sweep.speeds().context("[sweep]")?;
         if let Some(temperature) = &sweep.temperature {
             temperature.check().context("[sweep]")?;
-            if file.material.as_ref().is_some_and(|m| m.shift.is_none()) {
+            if file
+                .material
+                .as_ref()
+                .is_some_and(|m| m.shift.is_none() && m.model != MaterialKind::Dma)
+            {
                 bail!(temperature_without_shift(temperature));
             }
         }
@@ -713,16 +786,16 @@ impl SceneFile {
                 None => vec![(material, None)],
                 Some(temperatures) => {
                     temperatures.check().context("[sweep]")?;
-                    let section = material_section
-                        .shift
-                        .as_ref()
+                    let rule = material_section
+                        .shift_rule(base_dir)
+                        .context("[material]")?
                         .with_context(|| temperature_without_shift(temperatures))?;
                     // One reference modulus (a table is read once), shifted
                     // to each temperature.
                     let reference: Arc<dyn ViscoelasticModulus> = Arc::from(material);
                     let mut materials = Vec::new();
                     for (i, &temperature) in temperatures.values().iter().enumerate() {
-                        let log10_a_t = section.log10_shift(temperature).with_context(|| {
+                        let log10_a_t = rule.log10_shift(temperature).with_context(|| {
                             format!("[material.shift] at [sweep] {} °C", temperatures.entry(i))
                         })?;
                         let shifted = Shifted::new(Arc::clone(&reference), log10_a_t)
@@ -981,7 +1054,48 @@ impl MaterialSection {
             MaterialKind::Prony => &["E1", "H", "tau"],
             MaterialKind::Table => &["file"],
             MaterialKind::HavriliakNegami => &["E0", "E1", "tau", "alpha", "beta"],
+            MaterialKind::Dma => &["file"],
         };
+        let optional = [
+            ("T_ref", self.t_ref.is_some(), &[MaterialKind::Dma][..]),
+            (
+                "shift_law",
+                self.shift_law.is_some(),
+                &[MaterialKind::Dma][..],
+            ),
+            (
+                "vertical",
+                self.vertical.is_some(),
+                &[MaterialKind::Dma][..],
+            ),
+            (
+                "modulus",
+                self.modulus.is_some(),
+                &[MaterialKind::Dma, MaterialKind::Table][..],
+            ),
+        ];
+        for (key, is_present, models) in optional {
+            if is_present && !models.contains(&kind) {
+                bail!(
+                    "[material]: key `{key}` does not belong to model \"{}\" (it takes {}); \
+                     `{key}` is for model {}",
+                    kind.name(),
+                    kind.keys(),
+                    models
+                        .iter()
+                        .map(|m| format!("\"{}\"", m.name()))
+                        .collect::<Vec<_>>()
+                        .join(" or ")
+                );
+            }
+        }
+        if kind == MaterialKind::Dma && self.shift.is_some() {
+            bail!(
+                "[material.shift] does not go with model = \"dma\": the shift factors come from \
+                 the isotherms themselves (`shift_law` chooses \"wlf\", \"free\" or \
+                 \"arrhenius\"); remove [material.shift]"
+            );
+        }
         for (key, is_present) in present {
             let wanted = needed.contains(&key);
             if wanted && !is_present {
@@ -1058,6 +1172,7 @@ impl MaterialSection {
                     .map_err(model)?,
                 )
             }
+            MaterialKind::Dma => Box::new(self.dma_master(base_dir)?.master.fit.prony.clone()),
             MaterialKind::Table => {
                 let file = self.file.as_ref().context("model \"table\" needs `file`")?;
                 let path = base_dir.join(file);
@@ -1075,9 +1190,67 @@ impl MaterialSection {
 /// rule for a free shift (exact at listed temperatures, linear in T between
 /// them, refused outside) lives in one place, `rollfit_model`.
 #[derive(Debug)]
-enum ShiftRule {
+pub(crate) enum ShiftRule {
     Wlf(Wlf),
-    Free(rollfit_model::modulus::FreeShift),
+    Free(FreeShift),
+    Arrhenius(Arrhenius),
+}
+
+impl ShiftRule {
+    /// log10 a_T at `temperature` (°C), by the model's rule: WLF,
+    /// Arrhenius, or a free shift interpolated linearly in T between its
+    /// listed temperatures (T_ref included) and never extrapolated beyond
+    /// them.
+    pub fn log10_shift(&self, temperature: f64) -> Result<f64> {
+        let shift = match self {
+            ShiftRule::Wlf(wlf) => wlf.log10_shift(temperature).map_err(|e| anyhow!("{e}"))?,
+            ShiftRule::Arrhenius(law) => {
+                law.log10_shift(temperature).map_err(|e| anyhow!("{e}"))?
+            }
+            // The only refusal for a finite temperature is one outside the
+            // list, which the file can fix.
+            ShiftRule::Free(free) => free.log10_shift(temperature).map_err(|e| {
+                anyhow!("{e}; add a `log_aT` entry at or beyond it, or use model = \"wlf\"")
+            })?,
+        };
+        ensure!(
+            shift.is_finite(),
+            "log10 a_T at T = {temperature} °C is {shift}: the shift is not defined at this temperature"
+        );
+        Ok(shift)
+    }
+
+    /// The rule of a master curve's shift (None for one isotherm).
+    fn of_master(built: &DmaMaster) -> Result<Option<ShiftRule>> {
+        use rollfit_fit::master::ShiftLaw;
+        let shift = &built.master.shift;
+        if shift.shifts.len() < 2 {
+            return Ok(None);
+        }
+        let t_ref = shift.t_ref;
+        let model = |e: ModelError| anyhow!("the DMA master curve's shift: {e}");
+        Ok(Some(match shift.law {
+            ShiftLaw::Wlf => {
+                let w = shift.wlf.context("WLF fit missing")?;
+                ShiftRule::Wlf(Wlf::new(t_ref, w.c1, w.c2).map_err(model)?)
+            }
+            ShiftLaw::Arrhenius => {
+                let a = shift.arrhenius.context("Arrhenius fit missing")?;
+                ShiftRule::Arrhenius(Arrhenius::new(t_ref, a.activation_energy).map_err(model)?)
+            }
+            ShiftLaw::Free => ShiftRule::Free(
+                FreeShift::new(
+                    t_ref,
+                    shift
+                        .shifts
+                        .iter()
+                        .map(|s| (s.temperature, s.log_shift))
+                        .collect(),
+                )
+                .map_err(model)?,
+            ),
+        }))
+    }
 }
 
 impl ShiftSection {
@@ -1092,18 +1265,31 @@ impl ShiftSection {
                     "model \"wlf\" needs the keys `C1` and `C2` (and `T_ref`)"
                 );
                 ensure!(
-                    self.log_at.is_none(),
-                    "key `log_aT` does not belong to model \"wlf\" (it takes T_ref, C1, C2)"
+                    self.log_at.is_none() && self.activation_energy.is_none(),
+                    "keys `log_aT` and `E_a` do not belong to model \"wlf\" (it takes T_ref, C1, C2)"
                 );
                 // The model names the offending key (T_ref, C1 or C2).
                 let wlf = Wlf::new(self.t_ref.0, value_of(self.c1), value_of(self.c2))
                     .map_err(|e| anyhow!("{e}"))?;
                 Ok(ShiftRule::Wlf(wlf))
             }
+            ShiftKind::Arrhenius => {
+                ensure!(
+                    self.c1.is_none() && self.c2.is_none() && self.log_at.is_none(),
+                    "keys `C1`, `C2` and `log_aT` do not belong to model \"arrhenius\" (it takes \
+                     T_ref, E_a)"
+                );
+                let energy = self.activation_energy.context(
+                    "model \"arrhenius\" needs the key `E_a`, the activation energy in J/mol",
+                )?;
+                let law = Arrhenius::new(self.t_ref.0, energy.0).map_err(|e| anyhow!("{e}"))?;
+                Ok(ShiftRule::Arrhenius(law))
+            }
             ShiftKind::Free => {
                 ensure!(
-                    self.c1.is_none() && self.c2.is_none(),
-                    "keys `C1` and `C2` do not belong to model \"free\" (it takes T_ref, log_aT)"
+                    self.c1.is_none() && self.c2.is_none() && self.activation_energy.is_none(),
+                    "keys `C1`, `C2` and `E_a` do not belong to model \"free\" (it takes T_ref, \
+                     log_aT)"
                 );
                 let listed = self.log_at.as_deref().context(
                     "model \"free\" needs the key `log_aT`, one entry per measured temperature, \
@@ -1122,25 +1308,6 @@ impl ShiftSection {
     fn check(&self) -> Result<()> {
         self.rule().map(|_| ())
     }
-
-    /// log10 a_T at `temperature` (°C), by the model's rule: WLF, or a free
-    /// shift interpolated linearly in T between its listed temperatures
-    /// (T_ref included) and never extrapolated beyond them.
-    pub fn log10_shift(&self, temperature: f64) -> Result<f64> {
-        let shift = match self.rule()? {
-            ShiftRule::Wlf(wlf) => wlf.log10_shift(temperature).map_err(|e| anyhow!("{e}"))?,
-            // The only refusal for a finite temperature is one outside the
-            // list, which the file can fix.
-            ShiftRule::Free(free) => free.log10_shift(temperature).map_err(|e| {
-                anyhow!("{e}; add a `log_aT` entry at or beyond it, or use model = \"wlf\"")
-            })?,
-        };
-        ensure!(
-            shift.is_finite(),
-            "log10 a_T at T = {temperature} °C is {shift}: the shift is not defined at this temperature"
-        );
-        Ok(shift)
-    }
 }
 
 fn value_of(r: Option<Real>) -> f64 {
@@ -1153,8 +1320,46 @@ fn require_positive(key: &str, value: f64) -> Result<()> {
 }
 
 impl MaterialSection {
-    /// An "sls" (one term) or "prony" material as a Prony series; None for
-    /// other models.
+    /// The master curve of a "dma" material, built on first use.
+    fn dma_master(&self, base_dir: &Path) -> Result<Arc<DmaMaster>> {
+        if let Some(built) = self.dma.built.get() {
+            return Ok(Arc::clone(built));
+        }
+        let file = self.file.as_ref().context("model \"dma\" needs `file`")?;
+        let settings = rollfit_fit::master::MasterSettings {
+            t_ref: self.t_ref.map(|r| r.0),
+            law: match self.shift_law {
+                None | Some(ShiftKind::Wlf) => rollfit_fit::master::ShiftLaw::Wlf,
+                Some(ShiftKind::Free) => rollfit_fit::master::ShiftLaw::Free,
+                Some(ShiftKind::Arrhenius) => rollfit_fit::master::ShiftLaw::Arrhenius,
+            },
+            vertical: self.vertical.unwrap_or(false),
+        };
+        let built = Arc::new(dma_master::build(
+            &base_dir.join(file),
+            self.dma.poisson.unwrap_or(DEFAULT_POISSON),
+            self.modulus.map(ModulusName::kind),
+            &settings,
+        )?);
+        let _ = self.dma.built.set(Arc::clone(&built));
+        Ok(built)
+    }
+
+    /// The time–temperature shift of this material: `[material.shift]`, or
+    /// for "dma" the master curve's own (None without either, or for one
+    /// isotherm).
+    pub(crate) fn shift_rule(&self, base_dir: &Path) -> Result<Option<ShiftRule>> {
+        if self.model == MaterialKind::Dma {
+            return ShiftRule::of_master(self.dma_master(base_dir)?.as_ref());
+        }
+        self.shift
+            .as_ref()
+            .map(|s| s.rule().context("[material.shift]"))
+            .transpose()
+    }
+
+    /// An "sls" (one term), "prony" or "dma" material as a Prony series;
+    /// None for other models.
     fn prony(&self, base_dir: &Path) -> Result<Option<Prony>> {
         let modulus = self.build(base_dir)?;
         Ok(match self.model {
@@ -1177,6 +1382,7 @@ impl MaterialSection {
                 let e1 = self.e1.map_or(f64::NAN, |r| r.0);
                 Some(Prony::new(e1, h, tau).map_err(|e| anyhow!("{e}"))?)
             }
+            MaterialKind::Dma => Some(self.dma_master(base_dir)?.master.fit.prony.clone()),
             _ => None,
         })
     }
@@ -1337,6 +1543,10 @@ impl FitSection {
             params.shift.kind = match kind {
                 ShiftKind::Wlf => rollfit_fit::ShiftKind::Wlf,
                 ShiftKind::Free => rollfit_fit::ShiftKind::Free,
+                ShiftKind::Arrhenius => bail!(
+                    "shift = \"arrhenius\": a temperature set is fitted with \"wlf\" or \"free\" \
+                     shifts (a free shift follows any law)"
+                ),
             };
         }
         if let Some(Real(t)) = self.t_ref {

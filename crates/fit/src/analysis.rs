@@ -110,7 +110,7 @@ pub(crate) struct Curvature {
 /// Pseudo-inverse of a symmetric positive semi-definite matrix, dropping
 /// eigenvalues below 1e-12 of the largest, and the log-determinant over the
 /// eigenvalues kept.
-fn pseudo_inverse(h: &DMatrix<f64>) -> (DMatrix<f64>, f64) {
+pub(crate) fn pseudo_inverse(h: &DMatrix<f64>) -> (DMatrix<f64>, f64) {
     let eig = h.clone().symmetric_eigen();
     let largest = eig.eigenvalues.iter().fold(0.0f64, |m, &v| m.max(v.abs()));
     let cutoff = 1e-12 * largest;

@@ -18,12 +18,14 @@
 //! - [`quality`]: goodness of fit (χ² and runs tests).
 //! - [`sanity`]: warnings for inputs and results outside the theory or any lab.
 //! - [`fit`]: the driver tying them together; [`report`]: its result.
+//! - [`master`]: DMA isotherms to a master curve: shift factors, their
+//!   WLF or Arrhenius law, and a smooth causal Prony series.
 
 pub mod condense;
 pub mod data;
 pub mod error;
 pub mod fit;
-pub mod isotherms;
+pub mod master;
 pub mod params;
 pub mod regularization;
 pub mod report;

@@ -91,7 +91,10 @@ use crate::error::ReportError;
 /// Relaxation times per decade of the causal model: a smooth spectrum off
 /// the grid is matched to ~1e-6 decades (denser grids do not help isolated
 /// elements, whose error depends on their distance to the nearest node).
-pub const TAU_PER_DECADE: f64 = 3.0;
+/// The grid is the one `rollfit master` fits its smooth Prony series on,
+/// so that this check's misfit is the floor that fit tends to as its
+/// smoothness weight goes to zero.
+pub use rollfit_fit::master::TAU_PER_DECADE;
 
 /// Above this RMS log10 misfit (decades) of E′ or E″ the DMA data are
 /// reported as not causal: a violation spread over the curve (see the
@@ -157,14 +160,9 @@ impl CausalFit {
 }
 
 /// The relaxation-time grid for data over [ω_lo, ω_hi]: τ from
-/// 1/(10 ω_hi) to 10/ω_lo, [`TAU_PER_DECADE`] per decade, ends included.
-pub fn tau_grid(omega_lo: f64, omega_hi: f64) -> Vec<f64> {
-    let (lo, hi) = ((0.1 / omega_hi).log10(), (10.0 / omega_lo).log10());
-    let intervals = ((hi - lo) * TAU_PER_DECADE).ceil().max(1.0) as usize;
-    (0..=intervals)
-        .map(|k| 10f64.powf(lo + (hi - lo) * k as f64 / intervals as f64))
-        .collect()
-}
+/// 1/(10 ω_hi) to 10/ω_lo, [`TAU_PER_DECADE`] per decade, ends included
+/// (defined once, with the master curve's Prony fit).
+pub use rollfit_fit::master::tau_grid;
 
 /// Fits `points` (reduced to one reference state, Young's moduli > 0) with
 /// a causal Prony series and measures the misfit (see the module doc).

@@ -18,7 +18,7 @@
 //! versions pinned in Cargo.lock. The first block of a set therefore has the
 //! noise of the single-temperature file with the same seed.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use rand::SeedableRng;
@@ -28,6 +28,9 @@ use rollfit_fit::RollingSetup;
 use rollfit_fit::sanity;
 use rollfit_model::ladder::AutoSweep;
 use rollfit_model::{Shape, ViscoelasticModulus};
+use rollfit_report::plot::{
+    self, Picture, forward_sweep::ForwardSweepFigure, forward_sweep::SweepCurve,
+};
 
 use crate::output;
 use crate::scene_file::{self, DynScene, ForwardBlock, ForwardRung, ForwardSetup};
@@ -73,7 +76,8 @@ pub struct Args {
     /// Scene file (TOML) with [geometry], [material] and [sweep].
     pub scene: PathBuf,
     /// Write the CSV here (atomically, creating missing folders) instead of
-    /// to stdout.
+    /// to stdout, and its picture beside it: OUT.png and OUT.svg, μ(v) per
+    /// temperature with the low-speed asymptote and the friction maximum.
     #[arg(short, long, value_name = "OUT.csv")]
     pub output: Option<PathBuf>,
     /// Make a synthetic measurement: multiply each μ by (1 + REL·z), z a
@@ -188,7 +192,14 @@ pub fn run(args: &Args) -> Result<()> {
         }
     };
     match &args.output {
-        Some(out) => output::write_atomically(out, &bytes)?,
+        Some(out) => {
+            // Drawn before anything is written, so that a failure leaves
+            // no CSV without its picture.
+            let picture = picture(&setup, &mu, path)?;
+            output::write_atomically(out, &bytes)?;
+            output::write_atomically(&out.with_extension("png"), &picture.png)?;
+            output::write_atomically(&out.with_extension("svg"), picture.svg.as_bytes())?;
+        }
         None => output::write_stdout(&bytes)?,
     }
     eprintln!("{}", summary(&setup, &solved, &mu));
@@ -537,6 +548,60 @@ fn summary_line(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
         line += &peaks.join("; ");
     }
     line
+}
+
+/// The picture of the sweep written beside the CSV: μ(v) per temperature
+/// with its low-speed asymptote and friction maximum.
+fn picture(setup: &ForwardSetup, mu: &[Vec<f64>], scene_path: &Path) -> Result<Picture> {
+    let curves: Vec<SweepCurve> = setup
+        .blocks
+        .iter()
+        .zip(mu)
+        .map(|(block, mu)| SweepCurve {
+            temperature: block.shift.map(|s| s.temperature),
+            speeds: setup.speeds.clone(),
+            mu: mu.clone(),
+            mu_low_speed: setup
+                .speeds
+                .iter()
+                .map(|&v| block.scene.low_speed_asymptote(v))
+                .collect(),
+            maximum: friction_maximum(&block.scene, &setup.speeds, mu).map(|(v, m, _)| (v, m)),
+        })
+        .collect();
+    let g = setup.blocks[0].scene.geometry();
+    let (shape, unit) = match g.shape {
+        Shape::Sphere => ("sphere", "N"),
+        Shape::Cylinder => ("cylinder", "N/m"),
+    };
+    let title = format!(
+        "{}: {shape} R = {} m, load {} {unit}",
+        scene_path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+        g.radius,
+        g.load
+    );
+    plot::render(&ForwardSweepFigure {
+        curves: &curves,
+        title,
+    })
+    .map_err(|e| anyhow::anyhow!("{e}"))
+}
+
+/// The friction maximum inside the sweep as (v, μ, refined): refined
+/// between the sampled speeds around the largest sampled μ, or that sample
+/// when refining fails; None when the largest μ is at either end.
+fn friction_maximum(scene: &DynScene, speeds: &[f64], mu: &[f64]) -> Option<(f64, f64, bool)> {
+    let n = mu.len();
+    let i = (0..n).max_by(|&a, &b| mu[a].total_cmp(&mu[b]))?;
+    if n < 3 || i == 0 || i == n - 1 {
+        return None;
+    }
+    Some(match scene.friction_maximum(speeds[i - 1], speeds[i + 1]) {
+        Ok(peak) => (peak.speed, peak.mu, true),
+        Err(_) => (speeds[i], mu[i], false),
+    })
 }
 
 /// The friction maximum, refined between the sampled speeds around the

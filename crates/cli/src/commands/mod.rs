@@ -5,4 +5,5 @@ pub mod bench;
 pub mod compare;
 pub mod fit;
 pub mod forward;
+pub mod master;
 pub mod report;

@@ -49,37 +49,68 @@ impl Curve {
 
 /// Mean squared mismatch of upper(x) against lower(x + s), summed over the
 /// pairs of curves (e.g. log E′ and log tan δ of two isotherms), and the
-/// number of overlapping points of the first pair.
-fn mismatch(lower: &[&Curve], upper: &[&Curve], s: f64) -> (f64, usize) {
+/// number of overlapping points of the first pair. A pair with
+/// `free_offset` may also differ by a constant, upper(x) = lower(x + s) + c
+/// (a vertical shift): its mismatch is taken about the best c, i.e. the
+/// variance of the differences.
+fn mismatch(lower: &[&Curve], upper: &[&Curve], free_offset: &[bool], s: f64) -> (f64, usize) {
     let mut total = 0.0;
     let mut first = None;
-    for (lower, upper) in lower.iter().zip(upper) {
-        let (mut sum, mut n) = (0.0, 0);
-        for (&x, &y) in upper.x.iter().zip(&upper.y) {
-            if let Some(yl) = lower.at(x + s) {
-                sum += (y - yl).powi(2);
-                n += 1;
-            }
-        }
-        total += if n > 0 { sum / n as f64 } else { f64::INFINITY };
+    for (k, (lower, upper)) in lower.iter().zip(upper).enumerate() {
+        let (sum, sum_sq, n) = differences(lower, upper, s);
+        total += if n == 0 {
+            f64::INFINITY
+        } else if free_offset.get(k).copied().unwrap_or(false) {
+            let mean = sum / n as f64;
+            (sum_sq / n as f64 - mean * mean).max(0.0)
+        } else {
+            sum_sq / n as f64
+        };
         first.get_or_insert(n);
     }
     (total, first.unwrap_or(0))
 }
 
+/// Σ d, Σ d² and the count of d = upper(x) − lower(x + s) over upper's
+/// points inside lower's range.
+fn differences(lower: &Curve, upper: &Curve, s: f64) -> (f64, f64, usize) {
+    let (mut sum, mut sum_sq, mut n) = (0.0, 0.0, 0);
+    for (&x, &y) in upper.x.iter().zip(&upper.y) {
+        if let Some(yl) = lower.at(x + s) {
+            let d = y - yl;
+            sum += d;
+            sum_sq += d * d;
+            n += 1;
+        }
+    }
+    (sum, sum_sq, n)
+}
+
 /// The shift s with upper(x) ≈ lower(x + s), or None if the curves never
 /// overlap on at least a fifth of `upper`'s points (and four points).
 pub(crate) fn relative_shift(lower: &Curve, upper: &Curve) -> Option<f64> {
-    joint_relative_shift(&[lower], &[upper])
+    joint_relative_shift(&[lower], &[upper], &[])
 }
 
-/// The one shift s with upper_k(x) ≈ lower_k(x + s) for every pair k (the
-/// summed mean squared mismatches least), or None if the first pair never
-/// overlaps on at least a fifth of its upper curve's points (and four).
-pub(crate) fn joint_relative_shift(lower: &[&Curve], upper: &[&Curve]) -> Option<f64> {
+/// The mean offset c of upper(x) − lower(x + s) over the overlap (the
+/// vertical shift that goes with s), or None without overlap.
+pub(crate) fn offset_at(lower: &Curve, upper: &Curve, s: f64) -> Option<f64> {
+    let (sum, _, n) = differences(lower, upper, s);
+    (n > 0).then(|| sum / n as f64)
+}
+
+/// The one shift s with upper_k(x) ≈ lower_k(x + s) (+ a constant for the
+/// pairs with `free_offset`) for every pair k, the summed mean squared
+/// mismatches least; None if the first pair never overlaps on at least a
+/// fifth of its upper curve's points (and four).
+pub(crate) fn joint_relative_shift(
+    lower: &[&Curve],
+    upper: &[&Curve],
+    free_offset: &[bool],
+) -> Option<f64> {
     let need = (upper[0].x.len() / 5).max(4);
     let cost = |s: f64| {
-        let (m, n) = mismatch(lower, upper, s);
+        let (m, n) = mismatch(lower, upper, free_offset, s);
         if n >= need { m } else { f64::INFINITY }
     };
     const STEP: f64 = 0.02;

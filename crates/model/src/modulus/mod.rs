@@ -37,7 +37,7 @@ mod table;
 
 pub use havriliak_negami::HavriliakNegami;
 pub use prony::Prony;
-pub use shift::{FreeShift, Shifted, Wlf};
+pub use shift::{Arrhenius, FreeShift, GAS_CONSTANT, Shifted, Wlf, ZERO_CELSIUS};
 pub use sls::StandardLinearSolid;
 pub use table::TabulatedModulus;
 

@@ -21,6 +21,12 @@
 //!   T_ref ≈ T_g + 50 K) and T_ref = 20 °C, 10 K cooler gives
 //!   log10 a_T = 0.97 and 10 K warmer −0.79: the paper's remark that about
 //!   10 °C less moves μ(v) by about one decade.
+//! - Arrhenius, [`Arrhenius`]:
+//!   log10 a_T = E_a/(R ln 10) · (1/T − 1/T_ref), temperatures in kelvin
+//!   inside the formula (°C + 273.15 outside it), E_a the activation
+//!   energy in J/mol, R = 8.314462618 J/(mol K). The law of secondary
+//!   relaxations and of polymers well below or far above T_g, where WLF's
+//!   free-volume form does not hold; it has no divergence.
 //! - free shifts, [`FreeShift`]: one log10 a_T per measured temperature, e.g.
 //!   fitted freely. T_ref counts as listed, with log10 a_T = 0. At a listed
 //!   temperature the listed value is returned exactly; between two listed
@@ -106,6 +112,55 @@ impl Wlf {
             )));
         }
         Ok(-self.c1 * dt / denominator)
+    }
+}
+
+/// The molar gas constant R, J/(mol K) (exact since the 2019 SI).
+pub const GAS_CONSTANT: f64 = 8.314_462_618;
+
+/// 0 °C in kelvin.
+pub const ZERO_CELSIUS: f64 = 273.15;
+
+/// Arrhenius shift: log10 a_T = E_a/(R ln 10) (1/T − 1/T_ref), T in K
+/// inside the formula; temperatures given in °C.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arrhenius {
+    /// Reference temperature, °C.
+    pub t_ref: f64,
+    /// Activation energy E_a, J/mol.
+    pub activation_energy: f64,
+}
+
+impl Arrhenius {
+    /// Validated constants: `t_ref` (°C) finite and above absolute zero,
+    /// `activation_energy` (J/mol) finite and greater than zero.
+    pub fn new(t_ref: f64, activation_energy: f64) -> Result<Self, ModelError> {
+        if !(t_ref.is_finite() && t_ref > -ZERO_CELSIUS) {
+            return Err(ModelError::parameter(
+                "T_ref",
+                t_ref,
+                "must be a finite temperature in °C above absolute zero",
+            ));
+        }
+        require_positive("E_a", activation_energy)?;
+        Ok(Arrhenius {
+            t_ref,
+            activation_energy,
+        })
+    }
+
+    /// log10 a_T at temperature `t` (°C); an error for a non-finite `t` or
+    /// one at or below absolute zero.
+    pub fn log10_shift(&self, t: f64) -> Result<f64, ModelError> {
+        if !(t.is_finite() && t > -ZERO_CELSIUS) {
+            return Err(ModelError::parameter(
+                "T",
+                t,
+                "must be a finite temperature in °C above absolute zero",
+            ));
+        }
+        let slope = self.activation_energy / (GAS_CONSTANT * std::f64::consts::LN_10);
+        Ok(slope * (1.0 / (t + ZERO_CELSIUS) - 1.0 / (self.t_ref + ZERO_CELSIUS)))
     }
 }
 
@@ -356,6 +411,21 @@ impl<M: ViscoelasticModulus> ViscoelasticModulus for Shifted<M> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// 100 kJ/mol between 20 and 30 °C: log10 a_T = −E_a ΔT/(R ln10 T T_ref)
+    /// = −0.5069 (computed by hand from the formula), zero at T_ref,
+    /// positive below it.
+    #[test]
+    fn arrhenius_by_hand() {
+        let a = Arrhenius::new(20.0, 1e5).unwrap();
+        let hand = -1e5 * 10.0 / (8.314462618 * 10f64.ln() * 303.15 * 293.15);
+        assert!((a.log10_shift(30.0).unwrap() - hand).abs() < 1e-12);
+        assert!((hand + 0.5069).abs() < 1e-3);
+        assert_eq!(a.log10_shift(20.0).unwrap(), 0.0);
+        assert!(a.log10_shift(0.0).unwrap() > 0.0);
+        assert!(a.log10_shift(-300.0).is_err());
+        assert!(Arrhenius::new(20.0, -1.0).is_err());
+    }
     use crate::modulus::{Prony, StandardLinearSolid, TabulatedModulus};
 
     fn wlf() -> Wlf {

@@ -141,6 +141,9 @@ pub struct DmaData {
     pub path: PathBuf,
     /// The points in file order, as measured.
     pub points: Vec<DmaPoint>,
+    /// The file line (from 1) of each entry of `points`, same order: for
+    /// messages about a point.
+    pub lines: Vec<usize>,
     /// What the file held (before conversion to Young's).
     pub kind: ModulusKind,
     /// "csv" or "trios-lims".
@@ -227,10 +230,11 @@ impl DmaData {
                 2.0 * (1.0 + poisson)
             }
         };
-        let points = check_points(path, raw, &names, factor, &mut warnings)?;
+        let (points, lines) = check_points(path, raw, &names, factor, &mut warnings)?;
         Ok(DmaData {
             path: path.to_path_buf(),
             points,
+            lines,
             kind,
             format,
             warnings,
@@ -279,15 +283,16 @@ const MIN_STORAGE: f64 = 1e-3;
 
 /// The checks common to all forms: ω > 0, E′ > 0 (errors); E″ ≤ 0 (point
 /// dropped with a warning); at least one point left. Multiplies the moduli
-/// by `factor` (2(1+ν) for shear).
+/// by `factor` (2(1+ν) for shear). Returns the points kept and their lines.
 fn check_points(
     path: &Path,
     raw: Vec<RawPoint>,
     names: &FieldNames,
     factor: f64,
     warnings: &mut Vec<String>,
-) -> Result<Vec<DmaPoint>, ReportError> {
+) -> Result<(Vec<DmaPoint>, Vec<usize>), ReportError> {
     let mut points = Vec::with_capacity(raw.len());
+    let mut lines = Vec::with_capacity(raw.len());
     let mut dropped = 0usize;
     for p in raw {
         if p.omega <= 0.0 {
@@ -371,6 +376,7 @@ fn check_points(
             loss: factor * p.loss,
             temperature: p.temperature,
         });
+        lines.push(p.line);
     }
     if points.is_empty() {
         return Err(ReportError::format(
@@ -382,5 +388,5 @@ fn check_points(
             },
         ));
     }
-    Ok(points)
+    Ok((points, lines))
 }

@@ -11,8 +11,11 @@
 
 pub mod axes;
 pub mod convergence;
+pub mod dma_master;
+pub mod forward_sweep;
 pub mod friction;
 pub mod master_curve;
+mod parts;
 pub mod spectrum;
 pub mod speed_accuracy;
 pub mod style;

@@ -46,3 +46,52 @@ pub const AXIS_DESCRIPTION: u32 = 18;
 pub const TICK_LABEL: u32 = 15;
 /// Legend size, px.
 pub const LEGEND: u32 = 15;
+
+/// Stops of [`cold_to_warm`], evenly spaced from cold to warm. No stop is
+/// pale: every temperature's line and markers must stand out on white, so
+/// the ramp runs through green and orange rather than through white.
+const COLD_TO_WARM: [RGBColor; 5] = [
+    RGBColor(49, 54, 149),
+    RGBColor(33, 144, 200),
+    RGBColor(60, 160, 80),
+    RGBColor(240, 130, 30),
+    RGBColor(200, 30, 40),
+];
+
+/// The colour of a temperature: `fraction` 0 is the coldest (deep blue),
+/// 1 the warmest (red), linear in RGB between the stops. Values outside
+/// [0, 1] are clamped; NaN gives the middle colour.
+pub fn cold_to_warm(fraction: f64) -> RGBColor {
+    let f = if fraction.is_nan() {
+        0.5
+    } else {
+        fraction.clamp(0.0, 1.0)
+    };
+    let scaled = f * (COLD_TO_WARM.len() - 1) as f64;
+    let i = (scaled.floor() as usize).min(COLD_TO_WARM.len() - 2);
+    let t = scaled - i as f64;
+    let (a, b) = (COLD_TO_WARM[i], COLD_TO_WARM[i + 1]);
+    let mix = |x: u8, y: u8| (f64::from(x) + t * (f64::from(y) - f64::from(x))).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_temperature_ramp_runs_from_blue_to_red_through_its_stops() {
+        assert_eq!(cold_to_warm(0.0), COLD_TO_WARM[0]);
+        assert_eq!(cold_to_warm(0.5), COLD_TO_WARM[2]);
+        assert_eq!(cold_to_warm(1.0), COLD_TO_WARM[4]);
+        assert_eq!(cold_to_warm(-3.0), COLD_TO_WARM[0]);
+        assert_eq!(cold_to_warm(7.0), COLD_TO_WARM[4]);
+        assert_eq!(cold_to_warm(f64::NAN), COLD_TO_WARM[2]);
+        let cold = cold_to_warm(0.0);
+        let warm = cold_to_warm(1.0);
+        assert!(cold.2 > cold.0 && warm.0 > warm.2);
+        // Halfway between two stops is their mean.
+        let between = cold_to_warm(0.125);
+        assert_eq!(between, RGBColor(41, 99, 175));
+    }
+}

@@ -1,0 +1,457 @@
+//! `rollfit master DMA [-o DIR] [--T-ref T] [--shift wlf|free|arrhenius]
+//! [--vertical]`: a master curve from DMA isotherms by time–temperature
+//! superposition, and the material a scene can use.
+//!
+//! Writes, to DIR as a whole (nothing on an error):
+//! - master.csv: every DMA point at the reference state — omega (ω a_T,
+//!   rad/s), E_storage, E_loss (Young's, Pa, divided by b_T), tan_delta, T
+//!   (the isotherm, °C), omega_measured (rad/s);
+//! - shift.csv: per isotherm T (°C), log_aT (applied), log_aT_measured
+//!   (from the overlap), log_bT, points;
+//! - modulus.csv: the Prony series at T_ref over the data's reduced range,
+//!   the columns of a fit's modulus.csv (omega, E_storage, E_loss,
+//!   tan_delta), so that `table` scenes and plots read it alike;
+//! - material.toml: `[material]` with model = "prony" and, with more than
+//!   one isotherm, `[material.shift]`, for a scene to copy or include;
+//! - master.json: the numbers (law constants with standard errors, λ,
+//!   misfits and the Kramers–Kronig floor, warnings);
+//! - master.png and master.svg: the shifted isotherms with the series.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use rollfit_fit::master::{MasterSettings, ShiftLaw};
+use rollfit_model::ViscoelasticModulus;
+use rollfit_report::dma::ModulusKind;
+use rollfit_report::plot::{self, dma_master as figure};
+use serde::Serialize;
+
+use crate::commands::compare::DmaModulus;
+use crate::dma_master::{self, DmaMaster};
+use crate::output;
+
+/// Arguments of `rollfit master`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// DMA file: CSV (omega or f; E_storage, E_loss or G_storage, G_loss;
+    /// T) or a TA Instruments TRIOS LIMS text export, several isotherms.
+    pub dma: PathBuf,
+    /// Output folder (replaced as a whole).
+    #[arg(short, long, value_name = "DIR", default_value = "master")]
+    pub output: PathBuf,
+    /// Reference temperature, °C (default 20 °C when inside the measured
+    /// temperatures, else the nearest measured one).
+    #[arg(long = "T-ref", value_name = "T")]
+    pub t_ref: Option<f64>,
+    /// The law of the shift factor a_T: WLF, the measured shifts
+    /// themselves (linear in T between isotherms), or Arrhenius.
+    #[arg(long, value_enum, default_value = "wlf")]
+    pub shift: ShiftChoice,
+    /// Also find vertical shift factors b_T from the data (E′ offsets at
+    /// the overlap); off by default, as in most TTS practice.
+    #[arg(long)]
+    pub vertical: bool,
+    /// Poisson's ratio converting shear moduli to Young's, E = 2(1+ν)G.
+    #[arg(long, default_value_t = 0.5)]
+    pub poisson: f64,
+    /// Read a TRIOS file's moduli as Young's or shear (default: decided
+    /// from the file).
+    #[arg(long = "dma-modulus", value_enum, value_name = "KIND")]
+    pub dma_modulus: Option<DmaModulus>,
+}
+
+/// `--shift`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ShiftChoice {
+    /// Williams–Landel–Ferry.
+    Wlf,
+    /// The measured shifts.
+    Free,
+    /// Arrhenius.
+    Arrhenius,
+}
+
+impl ShiftChoice {
+    fn law(self) -> ShiftLaw {
+        match self {
+            ShiftChoice::Wlf => ShiftLaw::Wlf,
+            ShiftChoice::Free => ShiftLaw::Free,
+            ShiftChoice::Arrhenius => ShiftLaw::Arrhenius,
+        }
+    }
+}
+
+/// Frequencies of modulus.csv per decade of the data's reduced range.
+const CURVE_PER_DECADE: f64 = 20.0;
+
+/// Runs `rollfit master`.
+pub fn run(args: &Args) -> Result<()> {
+    output::check_replaceable(&args.output)?;
+    let settings = MasterSettings {
+        t_ref: args.t_ref,
+        law: args.shift.law(),
+        vertical: args.vertical,
+    };
+    let kind = args.dma_modulus.map(|k| match k {
+        DmaModulus::Young => ModulusKind::Young,
+        DmaModulus::Shear => ModulusKind::Shear,
+    });
+    let built = dma_master::build(&args.dma, args.poisson, kind, &settings)?;
+    for note in &built.data.notes {
+        eprintln!("note: {note}");
+    }
+    for warning in built.data.warnings.iter().chain(&built.master.warnings) {
+        eprintln!("warning: {warning}");
+    }
+    for warning in &built.causal.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let files = encode(&built, args.poisson)?;
+    let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
+    output::replace_folder(&args.output, &named)?;
+    output::write_stdout(summary(&built).as_bytes())?;
+    eprintln!("wrote {}", args.output.display());
+    Ok(())
+}
+
+/// Every file of DIR, encoded.
+fn encode(built: &DmaMaster, poisson: f64) -> Result<Vec<(&'static str, Vec<u8>)>> {
+    let master = &built.master;
+    let master_csv = output::csv_bytes(
+        &[
+            "omega",
+            "E_storage",
+            "E_loss",
+            "tan_delta",
+            "T",
+            "omega_measured",
+        ],
+        master.points.iter().map(|p| {
+            vec![
+                p.reduced_omega,
+                p.storage,
+                p.loss,
+                p.loss / p.storage,
+                p.temperature,
+                p.omega,
+            ]
+        }),
+    )?;
+    let shift_csv = output::csv_text_bytes(
+        &["T", "log_aT", "log_aT_measured", "log_bT", "points"],
+        master.shift.shifts.iter().map(|s| {
+            let mut row: Vec<String> = [
+                s.temperature,
+                s.log_shift,
+                s.log_shift_measured,
+                s.log_vertical,
+            ]
+            .into_iter()
+            .map(output::number)
+            .collect();
+            row.push(s.points.to_string());
+            row
+        }),
+    )?;
+    let curve = prony_curve(built);
+    let modulus_csv = output::csv_bytes(
+        &["omega", "E_storage", "E_loss", "tan_delta"],
+        curve.iter().map(|&(w, s, l)| vec![w, s, l, l / s]),
+    )?;
+    let material = crate::material_file::encode(built)?;
+    let mut json = serde_json::to_vec_pretty(&Summary::of(built, poisson))
+        .context("cannot format master.json")?;
+    json.push(b'\n');
+    let points: Vec<figure::ShiftedPoint> = master
+        .points
+        .iter()
+        .map(|p| figure::ShiftedPoint {
+            reduced_omega: p.reduced_omega,
+            storage: p.storage,
+            loss: p.loss,
+            temperature: p.temperature,
+        })
+        .collect();
+    let fit_curve = figure::MasterCurveFit {
+        omega: curve.iter().map(|c| c.0).collect(),
+        storage: curve.iter().map(|c| c.1).collect(),
+        loss: curve.iter().map(|c| c.2).collect(),
+    };
+    let shifts: Vec<(f64, f64)> = master
+        .shift
+        .shifts
+        .iter()
+        .map(|s| (s.temperature, s.log_shift_measured))
+        .collect();
+    let shift_curve = law_curve(built);
+    let picture = plot::render(&figure::DmaMasterFigure {
+        points: &points,
+        fit: &fit_curve,
+        t_ref: built.settings.t_ref(),
+        shifts: if master.shift.shifts.len() > 1 {
+            &shifts
+        } else {
+            &[]
+        },
+        shift_curve: &shift_curve,
+        modulus_symbol: "E",
+    })
+    .map_err(|e| anyhow::anyhow!("{e}"))?;
+    Ok(vec![
+        ("master.csv", master_csv),
+        ("shift.csv", shift_csv),
+        ("modulus.csv", modulus_csv),
+        ("material.toml", material),
+        ("master.json", json),
+        ("master.png", picture.png),
+        ("master.svg", picture.svg.into_bytes()),
+    ])
+}
+
+/// (ω, E′, E″) of the Prony series over the data's reduced range.
+fn prony_curve(built: &DmaMaster) -> Vec<(f64, f64, f64)> {
+    let points = &built.master.points;
+    let (lo, hi) = (
+        points[0].reduced_omega,
+        points[points.len() - 1].reduced_omega,
+    );
+    let decades = (hi / lo).log10().max(0.0);
+    let count = ((decades * CURVE_PER_DECADE).ceil() as usize).max(2);
+    (0..=count)
+        .map(|j| {
+            let w = lo * (hi / lo).powf(j as f64 / count as f64);
+            let e = built.master.fit.prony.modulus(w);
+            (w, e.re, e.im)
+        })
+        .collect()
+}
+
+/// The fitted law over the measured temperatures (empty for "free" or one
+/// isotherm).
+fn law_curve(built: &DmaMaster) -> Vec<(f64, f64)> {
+    let shift = &built.master.shift;
+    if shift.shifts.len() < 2 || shift.law == ShiftLaw::Free {
+        return Vec::new();
+    }
+    let (lo, hi) = (
+        shift.shifts[0].temperature,
+        shift.shifts[shift.shifts.len() - 1].temperature,
+    );
+    (0..=100)
+        .filter_map(|j| {
+            let t = lo + (hi - lo) * j as f64 / 100.0;
+            shift.law_at(t).map(|l| (t, l))
+        })
+        .collect()
+}
+
+/// master.json.
+#[derive(Serialize)]
+struct Summary {
+    dma_file: String,
+    dma_format: &'static str,
+    modulus_kind: &'static str,
+    poisson: f64,
+    #[serde(rename = "T_ref")]
+    t_ref: f64,
+    shift_law: &'static str,
+    vertical: bool,
+    isotherms: usize,
+    points: usize,
+    omega_range: [f64; 2],
+    wlf: Option<WlfSummary>,
+    arrhenius: Option<ArrheniusSummary>,
+    shifts: Vec<ShiftRow>,
+    prony: PronySummary,
+    kramers_kronig: KkSummary,
+    warnings: Vec<String>,
+    notes: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct WlfSummary {
+    #[serde(rename = "C1")]
+    c1: f64,
+    #[serde(rename = "C2")]
+    c2: f64,
+    #[serde(rename = "C1_sigma")]
+    c1_sigma: Option<f64>,
+    #[serde(rename = "C2_sigma")]
+    c2_sigma: Option<f64>,
+    rms: f64,
+}
+
+#[derive(Serialize)]
+struct ArrheniusSummary {
+    #[serde(rename = "E_a")]
+    activation_energy: f64,
+    #[serde(rename = "E_a_sigma")]
+    activation_energy_sigma: Option<f64>,
+    rms: f64,
+}
+
+#[derive(Serialize)]
+struct ShiftRow {
+    #[serde(rename = "T")]
+    temperature: f64,
+    #[serde(rename = "log_aT")]
+    log_shift: f64,
+    #[serde(rename = "log_aT_measured")]
+    log_shift_measured: f64,
+    #[serde(rename = "log_bT")]
+    log_vertical: f64,
+    points: usize,
+}
+
+#[derive(Serialize)]
+struct PronySummary {
+    terms: usize,
+    #[serde(rename = "E0")]
+    static_modulus: f64,
+    #[serde(rename = "E1")]
+    glassy_modulus: f64,
+    lambda: f64,
+    misfit_storage: f64,
+    misfit_loss: f64,
+    converged: bool,
+}
+
+#[derive(Serialize)]
+struct KkSummary {
+    misfit_storage: f64,
+    misfit_loss: f64,
+    max_storage: f64,
+    max_loss: f64,
+    /// Prony misfit over the floor, per component.
+    ratio_storage: f64,
+    ratio_loss: f64,
+}
+
+/// A standard error, or None where it is not defined (NaN).
+fn defined(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl Summary {
+    fn of(built: &DmaMaster, poisson: f64) -> Summary {
+        let m = &built.master;
+        let fit = &m.fit;
+        let kk = &built.causal;
+        Summary {
+            dma_file: built.data.path.display().to_string(),
+            dma_format: built.data.format,
+            modulus_kind: built.data.kind.name(),
+            poisson,
+            t_ref: built.settings.t_ref(),
+            shift_law: m.shift.law.name(),
+            vertical: built.settings.vertical(),
+            isotherms: m.shift.shifts.len(),
+            points: m.points.len(),
+            omega_range: [
+                m.points[0].reduced_omega,
+                m.points[m.points.len() - 1].reduced_omega,
+            ],
+            wlf: m.shift.wlf.map(|w| WlfSummary {
+                c1: w.c1,
+                c2: w.c2,
+                c1_sigma: defined(w.c1_sigma),
+                c2_sigma: defined(w.c2_sigma),
+                rms: w.rms,
+            }),
+            arrhenius: m.shift.arrhenius.map(|a| ArrheniusSummary {
+                activation_energy: a.activation_energy,
+                activation_energy_sigma: defined(a.activation_energy_sigma),
+                rms: a.rms,
+            }),
+            shifts: m
+                .shift
+                .shifts
+                .iter()
+                .map(|s| ShiftRow {
+                    temperature: s.temperature,
+                    log_shift: s.log_shift,
+                    log_shift_measured: s.log_shift_measured,
+                    log_vertical: s.log_vertical,
+                    points: s.points,
+                })
+                .collect(),
+            prony: PronySummary {
+                terms: fit.prony.relaxation_times().len(),
+                static_modulus: fit.prony.static_modulus(),
+                glassy_modulus: fit.prony.glassy_modulus(),
+                lambda: fit.lambda,
+                misfit_storage: fit.misfit_storage,
+                misfit_loss: fit.misfit_loss,
+                converged: fit.converged,
+            },
+            kramers_kronig: KkSummary {
+                misfit_storage: kk.misfit_storage,
+                misfit_loss: kk.misfit_loss,
+                max_storage: kk.max_misfit_storage.0,
+                max_loss: kk.max_misfit_loss.0,
+                ratio_storage: fit.misfit_storage / kk.misfit_storage,
+                ratio_loss: fit.misfit_loss / kk.misfit_loss,
+            },
+            warnings: built
+                .data
+                .warnings
+                .iter()
+                .chain(&m.warnings)
+                .chain(&kk.warnings)
+                .cloned()
+                .collect(),
+            notes: built.data.notes.clone(),
+        }
+    }
+}
+
+/// The readable summary of stdout.
+fn summary(built: &DmaMaster) -> String {
+    let m = &built.master;
+    let mut out = format!(
+        "DMA {} ({}, {} moduli): {} isotherms, {} points, T_ref = {} °C, shift {}{}\n",
+        built.data.path.display(),
+        built.data.format,
+        built.data.kind.name(),
+        m.shift.shifts.len(),
+        m.points.len(),
+        built.settings.t_ref(),
+        m.shift.law.name(),
+        if built.settings.vertical() {
+            " with vertical factors"
+        } else {
+            ""
+        }
+    );
+    if let Some(w) = m.shift.wlf {
+        out += &format!(
+            "WLF: C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K (shifts scatter {:.3} decades RMS about it)\n",
+            w.c1, w.c1_sigma, w.c2, w.c2_sigma, w.rms
+        );
+    }
+    if let Some(a) = m.shift.arrhenius {
+        out += &format!(
+            "Arrhenius: E_a = {:.4e} ± {:.2e} J/mol (shifts scatter {:.3} decades RMS about it)\n",
+            a.activation_energy, a.activation_energy_sigma, a.rms
+        );
+    }
+    out += "    T (°C)   log10 a_T   measured   log10 b_T   points\n";
+    for s in &m.shift.shifts {
+        out += &format!(
+            "{:10.2} {:11.4} {:10.4} {:11.4} {:8}\n",
+            s.temperature, s.log_shift, s.log_shift_measured, s.log_vertical, s.points
+        );
+    }
+    let fit = &m.fit;
+    out += &format!(
+        "Prony series: {} terms, λ = {:.3e}; RMS misfit E′ {:.4}, E″ {:.4} decades; \
+         Kramers–Kronig floor of the shifted data E′ {:.4}, E″ {:.4} decades\n",
+        fit.prony.relaxation_times().len(),
+        fit.lambda,
+        fit.misfit_storage,
+        fit.misfit_loss,
+        built.causal.misfit_storage,
+        built.causal.misfit_loss
+    );
+    out
+}

@@ -1,0 +1,145 @@
+//! A DMA file to a master curve: read the file (any form the DMA reader
+//! accepts), group its points into isotherms, and run
+//! `rollfit_fit::master` on them; then check the shifted points for
+//! causality with `rollfit_report::causality`, the floor the smooth Prony
+//! series is measured against. Shared by `rollfit master` and the scene's
+//! `[material] model = "dma"`, so that both give the same series.
+
+use std::path::Path;
+
+use anyhow::{Context, Result, anyhow, bail};
+use rollfit_fit::master::{
+    Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve,
+};
+use rollfit_report::causality::{self, CausalFit};
+use rollfit_report::dma::{DmaData, DmaOptions, DmaPoint, ModulusKind, shift::isotherms};
+
+/// A master curve built from a DMA file.
+pub struct DmaMaster {
+    /// The file as read (Young's moduli).
+    pub data: DmaData,
+    /// The checked settings (T_ref resolved).
+    pub settings: ValidMasterSettings,
+    /// Shift factors, shifted points and the Prony series.
+    pub master: MasterCurve,
+    /// The best causal fit of the shifted points: the misfit floor.
+    pub causal: CausalFit,
+}
+
+/// Reads `path` and builds its master curve. `poisson` converts shear
+/// moduli (E = 2(1+ν)G); `kind` overrides a TRIOS file's shear/tensile
+/// decision. Errors name the file and, where one point is at fault, its
+/// line.
+pub fn build(
+    path: &Path,
+    poisson: f64,
+    kind: Option<ModulusKind>,
+    settings: &MasterSettings,
+) -> Result<DmaMaster> {
+    let options = DmaOptions { kind, wlf: None };
+    let data = DmaData::read(path, poisson, &options).map_err(|e| anyhow!("{e}"))?;
+    let file = path.display();
+    let with_t = data
+        .points
+        .iter()
+        .filter(|p| p.temperature.is_some())
+        .count();
+    let groups: Vec<(f64, Vec<usize>)> = if with_t == 0 {
+        // No temperatures: the file is one curve, taken at T_ref.
+        let t = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
+        vec![(t, (0..data.points.len()).collect())]
+    } else if with_t < data.points.len() {
+        bail!(
+            "DMA file {file}: {} of {} points have no temperature: cannot tell which isotherm \
+             they belong to",
+            data.points.len() - with_t,
+            data.points.len()
+        );
+    } else {
+        isotherms(&data.points)
+            .into_iter()
+            .map(|iso| {
+                // File order: the grouping sorts by temperature, and a
+                // controller's scatter would shuffle a sweep.
+                let mut points = iso.points;
+                points.sort_unstable();
+                (iso.temperature, points)
+            })
+            .collect()
+    };
+    let line = |i: usize| data.lines.get(i).copied();
+    let mut sets = Vec::with_capacity(groups.len());
+    for (temperature, indices) in &groups {
+        check_monotone(&data, *temperature, indices, &line)
+            .with_context(|| format!("DMA file {file}"))?;
+        let point = |i: &usize| data.points[*i];
+        sets.push(Isotherm {
+            temperature: *temperature,
+            omega: indices.iter().map(|i| point(i).omega).collect(),
+            storage: indices.iter().map(|i| point(i).storage).collect(),
+            loss: indices.iter().map(|i| point(i).loss).collect(),
+        });
+    }
+    let valid = settings
+        .check(&sets)
+        .map_err(|e| anyhow!("{e}"))
+        .with_context(|| format!("DMA file {file}"))?;
+    let master = build_master_curve(&sets, &valid)
+        .map_err(|e| anyhow!("{e}"))
+        .with_context(|| format!("DMA file {file}: master curve"))?;
+    let shifted: Vec<DmaPoint> = master
+        .points
+        .iter()
+        .map(|p| DmaPoint {
+            omega: p.reduced_omega,
+            storage: p.storage,
+            loss: p.loss,
+            temperature: (with_t > 0).then_some(p.temperature),
+        })
+        .collect();
+    let causal = causality::check(&shifted).map_err(|e| anyhow!("DMA file {file}: {e}"))?;
+    Ok(DmaMaster {
+        data,
+        settings: valid,
+        master,
+        causal,
+    })
+}
+
+/// Refuses an isotherm whose frequencies neither rise nor fall
+/// throughout, naming the lines where the sweep turns.
+fn check_monotone(
+    data: &DmaData,
+    temperature: f64,
+    indices: &[usize],
+    line: &dyn Fn(usize) -> Option<usize>,
+) -> Result<()> {
+    let omega: Vec<f64> = indices.iter().map(|&i| data.points[i].omega).collect();
+    let rising = omega.windows(2).all(|p| p[1] > p[0]);
+    let falling = omega.windows(2).all(|p| p[1] < p[0]);
+    if omega.len() < 2 || rising || falling {
+        return Ok(());
+    }
+    // The first place where the direction changes or a frequency repeats.
+    let k = (1..omega.len())
+        .find(|&k| {
+            omega[k] == omega[k - 1]
+                || (k + 1 < omega.len()
+                    && (omega[k] - omega[k - 1]) * (omega[k + 1] - omega[k]) < 0.0)
+        })
+        .unwrap_or(1);
+    let at = |j: usize| match line(indices[j]) {
+        Some(l) => format!("line {l}: ω = {:e} rad/s", omega[j]),
+        None => format!("point {}: ω = {:e} rad/s", indices[j] + 1, omega[j]),
+    };
+    let turn = if k + 1 < omega.len() && omega[k] != omega[k - 1] {
+        format!("{}, {}, {}", at(k - 1), at(k), at(k + 1))
+    } else {
+        format!("{}, {}", at(k - 1), at(k))
+    };
+    bail!(
+        "the isotherm at {temperature:.2} °C has frequencies that are not monotone ({turn}): a \
+         sweep runs up or down once; split a repeated sweep into its own temperature or remove \
+         the repeated points"
+    )
+}

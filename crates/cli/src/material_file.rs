@@ -1,0 +1,123 @@
+//! material.toml, written by `rollfit master`: the `[material]` table of a
+//! scene file (DESIGN.md §4) holding the master curve's Prony series at
+//! T_ref and, for several isotherms, its `[material.shift]`, for a scene to
+//! copy (or to use the DMA file itself, `model = "dma"`); numbers
+//! are written with the shortest digits that read back to the same f64, so
+//! a scene using the file predicts exactly what the master curve does.
+
+use anyhow::{Context, Result};
+use rollfit_fit::master::ShiftLaw;
+use rollfit_model::ViscoelasticModulus;
+use serde::Serialize;
+
+use crate::dma_master::DmaMaster;
+
+#[derive(Serialize)]
+struct MaterialFile {
+    material: Material,
+}
+
+#[derive(Serialize)]
+struct Material {
+    model: &'static str,
+    #[serde(rename = "E1")]
+    glassy_modulus: f64,
+    #[serde(rename = "H")]
+    strengths: Vec<f64>,
+    tau: Vec<f64>,
+    // Last: a table after the values.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shift: Option<Shift>,
+}
+
+#[derive(Serialize)]
+struct Shift {
+    model: &'static str,
+    #[serde(rename = "T_ref")]
+    t_ref: f64,
+    #[serde(rename = "C1", skip_serializing_if = "Option::is_none")]
+    c1: Option<f64>,
+    #[serde(rename = "C2", skip_serializing_if = "Option::is_none")]
+    c2: Option<f64>,
+    #[serde(rename = "E_a", skip_serializing_if = "Option::is_none")]
+    activation_energy: Option<f64>,
+    #[serde(rename = "log_aT", skip_serializing_if = "Option::is_none")]
+    log_shift: Option<Vec<ShiftPoint>>,
+}
+
+#[derive(Serialize)]
+struct ShiftPoint {
+    #[serde(rename = "T")]
+    temperature: f64,
+    #[serde(rename = "log_aT")]
+    log_shift: f64,
+}
+
+/// The file's text, with a comment header saying where it came from.
+pub fn encode(built: &DmaMaster) -> Result<Vec<u8>> {
+    let m = &built.master;
+    let prony = &m.fit.prony;
+    let t_ref = built.settings.t_ref();
+    let shift = (m.shift.shifts.len() > 1).then(|| {
+        let mut shift = Shift {
+            model: m.shift.law.name(),
+            t_ref,
+            c1: None,
+            c2: None,
+            activation_energy: None,
+            log_shift: None,
+        };
+        match m.shift.law {
+            ShiftLaw::Wlf => {
+                if let Some(w) = m.shift.wlf {
+                    shift.c1 = Some(w.c1);
+                    shift.c2 = Some(w.c2);
+                }
+            }
+            ShiftLaw::Arrhenius => {
+                shift.activation_energy = m.shift.arrhenius.map(|a| a.activation_energy);
+            }
+            ShiftLaw::Free => {
+                shift.log_shift = Some(
+                    m.shift
+                        .shifts
+                        .iter()
+                        .map(|s| ShiftPoint {
+                            temperature: s.temperature,
+                            log_shift: s.log_shift,
+                        })
+                        .collect(),
+                );
+            }
+        }
+        shift
+    });
+    let file = MaterialFile {
+        material: Material {
+            model: "prony",
+            glassy_modulus: prony.glassy_modulus(),
+            strengths: prony.strengths().to_vec(),
+            tau: prony.relaxation_times().to_vec(),
+            shift,
+        },
+    };
+    let body = toml::to_string(&file).context("cannot format material.toml")?;
+    let mut text = format!(
+        "# Written by rollfit master from {} ({} isotherms, {} points).\n\
+         # Young's modulus at T_ref = {t_ref} °C: a Prony series E*(ω) = E0 + Σ H_k iωτ_k/(1 + iωτ_k),\n\
+         # E0 = E1 − Σ H_k = {:e} Pa.{}\n\
+         # Copy these tables into a scene file (or use the DMA file itself: [material] model = \"dma\").\n\n",
+        built.data.path.display(),
+        m.shift.shifts.len(),
+        m.points.len(),
+        prony.static_modulus(),
+        if built.settings.vertical() {
+            "\n# The vertical factors b_T of the master curve are not part of [material.shift]: \
+             away from T_ref the moduli are those of T_ref, shifted in frequency only."
+        } else {
+            ""
+        }
+    );
+    text.push_str(&body);
+    Ok(text.into_bytes())
+}

@@ -1,0 +1,481 @@
+//! The pictures of `rollfit forward` (μ(v) of a sweep) and `rollfit master`
+//! (DMA isotherms shifted onto one master curve) render to a PNG that
+//! decodes at the stated size and is not blank, with one colour per
+//! temperature, and to an SVG that carries the axis labels and the legend;
+//! bad values (NaN, negative μ) and a single isotherm render too.
+//!
+//! The data are synthetic with known shapes: μ(v) from a standard linear
+//! solid (tan δ of E* = E0 + ΔE iωτ/(1 + iωτ) at ω = v a_T / a, so μ rises
+//! ∝ v, peaks and falls), shifted between temperatures by WLF; the DMA
+//! isotherms from a Prony series sampled over 15 frequencies at 8
+//! temperatures and shifted back by the same WLF.
+
+use plotters::style::RGBColor;
+use rollfit_report::plot::dma_master::{DmaMasterFigure, MasterCurveFit, ShiftedPoint};
+use rollfit_report::plot::forward_sweep::{ForwardSweepFigure, SweepCurve};
+use rollfit_report::plot::{Picture, render, style};
+
+/// WLF constants (the "universal" ones) and the reference temperature, °C.
+const C1: f64 = 8.86;
+const C2: f64 = 101.6;
+const T_REF: f64 = 20.0;
+
+/// log10 a_T by WLF.
+fn log_shift(t: f64) -> f64 {
+    -C1 * (t - T_REF) / (C2 + t - T_REF)
+}
+
+/// Standard linear solid: relaxed modulus (arbitrary unit), glassy over
+/// relaxed, relaxation time (s), contact half-width (m) and μ per tan δ.
+const E0: f64 = 1.0;
+const E1: f64 = 100.0;
+const TAU: f64 = 1e-2;
+const HALF_WIDTH: f64 = 1e-3;
+const MU_PER_TAN_DELTA: f64 = 0.01;
+
+/// μ and its low-speed asymptote at speed `v` (m/s) and `t` °C.
+fn sls_mu(v: f64, t: f64) -> (f64, f64) {
+    let x = v * 10f64.powf(log_shift(t)) / HALF_WIDTH * TAU;
+    let tan_delta = (E1 - E0) * x / (E0 + E1 * x * x);
+    let low = (E1 - E0) * x / E0;
+    (MU_PER_TAN_DELTA * tan_delta, MU_PER_TAN_DELTA * low)
+}
+
+/// The friction maximum, analytically: tan δ peaks at ωτ = √(E0/E1).
+fn sls_maximum(t: f64) -> (f64, f64) {
+    let x = (E0 / E1).sqrt();
+    let v = x / TAU * HALF_WIDTH / 10f64.powf(log_shift(t));
+    (v, sls_mu(v, t).0)
+}
+
+/// 60 speeds from 10⁻⁸ to 10 m/s.
+fn speeds() -> Vec<f64> {
+    (0..60)
+        .map(|i| 10f64.powf(-8.0 + 9.0 * f64::from(i) / 59.0))
+        .collect()
+}
+
+fn sweep(t: Option<f64>) -> SweepCurve {
+    let at = t.unwrap_or(T_REF);
+    let speeds = speeds();
+    let (mu, mu_low_speed) = speeds.iter().map(|&v| sls_mu(v, at)).unzip();
+    SweepCurve {
+        temperature: t,
+        speeds,
+        mu,
+        mu_low_speed,
+        maximum: Some(sls_maximum(at)),
+    }
+}
+
+struct Decoded {
+    width: u32,
+    height: u32,
+    rgb: Vec<u8>,
+}
+
+fn decode(p: &Picture) -> Decoded {
+    let decoder = png::Decoder::new(p.png.as_slice());
+    let mut reader = decoder.read_info().expect("a PNG header");
+    let mut rgb = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut rgb).expect("PNG image data");
+    assert_eq!(info.color_type, png::ColorType::Rgb, "{}", p.name);
+    rgb.truncate(info.buffer_size());
+    Decoded {
+        width: info.width,
+        height: info.height,
+        rgb,
+    }
+}
+
+/// Pixels of exactly this colour.
+fn count(image: &Decoded, c: RGBColor) -> usize {
+    image
+        .rgb
+        .chunks_exact(3)
+        .filter(|px| px[0] == c.0 && px[1] == c.1 && px[2] == c.2)
+        .count()
+}
+
+/// Hue sectors of 30° holding at least `min_pixels` clearly coloured
+/// pixels (grey axes, grid and text are not coloured).
+fn hue_sectors(image: &Decoded, min_pixels: usize) -> usize {
+    let mut sectors = [0usize; 12];
+    for px in image.rgb.chunks_exact(3) {
+        let (r, g, b) = (f64::from(px[0]), f64::from(px[1]), f64::from(px[2]));
+        let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+        if max - min < 60.0 {
+            continue;
+        }
+        let d = max - min;
+        let hue = if max == r {
+            60.0 * ((g - b) / d).rem_euclid(6.0)
+        } else if max == g {
+            60.0 * ((b - r) / d + 2.0)
+        } else {
+            60.0 * ((r - g) / d + 4.0)
+        };
+        sectors[((hue / 30.0) as usize).min(11)] += 1;
+    }
+    sectors.iter().filter(|&&n| n >= min_pixels).count()
+}
+
+fn hex(c: RGBColor) -> String {
+    format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
+}
+
+/// A text element of the SVG: its content and position, px.
+struct SvgText {
+    text: String,
+    x: f64,
+}
+
+/// Checks the PNG (size, not blank) and that the SVG parses at that size;
+/// returns the decoded image and the SVG's text elements.
+fn check(p: &Picture, size: (u32, u32)) -> (Decoded, Vec<SvgText>) {
+    assert_eq!(p.size, size, "{}: stated size", p.name);
+    let image = decode(p);
+    assert_eq!((image.width, image.height), size, "{}: PNG size", p.name);
+    let total = (image.width * image.height) as usize;
+    let inked = image
+        .rgb
+        .chunks_exact(3)
+        .filter(|px| px.iter().any(|&c| c < 200))
+        .count();
+    assert!(
+        inked > total / 100,
+        "{}: only {inked} of {total} pixels are drawn",
+        p.name
+    );
+
+    let doc = roxmltree::Document::parse(&p.svg).expect("the SVG parses as XML");
+    let root = doc.root_element();
+    assert_eq!(root.attribute("width"), Some(size.0.to_string().as_str()));
+    assert_eq!(root.attribute("height"), Some(size.1.to_string().as_str()));
+    let texts = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| {
+            Some(SvgText {
+                text: n.text()?.trim().to_string(),
+                x: n.attribute("x")?.parse().ok()?,
+            })
+        })
+        .collect();
+    (image, texts)
+}
+
+fn joined(texts: &[SvgText]) -> String {
+    texts
+        .iter()
+        .map(|t| t.text.as_str())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The exponent n of a tick label "10ⁿ" (None for other text).
+fn decade_exponent(label: &str) -> Option<i32> {
+    if label == "1" {
+        return Some(0);
+    }
+    let rest = label.strip_prefix("10")?;
+    if rest.is_empty() {
+        return None;
+    }
+    let mut n = 0;
+    let mut sign = 1;
+    for c in rest.chars() {
+        match c {
+            '⁻' => sign = -1,
+            _ => {
+                let d = "⁰¹²³⁴⁵⁶⁷⁸⁹".chars().position(|s| s == c)?;
+                n = 10 * n + d as i32;
+            }
+        }
+    }
+    Some(sign * n)
+}
+
+/// Polylines (lines and dashes) of this stroke colour and width.
+fn strokes(svg: &str, c: RGBColor, width: u32) -> usize {
+    svg.matches(&format!("stroke=\"{}\" stroke-width=\"{width}\"", hex(c)))
+        .count()
+}
+
+#[test]
+fn a_sweep_at_three_temperatures_has_a_coloured_curve_asymptote_and_maximum_each() {
+    // Given out of order: the figure orders them by temperature.
+    let curves = [sweep(Some(20.0)), sweep(Some(-10.0)), sweep(Some(50.0))];
+    let figure = ForwardSweepFigure {
+        curves: &curves,
+        title: "Forward sweep μ(v)".into(),
+    };
+    let p = render(&figure).unwrap();
+    assert_eq!(p.name, "forward");
+    let (image, texts) = check(&p, (900, 620));
+    let text = joined(&texts);
+    for label in [
+        "Forward sweep μ(v)",
+        "rolling speed v (m/s)",
+        "friction coefficient μ",
+        "low-speed asymptote (Eqs. 18/19)",
+        "friction maximum",
+    ] {
+        assert!(text.contains(label), "no text {label:?}");
+    }
+    // Legend entries in order of temperature, each with its maximum.
+    let legend: Vec<&str> = texts
+        .iter()
+        .map(|t| t.text.as_str())
+        .filter(|t| t.contains(" °C: μ_max = "))
+        .collect();
+    assert_eq!(legend.len(), 3, "{legend:?}");
+    for (entry, t) in legend.iter().zip(["-10 °C", "20 °C", "50 °C"]) {
+        assert!(entry.starts_with(t), "{entry:?} should be {t}");
+    }
+    // The maximum at 20 °C, analytically μ = 0.0495 at v = 10⁻² m/s.
+    assert!(
+        legend[1].ends_with("μ_max = 0.0495 at 1.0e-2 m/s"),
+        "{}",
+        legend[1]
+    );
+
+    // Cold blue, middle green, warm red: each a line, its dashes and its
+    // marker.
+    for f in [0.0, 0.5, 1.0] {
+        let c = style::cold_to_warm(f);
+        assert!(count(&image, c) > 300, "too few pixels of {}", hex(c));
+        assert!(
+            strokes(&p.svg, c, 1) >= 10,
+            "no dashed asymptote in {}",
+            hex(c)
+        );
+        assert!(strokes(&p.svg, c, 2) >= 2, "no μ line in {}", hex(c));
+    }
+    assert!(hue_sectors(&image, 150) >= 3);
+    assert!(!p.svg.contains(&hex(style::FITTED)));
+
+    // The asymptote rises 9 decades across the sweep; clipped to 3 μ_max it
+    // keeps the y axis below 1.
+    let y_decades: Vec<i32> = texts
+        .iter()
+        .filter(|t| t.x < 90.0)
+        .filter_map(|t| decade_exponent(&t.text))
+        .collect();
+    assert!(y_decades.len() >= 3, "y ticks {y_decades:?}");
+    assert!(y_decades.iter().all(|&n| n <= 0), "y ticks {y_decades:?}");
+    assert!(p.caption.contains("-10 °C, 20 °C, 50 °C"), "{}", p.caption);
+}
+
+#[test]
+fn a_single_sweep_is_drawn_in_the_house_colour_with_its_maximum_labelled() {
+    let curves = [sweep(None)];
+    let p = render(&ForwardSweepFigure {
+        curves: &curves,
+        title: "μ(v)".into(),
+    })
+    .unwrap();
+    let (image, texts) = check(&p, (900, 620));
+    let text = joined(&texts);
+    assert!(count(&image, style::FITTED) > 300);
+    assert!(
+        strokes(&p.svg, style::FITTED, 1) >= 10,
+        "no dashed asymptote"
+    );
+    // On the plot next to the marker, not in the legend.
+    let label = "μ_max = 0.0495 at 1.0e-2 m/s";
+    assert!(texts.iter().any(|t| t.text == label), "no {label:?}");
+    assert!(text.contains("low-speed asymptote (Eqs. 18/19)"));
+    assert!(p.caption.contains(label), "{}", p.caption);
+}
+
+#[test]
+fn non_positive_and_non_finite_values_are_skipped() {
+    let mut broken = sweep(Some(0.0));
+    broken.mu[5] = f64::NAN;
+    broken.mu[20] = -0.01;
+    broken.mu[21] = 0.0;
+    broken.mu[40] = f64::INFINITY;
+    broken.mu_low_speed[3] = f64::NAN;
+    broken.mu_low_speed[4] = -1.0;
+    broken.speeds[10] = 0.0;
+    broken.speeds[11] = f64::NAN;
+    broken.maximum = Some((f64::NAN, 0.05));
+    let nothing = SweepCurve {
+        temperature: Some(40.0),
+        speeds: vec![1e-3, 1e-2, 1e-1],
+        mu: vec![f64::NAN, -1.0, 0.0],
+        mu_low_speed: vec![f64::NAN; 2],
+        maximum: Some((1e-2, -1.0)),
+    };
+    let curves = [broken, nothing];
+    let p = render(&ForwardSweepFigure {
+        curves: &curves,
+        title: "broken".into(),
+    })
+    .unwrap();
+    let (image, texts) = check(&p, (900, 620));
+    // What is valid of the 0 °C curve is still drawn, in the cold colour.
+    assert!(count(&image, style::cold_to_warm(0.0)) > 300);
+    let text = joined(&texts);
+    assert!(text.contains("0 °C"));
+    assert!(text.contains("friction coefficient μ"));
+
+    // And with nothing at all.
+    let p = render(&ForwardSweepFigure {
+        curves: &[],
+        title: "empty".into(),
+    })
+    .unwrap();
+    assert_eq!(decode(&p).width, 900);
+}
+
+/// A Prony series: relaxed modulus (Pa) and ten terms, τ_k = 10^(k−8) s.
+fn prony(omega: f64) -> (f64, f64) {
+    let mut storage = 1e6;
+    let mut loss = 0.0;
+    for k in 0..10 {
+        let tau = 10f64.powf(f64::from(k) - 8.0);
+        let strength = 3e8 * 0.5f64.powi(k);
+        let x = omega * tau;
+        storage += strength * x * x / (1.0 + x * x);
+        loss += strength * x / (1.0 + x * x);
+    }
+    (storage, loss)
+}
+
+/// Isotherms of 15 frequencies, 0.1–100 Hz, shifted to T_REF, with a few
+/// percent of deterministic scatter.
+fn isotherms(temperatures: &[f64]) -> Vec<ShiftedPoint> {
+    let mut points = Vec::new();
+    for (j, &t) in temperatures.iter().enumerate() {
+        for i in 0..15 {
+            let hz = 10f64.powf(-1.0 + 3.0 * f64::from(i) / 14.0);
+            let reduced_omega = 2.0 * std::f64::consts::PI * hz * 10f64.powf(log_shift(t));
+            let (storage, loss) = prony(reduced_omega);
+            let scatter = 0.03 * (f64::from(i) * 1.7 + j as f64).sin();
+            points.push(ShiftedPoint {
+                reduced_omega,
+                storage: storage * (1.0 + scatter),
+                loss: loss * (1.0 - scatter),
+                temperature: t,
+            });
+        }
+    }
+    points
+}
+
+fn prony_fit(points: &[ShiftedPoint]) -> MasterCurveFit {
+    let (lo, hi) = points.iter().fold((f64::INFINITY, 0f64), |(a, b), p| {
+        (a.min(p.reduced_omega), b.max(p.reduced_omega))
+    });
+    let omega: Vec<f64> = (0..200)
+        .map(|i| 10f64.powf(lo.log10() + (hi / lo).log10() * f64::from(i) / 199.0))
+        .collect();
+    let (storage, loss) = omega.iter().map(|&w| prony(w)).unzip();
+    MasterCurveFit {
+        omega,
+        storage,
+        loss,
+    }
+}
+
+#[test]
+fn eight_isotherms_make_a_master_curve_with_its_shift_and_colour_key() {
+    let temperatures = [-30.0, -15.0, 0.0, 10.0, 20.0, 35.0, 50.0, 70.0];
+    let points = isotherms(&temperatures);
+    assert_eq!(points.len(), 120);
+    let fit = prony_fit(&points);
+    let shifts: Vec<(f64, f64)> = temperatures.iter().map(|&t| (t, log_shift(t))).collect();
+    let shift_curve: Vec<(f64, f64)> = (0..=100)
+        .map(|i| -30.0 + f64::from(i))
+        .map(|t| (t, log_shift(t)))
+        .collect();
+    let figure = DmaMasterFigure {
+        points: &points,
+        fit: &fit,
+        t_ref: T_REF,
+        shifts: &shifts,
+        shift_curve: &shift_curve,
+        modulus_symbol: "E",
+    };
+    let p = render(&figure).unwrap();
+    assert_eq!(p.name, "master");
+    let (image, texts) = check(&p, (1100, 800));
+    let text = joined(&texts);
+    for label in [
+        "reduced frequency ω a_T (rad/s), T_ref = 20 °C",
+        "E′, E″ (Pa)",
+        "tan δ",
+        "E′ (storage), per isotherm",
+        "E″ (loss), per isotherm",
+        "Prony E′",
+        "Prony E″",
+        "Prony tan δ",
+        "Shift factors a_T",
+        "T (°C)",
+        "log₁₀ a_T",
+        "fitted shift curve",
+        "per isotherm",
+        "-30 °C (coldest)",
+        "70 °C (warmest)",
+        "T_ref = 20 °C",
+    ] {
+        assert!(text.contains(label), "no text {label:?}");
+    }
+    assert!(!text.contains("Single isotherm"));
+
+    // Points in the colours of the coldest and warmest isotherms (in all
+    // three panels and the key), and many hues in between.
+    for c in [style::cold_to_warm(0.0), style::cold_to_warm(1.0)] {
+        assert!(count(&image, c) > 150, "too few pixels of {}", hex(c));
+    }
+    assert!(hue_sectors(&image, 150) >= 5);
+    // The Prony curves: E′ and tan δ solid, E″ dashed, all black.
+    assert!(strokes(&p.svg, RGBColor(0, 0, 0), 2) >= 20);
+    // The shift curve.
+    assert!(count(&image, style::WLF) > 100);
+    assert!(p.caption.contains("8 DMA isotherms"), "{}", p.caption);
+}
+
+#[test]
+fn a_single_isotherm_leaves_the_shift_panel_to_a_note() {
+    let mut points = isotherms(&[T_REF]);
+    // Values a log axis cannot show are skipped.
+    points[3].loss = -1.0;
+    points[4].storage = f64::NAN;
+    points[5].reduced_omega = 0.0;
+    let mut fit = prony_fit(&points[6..]);
+    fit.storage[10] = f64::NAN;
+    fit.loss[11] = -5.0;
+    let p = render(&DmaMasterFigure {
+        points: &points,
+        fit: &fit,
+        t_ref: T_REF,
+        shifts: &[(T_REF, 0.0)],
+        shift_curve: &[],
+        modulus_symbol: "G",
+    })
+    .unwrap();
+    let (image, texts) = check(&p, (1100, 800));
+    let text = joined(&texts);
+    assert!(text.contains("Single isotherm (20 °C):"), "no note");
+    assert!(text.contains("the one isotherm, 20 °C"));
+    assert!(!text.contains("log₁₀ a_T"), "a shift panel was drawn");
+    assert!(text.contains("G′, G″ (Pa)") && !text.contains("E′"));
+    assert!(count(&image, style::cold_to_warm(0.5)) > 100);
+    assert!(p.caption.contains("shear modulus"), "{}", p.caption);
+
+    // No points at all, no fit: still a picture.
+    let empty = MasterCurveFit::default();
+    let p = render(&DmaMasterFigure {
+        points: &[],
+        fit: &empty,
+        t_ref: T_REF,
+        shifts: &[],
+        shift_curve: &[],
+        modulus_symbol: "E",
+    })
+    .unwrap();
+    assert_eq!(decode(&p).height, 800);
+}
