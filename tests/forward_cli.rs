@@ -346,17 +346,24 @@ fn output_file_is_written_atomically_into_new_folders() {
         text(&forward(&scene, None).stdout),
         "file = stdout"
     );
-    let names: Vec<String> = fs::read_dir(out.parent().unwrap())
+    let mut names: Vec<String> = fs::read_dir(out.parent().unwrap())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
-    assert_eq!(names, vec!["mu.csv".to_string()], "leftover files");
+    names.sort();
+    // The CSV and its picture (issue 15), nothing else.
+    assert_eq!(names, ["mu.csv", "mu.png", "mu.svg"], "leftover files");
+    let svg = fs::read_to_string(out.with_extension("svg")).unwrap();
+    assert!(
+        svg.contains("rolling speed v") && svg.contains("low-speed asymptote"),
+        "the picture's axes and legend"
+    );
 
-    // Running again replaces the file, still without leftovers.
+    // Running again replaces the files, still without leftovers.
     fs::write(&out, "old").unwrap();
     assert!(forward(&scene, Some(&out)).status.success());
     assert_eq!(fs::read_to_string(&out).unwrap(), written);
-    assert_eq!(fs::read_dir(out.parent().unwrap()).unwrap().count(), 1);
+    assert_eq!(fs::read_dir(out.parent().unwrap()).unwrap().count(), 3);
 }
 
 #[test]

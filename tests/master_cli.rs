@@ -384,3 +384,77 @@ fn real_468mp_when_present() {
         );
     }
 }
+
+/// The contact-map error a user meets with overlapping isotherms pasted
+/// into one table names the table's lines and says what to do; the same
+/// isotherms as model = "dma" give μ(v). A table in the DMA reader's forms
+/// (shear, unit suffixes, one temperature) is read like a plain one.
+#[test]
+fn scattered_tables_are_explained_and_dma_forms_are_tables() {
+    let tmp = TempDir::new("table");
+    let temps: Vec<f64> = (0..12).map(|k| -10.0 + 5.0 * k as f64).collect();
+    let dma = tmp.write("iso.csv", &isotherms_csv(&temps, 20, 0.02, 9));
+    succeed(master(&dma, &tmp.path().join("m"), &[]));
+    let points = fs::read_to_string(tmp.path().join("m/master.csv")).unwrap();
+    let pasted: String = points
+        .lines()
+        .map(|l| l.split(',').take(3).collect::<Vec<_>>().join(",") + "\n")
+        .collect();
+    tmp.write("pasted.csv", &pasted);
+    let scene_text = |material: &str| {
+        format!(
+            "[geometry]\nshape = \"sphere\"\nradius = 0.01\nload = 0.05\n{material}\n[sweep]\n\
+             v_min = 1e-7\nv_max = 1e-1\ncount = 31\n"
+        )
+    };
+    let table = tmp.write(
+        "table.toml",
+        &scene_text("[material]\nmodel = \"table\"\nfile = \"pasted.csv\"\n"),
+    );
+    let out = rollfit(&[OsStr::new("forward"), table.as_os_str()]);
+    assert_failure(
+        &out,
+        &[
+            "contact map",
+            "pasted.csv",
+            "between line",
+            "Smooth or bin the table",
+            "model = \"dma\"",
+        ],
+    );
+    let in_memory = tmp.write(
+        "dma.toml",
+        &scene_text("[material]\nmodel = \"dma\"\nfile = \"iso.csv\"\n"),
+    );
+    succeed(rollfit(&[OsStr::new("forward"), in_memory.as_os_str()]));
+
+    // One isotherm in shear kPa with unit suffixes, as a table, against
+    // the same numbers as a plain Young's table (E = 3G at ν = ½).
+    let one = isotherms_csv(&[20.0], 25, 0.0, 1);
+    tmp.write("one.csv", &one);
+    let mut plain = String::from("omega,E_storage,E_loss\n");
+    let mut rows: Vec<(f64, f64, f64)> = one
+        .lines()
+        .skip(2)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            (v[1], 3e3 * v[2], 3e3 * v[3])
+        })
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (w, s, l) in rows {
+        plain += &format!("{w:e},{s:e},{l:e}\n");
+    }
+    tmp.write("plain.csv", &plain);
+    let a = tmp.write(
+        "a.toml",
+        &scene_text("[material]\nmodel = \"table\"\nfile = \"one.csv\"\n"),
+    );
+    let b = tmp.write(
+        "b.toml",
+        &scene_text("[material]\nmodel = \"table\"\nfile = \"plain.csv\"\n"),
+    );
+    let x = forward(&a, &tmp.path().join("a.csv"));
+    let y = forward(&b, &tmp.path().join("b.csv"));
+    assert!(largest_difference(&x, &y) <= 1e-12);
+}

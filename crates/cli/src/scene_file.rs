@@ -1174,9 +1174,10 @@ impl MaterialSection {
             }
             MaterialKind::Dma => Box::new(self.dma_master(base_dir)?.master.fit.prony.clone()),
             MaterialKind::Table => {
-                let file = self.file.as_ref().context("model \"table\" needs `file`")?;
-                let path = base_dir.join(file);
-                let table = table_file::read(&path)?;
+                let (path, table) = self.read_table(base_dir)?;
+                for note in &table.notes {
+                    eprintln!("note: {note}");
+                }
                 Box::new(
                     TabulatedModulus::new(table.omega, table.storage, table.loss)
                         .map_err(|e| anyhow!("modulus table {}: {e}", path.display()))?,
@@ -1320,6 +1321,23 @@ fn require_positive(key: &str, value: f64) -> Result<()> {
 }
 
 impl MaterialSection {
+    /// The modulus table of a "table" material, in any form the DMA reader
+    /// accepts (shear columns converted with [substrate] poisson), and its
+    /// path.
+    pub(crate) fn read_table(
+        &self,
+        base_dir: &Path,
+    ) -> Result<(PathBuf, table_file::ModulusTable)> {
+        let file = self.file.as_ref().context("model \"table\" needs `file`")?;
+        let path = base_dir.join(file);
+        let table = table_file::read_with(
+            &path,
+            self.dma.poisson.unwrap_or(DEFAULT_POISSON),
+            self.modulus.map(ModulusName::kind),
+        )?;
+        Ok((path, table))
+    }
+
     /// The master curve of a "dma" material, built on first use.
     fn dma_master(&self, base_dir: &Path) -> Result<Arc<DmaMaster>> {
         if let Some(built) = self.dma.built.get() {
@@ -1852,6 +1870,79 @@ count = 7
         );
     }
 
+    /// An Arrhenius `[material.shift]` gives the model's law; its keys
+    /// are checked like WLF's.
+    #[test]
+    fn arrhenius_shift() {
+        let text = SLS.replace(
+            "tau = 1\n",
+            "tau = 1\n[material.shift]\nmodel = \"arrhenius\"\nT_ref = 20.0\nE_a = 1.5e5\n",
+        );
+        let s = setup(&format!("{text}temperature = 35.0\n")).unwrap();
+        let law = Arrhenius::new(20.0, 1.5e5).unwrap();
+        assert_eq!(
+            s.blocks[0].shift.unwrap().log10_a_t,
+            law.log10_shift(35.0).unwrap()
+        );
+        let m = format!(
+            "{:#}",
+            parse(&text.replace("E_a = 1.5e5", "C1 = 8.0")).unwrap_err()
+        );
+        assert!(m.contains("do not belong to model \"arrhenius\""), "{m}");
+        let m = format!(
+            "{:#}",
+            parse(&text.replace("E_a = 1.5e5", "E_a = -1.0")).unwrap_err()
+        );
+        assert!(m.contains("E_a"), "{m}");
+    }
+
+    /// The keys of model = "dma" belong to it alone (`modulus` to "table"
+    /// as well), and a `[material.shift]` beside it is refused: the shift
+    /// comes from the isotherms. A missing file names itself.
+    #[test]
+    fn dma_material_keys() {
+        let dma = "[geometry]\nshape = \"sphere\"\nradius = 0.01\nload = 0.15\n[material]\n\
+                   model = \"dma\"\nfile = \"absent.csv\"\n";
+        let m = format!(
+            "{:#}",
+            setup(&format!("{dma}[sweep]\nv_min = 1e-6\nv_max = 1.0\n"))
+                .err()
+                .expect("a missing DMA file is an error")
+        );
+        assert!(m.contains("absent.csv"), "{m}");
+        let m = format!("{:#}", parse(&format!("{dma}E1 = 1e7\n")).unwrap_err());
+        assert!(m.contains("`E1` does not belong to model \"dma\""), "{m}");
+        let m = format!(
+            "{:#}",
+            parse(&format!(
+                "{dma}[material.shift]\nmodel = \"wlf\"\nT_ref = 20.0\nC1 = 8.0\nC2 = 100.0\n"
+            ))
+            .unwrap_err()
+        );
+        assert!(m.contains("does not go with model = \"dma\""), "{m}");
+        let m = format!(
+            "{:#}",
+            parse(&SLS.replace("tau = 1\n", "tau = 1\nT_ref = 20.0\n")).unwrap_err()
+        );
+        assert!(
+            m.contains("`T_ref` does not belong to model \"sls\"") && m.contains("\"dma\""),
+            "{m}"
+        );
+        assert!(
+            parse(&format!(
+                "{dma}T_ref = 25.0\nmodulus = \"shear\"\nshift_law = \"free\"\nvertical = true\n"
+            ))
+            .is_ok()
+        );
+        // A [sweep] temperature needs no [material.shift] with "dma".
+        assert!(
+            parse(&format!(
+                "{dma}[sweep]\nv_min = 1e-6\nv_max = 1.0\ntemperature = 30.0\n"
+            ))
+            .is_ok()
+        );
+    }
+
     const FREE_SHIFT: &str = "tau = 1\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n\
          log_aT = [{ T = 60.0, log_aT = -3.0 }, { T = 0.0, log_aT = 2.0 }]\n";
 
@@ -1915,7 +2006,7 @@ count = 7
         let msg = err("");
         assert!(msg.contains("needs the key `log_aT`"), "{msg}");
         let msg = err("log_aT = [{ T = 0.0, log_aT = 2.0 }]\nC1 = 8.86\n");
-        assert!(msg.contains("`C1` and `C2` do not belong"), "{msg}");
+        assert!(msg.contains("`C1`, `C2` and `E_a` do not belong"), "{msg}");
     }
 
     #[test]

@@ -26,6 +26,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rollfit_fit::RollingSetup;
 use rollfit_fit::sanity;
+use rollfit_model::friction::{contact_map_exponent, contact_map_frequency};
 use rollfit_model::ladder::AutoSweep;
 use rollfit_model::{Shape, ViscoelasticModulus};
 use rollfit_report::plot::{
@@ -33,7 +34,10 @@ use rollfit_report::plot::{
 };
 
 use crate::output;
-use crate::scene_file::{self, DynScene, ForwardBlock, ForwardRung, ForwardSetup};
+use crate::scene_file::{
+    self, DynScene, ForwardBlock, ForwardRung, ForwardSetup, MaterialKind, SceneFile,
+};
+use crate::table_file;
 
 /// CSV columns, in order (DESIGN.md §4 fixes `v` and `mu`; the rest is ours):
 /// speed v (m/s); friction coefficient μ; its low-speed asymptote (Eqs.
@@ -138,13 +142,15 @@ pub fn run(args: &Args) -> Result<()> {
         .blocks
         .iter()
         .map(|block| {
-            solve_block(block, &setup.speeds).with_context(|| {
-                let at = block
-                    .shift
-                    .map(|s| format!(" at T = {} °C", s.temperature))
-                    .unwrap_or_default();
-                format!("computing μ(v){at} for scene file {}", path.display())
-            })
+            solve_block(block, &setup.speeds)
+                .map_err(|e| explain_table_error(&file, path, block, e))
+                .with_context(|| {
+                    let at = block
+                        .shift
+                        .map(|s| format!(" at T = {} °C", s.temperature))
+                        .unwrap_or_default();
+                    format!("computing μ(v){at} for scene file {}", path.display())
+                })
         })
         .collect::<Result<Vec<_>>>()?;
     let mu: Vec<Vec<f64>> = solved.iter().map(|s| s.mu.clone()).collect();
@@ -207,6 +213,42 @@ pub fn run(args: &Args) -> Result<()> {
         eprintln!("warning: {line}");
     }
     Ok(())
+}
+
+/// A contact-map error of a "table" material with what a user can do
+/// about it: the table lines that cause it (see
+/// [`table_file::explain_contact_map`]); other errors pass unchanged.
+fn explain_table_error(
+    file: &SceneFile,
+    scene: &Path,
+    block: &ForwardBlock,
+    e: anyhow::Error,
+) -> anyhow::Error {
+    let message = format!("{e:#}");
+    let (Some(omega), Some(exponent)) = (
+        contact_map_frequency(&message),
+        contact_map_exponent(&message),
+    ) else {
+        return e;
+    };
+    let Some(material) = file
+        .material
+        .as_ref()
+        .filter(|m| m.model == MaterialKind::Table)
+    else {
+        return e;
+    };
+    let Ok((table_path, table)) = material.read_table(scene.parent().unwrap_or(Path::new("")))
+    else {
+        return e;
+    };
+    // The block's material is shifted, E_T(ω) = E_ref(ω a_T): the table's
+    // own frequency is ω a_T.
+    let omega = omega * block.shift.map_or(1.0, |s| 10f64.powf(s.log10_a_t));
+    anyhow::anyhow!(
+        "{message}\n{}",
+        table_file::explain_contact_map(&table, &table_path, omega, exponent)
+    )
 }
 
 /// The sanity checks of [`rollfit_fit::sanity`]: the scene's inputs, its
