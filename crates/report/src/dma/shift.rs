@@ -151,7 +151,7 @@ pub(crate) fn to_reference(
                 .unwrap_or(iso.temperature);
             let log_shift = shift.log_shift_at(t).ok_or_else(|| {
                 ReportError::Unanswerable(format!(
-                    "{file}: the DMA isotherm at {:.1} °C cannot be shifted with the fit's {} shift (it covers {lo} to {hi} °C{}); give the DMA's own WLF constants with --dma-wlf T_REF,C1,C2",
+                    "{file}: the DMA isotherm at {:.1} °C cannot be shifted with the fit's {} shift (it covers {lo} to {hi} °C{}); give the DMA's own WLF constants with --dma-wlf T_REF,C1,C2 (`rollfit master` finds them from the isotherms)",
                     iso.temperature,
                     shift.model,
                     if shift.c1.is_some() { ", and WLF diverges below T_ref − C2" } else { "" }
@@ -195,7 +195,7 @@ pub(crate) fn to_reference(
                     .map(|i| format!("{:.1}", i.temperature))
                     .collect();
                 return Err(ReportError::Unanswerable(format!(
-                    "{file}: {} temperatures ({} °C) but the fit has no shift (it is not a temperature set): give the DMA's own WLF constants with --dma-wlf T_REF,C1,C2",
+                    "{file}: {} temperatures ({} °C) but the fit has no shift (it is not a temperature set): give the DMA's own WLF constants with --dma-wlf T_REF,C1,C2 (`rollfit master` finds them from the isotherms)",
                     several.len(),
                     temps.join(", ")
                 )));
