@@ -398,10 +398,10 @@ pub fn parse(text: &str) -> Result<ModulusTable> {
     Ok(table)
 }
 
-/// What the model's contact-map error ("the contact map ω·a(ω) is not
-/// increasing at ω = … rad/s (the modulus rises faster than ω^n)", see
-/// `rollfit_model::friction::contact_map_frequency` and
-/// `contact_map_exponent`) means in `table`, read from `path`: the rows
+/// What the model's contact-map error
+/// (`rollfit_model::ModelError::ContactMapNotIncreasing`: "the contact map
+/// ω·a(ω) is not increasing at ω = … rad/s (the modulus rises faster than
+/// ω^n)") means in `table`, read from `path`: the rows
 /// whose frequencies bracket `omega`, the neighbouring rows within a
 /// decade of it between which |E*| rises faster than ω^`exponent` (the
 /// five nearest, in increasing ω, with their ω and |E*|; failing any, the
@@ -978,7 +978,6 @@ mod tests {
         use rand::SeedableRng;
         use rand_chacha::ChaCha8Rng;
         use rand_distr::{Distribution, StandardNormal};
-        use rollfit_model::friction::{contact_map_exponent, contact_map_frequency};
         use rollfit_model::{ContactSize, Geometry, Scene, Shape, Substrate, TabulatedModulus};
 
         // Nine isotherms of 0.1 … 100 rad/s, 5 points a decade, 10 K apart,
@@ -1031,9 +1030,11 @@ mod tests {
         let speeds: Vec<f64> = (0..=16)
             .map(|k| 10f64.powf(-8.0 + 0.5 * f64::from(k)))
             .collect();
-        let message = scene.friction_sweep(&speeds).unwrap_err().to_string();
-        let omega = contact_map_frequency(&message).unwrap_or_else(|| panic!("{message}"));
-        assert_eq!(contact_map_exponent(&message), Some(3.0), "{message}");
+        let error = scene.friction_sweep(&speeds).unwrap_err();
+        let rollfit_model::ModelError::ContactMapNotIncreasing { omega, exponent } = error else {
+            panic!("{error}")
+        };
+        assert_eq!(exponent, 3.0);
 
         let explained = explain_contact_map(&table, &path, omega, 3.0);
         // The rows bracketing ω.

@@ -30,6 +30,20 @@ pub enum ModelError {
     /// The evaluation cannot proceed for this combination of inputs.
     #[error("{0}")]
     Evaluation(String),
+    /// The contact map σ = ln(ω a(ω)) stops increasing: the modulus rises
+    /// faster than ω^n (n = 3 for a sphere, 2 for a cylinder: a ∝ |E|^{−1/n})
+    /// near `omega`, so no contact size solves ω a(ω) = v there. Typed, so
+    /// that a front end can point at the table rows that cause it.
+    #[error(
+        "the contact map ω·a(ω) is not increasing at ω = {omega:e} rad/s (the modulus rises \
+         faster than ω^{exponent}); the dynamic contact size is undefined there"
+    )]
+    ContactMapNotIncreasing {
+        /// Angular frequency of the evaluated material, rad/s.
+        omega: f64,
+        /// n of the rule |E*| ∝ ω^n the modulus outgrows.
+        exponent: f64,
+    },
 }
 
 /// A value as a message shows it: as written for ordinary magnitudes,

@@ -26,9 +26,8 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rollfit_fit::RollingSetup;
 use rollfit_fit::sanity;
-use rollfit_model::friction::{contact_map_exponent, contact_map_frequency};
 use rollfit_model::ladder::AutoSweep;
-use rollfit_model::{Shape, ViscoelasticModulus};
+use rollfit_model::{ModelError, Shape, ViscoelasticModulus};
 use rollfit_report::plot::{
     self, Picture, forward_sweep::ForwardSweepFigure, forward_sweep::SweepCurve,
 };
@@ -224,13 +223,14 @@ fn explain_table_error(
     block: &ForwardBlock,
     e: anyhow::Error,
 ) -> anyhow::Error {
-    let message = format!("{e:#}");
-    let (Some(omega), Some(exponent)) = (
-        contact_map_frequency(&message),
-        contact_map_exponent(&message),
-    ) else {
+    // The model's error is kept as the anyhow error's own value
+    // (`anyhow::Error::msg` in `solve_block`), so it is found by type.
+    let Some(&ModelError::ContactMapNotIncreasing { omega, exponent }) =
+        e.downcast_ref::<ModelError>()
+    else {
         return e;
     };
+    let message = format!("{e:#}");
     let Some(material) = file
         .material
         .as_ref()

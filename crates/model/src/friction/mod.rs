@@ -36,7 +36,6 @@ use crate::kernel::{KernelTable, step_for_tolerance};
 use crate::modulus::{Prony, ViscoelasticModulus};
 use crate::scene::Scene;
 use grid::{Grid, Node};
-pub use grid::{contact_map_exponent, contact_map_frequency};
 use setup::Setup;
 
 /// μ at several speeds and its derivatives with respect to the Prony
