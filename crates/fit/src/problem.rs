@@ -268,6 +268,12 @@ impl<'a> Problem<'a> {
         }
     }
 
+    /// Whether the evaluation budget is used up (an abandoned run's too):
+    /// the next evaluation would be refused.
+    pub fn budget_used_up(&self) -> bool {
+        self.evaluations.get() >= self.budget.get()
+    }
+
     /// Resets the counters and the record for a new solver run with `budget`
     /// evaluations.
     pub fn reset(&self, budget: usize) {
@@ -289,8 +295,10 @@ fn refused(e: &FitError) -> bool {
     !matches!(e, FitError::BudgetExhausted(_))
 }
 
+/// The fit's error as argmin's, kept as its value so that the solver
+/// drivers recover it by type (`solvers::stop_from_argmin`).
 fn to_argmin(e: FitError) -> ArgminError {
-    ArgminError::msg(e.to_string())
+    ArgminError::new(e)
 }
 
 impl CostFunction for &Problem<'_> {

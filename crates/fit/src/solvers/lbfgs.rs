@@ -18,7 +18,7 @@ use argmin::solver::linesearch::MoreThuenteLineSearch;
 use argmin::solver::quasinewton::LBFGS;
 use nalgebra::DVector;
 
-use super::{StopReason, stop_from_error};
+use super::{StopReason, stop_from_argmin, stop_from_error};
 use crate::problem::Problem;
 
 /// Minimises from `start`; returns (iterations, stop reason).
@@ -27,7 +27,7 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
     // σ-weighted (V ~ N) and relative (V ~ N·1e-4) residuals stop alike.
     let v0 = match problem.evaluate(start, false) {
         Ok(e) => e.objective(),
-        Err(e) => return (0, stop_from_error(&e.to_string())),
+        Err(e) => return (0, stop_from_error(&e)),
     };
     let line_search = MoreThuenteLineSearch::new();
     let solver = match LBFGS::new(line_search, 10)
@@ -56,8 +56,10 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
                 TerminationStatus::Terminated(TerminationReason::MaxItersReached) => {
                     StopReason::Budget
                 }
-                TerminationStatus::Terminated(TerminationReason::SolverExit(text))
-                    if text.contains("budget of") =>
+                // The line search ends the run in its own words when an
+                // evaluation is refused; the problem's counter says why.
+                TerminationStatus::Terminated(TerminationReason::SolverExit(_))
+                    if problem.budget_used_up() =>
                 {
                     StopReason::Budget
                 }
@@ -69,14 +71,6 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
             };
             (iterations, stop)
         }
-        Err(e) => {
-            let message = e.to_string();
-            let stop = if message.contains("budget of") || message.contains("forward model") {
-                stop_from_error(&message)
-            } else {
-                StopReason::LineSearchFailure(message)
-            };
-            (problem.history.borrow().len(), stop)
-        }
+        Err(e) => (problem.history.borrow().len(), stop_from_argmin(&e)),
     }
 }

@@ -24,6 +24,7 @@ use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationRe
 use nalgebra::{DMatrix, DVector, Dyn, Owned};
 
 use super::{StopReason, Tolerance, stop_from_error};
+use crate::error::FitError;
 use crate::problem::{Evaluation, Problem};
 
 /// Relative reduction of V and relative step below which a run has
@@ -51,7 +52,7 @@ const STEP_BOUND: f64 = 0.1;
 struct Adapter<'p, 'a> {
     problem: &'p Problem<'a>,
     theta: DVector<f64>,
-    current: Result<Evaluation, String>,
+    current: Result<Evaluation, FitError>,
     jacobians: Cell<usize>,
 }
 
@@ -64,10 +65,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Adapter<'_, '_> {
         self.theta.copy_from(theta);
         // The Jacobian costs about 1.4 μ-evaluations in the forward model's
         // one-pass scheme, so it is computed with every trial point.
-        self.current = self
-            .problem
-            .evaluate(theta.as_slice(), true)
-            .map_err(|e| e.to_string());
+        self.current = self.problem.evaluate(theta.as_slice(), true);
     }
 
     fn params(&self) -> DVector<f64> {
@@ -81,11 +79,11 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Adapter<'_, '_> {
             // outside the trust region's intent) is reported as a very poor
             // point, so the trust region shrinks instead of the run ending;
             // running out of budget still ends it.
-            Err(message) if !message.contains("budget of") => Some(DVector::from_element(
+            Err(FitError::BudgetExhausted(_)) => None,
+            Err(_) => Some(DVector::from_element(
                 self.problem.residual_count(),
                 REFUSED_RESIDUAL,
             )),
-            Err(_) => None,
         }
     }
 
@@ -106,13 +104,13 @@ pub(crate) fn minimize(
         Tolerance::Final => LM_TOLERANCE,
     };
     let theta = DVector::from_column_slice(start);
-    let mut adapter = Adapter {
+    // Evaluated at the start once, as `set_params` would.
+    let adapter = Adapter {
         problem,
-        theta: theta.clone(),
-        current: Err("not evaluated".into()),
+        theta,
+        current: problem.evaluate(start, true),
         jacobians: Cell::new(0),
     };
-    adapter.set_params(&theta);
     let n = start.len();
     let budget = problem.budget.get();
     let solver = LevenbergMarquardt::new()
@@ -137,7 +135,7 @@ pub(crate) fn minimize(
             "no further improvement possible in {what} at machine precision"
         )),
         TerminationReason::User(_) | TerminationReason::Numerical(_) => match &adapter.current {
-            Err(message) => stop_from_error(message),
+            Err(error) => stop_from_error(error),
             Ok(_) => StopReason::ModelFailure("non-finite residuals".into()),
         },
         other => StopReason::Stall(format!("{other:?}")),

@@ -16,6 +16,7 @@ pub mod nelder_mead;
 
 use serde::Serialize;
 
+use crate::error::FitError;
 use crate::params::Method;
 use crate::problem::Problem;
 
@@ -133,11 +134,20 @@ pub(crate) fn run(
     }
 }
 
-/// Maps an error raised inside a solver to a stop reason.
-pub(crate) fn stop_from_error(message: &str) -> StopReason {
-    if message.contains("budget of") {
-        StopReason::Budget
-    } else {
-        StopReason::ModelFailure(message.to_string())
+/// Maps an error raised inside a solver to a stop reason, by its type.
+pub(crate) fn stop_from_error(error: &FitError) -> StopReason {
+    match error {
+        FitError::BudgetExhausted(_) => StopReason::Budget,
+        other => StopReason::ModelFailure(other.to_string()),
+    }
+}
+
+/// The stop reason of an error that came back through argmin: the fit's
+/// own error when the problem raised it (carried as the error's value, see
+/// `problem::to_argmin`), else a line-search failure in argmin's words.
+pub(crate) fn stop_from_argmin(error: &argmin::core::Error) -> StopReason {
+    match error.downcast_ref::<FitError>() {
+        Some(e) => stop_from_error(e),
+        None => StopReason::LineSearchFailure(error.to_string()),
     }
 }

@@ -14,7 +14,7 @@ use argmin::core::{Executor, State, TerminationReason, TerminationStatus};
 use argmin::solver::neldermead::NelderMead;
 use nalgebra::DVector;
 
-use super::{StopReason, stop_from_error};
+use super::{StopReason, stop_from_argmin};
 use crate::problem::Problem;
 
 /// Edge of the initial simplex in log-parameters.
@@ -52,9 +52,6 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
             };
             (state.get_iter() as usize, stop)
         }
-        Err(e) => (
-            problem.history.borrow().len(),
-            stop_from_error(&e.to_string()),
-        ),
+        Err(e) => (problem.history.borrow().len(), stop_from_argmin(&e)),
     }
 }
