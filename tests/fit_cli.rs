@@ -122,7 +122,7 @@ fn fits_a_synthetic_measurement_with_a_static_modulus_anchor() {
     }
     assert!(!stderr.contains("no scale anchor"), "{stderr}");
 
-    // fit.json: the contract's keys (DESIGN.md §4).
+    // fit.json: the contract's keys (docs/ARCHITECTURE.md, "Contract").
     let report = json(&out.join("fit.json"));
     for key in [
         "model",

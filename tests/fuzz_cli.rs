@@ -6,7 +6,8 @@
 //! malformed values, lines deleted, duplicated, swapped or inserted,
 //! delimiters changed, the file cut short, bytes flipped).
 //!
-//! Every case must keep the promises of DESIGN.md §4 and issue 14:
+//! Every case must keep the promises of docs/ARCHITECTURE.md, "Contract",
+//! and issue 14:
 //! - no panic, and no run longer than a minute;
 //! - exit 0 only with finite outputs (every number in the written CSV and
 //!   JSON files finite, fit.json readable);

@@ -1,8 +1,9 @@
-//! Reader for measured rolling friction (DESIGN.md §4): a table with a
-//! header row naming a speed column and a friction column, optionally the
-//! standard deviation of μ and the temperature; other columns are ignored,
-//! so the output of `rollfit forward --noise` (v, mu, sigma, mu_exact, ...)
-//! and mu.csv of a fit (v, mu_measured, ...) are read directly.
+//! Reader for measured rolling friction (docs/ARCHITECTURE.md, "Contract",
+//! "Measured data"): a table with a header row naming a speed column and a
+//! friction column, optionally the standard deviation of μ and the
+//! temperature; other columns are ignored, so the output of
+//! `rollfit forward --noise` (v, mu, sigma, mu_exact, ...) and mu.csv of a
+//! fit (v, mu_measured, ...) are read directly.
 //!
 //! What labs write is read as it is:
 //!

@@ -1,6 +1,7 @@
 //! `rollfit`: rolling-friction measurements ↔ viscoelastic master curves
-//! (Persson, Eur. Phys. J. E 33, 2010). See DESIGN.md §4 for the commands,
-//! the scene file and the CSV columns other programs rely on.
+//! (Persson, Eur. Phys. J. E 33, 2010). See docs/ARCHITECTURE.md,
+//! "Contract", for the commands, the scene file and the CSV columns other
+//! programs rely on.
 
 mod commands;
 mod csv_columns;
@@ -74,8 +75,9 @@ enum Command {
     /// friction (μ(v) with relative residuals), master_curve (E′, E″ and
     /// tan δ with the window and 1σ bands, DMA points with --dma), spectrum
     /// (H_k against τ_k, undetermined terms marked), convergence (V against
-    /// evaluations per run), and for a temperature set temperatures (μ per
-    /// T), master_friction (μ against v·a_T) and shift (log a_T against T).
+    /// evaluations per run), and for a temperature set master_friction (μ
+    /// against v·a_T) and shift (log a_T against T); friction then shows μ
+    /// per T in one colour each.
     /// report.html holds them all inline, with the fit's table and, with
     /// --dma, the comparison (also written to DIR/compare.json).
     Report(commands::report::Args),

@@ -1,9 +1,10 @@
 //! material.toml, written by `rollfit master`: the `[material]` table of a
-//! scene file (DESIGN.md §4) holding the master curve's Prony series at
-//! T_ref and, for several isotherms, its `[material.shift]`, for a scene to
-//! copy (or to use the DMA file itself, `model = "dma"`); numbers
-//! are written with the shortest digits that read back to the same f64, so
-//! a scene using the file predicts exactly what the master curve does.
+//! scene file (docs/ARCHITECTURE.md, "Contract") holding the master
+//! curve's Prony series at T_ref and, for several isotherms, its
+//! `[material.shift]`, for a scene to copy (or to use the DMA file itself,
+//! `model = "dma"`); numbers are written with the shortest digits that read
+//! back to the same f64, so a scene using the file predicts exactly what
+//! the master curve does.
 
 use anyhow::{Context, Result};
 use rollfit_fit::master::ShiftLaw;

@@ -1,5 +1,5 @@
-//! The scene file (TOML, DESIGN.md §4): its schema and its conversion into
-//! validated model objects.
+//! The scene file (TOML; docs/ARCHITECTURE.md, "Contract", "Scene file"):
+//! its schema and its conversion into validated model objects.
 //!
 //! Parsing happens in two steps. serde with `deny_unknown_fields` turns the
 //! text into the plain structs below; type errors, unknown keys and
@@ -324,7 +324,8 @@ pub struct SubstrateSection {
 }
 
 /// The rungs of the model ladder as written in the file (`[contact] size`;
-/// DESIGN.md names "dynamic" and "static", the rest extend it).
+/// the contract, docs/ARCHITECTURE.md, "Contract", names "dynamic" and
+/// "static", the rest extend it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactName {

@@ -87,8 +87,9 @@ pub enum TermRule {
 /// The smoothness weight λ on ln H_k.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Lambda {
-    /// Data-driven: the discrepancy principle when σ is measured, else
-    /// generalised cross-validation.
+    /// Data-driven: the discrepancy principle when σ is measured, else the
+    /// marginal likelihood with the noise level profiled out (see
+    /// [`crate::regularization`]).
     Auto,
     /// A fixed λ ≥ 0 (0 switches the penalty off).
     Fixed(f64),

@@ -1,5 +1,6 @@
-//! The result of a fit, as written to fit.json (the contract of DESIGN.md
-//! §4, extended), plus the curves the command line writes as CSV.
+//! The result of a fit, as written to fit.json (the contract of
+//! docs/ARCHITECTURE.md, "Contract", extended), plus the curves the command
+//! line writes as CSV.
 
 use serde::Serialize;
 
@@ -105,8 +106,8 @@ pub struct RunRecord {
     pub history: Vec<[f64; 2]>,
 }
 
-/// The time–temperature shift of a temperature set (DESIGN.md §2):
-/// E*(ω, T) = E*(ω a_T, T_ref).
+/// The time–temperature shift of a temperature set (docs/ARCHITECTURE.md,
+/// "Conventions"): E*(ω, T) = E*(ω a_T, T_ref).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "model", rename_all = "lowercase")]
 pub enum ShiftRecord {

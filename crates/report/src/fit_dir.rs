@@ -1,6 +1,6 @@
-//! A fit result directory as `rollfit fit` writes it (DESIGN.md §4):
-//! fit.json, mu.csv and modulus.csv, read back for pictures and
-//! comparisons.
+//! A fit result directory as `rollfit fit` writes it (docs/ARCHITECTURE.md,
+//! "Contract", "Fit folder"): fit.json, mu.csv and modulus.csv, read back
+//! for pictures and comparisons.
 //!
 //! Only the contract's keys are required; everything rollfit adds beyond
 //! them (bands, runs, shift, warnings) is optional, so a fit.json written

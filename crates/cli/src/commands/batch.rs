@@ -1,5 +1,5 @@
 //! `rollfit batch MANIFEST.toml [-o DIR]`: many independent fits, in
-//! parallel (DESIGN.md §4).
+//! parallel (docs/ARCHITECTURE.md, "Contract").
 //!
 //! Each manifest entry (see [`crate::manifest`]) is one `rollfit fit` of a
 //! scene and a data file into DIR/<entry name>/ — the same files, made by

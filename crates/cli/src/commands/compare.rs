@@ -1,5 +1,5 @@
 //! `rollfit compare DIR DMA`: the master curve recovered by `rollfit fit`
-//! against DMA data (DESIGN.md §4).
+//! against DMA data (docs/ARCHITECTURE.md, "Contract").
 //!
 //! Reads DIR (fit.json, mu.csv, modulus.csv) and the DMA file (CSV or a
 //! TRIOS LIMS export), moves the DMA points to the fit's reference state

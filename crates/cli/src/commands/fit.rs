@@ -1,13 +1,14 @@
 //! `rollfit fit SCENE.toml DATA.csv [-o DIR]`: recover the master curve
-//! E*(ω) from measured μ(v) (Persson 2010, Appendix B; DESIGN.md §2, §4).
+//! E*(ω) from measured μ(v) (Persson 2010, Appendix B; docs/ARCHITECTURE.md,
+//! "Data flow" and "Contract").
 //!
 //! The scene's [geometry], [substrate] and [contact] describe the
 //! experiment; its optional `[fit]` table holds the scale anchor and the
 //! solver settings; an "sls" or "prony" `[material]` is the starting point.
 //! Flags override the scene. Writes DIR/fit.json, DIR/modulus.csv and
-//! DIR/mu.csv (each atomically) and a summary on stderr. A fit that does not
-//! converge still writes its results, then fails unless
-//! `--allow-unconverged`.
+//! DIR/mu.csv (as one folder swap) and a summary on stderr. A fit that does
+//! not converge, or does not describe its data, writes nothing and fails,
+//! unless `--allow-unconverged` or `--allow-poor-fit`.
 
 use std::path::{Path, PathBuf};
 
@@ -22,8 +23,9 @@ use crate::data_file::{self, DataTable};
 use crate::output;
 use crate::scene_file;
 
-/// Columns of modulus.csv: DESIGN.md §4 fixes the first four (Young's
-/// modulus, Pa; ω in rad/s); then |E*| and the 1σ band of each quantity.
+/// Columns of modulus.csv: docs/ARCHITECTURE.md, "Contract", fixes the
+/// first four (Young's modulus, Pa; ω in rad/s); then |E*| and the 1σ band
+/// of each quantity.
 pub const MODULUS_COLUMNS: [&str; 9] = [
     "omega",
     "E_storage",
@@ -75,7 +77,7 @@ pub struct Settings {
     #[arg(long, value_name = "NAME", value_parser = parse_method)]
     pub method: Option<Method>,
     /// Smoothness weight λ ≥ 0 on ln H_k, or "auto" (discrepancy principle
-    /// with sigma, else generalised cross-validation). Overrides [fit] lambda.
+    /// with sigma, else the marginal likelihood). Overrides [fit] lambda.
     #[arg(long, value_name = "VALUE|auto", value_parser = parse_lambda, allow_hyphen_values = true)]
     pub lambda: Option<Lambda>,
     /// Seed of the multi-start perturbations. Overrides [fit] seed.
@@ -359,8 +361,8 @@ fn describe_setup(setup: &RollingSetup) -> String {
     )
 }
 
-/// fit.json: the report (DESIGN.md §4, in the fit library's field order)
-/// plus where it came from.
+/// fit.json: the report (docs/ARCHITECTURE.md, "Contract", in the fit
+/// library's field order) plus where it came from.
 #[derive(Serialize)]
 struct FitJson<'a> {
     #[serde(flatten)]

@@ -38,7 +38,7 @@ use crate::scene_file::{
 };
 use crate::table_file;
 
-/// CSV columns, in order (DESIGN.md §4 fixes `v` and `mu`; the rest is ours):
+/// CSV columns, in order (docs/ARCHITECTURE.md, "Contract", fixes `v` and `mu`; the rest is ours):
 /// speed v (m/s); friction coefficient μ; its low-speed asymptote (Eqs.
 /// 18/19); static Hertz contact size r0 or a0 (m) and mean pressure p_a
 /// (Pa), the same on every row; pressure-centroid shift x̄ = μR (m);

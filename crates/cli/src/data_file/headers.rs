@@ -29,7 +29,8 @@ impl Quantity {
         Quantity::Temperature,
     ];
 
-    /// The canonical column name (DESIGN.md §4).
+    /// The canonical column name (docs/ARCHITECTURE.md, "Contract",
+    /// "Measured data").
     pub fn key(self) -> &'static str {
         match self {
             Quantity::Speed => "v",

@@ -1,6 +1,7 @@
-//! The CSV form of a DMA file (DESIGN.md §4): a header line, then one point
-//! per line; `#` lines are comments, columns other than the ones below are
-//! ignored (they need not even be numbers).
+//! The CSV form of a DMA file (docs/ARCHITECTURE.md, "Contract", "DMA
+//! files"): a header line, then one point per line; `#` lines are
+//! comments, columns other than the ones below are ignored (they need not
+//! even be numbers).
 //!
 //! | quantity    | columns                         | unit suffixes (default first) |
 //! |-------------|---------------------------------|-------------------------------|

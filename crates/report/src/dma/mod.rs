@@ -3,7 +3,7 @@
 //! reference state of a fit, to be compared with the master curve the fit
 //! recovered from μ(v).
 //!
-//! Two file forms (DESIGN.md §4, "DMA files"):
+//! Two file forms (docs/ARCHITECTURE.md, "Contract", "DMA files"):
 //! - CSV ([`csv_form`]): a frequency column `f` (Hz) or `omega` (rad/s),
 //!   storage and loss columns `E_storage`, `E_loss` (Young's) or
 //!   `G_storage`, `G_loss` (shear), optional `T` (°C). Unit-suffixed

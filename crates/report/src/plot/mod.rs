@@ -122,7 +122,7 @@ fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, png::Encod
 
 /// Registers the embedded DejaVu Sans as plotters' "sans-serif" once per
 /// process: without a registered font the bitmap backend cannot draw text
-/// on a machine without system fonts (DESIGN.md §3).
+/// on a machine without system fonts (docs/ARCHITECTURE.md, "Crates").
 fn register_fonts() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
