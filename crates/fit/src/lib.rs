@@ -21,6 +21,43 @@
 //! - [`master`]: DMA isotherms to a master curve: shift factors, their
 //!   WLF or Arrhenius law, and a smooth causal Prony series.
 
+//! # Example
+//!
+//! μ(v) at 21 speeds made by the forward model from a standard linear
+//! solid (σ = 1 % given, no noise), fitted back: in the middle of the
+//! window of frequencies the speeds determine, the recovered tan δ is the
+//! truth's to better than 1 % (measured: 0.26 %).
+//!
+//! ```
+//! use rollfit_fit::{FitParams, Measurements, RollingSetup, fit};
+//! use rollfit_model::{
+//!     ContactSize, Geometry, Prony, Scene, Shape, StandardLinearSolid, Substrate,
+//!     ViscoelasticModulus,
+//! };
+//!
+//! let setup = RollingSetup {
+//!     geometry: Geometry { shape: Shape::Sphere, radius: 0.01, load: 1.0 },
+//!     substrate: Substrate { poisson: 0.5, film_thickness: None },
+//!     contact: ContactSize::Dynamic,
+//! };
+//! let truth = StandardLinearSolid::new(1e6, 1e8, 1e-2)?;
+//! let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, truth.clone())?;
+//! let speeds: Vec<f64> = (0..21).map(|k| 10f64.powf(-6.0 + 0.3 * k as f64)).collect();
+//! let mu = scene.friction_sweep(&speeds)?;
+//! let sigma = mu.iter().map(|m| 0.01 * m).collect();
+//! let data = Measurements::new(speeds, mu, Some(sigma), None)?;
+//!
+//! let report = fit(&data, &FitParams::default().check(setup)?)?;
+//! assert!(report.converged);
+//! let m = &report.model;
+//! let recovered = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
+//! let middle = (report.window.omega_min * report.window.omega_max).sqrt();
+//! let (e, t) = (recovered.modulus(middle), truth.modulus(middle));
+//! let error = (e.im / e.re) / (t.im / t.re) - 1.0;
+//! assert!(error.abs() < 0.01, "tan δ off by {error} at {middle:e} rad/s");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
 pub mod condense;
 pub mod data;
 pub mod error;

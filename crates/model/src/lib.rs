@@ -24,6 +24,32 @@
 //!   E″ ∝ ω^p), Greenwood–Tabor α
 //!   (Eqs. 20–21), pressure-centroid shift, friction maximum.
 //!
+//! # Example
+//!
+//! μ(v) of a steel ball on a standard linear solid; far below the
+//! relaxation frequency it follows the low-speed asymptote (Eqs. 18/19).
+//! `examples/sweep.rs` prints a whole sweep (`cargo run --example sweep
+//! -p rollfit-model`).
+//!
+//! ```
+//! use rollfit_model::{ContactSize, Geometry, Scene, Shape, StandardLinearSolid, Substrate};
+//!
+//! // E0 = 1 MPa, E1 = 100 MPa, τ = 10 ms.
+//! let rubber = StandardLinearSolid::new(1e6, 1e8, 1e-2)?;
+//! let scene = Scene::new(
+//!     Geometry { shape: Shape::Sphere, radius: 0.01, load: 1.0 },
+//!     Substrate { poisson: 0.5, film_thickness: None },
+//!     ContactSize::Dynamic,
+//!     rubber,
+//! )?;
+//! let speeds = [1e-7, 1e-3, 1e-1];
+//! let mu = scene.friction_sweep(&speeds)?;
+//! assert!(mu.iter().all(|&m| m > 0.0 && m < 1.0));
+//! let low = scene.low_speed_asymptote(speeds[0]);
+//! assert!((mu[0] / low - 1.0).abs() < 0.02, "μ = {} vs asymptote {low}", mu[0]);
+//! # Ok::<(), rollfit_model::ModelError>(())
+//! ```
+//!
 //! Sign convention: E*(ω) = E′ + iE″ with E″ ≥ 0 for ω > 0; the loss
 //! compliance L(ω) = E″_eff/|E_eff|² = −Im 1/E_eff(ω) is what the paper calls
 //! "Im 1/E" (its Fourier convention gives the complex conjugate).
