@@ -910,16 +910,9 @@ impl SceneFile {
             );
         };
         Ok(match log10_a_t {
-            Some(l) => {
-                let factor = 10f64.powf(l);
-                let tau = prony
-                    .relaxation_times()
-                    .iter()
-                    .map(|t| t * factor)
-                    .collect();
-                Prony::new(prony.glassy_modulus(), prony.strengths().to_vec(), tau)
-                    .map_err(|e| anyhow!("[material.shift]: {e}"))?
-            }
+            Some(l) => prony
+                .shifted(l)
+                .map_err(|e| anyhow!("[material.shift]: {e}"))?,
             None => prony,
         })
     }

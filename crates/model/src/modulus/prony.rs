@@ -57,6 +57,20 @@ impl Prony {
         })
     }
 
+    /// The series at another temperature, E*(ω, T) = E*_ref(ω a_T) with
+    /// log10 a_T = `log10_a_t` (the convention of [`super::shift`]): a
+    /// Prony series again, with every τ_k multiplied by a_T, since
+    /// iω a_T τ_k/(1 + iω a_T τ_k) is the term of relaxation time a_T τ_k.
+    /// The exact rolling cylinder needs the series itself, not a wrapper.
+    pub fn shifted(&self, log10_a_t: f64) -> Result<Prony, ModelError> {
+        let factor = 10f64.powf(log10_a_t);
+        Prony::new(
+            self.glassy_modulus,
+            self.strengths.clone(),
+            self.relaxation_times.iter().map(|t| t * factor).collect(),
+        )
+    }
+
     /// The glassy modulus E1, Pa.
     pub fn glassy_modulus(&self) -> f64 {
         self.glassy_modulus
@@ -185,6 +199,24 @@ impl ViscoelasticModulus for Prony {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shifted series is the reference one at ω a_T, as the model's
+    /// generic [`super::super::Shifted`] wrapper computes it.
+    #[test]
+    fn shifted_series_equals_the_shift_wrapper() {
+        let p = Prony::new(1e8, vec![5e7, 3e7, 1.5e7], vec![1e-4, 1e-2, 1.0]).unwrap();
+        for log_a in [-2.5, 0.0, 1.3] {
+            let series = p.shifted(log_a).unwrap();
+            let wrapper = super::super::Shifted::new(p.clone(), log_a).unwrap();
+            for &w in &[1e-3, 0.3, 20.0, 4e3] {
+                let (a, b) = (series.modulus(w), wrapper.modulus(w));
+                assert!(
+                    (a - b).norm() <= 1e-12 * b.norm(),
+                    "{log_a} {w}: {a} vs {b}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn limits_are_glassy_and_rubbery() {
