@@ -146,15 +146,25 @@ fn synthetic_isotherms_make_a_master_curve_and_a_material() {
     let s1 = json["wlf"]["C1_sigma"].as_f64().unwrap();
     assert!((c1 - C1).abs() <= 3.0 * s1 + 0.05, "C1 {c1} ± {s1}");
 
-    let material = fs::read_to_string(dir.join("material.toml")).unwrap();
-    let from_file = tmp.write("from_file.toml", &scene(&material, "[0.0, 20.0, 45.0]"));
-    let in_memory = tmp.write(
-        "in_memory.toml",
-        &scene(
-            "[material]\nmodel = \"dma\"\nfile = \"iso.csv\"\n",
-            "[0.0, 20.0, 45.0]",
-        ),
+    same_friction_as_material_toml(
+        &tmp,
+        &dir,
+        "[material]\nmodel = \"dma\"\nfile = \"iso.csv\"\n",
+        "[0.0, 20.0, 45.0]",
     );
+}
+
+/// μ(v) at `temperatures` from a scene with `dma_material` equals that
+/// from the material.toml `rollfit master` wrote to `dir`, to 1e-6.
+fn same_friction_as_material_toml(
+    tmp: &TempDir,
+    dir: &Path,
+    dma_material: &str,
+    temperatures: &str,
+) {
+    let material = fs::read_to_string(dir.join("material.toml")).unwrap();
+    let from_file = tmp.write("from_file.toml", &scene(&material, temperatures));
+    let in_memory = tmp.write("in_memory.toml", &scene(dma_material, temperatures));
     let a = forward(&from_file, &tmp.path().join("a.csv"));
     let b = forward(&in_memory, &tmp.path().join("b.csv"));
     let worst = largest_difference(&a, &b);
@@ -363,24 +373,14 @@ fn real_468mp_when_present() {
             let (m, f) = (number("prony", misfit), number("kramers_kronig", floor));
             assert!(m <= 1.2 * f, "{misfit}: Prony {m} vs floor {f}");
         }
-        let material = fs::read_to_string(dir.join("material.toml")).unwrap();
-        let from_file = tmp.write("from_file.toml", &scene(&material, "20.0"));
-        let in_memory = tmp.write(
-            "in_memory.toml",
-            &scene(
-                &format!(
-                    "[material]\nmodel = \"dma\"\nfile = {:?}\n",
-                    file.to_str().unwrap()
-                ),
-                "20.0",
+        same_friction_as_material_toml(
+            &tmp,
+            &dir,
+            &format!(
+                "[material]\nmodel = \"dma\"\nfile = {:?}\n",
+                file.to_str().unwrap()
             ),
-        );
-        let a = forward(&from_file, &tmp.path().join("a.csv"));
-        let b = forward(&in_memory, &tmp.path().join("b.csv"));
-        let worst = largest_difference(&a, &b);
-        assert!(
-            worst <= 1e-6,
-            "model = \"dma\" and material.toml differ by {worst}"
+            "20.0",
         );
     }
 }

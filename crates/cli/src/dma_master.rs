@@ -1,18 +1,15 @@
 //! A DMA file to a master curve: read the file (any form the DMA reader
 //! accepts), group its points into isotherms, and run
-//! `rollfit_fit::master` on them; then check the shifted points for
-//! causality with `rollfit_report::causality`, the floor the smooth Prony
-//! series is measured against. Shared by `rollfit master` and the scene's
-//! `[material] model = "dma"`, so that both give the same series.
+//! `rollfit_fit::master` on them. Shared by `rollfit master` and the
+//! scene's `[material] model = "dma"`, so that both give the same series.
 
 use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::master::{
-    Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve,
+    Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
-use rollfit_report::causality::{self, CausalFit};
-use rollfit_report::dma::{DmaData, DmaOptions, DmaPoint, ModulusKind, shift::isotherms};
+use rollfit_report::dma::{DmaData, DmaOptions, ModulusKind, shift::isotherms};
 
 /// A master curve built from a DMA file.
 pub struct DmaMaster {
@@ -22,8 +19,6 @@ pub struct DmaMaster {
     pub settings: ValidMasterSettings,
     /// Shift factors, shifted points and the Prony series.
     pub master: MasterCurve,
-    /// The best causal fit of the shifted points: the misfit floor.
-    pub causal: CausalFit,
 }
 
 /// Reads `path` and builds its master curve. `poisson` converts shear
@@ -87,22 +82,10 @@ pub fn build(
     let master = build_master_curve(&sets, &valid)
         .map_err(|e| anyhow!("{e}"))
         .with_context(|| format!("DMA file {file}: master curve"))?;
-    let shifted: Vec<DmaPoint> = master
-        .points
-        .iter()
-        .map(|p| DmaPoint {
-            omega: p.reduced_omega,
-            storage: p.storage,
-            loss: p.loss,
-            temperature: (with_t > 0).then_some(p.temperature),
-        })
-        .collect();
-    let causal = causality::check(&shifted).map_err(|e| anyhow!("DMA file {file}: {e}"))?;
     Ok(DmaMaster {
         data,
         settings: valid,
         master,
-        causal,
     })
 }
 
@@ -115,28 +98,18 @@ fn check_monotone(
     line: &dyn Fn(usize) -> Option<usize>,
 ) -> Result<()> {
     let omega: Vec<f64> = indices.iter().map(|&i| data.points[i].omega).collect();
-    let rising = omega.windows(2).all(|p| p[1] > p[0]);
-    let falling = omega.windows(2).all(|p| p[1] < p[0]);
-    if omega.len() < 2 || rising || falling {
+    let Some(k) = sweep_turn(&omega) else {
         return Ok(());
-    }
-    // The first place where the direction changes or a frequency repeats.
-    let k = (1..omega.len())
-        .find(|&k| {
-            omega[k] == omega[k - 1]
-                || (k + 1 < omega.len()
-                    && (omega[k] - omega[k - 1]) * (omega[k + 1] - omega[k]) < 0.0)
-        })
-        .unwrap_or(1);
+    };
     let at = |j: usize| match line(indices[j]) {
         Some(l) => format!("line {l}: ω = {:e} rad/s", omega[j]),
         None => format!("point {}: ω = {:e} rad/s", indices[j] + 1, omega[j]),
     };
-    let turn = if k + 1 < omega.len() && omega[k] != omega[k - 1] {
-        format!("{}, {}, {}", at(k - 1), at(k), at(k + 1))
-    } else {
-        format!("{}, {}", at(k - 1), at(k))
-    };
+    let turn: Vec<String> = (k - 1..(k + 2).min(omega.len()))
+        .filter(|&j| j <= k || omega[k] != omega[k - 1])
+        .map(at)
+        .collect();
+    let turn = turn.join(", ");
     bail!(
         "the isotherm at {temperature:.2} °C has frequencies that are not monotone ({turn}): a \
          sweep runs up or down once; split a repeated sweep into its own temperature or remove \

@@ -34,6 +34,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail, ensure};
 use rollfit_report::dma::{DmaData, DmaOptions, ModulusKind, shift};
+use rollfit_report::fit_dir::csv_line;
 
 use crate::csv_columns;
 
@@ -268,33 +269,6 @@ enum Frequency {
     Hertz,
 }
 
-/// The line (from 1) where a CSV record read from `text` starts. The csv
-/// crate's own line is where it began to read: before the comment and
-/// blank lines it skipped, and at the '\n' of a CRLF break, which put rows
-/// below a comment, a blank line or in a CRLF file a line or more early.
-/// (As `rollfit_report`'s reader counts for the DMA forms.)
-fn record_line(text: &str, position: Option<&csv::Position>) -> u64 {
-    let Some(position) = position else {
-        return 0;
-    };
-    let bytes = text.as_bytes();
-    let mut i = (position.byte() as usize).min(bytes.len());
-    loop {
-        while i < bytes.len() && (bytes[i] == b'\n' || bytes[i] == b'\r') {
-            i += 1;
-        }
-        if i < bytes.len() && bytes[i] == b'#' {
-            i += bytes[i..]
-                .iter()
-                .position(|&b| b == b'\n')
-                .unwrap_or(bytes.len() - i);
-            continue;
-        }
-        break;
-    }
-    bytes[..i].iter().filter(|&&b| b == b'\n').count() as u64 + 1
-}
-
 /// Parses and checks a plain modulus table (the CSV text of a file).
 pub fn parse(text: &str) -> Result<ModulusTable> {
     let mut reader = csv::ReaderBuilder::new()
@@ -347,7 +321,8 @@ pub fn parse(text: &str) -> Result<ModulusTable> {
     let mut previous_line = 0;
     for record in reader.records() {
         let record = record.context("malformed row")?;
-        let line = record_line(text, record.position());
+        // Counted as the DMA reader counts (comments, blank lines, CRLF).
+        let line = csv_line(text, record.position()) as u64;
         let mut values = [0.0; 3];
         for ((value, &column), name) in values.iter_mut().zip(&columns).zip(&names) {
             *value = csv_columns::finite(&record, column, line, name)?;

@@ -589,7 +589,7 @@ fn line_of_key(text: &str, key: &str) -> Option<usize> {
 /// crate's position is where it began to read: before the comment and
 /// blank lines it skipped, and after a CRLF break at its '\n', which put
 /// rows of CRLF files and rows below a comment one or more lines early.
-pub(crate) fn csv_line(text: &str, position: Option<&csv::Position>) -> usize {
+pub fn csv_line(text: &str, position: Option<&csv::Position>) -> usize {
     let Some(position) = position else {
         return 0;
     };

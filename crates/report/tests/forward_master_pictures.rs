@@ -10,6 +10,9 @@
 //! isotherms from a Prony series sampled over 15 frequencies at 8
 //! temperatures and shifted back by the same WLF.
 
+mod common;
+
+use common::{Decoded, count, decode};
 use plotters::style::RGBColor;
 use rollfit_report::plot::dma_master::{DmaMasterFigure, MasterCurveFit, ShiftedPoint};
 use rollfit_report::plot::forward_sweep::{ForwardSweepFigure, SweepCurve};
@@ -66,35 +69,6 @@ fn sweep(t: Option<f64>) -> SweepCurve {
         mu_low_speed,
         maximum: Some(sls_maximum(at)),
     }
-}
-
-struct Decoded {
-    width: u32,
-    height: u32,
-    rgb: Vec<u8>,
-}
-
-fn decode(p: &Picture) -> Decoded {
-    let decoder = png::Decoder::new(p.png.as_slice());
-    let mut reader = decoder.read_info().expect("a PNG header");
-    let mut rgb = vec![0; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut rgb).expect("PNG image data");
-    assert_eq!(info.color_type, png::ColorType::Rgb, "{}", p.name);
-    rgb.truncate(info.buffer_size());
-    Decoded {
-        width: info.width,
-        height: info.height,
-        rgb,
-    }
-}
-
-/// Pixels of exactly this colour.
-fn count(image: &Decoded, c: RGBColor) -> usize {
-    image
-        .rgb
-        .chunks_exact(3)
-        .filter(|px| px[0] == c.0 && px[1] == c.1 && px[2] == c.2)
-        .count()
 }
 
 /// Hue sectors of 30° holding at least `min_pixels` clearly coloured

@@ -7,6 +7,9 @@
 
 use std::path::{Path, PathBuf};
 
+mod common;
+
+use common::{Decoded, count, decode};
 use plotters::style::RGBColor;
 use rollfit_report::FitDir;
 use rollfit_report::plot::master_curve::DmaMarker;
@@ -18,35 +21,6 @@ fn workspace() -> PathBuf {
 
 fn fit(name: &str) -> FitDir {
     FitDir::read(&workspace().join("fits").join(name)).expect("the committed fit reads")
-}
-
-struct Decoded {
-    width: u32,
-    height: u32,
-    rgb: Vec<u8>,
-}
-
-fn decode(p: &Picture) -> Decoded {
-    let decoder = png::Decoder::new(p.png.as_slice());
-    let mut reader = decoder.read_info().expect("a PNG header");
-    let mut rgb = vec![0; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut rgb).expect("PNG image data");
-    assert_eq!(info.color_type, png::ColorType::Rgb, "{}", p.name);
-    rgb.truncate(info.buffer_size());
-    Decoded {
-        width: info.width,
-        height: info.height,
-        rgb,
-    }
-}
-
-/// Pixels of exactly this colour.
-fn count(image: &Decoded, c: RGBColor) -> usize {
-    image
-        .rgb
-        .chunks_exact(3)
-        .filter(|px| px[0] == c.0 && px[1] == c.1 && px[2] == c.2)
-        .count()
 }
 
 fn hex(c: RGBColor) -> String {

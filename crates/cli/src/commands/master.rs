@@ -22,7 +22,8 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use rollfit_fit::master::{MasterSettings, ShiftLaw};
 use rollfit_model::ViscoelasticModulus;
-use rollfit_report::dma::ModulusKind;
+use rollfit_report::causality::{self, CausalFit};
+use rollfit_report::dma::{DmaPoint, ModulusKind};
 use rollfit_report::plot::{self, dma_master as figure};
 use serde::Serialize;
 
@@ -103,19 +104,44 @@ pub fn run(args: &Args) -> Result<()> {
     for warning in built.data.warnings.iter().chain(&built.master.warnings) {
         eprintln!("warning: {warning}");
     }
-    for warning in &built.causal.warnings {
+    let causal = causal_floor(&built)?;
+    for warning in &causal.warnings {
         eprintln!("warning: {warning}");
     }
-    let files = encode(&built, args.poisson)?;
+    let files = encode(&built, &causal, args.poisson)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
     output::replace_folder(&args.output, &named)?;
-    output::write_stdout(summary(&built).as_bytes())?;
+    output::write_stdout(summary(&built, &causal).as_bytes())?;
     eprintln!("wrote {}", args.output.display());
     Ok(())
 }
 
+/// The best causal fit of the shifted points (the causality check of
+/// `compare`): the floor the smooth Prony series' misfit is measured
+/// against.
+fn causal_floor(built: &DmaMaster) -> Result<CausalFit> {
+    let has_temperatures = built.data.points.iter().any(|p| p.temperature.is_some());
+    let shifted: Vec<DmaPoint> = built
+        .master
+        .points
+        .iter()
+        .map(|p| DmaPoint {
+            omega: p.reduced_omega,
+            storage: p.storage,
+            loss: p.loss,
+            temperature: has_temperatures.then_some(p.temperature),
+        })
+        .collect();
+    causality::check(&shifted)
+        .map_err(|e| anyhow::anyhow!("DMA file {}: {e}", built.data.path.display()))
+}
+
 /// Every file of DIR, encoded.
-fn encode(built: &DmaMaster, poisson: f64) -> Result<Vec<(&'static str, Vec<u8>)>> {
+fn encode(
+    built: &DmaMaster,
+    causal: &CausalFit,
+    poisson: f64,
+) -> Result<Vec<(&'static str, Vec<u8>)>> {
     let master = &built.master;
     let master_csv = output::csv_bytes(
         &[
@@ -159,7 +185,7 @@ fn encode(built: &DmaMaster, poisson: f64) -> Result<Vec<(&'static str, Vec<u8>)
         curve.iter().map(|&(w, s, l)| vec![w, s, l, l / s]),
     )?;
     let material = crate::material_file::encode(built)?;
-    let mut json = serde_json::to_vec_pretty(&Summary::of(built, poisson))
+    let mut json = serde_json::to_vec_pretty(&Summary::of(built, causal, poisson))
         .context("cannot format master.json")?;
     json.push(b'\n');
     let points: Vec<figure::ShiftedPoint> = master
@@ -333,10 +359,9 @@ fn defined(x: f64) -> Option<f64> {
 }
 
 impl Summary {
-    fn of(built: &DmaMaster, poisson: f64) -> Summary {
+    fn of(built: &DmaMaster, kk: &CausalFit, poisson: f64) -> Summary {
         let m = &built.master;
         let fit = &m.fit;
-        let kk = &built.causal;
         Summary {
             dma_file: built.data.path.display().to_string(),
             dma_format: built.data.format,
@@ -406,7 +431,7 @@ impl Summary {
 }
 
 /// The readable summary of stdout.
-fn summary(built: &DmaMaster) -> String {
+fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
     let m = &built.master;
     let mut out = format!(
         "DMA {} ({}, {} moduli): {} isotherms, {} points, T_ref = {} °C, shift {}{}\n",
@@ -450,8 +475,8 @@ fn summary(built: &DmaMaster) -> String {
         fit.lambda,
         fit.misfit_storage,
         fit.misfit_loss,
-        built.causal.misfit_storage,
-        built.causal.misfit_loss
+        causal.misfit_storage,
+        causal.misfit_loss
     );
     out
 }

@@ -239,23 +239,30 @@ fn check_isotherm(iso: &Isotherm) -> Result<(), FitError> {
             ));
         }
     }
-    let rising = iso.omega.windows(2).all(|p| p[1] > p[0]);
-    let falling = iso.omega.windows(2).all(|p| p[1] < p[0]);
-    if n > 1 && !rising && !falling {
-        let k = (1..n - 1)
-            .find(|&k| (iso.omega[k] - iso.omega[k - 1]) * (iso.omega[k + 1] - iso.omega[k]) <= 0.0)
-            .unwrap_or(0);
+    if let Some(k) = sweep_turn(&iso.omega) {
+        let shown: Vec<String> = (k - 1..(k + 2).min(n))
+            .map(|j| format!("{:e}", iso.omega[j]))
+            .collect();
         return refuse(format!(
-            "frequencies are not monotone: points {}–{} go {:e}, {:e}, {:e} rad/s (a sweep runs \
-             up or down; a repeated sweep is a second isotherm)",
+            "frequencies are not monotone: points {}–{} go {} rad/s (a sweep runs up or down; a \
+             repeated sweep is a second isotherm)",
             k,
-            k + 2,
-            iso.omega[k.saturating_sub(1)],
-            iso.omega[k],
-            iso.omega[(k + 1).min(n - 1)]
+            (k + 2).min(n),
+            shown.join(", ")
         ));
     }
     Ok(())
+}
+
+/// Where a frequency sweep stops being monotone: the first index k ≥ 1
+/// at which ω repeats (ω_k = ω_{k−1}) or turns (ω_{k−1}, ω_k, ω_{k+1} not
+/// in one direction); None for a sweep that runs up or down throughout.
+/// Front ends name the file lines of points k − 1, k, k + 1 with it.
+pub fn sweep_turn(omega: &[f64]) -> Option<usize> {
+    (1..omega.len()).find(|&k| {
+        omega[k] == omega[k - 1]
+            || (k + 1 < omega.len() && (omega[k] - omega[k - 1]) * (omega[k + 1] - omega[k]) < 0.0)
+    })
 }
 
 /// The shift of one isotherm.
