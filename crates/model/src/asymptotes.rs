@@ -155,9 +155,7 @@ impl<M: ViscoelasticModulus> Scene<M> {
     /// interval is reported as such (the peak may lie outside).
     pub fn friction_maximum(&self, v_min: f64, v_max: f64) -> Result<FrictionPeak, ModelError> {
         if !(v_min > 0.0 && v_max > v_min && v_max.is_finite()) {
-            return Err(ModelError::Evaluation(format!(
-                "friction maximum: need 0 < v_min < v_max, got [{v_min}, {v_max}]"
-            )));
+            return Err(ModelError::InvalidSpeedRange { v_min, v_max });
         }
         let (lo, hi) = (v_min.ln(), v_max.ln());
         let count = (((hi - lo) / 10f64.ln() * 20.0).ceil() as usize).max(2) + 1;

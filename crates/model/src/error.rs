@@ -27,9 +27,211 @@ pub enum ModelError {
         /// What is wrong with it.
         problem: String,
     },
-    /// The evaluation cannot proceed for this combination of inputs.
-    #[error("{0}")]
-    Evaluation(String),
+    /// `friction_maximum` was asked for an empty or non-positive speed range.
+    #[error("friction maximum: need 0 < v_min < v_max, got [{v_min}, {v_max}]")]
+    InvalidSpeedRange {
+        /// Lower end, m/s.
+        v_min: f64,
+        /// Upper end, m/s.
+        v_max: f64,
+    },
+    /// The material reports a frequency range over which its structure
+    /// lies that is empty, non-positive or infinite.
+    #[error("the material's frequency range [{low}, {high}] rad/s is not usable")]
+    UnusableFrequencyRange {
+        /// Lower end, rad/s.
+        low: f64,
+        /// Upper end, rad/s.
+        high: f64,
+    },
+    /// The loss modulus does not vanish like ω^p with 0 < p ≤ 1 at low
+    /// frequency, which the tail bounds of the friction integrals assume.
+    #[error("the material's low-frequency loss exponent {exponent} is not in (0, 1]")]
+    LossExponentOutOfRange {
+        /// p of E″ ∝ ω^p as ω → 0.
+        exponent: f64,
+    },
+    /// No finite bound of the loss compliance at low frequency was found,
+    /// so the truncation of the friction integral cannot be controlled.
+    #[error("the material's loss compliance could not be bounded at low frequency")]
+    LossComplianceUnbounded,
+    /// The Newton iteration for the contact size at a grid node did not
+    /// converge (the contact map is too irregular there).
+    #[error("the contact size did not converge at σ = {sigma}")]
+    ContactSizeNotConverged {
+        /// σ = ln(ω a) of the node.
+        sigma: f64,
+    },
+    /// The friction quadrature grid outgrew its node limit.
+    #[error("friction quadrature needs too many nodes")]
+    TooManyQuadratureNodes,
+    /// `friction_auto` was handed an exact cylinder built for another scene.
+    #[error(
+        "auto: the exact cylinder's static half-width {exact:e} m is not the scene's {scene:e} m"
+    )]
+    ExactCylinderMismatch {
+        /// Static half-width of the exact cylinder, m.
+        exact: f64,
+        /// Static half-width of the scene, m.
+        scene: f64,
+    },
+    /// The exact cylinder's settings leave too few terms or quadrature nodes.
+    #[error("exact rolling cylinder: need at least 2 terms and 4 quadrature nodes")]
+    ExactTooCoarse,
+    /// The collocation system of the exact cylinder is singular (an
+    /// internal fault: a valid scene should never produce it).
+    #[error("exact rolling cylinder: singular collocation system at v = {speed} m/s")]
+    ExactSingularSystem {
+        /// Rolling speed, m/s.
+        speed: f64,
+    },
+    /// The Newton iteration for the contact edges of the exact cylinder did
+    /// not converge.
+    #[error("exact rolling cylinder: the contact edges did not converge at v = {speed} m/s")]
+    ExactEdgesNotConverged {
+        /// Rolling speed, m/s.
+        speed: f64,
+    },
+    /// A temperature at or below the pole of the WLF form.
+    #[error(
+        "WLF shift at T = {temperature} °C: C2 + T - T_ref = {denominator} K is not positive \
+         (C2 = {c2} K, T_ref = {t_ref} °C); the WLF form diverges at T = T_ref - C2 = {} °C \
+         and does not apply at or below it",
+        t_ref - c2
+    )]
+    WlfBeyondPole {
+        /// Requested temperature, °C.
+        temperature: f64,
+        /// C2 + T − T_ref, K.
+        denominator: f64,
+        /// C2, K.
+        c2: f64,
+        /// Reference temperature, °C.
+        t_ref: f64,
+    },
+    /// A temperature outside the listed temperatures of a free shift.
+    #[error(
+        "no shift factor for T = {temperature} °C: it lies outside the temperatures of the \
+         free shift, {lowest} to {highest} °C (listed: {listed} °C); log10 a_T is interpolated \
+         linearly between listed temperatures but not extrapolated beyond them"
+    )]
+    OutsideFreeShift {
+        /// Requested temperature, °C.
+        temperature: f64,
+        /// Lowest listed temperature, °C.
+        lowest: f64,
+        /// Highest listed temperature, °C.
+        highest: f64,
+        /// The listed temperatures as shown, T_ref marked.
+        listed: String,
+    },
+    /// A film under a sphere: the low-frequency tail of the film correction
+    /// could not be bounded.
+    #[error(
+        "film under a sphere: the low-frequency tail of the film correction could not be bounded"
+    )]
+    FilmTailUnbounded,
+    /// A film under a sphere: the frequencies the film correction needs
+    /// leave the floating-point range.
+    #[error(
+        "film under a sphere: the frequencies v/d and below that the film correction needs at \
+         v = {speed:e} m/s, d = {thickness:e} m lie outside the floating-point range"
+    )]
+    FilmFrequenciesOutOfRange {
+        /// Rolling speed, m/s.
+        speed: f64,
+        /// Film thickness, m.
+        thickness: f64,
+    },
+    /// A film under a sphere: an adaptive integral failed for a reason other
+    /// than its budget (an internal fault).
+    #[error("film under a sphere: the {which} integral failed ({detail})")]
+    FilmIntegralFailed {
+        /// Which integral: "inner film" or "film correction".
+        which: &'static str,
+        /// The integrator's own account of the failure.
+        detail: String,
+    },
+    /// A film under a sphere too thin, compared with the contact, to
+    /// integrate within the work budgets.
+    #[error(
+        "film under a sphere: a film {thickness_in_radii:.3e} static contact radii thick \
+         ({thickness:e} m) needs more work than allowed (more than {max_evaluations} integrand \
+         evaluations or {max_panels} panels; the work grows like (r0/d)²; films thinner than \
+         about r0/50 are not supported)"
+    )]
+    FilmTooThin {
+        /// d/r0.
+        thickness_in_radii: f64,
+        /// d, m.
+        thickness: f64,
+        /// Integrand evaluations allowed.
+        max_evaluations: usize,
+        /// Inner panels allowed.
+        max_panels: usize,
+    },
+    /// A film under a sphere: μ_film is so far below μ_half that the
+    /// half-space error, which μ_film inherits, exceeds the tolerance.
+    #[error(
+        "film under a sphere: the relative tolerance {tolerance:e} cannot be met at \
+         v = {speed:e} m/s: μ_film/μ_half ≈ {ratio:.1e} (film {thickness_in_radii:.3e} static \
+         contact radii thick), and μ_film = μ_half − Δ inherits the half-space error, about \
+         {half_space_accuracy:e} of μ_half; this needs μ_film/μ_half ≥ {ratio_needed:.1e}"
+    )]
+    FilmToleranceUnreachable {
+        /// The scene's relative tolerance.
+        tolerance: f64,
+        /// Rolling speed, m/s.
+        speed: f64,
+        /// Estimated μ_film/μ_half.
+        ratio: f64,
+        /// d/r0.
+        thickness_in_radii: f64,
+        /// Relative accuracy of the half-space μ.
+        half_space_accuracy: f64,
+        /// Smallest μ_film/μ_half at which the tolerance can be met.
+        ratio_needed: f64,
+    },
+    /// A film under a sphere: a tolerance tighter than the half-space μ
+    /// delivers.
+    #[error(
+        "film under a sphere: the relative tolerance {tolerance:e} is tighter than the \
+         half-space μ it is computed from can deliver (about {half_space_accuracy:e}); ask \
+         for {loosest:.1e} or more"
+    )]
+    FilmToleranceTooTight {
+        /// The scene's relative tolerance.
+        tolerance: f64,
+        /// Relative accuracy of the half-space μ.
+        half_space_accuracy: f64,
+        /// The tightest tolerance that can be met.
+        loosest: f64,
+    },
+    /// A film under a sphere: the half-space μ the film correction starts
+    /// from is not a positive finite number (an internal fault).
+    #[error("film under a sphere: the half-space μ is {mu_half} at v = {speed:e} m/s")]
+    FilmHalfSpaceInvalid {
+        /// The half-space μ.
+        mu_half: f64,
+        /// Rolling speed, m/s.
+        speed: f64,
+    },
+    /// A film under a sphere: μ or its derivatives came out non-finite (an
+    /// internal fault).
+    #[error("film under a sphere: {what} not finite at v = {speed:e} m/s")]
+    FilmNotFinite {
+        /// "μ is" or "the derivatives of μ are".
+        what: &'static str,
+        /// Rolling speed, m/s.
+        speed: f64,
+    },
+    /// A film under a sphere: the film correction did not settle within its
+    /// refinement steps.
+    #[error("film under a sphere: the film correction did not settle at v = {speed:e} m/s")]
+    FilmNotSettled {
+        /// Rolling speed, m/s.
+        speed: f64,
+    },
     /// The contact map σ = ln(ω a(ω)) stops increasing: the modulus rises
     /// faster than ω^n (n = 3 for a sphere, 2 for a cylinder: a ∝ |E|^{−1/n})
     /// near `omega`, so no contact size solves ω a(ω) = v there. Typed, so
@@ -99,5 +301,61 @@ pub(crate) fn require_non_negative(name: &str, value: f64) -> Result<f64, ModelE
             value,
             "must be a finite number, zero or greater",
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The typed variants print what the untyped messages printed before
+    /// them: front ends and users read these texts.
+    #[test]
+    fn messages_read_as_sentences() {
+        let pole = ModelError::WlfBeyondPole {
+            temperature: -90.0,
+            denominator: -8.4,
+            c2: 101.6,
+            t_ref: 20.0,
+        };
+        assert_eq!(
+            pole.to_string(),
+            "WLF shift at T = -90 °C: C2 + T - T_ref = -8.4 K is not positive (C2 = 101.6 K, \
+             T_ref = 20 °C); the WLF form diverges at T = T_ref - C2 = -81.6 °C and does not \
+             apply at or below it"
+        );
+        let thin = ModelError::FilmTooThin {
+            thickness_in_radii: 1e-3,
+            thickness: 1.2e-6,
+            max_evaluations: 4_000_000,
+            max_panels: 20_000,
+        };
+        assert_eq!(
+            thin.to_string(),
+            "film under a sphere: a film 1.000e-3 static contact radii thick (1.2e-6 m) needs \
+             more work than allowed (more than 4000000 integrand evaluations or 20000 panels; \
+             the work grows like (r0/d)²; films thinner than about r0/50 are not supported)"
+        );
+        let frequencies = ModelError::FilmFrequenciesOutOfRange {
+            speed: 1e-300,
+            thickness: 2e-6,
+        };
+        assert_eq!(
+            frequencies.to_string(),
+            "film under a sphere: the frequencies v/d and below that the film correction needs \
+             at v = 1e-300 m/s, d = 2e-6 m lie outside the floating-point range"
+        );
+        let free = ModelError::OutsideFreeShift {
+            temperature: 90.0,
+            lowest: -10.0,
+            highest: 60.0,
+            listed: "-10, 20 (T_ref), 60".into(),
+        };
+        assert_eq!(
+            free.to_string(),
+            "no shift factor for T = 90 °C: it lies outside the temperatures of the free shift, \
+             -10 to 60 °C (listed: -10, 20 (T_ref), 60 °C); log10 a_T is interpolated linearly \
+             between listed temperatures but not extrapolated beyond them"
+        );
     }
 }

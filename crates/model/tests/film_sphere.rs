@@ -332,7 +332,8 @@ fn too_thin_a_film_is_refused() {
             ContactSize::Dynamic,
         );
         match film.friction(1e-3) {
-            Err(ModelError::Evaluation(message)) => {
+            Err(e @ ModelError::FilmTooThin { .. }) => {
+                let message = e.to_string();
                 assert!(message.contains("film under a sphere"), "{message}");
             }
             other => panic!("d/r0={ratio}: {other:?}"),
@@ -354,7 +355,11 @@ fn too_thin_a_film_is_refused() {
         (1e-9, "tighter than the half-space"),
     ] {
         match film.clone().with_tolerance(tol).unwrap().friction(1e-7) {
-            Err(ModelError::Evaluation(message)) => {
+            Err(
+                e @ (ModelError::FilmToleranceUnreachable { .. }
+                | ModelError::FilmToleranceTooTight { .. }),
+            ) => {
+                let message = e.to_string();
                 assert!(message.contains(expected), "{message}")
             }
             other => panic!("{other:?}"),

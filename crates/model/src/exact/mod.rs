@@ -282,9 +282,7 @@ impl RollingCylinder {
             ));
         }
         if settings.terms.is_some_and(|n| n < 2) || settings.quadrature_order < 4 {
-            return Err(ModelError::Evaluation(
-                "exact rolling cylinder: need at least 2 terms and 4 quadrature nodes".into(),
-            ));
+            return Err(ModelError::ExactTooCoarse);
         }
         let compliance = CreepCompliance::from_prony(modulus).scaled(1.0 - poisson * poisson);
         Ok(RollingCylinder {

@@ -190,11 +190,8 @@ pub(crate) fn solve_edges_with(
     tolerance: f64,
 ) -> Result<(f64, f64, Collocation, usize), ModelError> {
     let build = |b: f64| -> Result<System, ModelError> {
-        system(grid, instantaneous, &memory(b), radius, load, b).ok_or_else(|| {
-            ModelError::Evaluation(format!(
-                "exact rolling cylinder: singular collocation system at v = {speed} m/s"
-            ))
-        })
+        system(grid, instantaneous, &memory(b), radius, load, b)
+            .ok_or_else(|| ModelError::ExactSingularSystem { speed })
     };
     let (mut c, mut b) = (0.0, b_guess);
     let mut at_b = build(b)?;
@@ -227,7 +224,5 @@ pub(crate) fn solve_edges_with(
             return Ok((c, b, current, iteration));
         }
     }
-    Err(ModelError::Evaluation(format!(
-        "exact rolling cylinder: the contact edges did not converge at v = {speed} m/s"
-    )))
+    Err(ModelError::ExactEdgesNotConverged { speed })
 }

@@ -183,9 +183,7 @@ fn loss_bound<M: ViscoelasticModulus>(scene: &Scene<M>) -> Result<(f64, f64), Mo
     let e0 = material.static_modulus();
     let p = material.loss_exponent_at_zero();
     if !(p > 0.0 && p <= 1.0) {
-        return Err(ModelError::Evaluation(format!(
-            "the material's low-frequency loss exponent {p} is not in (0, 1]"
-        )));
+        return Err(ModelError::LossExponentOutOfRange { exponent: p });
     }
     let kappa = match material.relaxation_bound() {
         // A positive relaxation spectrum makes L(ω)/ω non-increasing, so
@@ -196,9 +194,10 @@ fn loss_bound<M: ViscoelasticModulus>(scene: &Scene<M>) -> Result<(f64, f64), Mo
         _ => {
             let (w_lo, w_hi) = material.structure_range();
             if !(w_lo > 0.0 && w_hi >= w_lo && w_hi.is_finite()) {
-                return Err(ModelError::Evaluation(format!(
-                    "the material's frequency range [{w_lo}, {w_hi}] rad/s is not usable"
-                )));
+                return Err(ModelError::UnusableFrequencyRange {
+                    low: w_lo,
+                    high: w_hi,
+                });
             }
             let decades = (w_hi / w_lo).log10() + 6.0;
             let count = (decades * 20.0).ceil() as usize + 1;
@@ -212,9 +211,7 @@ fn loss_bound<M: ViscoelasticModulus>(scene: &Scene<M>) -> Result<(f64, f64), Mo
         }
     };
     if !(kappa.is_finite() && kappa >= 0.0) {
-        return Err(ModelError::Evaluation(
-            "the material's loss compliance could not be bounded at low frequency".into(),
-        ));
+        return Err(ModelError::LossComplianceUnbounded);
     }
     Ok((kappa, p))
 }
@@ -332,20 +329,15 @@ impl<M: ViscoelasticModulus> Deficit<'_, M> {
             s_lo -= 1.0;
             steps += 1;
             if steps > 2000 {
-                return Err(ModelError::Evaluation(
-                    "film under a sphere: the low-frequency tail of the film \
-                     correction could not be bounded"
-                        .into(),
-                ));
+                return Err(ModelError::FilmTailUnbounded);
             }
         }
         // ω = e^s must stay a normal binary64 number on [s_lo, s_max].
         if !(s_lo > -700.0 && s_max < 700.0) {
-            return Err(ModelError::Evaluation(format!(
-                "film under a sphere: the frequencies v/d and below that the film \
-                 correction needs at v = {v:e} m/s, d = {d:e} m lie outside the \
-                 floating-point range"
-            )));
+            return Err(ModelError::FilmFrequenciesOutOfRange {
+                speed: v,
+                thickness: d,
+            });
         }
         // Initial panels: width ≤ 1 in s, and ≤ SPAN in x (D oscillates in x
         // with period π once x ≳ 1). r ≤ r0 since |E| ≥ E0, so x ≤ ω r0/v.
@@ -432,9 +424,10 @@ impl<M: ViscoelasticModulus> Deficit<'_, M> {
         if let Some(failure) = inner_failure.into_inner() {
             return Err(match failure {
                 None | Some(Failure::PanelLimit { .. }) => self.too_thin(),
-                Some(other) => ModelError::Evaluation(format!(
-                    "film under a sphere: the inner film integral failed ({other:?})"
-                )),
+                Some(other) => ModelError::FilmIntegralFailed {
+                    which: "inner film",
+                    detail: format!("{other:?}"),
+                },
             });
         }
         match result {
@@ -444,23 +437,22 @@ impl<M: ViscoelasticModulus> Deficit<'_, M> {
                 span,
             }),
             Err(Failure::PanelLimit { .. }) => Err(self.too_thin()),
-            Err(other) => Err(ModelError::Evaluation(format!(
-                "film under a sphere: the film correction integral failed ({other:?})"
-            ))),
+            Err(other) => Err(ModelError::FilmIntegralFailed {
+                which: "film correction",
+                detail: format!("{other:?}"),
+            }),
         }
     }
 
     /// The error for a film too thin compared with the contact to integrate
     /// within the budgets.
     fn too_thin(&self) -> ModelError {
-        ModelError::Evaluation(format!(
-            "film under a sphere: a film {:.3e} static contact radii thick ({:e} m) \
-             needs more work than allowed (more than {MAX_EVALUATIONS} integrand \
-             evaluations or {MAX_INNER_PANELS} panels; the work grows like \
-             (r0/d)²; films thinner than about r0/50 are not supported)",
-            self.d / self.r0,
-            self.d
-        ))
+        ModelError::FilmTooThin {
+            thickness_in_radii: self.d / self.r0,
+            thickness: self.d,
+            max_evaluations: MAX_EVALUATIONS,
+            max_panels: MAX_INNER_PANELS,
+        }
     }
 }
 
@@ -493,23 +485,20 @@ fn solve<M: ViscoelasticModulus>(
     // half-space share of the error, half_share·tol·θ·μ_half, must not be
     // below what the half-space delivers.
     let theta_min = HALF_SPACE_ACCURACY / (half_share * tolerance);
-    let refuse = |ratio: f64| {
-        ModelError::Evaluation(format!(
-            "film under a sphere: the relative tolerance {tolerance:e} cannot be met \
-             at v = {v:e} m/s: μ_film/μ_half ≈ {ratio:.1e} (film {:.3e} static \
-             contact radii thick), and μ_film = μ_half − Δ inherits the half-space \
-             error, about {HALF_SPACE_ACCURACY:e} of μ_half; this needs \
-             μ_film/μ_half ≥ {theta_min:.1e}",
-            deficit.d / deficit.r0
-        ))
+    let refuse = |ratio: f64| ModelError::FilmToleranceUnreachable {
+        tolerance,
+        speed: v,
+        ratio,
+        thickness_in_radii: deficit.d / deficit.r0,
+        half_space_accuracy: HALF_SPACE_ACCURACY,
+        ratio_needed: theta_min,
     };
     if theta_min > 1.0 {
-        return Err(ModelError::Evaluation(format!(
-            "film under a sphere: the relative tolerance {tolerance:e} is tighter \
-             than the half-space μ it is computed from can deliver (about \
-             {HALF_SPACE_ACCURACY:e}); ask for {:.1e} or more",
-            HALF_SPACE_ACCURACY / half_share
-        )));
+        return Err(ModelError::FilmToleranceTooTight {
+            tolerance,
+            half_space_accuracy: HALF_SPACE_ACCURACY,
+            loosest: HALF_SPACE_ACCURACY / half_share,
+        });
     }
     let mut theta = theta_min.max(0.5);
     for _ in 0..8 {
@@ -537,9 +526,7 @@ fn solve<M: ViscoelasticModulus>(
                     },
                 })
             } else {
-                Err(ModelError::Evaluation(format!(
-                    "film under a sphere: the half-space μ is {mu_half} at v = {v:e} m/s"
-                )))
+                Err(ModelError::FilmHalfSpaceInvalid { mu_half, speed: v })
             };
         }
         // E/C in the units of the Δ integral.
@@ -554,9 +541,10 @@ fn solve<M: ViscoelasticModulus>(
         let integral = deficit.integral(kappa, p, &budget)?;
         let mu = mu_half - prefactor * integral.value;
         if !mu.is_finite() {
-            return Err(ModelError::Evaluation(format!(
-                "film under a sphere: μ is not finite at v = {v:e} m/s"
-            )));
+            return Err(ModelError::FilmNotFinite {
+                what: "μ is",
+                speed: v,
+            });
         }
         if mu >= theta * mu_half {
             return Ok(Solution {
@@ -576,9 +564,7 @@ fn solve<M: ViscoelasticModulus>(
             return Err(refuse(ratio));
         }
     }
-    Err(ModelError::Evaluation(format!(
-        "film under a sphere: the film correction did not settle at v = {v:e} m/s"
-    )))
+    Err(ModelError::FilmNotSettled { speed: v })
 }
 
 /// μ of a sphere rolling at speed `v` (m/s) on a film of thickness
@@ -684,9 +670,10 @@ pub(super) fn friction_with_gradient(
             *r -= prefactor * dd;
         }
         if row.iter().any(|r| !r.is_finite()) {
-            return Err(ModelError::Evaluation(format!(
-                "film under a sphere: the derivatives of μ are not finite at v = {v:e} m/s"
-            )));
+            return Err(ModelError::FilmNotFinite {
+                what: "the derivatives of μ are",
+                speed: v,
+            });
         }
         mu.push(solution.mu);
         jacobian.extend_from_slice(&row[..np]);

@@ -107,9 +107,7 @@ impl<'a, F: Fn(f64) -> (Complex64, Complex64)> Grid<'a, F> {
             // Within a step of h the map is nearly linear; limit wild jumps.
             s += ds.clamp(-2.0, 2.0);
         }
-        Err(ModelError::Evaluation(format!(
-            "the contact size did not converge at σ = {target}"
-        )))
+        Err(ModelError::ContactSizeNotConverged { sigma: target })
     }
 
     /// Node j, building the nodes between it and the origin if needed.
@@ -157,9 +155,7 @@ impl<'a, F: Fn(f64) -> (Complex64, Complex64)> Grid<'a, F> {
 
     fn check_size(&self) -> Result<(), ModelError> {
         if self.up.len() + self.down.len() > MAX_NODES {
-            return Err(ModelError::Evaluation(
-                "friction quadrature needs too many nodes".into(),
-            ));
+            return Err(ModelError::TooManyQuadratureNodes);
         }
         Ok(())
     }

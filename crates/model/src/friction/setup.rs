@@ -85,9 +85,10 @@ impl Setup {
         };
         let (w_lo, w_hi) = material.structure_range();
         if !(w_lo > 0.0 && w_hi >= w_lo && w_hi.is_finite()) {
-            return Err(ModelError::Evaluation(format!(
-                "the material's frequency range [{w_lo}, {w_hi}] rad/s is not usable"
-            )));
+            return Err(ModelError::UnusableFrequencyRange {
+                low: w_lo,
+                high: w_hi,
+            });
         }
         // Bound of L(ω)/ω^p and of 1/r^{m+p} over all ω (p = the exponent of
         // the low-frequency loss, 1 for a solid with bounded relaxation
@@ -96,9 +97,7 @@ impl Setup {
         // retardation spectrum); the sampling covers other moduli.
         let p = material.loss_exponent_at_zero();
         if !(p > 0.0 && p <= 1.0) {
-            return Err(ModelError::Evaluation(format!(
-                "the material's low-frequency loss exponent {p} is not in (0, 1]"
-            )));
+            return Err(ModelError::LossExponentOutOfRange { exponent: p });
         }
         let (sup_l_over_power, max_abs_e) = match material.relaxation_bound() {
             Some(e1) if p == 1.0 => (
@@ -121,9 +120,7 @@ impl Setup {
             }
         };
         if !(sup_l_over_power.is_finite() && max_abs_e.is_finite()) {
-            return Err(ModelError::Evaluation(
-                "the material's loss compliance could not be bounded at low frequency".into(),
-            ));
+            return Err(ModelError::LossComplianceUnbounded);
         }
         let m = n - 1.0;
         let ln_r_min = match static_ln_size {

@@ -254,11 +254,10 @@ impl<M: ViscoelasticModulus> Scene<M> {
                 // The caller's cylinder must be this scene's.
                 let a0 = self.static_contact_size();
                 if (cylinder.static_half_width() / a0 - 1.0).abs() > 1e-8 {
-                    return Err(ModelError::Evaluation(format!(
-                        "auto: the exact cylinder's static half-width {:e} m is not the \
-                         scene's {a0:e} m",
-                        cylinder.static_half_width()
-                    )));
+                    return Err(ModelError::ExactCylinderMismatch {
+                        exact: cylinder.static_half_width(),
+                        scene: a0,
+                    });
                 }
                 Ok(cylinder)
             }

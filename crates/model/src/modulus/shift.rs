@@ -102,14 +102,12 @@ impl Wlf {
         let denominator = self.c2 + dt;
         // NaN only from a hand-built Wlf with non-finite fields.
         if denominator.is_nan() || denominator <= 0.0 {
-            return Err(ModelError::Evaluation(format!(
-                "WLF shift at T = {t} °C: C2 + T - T_ref = {denominator} K is not positive \
-                 (C2 = {} K, T_ref = {} °C); the WLF form diverges at T = T_ref - C2 = {} °C \
-                 and does not apply at or below it",
-                self.c2,
-                self.t_ref,
-                self.t_ref - self.c2
-            )));
+            return Err(ModelError::WlfBeyondPole {
+                temperature: t,
+                denominator,
+                c2: self.c2,
+                t_ref: self.t_ref,
+            });
         }
         Ok(-self.c1 * dt / denominator)
     }
@@ -314,12 +312,12 @@ impl FreeShift {
                         }
                     })
                     .collect();
-                Err(ModelError::Evaluation(format!(
-                    "no shift factor for T = {t} °C: it lies outside the temperatures of the \
-                     free shift, {lo} to {hi} °C (listed: {} °C); log10 a_T is interpolated \
-                     linearly between listed temperatures but not extrapolated beyond them",
-                    listed.join(", ")
-                )))
+                Err(ModelError::OutsideFreeShift {
+                    temperature: t,
+                    lowest: lo,
+                    highest: hi,
+                    listed: listed.join(", "),
+                })
             }
         }
     }
@@ -486,7 +484,8 @@ mod tests {
         // T_ref − C2 = −81.6 °C: the pole, and everything below it.
         for t in [-81.6, -90.0, -300.0] {
             match w.log10_shift(t) {
-                Err(ModelError::Evaluation(msg)) => {
+                Err(e @ ModelError::WlfBeyondPole { .. }) => {
+                    let msg = e.to_string();
                     assert!(msg.contains(&format!("T = {t} °C")), "{msg}");
                     assert!(msg.contains("C2"), "{msg}");
                 }
@@ -500,7 +499,7 @@ mod tests {
     /// The problem of an out-of-range or otherwise refused temperature.
     fn refusal(f: &FreeShift, t: f64) -> String {
         match f.log10_shift(t) {
-            Err(ModelError::Evaluation(msg)) => msg,
+            Err(e @ ModelError::OutsideFreeShift { .. }) => e.to_string(),
             Err(ModelError::InvalidParameter { name, .. }) => name,
             other => panic!("T = {t}: expected a refusal, got {other:?}"),
         }
