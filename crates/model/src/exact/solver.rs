@@ -191,7 +191,7 @@ pub(crate) fn solve_edges_with(
 ) -> Result<(f64, f64, Collocation, usize), ModelError> {
     let build = |b: f64| -> Result<System, ModelError> {
         system(grid, instantaneous, &memory(b), radius, load, b)
-            .ok_or_else(|| ModelError::ExactSingularSystem { speed })
+            .ok_or(ModelError::ExactSingularSystem { speed })
     };
     let (mut c, mut b) = (0.0, b_guess);
     let mut at_b = build(b)?;
