@@ -21,7 +21,7 @@
 //!
 //! A film of thickness d under the cylinder multiplies L(ω) by 1/S(ωd/v);
 //! under the sphere the film factor depends on the direction of q and is
-//! integrated in [`film_sphere`].
+//! integrated in `film_sphere`.
 
 mod film_sphere;
 mod grid;

@@ -298,7 +298,7 @@ impl KernelTable {
 
     /// Prepares evaluations at τ₀ + kh for integer k. Every such point lies at
     /// the same fractional position between table points (the table spacing
-    /// is h/[`SUBDIVISION`]), so the six interpolation weights are computed
+    /// is h/`SUBDIVISION`), so the six interpolation weights are computed
     /// once for all of them.
     #[inline]
     pub fn cursor(&self, tau0: f64) -> KernelCursor {

@@ -26,12 +26,12 @@
 //! increasing sweep:
 //!
 //! - the asymptote serves the leading run of speeds where it lies within
-//!   0.3 ε of the full model with the film ([`low_speed`], by probes);
+//!   0.3 ε of the full model with the film (`low_speed`, by probes);
 //! - elsewhere Eq. (11)/(17) with the dynamic size; a film is neglected
-//!   where the rigorous bound of [`film_bound`] on its effect is below
+//!   where the rigorous bound of `film_bound` on its effect is below
 //!   0.3 ε of the half-space μ, and computed elsewhere;
 //! - the exact cylinder replaces either where the model-error estimate of
-//!   [`model_error`], K μR/b, exceeds 0.3 ε and it applies (no film
+//!   `model_error`, K μR/b, exceeds 0.3 ε and it applies (no film
 //!   computed at that speed).
 //!
 //! Each speed gets an error estimate against the exact physics: the

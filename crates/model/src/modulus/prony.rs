@@ -58,7 +58,7 @@ impl Prony {
     }
 
     /// The series at another temperature, E*(ω, T) = E*_ref(ω a_T) with
-    /// log10 a_T = `log10_a_t` (the convention of [`super::shift`]): a
+    /// log10 a_T = `log10_a_t` (the convention of `modulus::shift`): a
     /// Prony series again, with every τ_k multiplied by a_T, since
     /// iω a_T τ_k/(1 + iω a_T τ_k) is the term of relaxation time a_T τ_k.
     /// The exact rolling cylinder needs the series itself, not a wrapper.
