@@ -311,49 +311,10 @@ impl CollocationGrid {
         let m = self.points.len();
         let mut a = vec![0.0; m * n];
         let series_beta = (n * n) as f64 / SERIES_RATIO;
-        let (mut taylor, mut stepped, mut series) = (Vec::new(), Vec::new(), Vec::new());
-        for (&c, &lambda) in compliance
-            .strengths
-            .iter()
-            .zip(&compliance.retardation_times)
-        {
-            let beta = scale / lambda;
-            if beta <= TAYLOR_BETA {
-                taylor.push((c, beta));
-            } else if beta < series_beta {
-                stepped.push((c, beta));
-            } else {
-                series.push((c, beta));
-            }
-        }
-        // Per term: the part beyond the leading edge, added as
-        // c e^{−β(1 − t_k)} X_n.
-        let mut edge: Vec<(f64, f64, Vec<f64>)> = Vec::new();
+        let (taylor, stepped, series) = memory_bands(compliance, scale, series_beta);
         let taylor_weights = self.taylor_weights(&taylor);
-        for &(c, beta) in &taylor {
-            let mut outer = vec![0.0; n];
-            quadrature.outer(beta, &mut outer);
-            edge.push((c, beta, outer));
-        }
         let (series_weights, edge_series) = self.series_weights(&series, series_beta);
-        for &(c, beta) in &series {
-            // e^{−β(1 − t_0)} < e^{−2 CUT}: negligible even against the
-            // series' largest terms.
-            if beta * (1.0 - self.points[0]) > 2.0 * CUT {
-                continue;
-            }
-            let mut x = vec![0.0; n];
-            quadrature.outer(beta, &mut x);
-            let ratio = series_beta / beta;
-            let mut power = 1.0;
-            for row in edge_series.chunks_exact(n) {
-                for (xn, &d) in x.iter_mut().zip(row) {
-                    *xn -= power * d;
-                }
-                power *= ratio;
-            }
-            edge.push((c, beta, x));
-        }
+        let edge = self.edge_parts(quadrature, &taylor, &series, series_beta, &edge_series);
         // M_n of each middle-band term at the previous point, starting from
         // M_n(1) = O_n.
         let mut state = vec![0.0; stepped.len() * n];
@@ -431,6 +392,45 @@ impl CollocationGrid {
             }
         }
         a
+    }
+
+    /// Per term of the Taylor and series bands: the part beyond the leading
+    /// edge, (c, β, X_n), added as c e^{−β(1 − t_k)} X_n. The series terms'
+    /// X_n have the series' own edge part removed.
+    fn edge_parts(
+        &self,
+        quadrature: &MemoryQuadrature,
+        taylor: &[(f64, f64)],
+        series: &[(f64, f64)],
+        series_beta: f64,
+        edge_series: &[f64],
+    ) -> Vec<(f64, f64, Vec<f64>)> {
+        let n = self.terms;
+        let mut edge: Vec<(f64, f64, Vec<f64>)> = Vec::new();
+        for &(c, beta) in taylor {
+            let mut outer = vec![0.0; n];
+            quadrature.outer(beta, &mut outer);
+            edge.push((c, beta, outer));
+        }
+        for &(c, beta) in series {
+            // e^{−β(1 − t_0)} < e^{−2 CUT}: negligible even against the
+            // series' largest terms.
+            if beta * (1.0 - self.points[0]) > 2.0 * CUT {
+                continue;
+            }
+            let mut x = vec![0.0; n];
+            quadrature.outer(beta, &mut x);
+            let ratio = series_beta / beta;
+            let mut power = 1.0;
+            for row in edge_series.chunks_exact(n) {
+                for (xn, &d) in x.iter_mut().zip(row) {
+                    *xn -= power * d;
+                }
+                power *= ratio;
+            }
+            edge.push((c, beta, x));
+        }
+        edge
     }
 
     /// The weights Σ_j c_j (−1)^p β_j^{p+1}/p! of the Taylor moments, up to
@@ -574,6 +574,35 @@ impl SeriesScratch {
 /// evaluation before issue 14, O(J N² Q)): the slow reference of the tests.
 /// Above β = 1e9 those panels would be narrower than the resolution of t,
 /// and the inner integral is h_n(t_k) + h_n′(t_k)/β (error O(N⁴/β²)).
+/// (c_j, β_j) of the compliance terms of one memory band.
+type MemoryTerms = Vec<(f64, f64)>;
+
+/// The terms (c_j, β_j = `scale`/λ_j) of the compliance split by memory:
+/// short (β ≤ TAYLOR_BETA: Taylor moments), middle (term by term) and long
+/// (β ≥ `series_beta`: derivative series).
+fn memory_bands(
+    compliance: &CreepCompliance,
+    scale: f64,
+    series_beta: f64,
+) -> (MemoryTerms, MemoryTerms, MemoryTerms) {
+    let (mut taylor, mut stepped, mut series) = (Vec::new(), Vec::new(), Vec::new());
+    for (&c, &lambda) in compliance
+        .strengths
+        .iter()
+        .zip(&compliance.retardation_times)
+    {
+        let beta = scale / lambda;
+        if beta <= TAYLOR_BETA {
+            taylor.push((c, beta));
+        } else if beta < series_beta {
+            stepped.push((c, beta));
+        } else {
+            series.push((c, beta));
+        }
+    }
+    (taylor, stepped, series)
+}
+
 #[cfg(test)]
 pub(crate) fn memory_matrix_per_term(
     quadrature: &MemoryQuadrature,

@@ -228,42 +228,8 @@ impl<M: ViscoelasticModulus> Scene<M> {
         accuracy: f64,
         exact: Result<&RollingCylinder, String>,
     ) -> Result<AutoSweep, ModelError> {
-        if !(accuracy.is_finite() && (1e-8..=0.5).contains(&accuracy)) {
-            return Err(ModelError::parameter(
-                "accuracy",
-                accuracy,
-                "must lie between 1e-8 and 0.5",
-            ));
-        }
-        for (i, w) in speeds.windows(2).enumerate() {
-            if w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater) {
-                return Err(ModelError::table(
-                    "speeds",
-                    format!(
-                        "auto needs strictly increasing speeds; v[{}] = {} follows {}",
-                        i + 1,
-                        w[1],
-                        w[0]
-                    ),
-                ));
-            }
-        }
-        let shape = self.geometry().shape;
-        let exact = match (exact, shape) {
-            (Ok(cylinder), Shape::Cylinder) => {
-                // The caller's cylinder must be this scene's.
-                let a0 = self.static_contact_size();
-                if (cylinder.static_half_width() / a0 - 1.0).abs() > 1e-8 {
-                    return Err(ModelError::ExactCylinderMismatch {
-                        exact: cylinder.static_half_width(),
-                        scene: a0,
-                    });
-                }
-                Ok(cylinder)
-            }
-            (Ok(_), Shape::Sphere) => Err("there is no exact solution for a sphere".to_string()),
-            (Err(why), _) => Err(why),
-        };
+        check_auto_request(speeds, accuracy)?;
+        let exact = self.matching_exact(exact)?;
         let tolerance = (QUADRATURE_SHARE * accuracy).clamp(1e-12, 1e-2);
         let budget = RUNG_SHARE * accuracy;
         let at = |film: Option<f64>| {
@@ -281,24 +247,122 @@ impl<M: ViscoelasticModulus> Scene<M> {
         let film = self.substrate().film_thickness;
         let full = at(film)?;
         let half_space = at(None)?;
-        let n = speeds.len();
+        let rungs = LadderRuns {
+            full: &full,
+            half_space: &half_space,
+            film,
+            speeds,
+            budget,
+            tolerance,
+        };
+        let (mut sweep, neglected_bound) = rungs.asymptote_and_dynamic()?;
+        if let Ok(cylinder) = &exact {
+            rungs.exact_where_needed(cylinder, &mut sweep)?;
+        } else {
+            rungs.add_model_error(&mut sweep);
+        }
+        Ok(AutoSweep {
+            mu: sweep.mu,
+            rungs: sweep.rungs,
+            error_estimate: sweep.estimate,
+            accuracy,
+            tolerance,
+            exact_unavailable: exact.err(),
+            film: film.map(|d| (d, neglected_bound)),
+        })
+    }
 
-        // 1. The asymptote's run, against the full model.
-        let (low, low_deviation) = low_speed::asymptote_run(&full, speeds, budget)?;
-        let mut mu: Vec<f64> = speeds[..low]
-            .iter()
-            .map(|&v| full.low_speed_asymptote(v))
-            .collect();
-        let mut rungs = vec![Rung::LowSpeed; low];
-        let mut estimate = vec![low_deviation; low];
-        // The bound on a neglected film's effect, relative (0 where the
-        // film is computed or absent).
-        let mut film_effect = vec![0.0; low];
+    /// The caller's exact cylinder, checked to be this scene's; `Err` with
+    /// the reason when there is none.
+    fn matching_exact<'c>(
+        &self,
+        exact: Result<&'c RollingCylinder, String>,
+    ) -> Result<Result<&'c RollingCylinder, String>, ModelError> {
+        Ok(match (exact, self.geometry().shape) {
+            (Ok(cylinder), Shape::Cylinder) => {
+                let a0 = self.static_contact_size();
+                if (cylinder.static_half_width() / a0 - 1.0).abs() > 1e-8 {
+                    return Err(ModelError::ExactCylinderMismatch {
+                        exact: cylinder.static_half_width(),
+                        scene: a0,
+                    });
+                }
+                Ok(cylinder)
+            }
+            (Ok(_), Shape::Sphere) => Err("there is no exact solution for a sphere".to_string()),
+            (Err(why), _) => Err(why),
+        })
+    }
+}
 
-        // 2. Eq. (11)/(17) above it; a film where it matters.
+/// Refuses an accuracy outside 1e-8 … 0.5 and speeds that do not increase.
+fn check_auto_request(speeds: &[f64], accuracy: f64) -> Result<(), ModelError> {
+    if !(accuracy.is_finite() && (1e-8..=0.5).contains(&accuracy)) {
+        return Err(ModelError::parameter(
+            "accuracy",
+            accuracy,
+            "must lie between 1e-8 and 0.5",
+        ));
+    }
+    for (i, w) in speeds.windows(2).enumerate() {
+        if w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater) {
+            return Err(ModelError::table(
+                "speeds",
+                format!(
+                    "auto needs strictly increasing speeds; v[{}] = {} follows {}",
+                    i + 1,
+                    w[1],
+                    w[0]
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// μ, rung and error estimate per speed, as the rungs fill them in.
+struct PartialSweep {
+    mu: Vec<f64>,
+    rungs: Vec<Rung>,
+    estimate: Vec<f64>,
+    /// The bound on a neglected film's effect, relative (0 where the film
+    /// is computed or absent).
+    film_effect: Vec<f64>,
+}
+
+/// What every rung of one `friction_auto` call shares.
+struct LadderRuns<'a, M: ViscoelasticModulus> {
+    /// The scene with its film (if any), dynamic contact, auto's tolerance.
+    full: &'a Scene<&'a M>,
+    /// The same on a half-space.
+    half_space: &'a Scene<&'a M>,
+    film: Option<f64>,
+    speeds: &'a [f64],
+    /// The share of the accuracy each rung's approximation may use.
+    budget: f64,
+    tolerance: f64,
+}
+
+impl<M: ViscoelasticModulus> LadderRuns<'_, M> {
+    /// Steps 1 and 2: the asymptote's run at the low speeds, against the
+    /// full model; Eq. (11)/(17) above it, with the film where it matters.
+    /// Also returns the largest bound of a neglected film's effect.
+    fn asymptote_and_dynamic(&self) -> Result<(PartialSweep, Option<f64>), ModelError> {
+        let (full, speeds, budget, tolerance) =
+            (self.full, self.speeds, self.budget, self.tolerance);
+        let (low, low_deviation) = low_speed::asymptote_run(full, speeds, budget)?;
+        let mut sweep = PartialSweep {
+            mu: speeds[..low]
+                .iter()
+                .map(|&v| full.low_speed_asymptote(v))
+                .collect(),
+            rungs: vec![Rung::LowSpeed; low],
+            estimate: vec![low_deviation; low],
+            film_effect: vec![0.0; low],
+        };
         let rest = &speeds[low..];
-        let bound = film.map(|d| FilmBound::new(&full, d));
-        let half = half_space.friction_sweep(rest)?;
+        let bound = self.film.map(|d| FilmBound::new(full, d));
+        let half = self.half_space.friction_sweep(rest)?;
         let mut film_speeds = Vec::new();
         let mut neglected_bound: Option<f64> = None;
         for (j, &v) in rest.iter().enumerate() {
@@ -307,81 +371,84 @@ impl<M: ViscoelasticModulus> Scene<M> {
                 if bound.is_some() {
                     neglected_bound = Some(neglected_bound.unwrap_or(0.0).max(relative));
                 }
-                mu.push(half[j]);
-                rungs.push(Rung::Dynamic);
-                estimate.push(tolerance + relative);
-                film_effect.push(relative);
+                sweep.mu.push(half[j]);
+                sweep.rungs.push(Rung::Dynamic);
+                sweep.estimate.push(tolerance + relative);
+                sweep.film_effect.push(relative);
             } else {
                 film_speeds.push(low + j);
-                mu.push(f64::NAN);
-                rungs.push(Rung::DynamicFilm);
-                estimate.push(tolerance);
-                film_effect.push(0.0);
+                sweep.mu.push(f64::NAN);
+                sweep.rungs.push(Rung::DynamicFilm);
+                sweep.estimate.push(tolerance);
+                sweep.film_effect.push(0.0);
             }
         }
         if !film_speeds.is_empty() {
             let v: Vec<f64> = film_speeds.iter().map(|&i| speeds[i]).collect();
             for (&i, m) in film_speeds.iter().zip(full.friction_sweep(&v)?) {
-                mu[i] = m;
+                sweep.mu[i] = m;
             }
         }
+        Ok((sweep, neglected_bound))
+    }
 
-        // 3. The model error of Eq. (11), and the exact cylinder where it
-        // is too large and applies (no film computed there).
-        let indicator: Vec<f64> = (0..n)
-            .map(|i| model_error_estimate(&half_space, speeds[i], mu[i]))
+    /// The model error of Eq. (11)/(17) at each speed, added to the
+    /// estimates; returns it.
+    fn add_model_error(&self, sweep: &mut PartialSweep) -> Vec<f64> {
+        let indicator: Vec<f64> = (0..self.speeds.len())
+            .map(|i| model_error_estimate(self.half_space, self.speeds[i], sweep.mu[i]))
             .collect();
+        for (estimate, e) in sweep.estimate.iter_mut().zip(&indicator) {
+            *estimate += e;
+        }
+        indicator
+    }
+
+    /// Step 3: the model error of Eq. (11), and the exact cylinder where it
+    /// is too large and applies (no film computed there).
+    fn exact_where_needed(
+        &self,
+        cylinder: &RollingCylinder,
+        sweep: &mut PartialSweep,
+    ) -> Result<(), ModelError> {
         // The exact cylinder is a half-space: with a film it may replace
         // only the speeds where the film was neglected by its bound.
-        let exact_applies = |i: usize| match rungs[i] {
+        let film = self.film;
+        let exact_applies = |rung: Rung| match rung {
             Rung::Dynamic => true,
             Rung::LowSpeed => film.is_none(),
             Rung::DynamicFilm | Rung::Exact => false,
         };
-        let exact_speeds: Vec<usize> = match &exact {
-            Ok(_) => (0..n)
-                .filter(|&i| exact_applies(i) && indicator[i] > budget)
-                .collect(),
-            Err(_) => Vec::new(),
-        };
-        for i in 0..n {
-            estimate[i] += indicator[i];
+        let indicator = self.add_model_error(sweep);
+        let exact_speeds: Vec<usize> = (0..self.speeds.len())
+            .filter(|&i| exact_applies(sweep.rungs[i]) && indicator[i] > self.budget)
+            .collect();
+        if exact_speeds.is_empty() {
+            return Ok(());
         }
-        if let Ok(cylinder) = &exact
-            && !exact_speeds.is_empty()
-        {
-            // As many Chebyshev terms as the model-error share needs, and
-            // no more (unless the caller asked for explicit terms).
-            let cylinder = if cylinder.settings().terms.is_none() {
-                cylinder.with_layer_resolution(ExactSettings::resolution_for(budget))
-            } else {
-                (*cylinder).clone()
-            };
-            // Milliseconds a speed: worth the threads.
-            let solved = exact_speeds
-                .par_iter()
-                .map(|&i| cylinder.solve_with_error_estimate(speeds[i]))
-                .collect::<Result<Vec<_>, ModelError>>()?;
-            for (&i, solution) in exact_speeds.iter().zip(solved) {
-                // What the film adds where it was neglected stays.
-                let error = solution.error_estimate + film_effect[i];
-                // Where its edge layers are thin the exact solution may be
-                // no better than Eq. (11): keep the better estimate.
-                if error < estimate[i] {
-                    mu[i] = solution.mu;
-                    rungs[i] = Rung::Exact;
-                    estimate[i] = error;
-                }
+        // As many Chebyshev terms as the model-error share needs, and no
+        // more (unless the caller asked for explicit terms).
+        let cylinder = if cylinder.settings().terms.is_none() {
+            cylinder.with_layer_resolution(ExactSettings::resolution_for(self.budget))
+        } else {
+            cylinder.clone()
+        };
+        // Milliseconds a speed: worth the threads.
+        let solved = exact_speeds
+            .par_iter()
+            .map(|&i| cylinder.solve_with_error_estimate(self.speeds[i]))
+            .collect::<Result<Vec<_>, ModelError>>()?;
+        for (&i, solution) in exact_speeds.iter().zip(solved) {
+            // What the film adds where it was neglected stays.
+            let error = solution.error_estimate + sweep.film_effect[i];
+            // Where its edge layers are thin the exact solution may be no
+            // better than Eq. (11): keep the better estimate.
+            if error < sweep.estimate[i] {
+                sweep.mu[i] = solution.mu;
+                sweep.rungs[i] = Rung::Exact;
+                sweep.estimate[i] = error;
             }
         }
-        Ok(AutoSweep {
-            mu,
-            rungs,
-            error_estimate: estimate,
-            accuracy,
-            tolerance,
-            exact_unavailable: exact.err(),
-            film: film.map(|d| (d, neglected_bound)),
-        })
+        Ok(())
     }
 }
