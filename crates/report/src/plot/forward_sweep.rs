@@ -13,7 +13,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::axes::{lg, log_axis, log_range};
+use super::axes::{LogAxis, lg, log_axis, log_range};
 use super::parts::{Pixel, dashed_key, legend_box, place_legend, plot_size, runs};
 use super::{DrawResult, Figure, draw_legend, draw_mesh, format_tick, style};
 
@@ -245,6 +245,43 @@ impl Figure for ForwardSweepFigure<'_> {
         DB::ErrorType: 'static,
     {
         let prepared = self.prepare();
+        let layout = Layout::of(&prepared, root.dim_in_pixel());
+        let mut chart = ChartBuilder::on(root)
+            .margin(12)
+            .caption(&self.title, ("sans-serif", style::CAPTION))
+            .x_label_area_size(X_LABELS)
+            .y_label_area_size(Y_LABELS)
+            .build_cartesian_2d(
+                log_axis(layout.x_range.clone()),
+                log_axis(layout.y_range.clone()),
+            )?;
+        draw_mesh(
+            &mut chart,
+            "rolling speed v (m/s)",
+            "friction coefficient μ",
+            true,
+        )?;
+        draw_curves(&mut chart, &prepared, layout.has_asymptote)?;
+        draw_maxima(&mut chart, &layout, prepared.len() > 1)?;
+        draw_legend(&mut chart, layout.legend_corner)?;
+        Ok(())
+    }
+}
+
+/// The axes' ranges, the maxima that can be drawn and where the legend goes.
+struct Layout<'a> {
+    x_range: Range<f64>,
+    y_range: Range<f64>,
+    /// (colour, (log10 v, log10 μ), text) of each maximum inside the sweep.
+    maxima: Vec<(RGBColor, (f64, f64), &'a str)>,
+    /// One curve with a maximum: its text is written beside it.
+    labelled_on_plot: bool,
+    has_asymptote: bool,
+    legend_corner: SeriesLabelPosition,
+}
+
+impl<'a> Layout<'a> {
+    fn of(prepared: &'a [Prepared], pixels: (u32, u32)) -> Self {
         let several = prepared.len() > 1;
         let all_points = || {
             prepared
@@ -296,7 +333,7 @@ impl Figure for ForwardSweepFigure<'_> {
             .max()
             .unwrap_or(0);
         let box_size = legend_box(
-            plot_size(root.dim_in_pixel(), Y_LABELS, X_LABELS, true),
+            plot_size(pixels, Y_LABELS, X_LABELS, true),
             entries,
             longest,
         );
@@ -305,86 +342,104 @@ impl Figure for ForwardSweepFigure<'_> {
             .chain(maxima.iter().map(|m| (m.1, MAXIMUM_WEIGHT)))
             .collect();
         let legend = place_legend(&weighted, &x_range, &y_range, box_size);
-        let y_range = legend.y;
-
-        let mut chart = ChartBuilder::on(root)
-            .margin(12)
-            .caption(&self.title, ("sans-serif", style::CAPTION))
-            .x_label_area_size(X_LABELS)
-            .y_label_area_size(Y_LABELS)
-            .build_cartesian_2d(log_axis(x_range.clone()), log_axis(y_range.clone()))?;
-        draw_mesh(
-            &mut chart,
-            "rolling speed v (m/s)",
-            "friction coefficient μ",
-            true,
-        )?;
-
-        // Asymptotes first, so that the curves lie on top where they meet.
-        for p in &prepared {
-            for run in p.asymptote.iter().filter(|r| r.len() > 1) {
-                chart.draw_series(DashedLineSeries::new(
-                    run.iter().copied(),
-                    6,
-                    4,
-                    p.colour.stroke_width(1),
-                ))?;
-            }
+        Layout {
+            x_range,
+            y_range: legend.y,
+            maxima,
+            labelled_on_plot,
+            has_asymptote,
+            legend_corner: legend.corner,
         }
-        for p in &prepared {
-            let colour = p.colour;
-            for (i, run) in p.mu.iter().enumerate() {
-                let series = chart
-                    .draw_series(LineSeries::new(run.iter().copied(), colour.stroke_width(2)))?;
-                if i == 0 {
-                    series.label(p.name.clone()).legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                    });
-                }
-            }
-        }
-        // One legend entry for all asymptotes: in the curve's colour when
-        // there is one curve, neutral when each curve has its own.
-        if has_asymptote {
-            let key = if several {
-                style::MEASURED
-            } else {
-                prepared[0].colour
-            };
-            chart
-                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
-                .label("low-speed asymptote (Eqs. 18/19)")
-                .legend(move |at| dashed_key(at, key, 1));
-        }
-        if !maxima.is_empty() {
-            let key = if several {
-                style::MEASURED
-            } else {
-                maxima[0].0
-            };
-            chart
-                .draw_series(maxima.iter().map(|&(c, at, _)| {
-                    EmptyElement::at(at)
-                        + Circle::new((0, 0), MAXIMUM_RADIUS, c.filled())
-                        + Circle::new((0, 0), MAXIMUM_RADIUS, BLACK.stroke_width(1))
-                }))?
-                .label("friction maximum")
-                .legend(move |(x, y)| {
-                    EmptyElement::at((x + 10, y))
-                        + Circle::new((0, 0), MAXIMUM_RADIUS, key.filled())
-                        + Circle::new((0, 0), MAXIMUM_RADIUS, BLACK.stroke_width(1))
-                });
-            if labelled_on_plot {
-                let (_, at, text) = maxima[0];
-                let (font, offset) = maximum_label_place(at.0, &x_range);
-                chart.draw_series(std::iter::once(
-                    EmptyElement::at(at) + Text::new(text.to_string(), offset, font),
-                ))?;
-            }
-        }
-        draw_legend(&mut chart, legend.corner)?;
-        Ok(())
     }
+}
+
+/// The chart of μ against v, both axes logarithmic.
+type SweepChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogAxis, LogAxis>>;
+
+/// The asymptotes, then the curves on top where they meet, and one legend
+/// entry for all asymptotes: in the curve's colour when there is one curve,
+/// neutral when each curve has its own.
+fn draw_curves<'a, DB>(
+    chart: &mut SweepChart<'a, DB>,
+    prepared: &[Prepared],
+    has_asymptote: bool,
+) -> DrawResult
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+{
+    for p in prepared {
+        for run in p.asymptote.iter().filter(|r| r.len() > 1) {
+            chart.draw_series(DashedLineSeries::new(
+                run.iter().copied(),
+                6,
+                4,
+                p.colour.stroke_width(1),
+            ))?;
+        }
+    }
+    for p in prepared {
+        let colour = p.colour;
+        for (i, run) in p.mu.iter().enumerate() {
+            let series =
+                chart.draw_series(LineSeries::new(run.iter().copied(), colour.stroke_width(2)))?;
+            if i == 0 {
+                series.label(p.name.clone()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+            }
+        }
+    }
+    if has_asymptote {
+        let key = if prepared.len() > 1 {
+            style::MEASURED
+        } else {
+            prepared[0].colour
+        };
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
+            .label("low-speed asymptote (Eqs. 18/19)")
+            .legend(move |at| dashed_key(at, key, 1));
+    }
+    Ok(())
+}
+
+/// The friction maxima as filled circles, with the value written beside a
+/// single one.
+fn draw_maxima<'a, DB>(chart: &mut SweepChart<'a, DB>, layout: &Layout, several: bool) -> DrawResult
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+{
+    let maxima = &layout.maxima;
+    if maxima.is_empty() {
+        return Ok(());
+    }
+    let key = if several {
+        style::MEASURED
+    } else {
+        maxima[0].0
+    };
+    chart
+        .draw_series(maxima.iter().map(|&(c, at, _)| {
+            EmptyElement::at(at)
+                + Circle::new((0, 0), MAXIMUM_RADIUS, c.filled())
+                + Circle::new((0, 0), MAXIMUM_RADIUS, BLACK.stroke_width(1))
+        }))?
+        .label("friction maximum")
+        .legend(move |(x, y)| {
+            EmptyElement::at((x + 10, y))
+                + Circle::new((0, 0), MAXIMUM_RADIUS, key.filled())
+                + Circle::new((0, 0), MAXIMUM_RADIUS, BLACK.stroke_width(1))
+        });
+    if layout.labelled_on_plot {
+        let (_, at, text) = maxima[0];
+        let (font, offset) = maximum_label_place(at.0, &layout.x_range);
+        chart.draw_series(std::iter::once(
+            EmptyElement::at(at) + Text::new(text.to_string(), offset, font),
+        ))?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
