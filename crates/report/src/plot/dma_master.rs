@@ -11,6 +11,8 @@
 //! the key to the colours: the coldest, the reference and the warmest
 //! temperature. A single isotherm has nothing to shift: its panel says so.
 
+use std::ops::Range;
+
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -161,23 +163,48 @@ impl Figure for DmaMasterFigure<'_> {
         DB: DrawingBackend,
         DB::ErrorType: 'static,
     {
-        let s = self.modulus_symbol;
         let isotherms = self.isotherms();
         let coldest = isotherms.first().copied().unwrap_or(self.t_ref);
         let warmest = isotherms.last().copied().unwrap_or(self.t_ref);
         let colour = |t: f64| isotherm_colour(t, coldest, warmest);
-        let x_description = format!(
-            "reduced frequency ω a_T (rad/s), T_ref = {}",
-            celsius(self.t_ref)
-        );
-
         let (left, right) = root.split_horizontally(LEFT_WIDTH);
         let (upper, lower) = left.split_vertically(TOP_HEIGHT);
         let (shift_area, key_area) = right.split_vertically(TOP_HEIGHT);
 
-        // (log10 ω a_T, log10 value, colour) of the points.
-        let points = |value: &dyn Fn(&ShiftedPoint) -> f64| -> Vec<(f64, f64, RGBColor)> {
-            self.points
+        let curves = Curves::of(self, &colour);
+        self.draw_moduli(&upper, &curves)?;
+        self.draw_tan_delta(&lower, &curves)?;
+        if self.has_shift() {
+            self.draw_shift(&shift_area, &colour)?;
+        } else {
+            draw_no_shift_note(&shift_area, &isotherms)?;
+        }
+        self.draw_colour_key(&key_area, &isotherms, &colour)?;
+        Ok(())
+    }
+}
+
+/// (log10 ω a_T, log10 value, colour) of the measured points.
+type ColouredPoints = Vec<(f64, f64, RGBColor)>;
+
+/// What the two left panels draw, in log10 coordinates, and their shared
+/// frequency axis.
+struct Curves {
+    storage: ColouredPoints,
+    loss: ColouredPoints,
+    tan_delta: ColouredPoints,
+    fit_storage: Vec<Vec<(f64, f64)>>,
+    fit_loss: Vec<Vec<(f64, f64)>>,
+    fit_tan: Vec<Vec<(f64, f64)>>,
+    x_range: Range<f64>,
+    x_description: String,
+}
+
+impl Curves {
+    fn of(figure: &DmaMasterFigure, colour: &dyn Fn(f64) -> RGBColor) -> Self {
+        let points = |value: &dyn Fn(&ShiftedPoint) -> f64| -> ColouredPoints {
+            figure
+                .points
                 .iter()
                 .filter_map(|p| Some((lg(p.reduced_omega)?, lg(value(p))?, colour(p.temperature))))
                 .collect()
@@ -185,11 +212,10 @@ impl Figure for DmaMasterFigure<'_> {
         let storage = points(&|p| p.storage);
         let loss = points(&|p| p.loss);
         let tan_delta = points(&|p| p.loss / p.storage);
-        let fit = self.fit;
-        let fit_storage = self.fit_runs(|i| fit.storage.get(i).copied());
-        let fit_loss = self.fit_runs(|i| fit.loss.get(i).copied());
-        let fit_tan = self.fit_runs(|i| Some(fit.loss.get(i)? / fit.storage.get(i)?));
-
+        let fit = figure.fit;
+        let fit_storage = figure.fit_runs(|i| fit.storage.get(i).copied());
+        let fit_loss = figure.fit_runs(|i| fit.loss.get(i).copied());
+        let fit_tan = figure.fit_runs(|i| Some(fit.loss.get(i)? / fit.storage.get(i)?));
         let x_range = log_range(
             storage
                 .iter()
@@ -200,14 +226,38 @@ impl Figure for DmaMasterFigure<'_> {
             0.2,
             -2.0..3.0,
         );
+        Curves {
+            storage,
+            loss,
+            tan_delta,
+            fit_storage,
+            fit_loss,
+            fit_tan,
+            x_range,
+            x_description: format!(
+                "reduced frequency ω a_T (rad/s), T_ref = {}",
+                celsius(figure.t_ref)
+            ),
+        }
+    }
+}
 
-        // E′ and E″.
+impl DmaMasterFigure<'_> {
+    /// E′ and E″ of the isotherms with the Prony curves on top.
+    fn draw_moduli<DB>(&self, area: &DrawingArea<DB, Shift>, curves: &Curves) -> DrawResult
+    where
+        DB: DrawingBackend,
+        DB::ErrorType: 'static,
+    {
+        let s = self.modulus_symbol;
+        let (storage, loss) = (&curves.storage, &curves.loss);
+        let (fit_storage, fit_loss) = (&curves.fit_storage, &curves.fit_loss);
         let y_moduli = log_range(
             storage
                 .iter()
-                .chain(&loss)
+                .chain(loss)
                 .map(|p| p.1)
-                .chain(fit_storage.iter().chain(&fit_loss).flatten().map(|p| p.1))
+                .chain(fit_storage.iter().chain(fit_loss).flatten().map(|p| p.1))
                 .map(|y| 10f64.powf(y)),
             0.15,
             4.0..9.0,
@@ -216,24 +266,23 @@ impl Figure for DmaMasterFigure<'_> {
         let loss_label = format!("{s}″ (loss), per isotherm");
         let samples: Vec<((f64, f64), usize)> = storage
             .iter()
-            .chain(&loss)
+            .chain(loss)
             .map(|p| ((p.0, p.1), 1))
             .chain(
                 fit_storage
                     .iter()
-                    .chain(&fit_loss)
+                    .chain(fit_loss)
                     .flatten()
                     .map(|&p| (p, 1)),
             )
             .collect();
         let box_size = legend_box(
-            plot_size(upper.dim_in_pixel(), 75, 45, true),
+            plot_size(area.dim_in_pixel(), 75, 45, true),
             4,
             storage_label.chars().count(),
         );
-        let legend = place_legend(&samples, &x_range, &y_moduli, box_size);
-        let y_moduli = legend.y;
-        let mut chart = ChartBuilder::on(&upper)
+        let legend = place_legend(&samples, &curves.x_range, &y_moduli, box_size);
+        let mut chart = ChartBuilder::on(area)
             .margin(12)
             .caption(
                 format!(
@@ -244,10 +293,10 @@ impl Figure for DmaMasterFigure<'_> {
             )
             .x_label_area_size(45)
             .y_label_area_size(75)
-            .build_cartesian_2d(log_axis(x_range.clone()), log_axis(y_moduli))?;
+            .build_cartesian_2d(log_axis(curves.x_range.clone()), log_axis(legend.y))?;
         draw_mesh(
             &mut chart,
-            &x_description,
+            &curves.x_description,
             &format!("{s}′, {s}″ (Pa)"),
             true,
         )?;
@@ -290,9 +339,17 @@ impl Figure for DmaMasterFigure<'_> {
                     .legend(|at| dashed_key(at, BLACK, 2));
             }
         }
-        draw_legend(&mut chart, legend.corner)?;
+        draw_legend(&mut chart, legend.corner)
+    }
 
-        // tan δ.
+    /// tan δ of the isotherms with the Prony curve.
+    fn draw_tan_delta<DB>(&self, area: &DrawingArea<DB, Shift>, curves: &Curves) -> DrawResult
+    where
+        DB: DrawingBackend,
+        DB::ErrorType: 'static,
+    {
+        let s = self.modulus_symbol;
+        let (tan_delta, fit_tan) = (&curves.tan_delta, &curves.fit_tan);
         let y_tan = log_range(
             tan_delta
                 .iter()
@@ -309,18 +366,17 @@ impl Figure for DmaMasterFigure<'_> {
             .chain(fit_tan.iter().flatten().map(|&p| (p, 1)))
             .collect();
         let box_size = legend_box(
-            plot_size(lower.dim_in_pixel(), 75, 45, false),
+            plot_size(area.dim_in_pixel(), 75, 45, false),
             2,
             tan_label.chars().count(),
         );
-        let legend = place_legend(&samples, &x_range, &y_tan, box_size);
-        let y_tan = legend.y;
-        let mut chart = ChartBuilder::on(&lower)
+        let legend = place_legend(&samples, &curves.x_range, &y_tan, box_size);
+        let mut chart = ChartBuilder::on(area)
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(75)
-            .build_cartesian_2d(log_axis(x_range.clone()), log_axis(y_tan))?;
-        draw_mesh(&mut chart, &x_description, "tan δ", true)?;
+            .build_cartesian_2d(log_axis(curves.x_range.clone()), log_axis(legend.y))?;
+        draw_mesh(&mut chart, &curves.x_description, "tan δ", true)?;
         chart
             .draw_series(
                 tan_delta
@@ -338,36 +394,37 @@ impl Figure for DmaMasterFigure<'_> {
                 });
             }
         }
-        draw_legend(&mut chart, legend.corner)?;
-
-        if self.has_shift() {
-            self.draw_shift(&shift_area, &colour)?;
-        } else {
-            // Left blank but for the reason, so the empty corner is not
-            // mistaken for a failed drawing.
-            let (w, _) = shift_area.dim_in_pixel();
-            let note = match isotherms.as_slice() {
-                [t] => vec![
-                    format!("Single isotherm ({}):", celsius(*t)),
-                    "nothing was shifted, so there".into(),
-                    "are no shift factors to show.".into(),
-                ],
-                _ => vec![
-                    "No shift factors given:".into(),
-                    "the shift panel is empty.".into(),
-                ],
-            };
-            for (i, line) in note.iter().enumerate() {
-                shift_area.draw(&Text::new(
-                    line.clone(),
-                    (w as i32 / 2, 200 + 24 * i as i32),
-                    text_style(style::LEGEND + 2, HPos::Center, VPos::Top),
-                ))?;
-            }
-        }
-        self.draw_colour_key(&key_area, &isotherms, &colour)?;
-        Ok(())
+        draw_legend(&mut chart, legend.corner)
     }
+}
+
+/// The shift panel left blank but for the reason, so that the empty corner
+/// is not mistaken for a failed drawing.
+fn draw_no_shift_note<DB>(area: &DrawingArea<DB, Shift>, isotherms: &[f64]) -> DrawResult
+where
+    DB: DrawingBackend,
+    DB::ErrorType: 'static,
+{
+    let (w, _) = area.dim_in_pixel();
+    let note = match isotherms {
+        [t] => vec![
+            format!("Single isotherm ({}):", celsius(*t)),
+            "nothing was shifted, so there".into(),
+            "are no shift factors to show.".into(),
+        ],
+        _ => vec![
+            "No shift factors given:".into(),
+            "the shift panel is empty.".into(),
+        ],
+    };
+    for (i, line) in note.iter().enumerate() {
+        area.draw(&Text::new(
+            line.clone(),
+            (w as i32 / 2, 200 + 24 * i as i32),
+            text_style(style::LEGEND + 2, HPos::Center, VPos::Top),
+        ))?;
+    }
+    Ok(())
 }
 
 impl DmaMasterFigure<'_> {
