@@ -67,6 +67,7 @@ pub mod params;
 pub mod regularization;
 pub mod report;
 pub mod sanity;
+pub mod settings;
 pub mod solvers;
 pub mod tau_grid;
 
@@ -86,3 +87,4 @@ pub use params::{
 };
 pub use quality::FitQuality;
 pub use report::{CrossCheckRow, FitReport, LogShift, ModulusPoint, ShiftCrossCheck, ShiftRecord};
+pub use settings::{FitSettings, SettingValue};

@@ -1,0 +1,476 @@
+//! Fit settings as users write them, parsed once for every front door.
+//!
+//! The scene's `[fit]` table, a batch manifest (`[defaults]` and each
+//! `[[entry]]`) and the flags of `rollfit fit` and `rollfit batch` name the
+//! same settings with the same spellings. Each front door hands every value
+//! it finds, with the key it was written under, to [`FitSettings::set`]:
+//! that one function knows the keys, their aliases and their syntax, and
+//! each setting's text form is its type's [`FromStr`]. What the value means
+//! for the fit (ranges that depend on each other or on the rolling set-up)
+//! is checked later, once, by [`FitParams::check`].
+//!
+//! | key | value | |
+//! |---|---|---|
+//! | `method` | `"auto"`, `"levenberg-marquardt"` (`"lm"`), `"lbfgs"` (`"l-bfgs"`), `"nelder-mead"` (`"amoeba"`) | |
+//! | `lambda` | a number ≥ 0, or `"auto"` | |
+//! | `seed` | a whole number ≥ 0 | |
+//! | `starts` | a whole number | |
+//! | `terms` | a count N, `"auto"`, or a density `"X/decade"` | aliases: `terms_per_decade = X`, `tau = [τ1, τ2, …]` |
+//! | `max_evaluations` | a whole number | |
+//! | `tolerance` | the forward model's relative quadrature tolerance | |
+//! | `E1_max` | upper bound of the glassy modulus, Pa | |
+//! | `shift` | `"wlf"` or `"free"` (temperature sets) | |
+//! | `T_ref` | reference temperature of the master curve, °C | |
+//! | `cross_check` | `true` or `false` | |
+//!
+//! Where a file format gives a number, the value arrives as a number
+//! ([`SettingValue::Number`]); text from a command line or a quoted TOML
+//! value arrives as [`SettingValue::Text`] and goes through `FromStr`, so
+//! `terms = "2/decade"`, `--terms 2/decade` and `terms_per_decade = 2` are
+//! the same setting. The scale anchors (`E0`, `E_at`, `contact_radius`) are
+//! measurements rather than settings and stay with the scene reader.
+
+use std::str::FromStr;
+
+use crate::error::FitError;
+use crate::params::{FitParams, Lambda, Method, ShiftKind, TermRule};
+
+impl FromStr for Method {
+    type Err = FitError;
+
+    /// A solver name; "auto" and "lm" select Levenberg–Marquardt.
+    fn from_str(text: &str) -> Result<Self, FitError> {
+        Method::parse(text.trim())
+    }
+}
+
+impl FromStr for Lambda {
+    type Err = FitError;
+
+    /// `"auto"` or a finite number ≥ 0.
+    fn from_str(text: &str) -> Result<Self, FitError> {
+        let text = text.trim();
+        if text == "auto" {
+            return Ok(Lambda::Auto);
+        }
+        match text.parse::<f64>() {
+            Ok(l) if l.is_finite() && l >= 0.0 => Ok(Lambda::Fixed(l)),
+            _ => Err(FitError::setting(
+                "lambda",
+                format!(
+                    "expected a finite number ≥ 0 (0 switches the smoothness penalty off) or \
+                     \"auto\", got {text:?}"
+                ),
+            )),
+        }
+    }
+}
+
+impl FromStr for TermRule {
+    type Err = FitError;
+
+    /// A count N, `"auto"` or a density `"X/decade"`.
+    fn from_str(text: &str) -> Result<Self, FitError> {
+        let text = text.trim();
+        if text == "auto" {
+            return Ok(TermRule::Auto);
+        }
+        if let Some(density) = text.strip_suffix("/decade") {
+            return match density.trim().parse::<f64>() {
+                Ok(d) if d.is_finite() && d > 0.0 => Ok(TermRule::PerDecade(d)),
+                _ => Err(FitError::setting(
+                    "terms",
+                    format!(
+                        "expected a positive number of terms per decade before \"/decade\", \
+                         got {text:?}"
+                    ),
+                )),
+            };
+        }
+        text.parse::<usize>().map(TermRule::Count).map_err(|_| {
+            FitError::setting(
+                "terms",
+                format!(
+                    "expected a whole number of terms, \"auto\" or a density such as \
+                     \"2/decade\", got {text:?}"
+                ),
+            )
+        })
+    }
+}
+
+impl FromStr for ShiftKind {
+    type Err = FitError;
+
+    /// `"wlf"` or `"free"`.
+    fn from_str(text: &str) -> Result<Self, FitError> {
+        match text.trim() {
+            "wlf" => Ok(ShiftKind::Wlf),
+            "free" => Ok(ShiftKind::Free),
+            "arrhenius" => Err(FitError::setting(
+                "shift",
+                "\"arrhenius\": a temperature set is fitted with \"wlf\" or \"free\" shifts \
+                 (a free shift follows any law)",
+            )),
+            other => Err(FitError::setting(
+                "shift",
+                format!("unknown shift {other:?} (use \"wlf\" or \"free\")"),
+            )),
+        }
+    }
+}
+
+/// A setting's value as a front door found it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SettingValue<'a> {
+    /// Text: a command-line argument or a quoted value in a file.
+    Text(&'a str),
+    /// A number written as a number in a file.
+    Number(f64),
+    /// A whole number written as such in a file.
+    Integer(i64),
+    /// `true` or `false` in a file.
+    Boolean(bool),
+    /// A list of numbers in a file.
+    Numbers(Vec<f64>),
+}
+
+/// The settings a user gave (None: not given), from any front door.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FitSettings {
+    /// `method`.
+    pub method: Option<Method>,
+    /// `lambda`.
+    pub lambda: Option<Lambda>,
+    /// `seed`.
+    pub seed: Option<u64>,
+    /// `starts`.
+    pub starts: Option<usize>,
+    /// `terms` (or `terms_per_decade`, `tau`).
+    pub terms: Option<TermRule>,
+    /// `max_evaluations`.
+    pub max_evaluations: Option<usize>,
+    /// `tolerance`: the forward model's relative quadrature tolerance.
+    pub tolerance: Option<f64>,
+    /// `E1_max`, Pa.
+    pub e1_max: Option<f64>,
+    /// `shift`.
+    pub shift: Option<ShiftKind>,
+    /// `T_ref`, °C.
+    pub t_ref: Option<f64>,
+    /// `cross_check`.
+    pub cross_check: Option<bool>,
+    /// The key `terms` was set under, to refuse two spellings of it.
+    terms_key: Option<&'static str>,
+}
+
+/// The keys [`FitSettings::set`] knows, canonical spellings first.
+pub const SETTING_KEYS: [&str; 13] = [
+    "method",
+    "lambda",
+    "seed",
+    "starts",
+    "terms",
+    "max_evaluations",
+    "tolerance",
+    "E1_max",
+    "shift",
+    "T_ref",
+    "cross_check",
+    "terms_per_decade",
+    "tau",
+];
+
+impl FitSettings {
+    /// Sets `key` from `value`: the one parser of fit settings. Unknown
+    /// keys, values of the wrong kind or syntax, and a second spelling of
+    /// the relaxation times are refused, naming the key.
+    pub fn set(&mut self, key: &str, value: SettingValue<'_>) -> Result<(), FitError> {
+        match key {
+            "method" => self.method = Some(text_of(key, &value)?.parse()?),
+            "lambda" => {
+                self.lambda = Some(match value {
+                    SettingValue::Number(l) => Lambda::from_str(&l.to_string())?,
+                    SettingValue::Integer(l) => Lambda::from_str(&l.to_string())?,
+                    other => text_of(key, &other)?.parse()?,
+                })
+            }
+            "seed" => self.seed = Some(whole(key, &value)?),
+            "starts" => self.starts = Some(whole(key, &value)?),
+            "max_evaluations" => self.max_evaluations = Some(whole(key, &value)?),
+            "terms" => {
+                let rule = match value {
+                    SettingValue::Integer(n) => {
+                        TermRule::Count(usize::try_from(n).map_err(|_| {
+                            FitError::setting(key, format!("{n} terms: use 2 to 200"))
+                        })?)
+                    }
+                    other => text_of(key, &other)?.parse()?,
+                };
+                self.set_terms("terms", rule)?;
+            }
+            "terms_per_decade" => {
+                let density = number(key, &value)?;
+                let rule = TermRule::from_str(&format!("{density}/decade")).map_err(|_| {
+                    FitError::setting(key, format!("{density}: must be greater than zero"))
+                })?;
+                self.set_terms("terms_per_decade", rule)?;
+            }
+            "tau" => match value {
+                SettingValue::Numbers(tau) => self.set_terms("tau", TermRule::Explicit(tau))?,
+                _ => {
+                    return Err(FitError::setting(
+                        key,
+                        "expected a list of relaxation times, s",
+                    ));
+                }
+            },
+            "tolerance" => self.tolerance = Some(number(key, &value)?),
+            "E1_max" => self.e1_max = Some(number(key, &value)?),
+            "T_ref" => self.t_ref = Some(number(key, &value)?),
+            "shift" => self.shift = Some(text_of(key, &value)?.parse()?),
+            "cross_check" => match value {
+                SettingValue::Boolean(b) => self.cross_check = Some(b),
+                SettingValue::Text(t @ ("true" | "false")) => self.cross_check = Some(t == "true"),
+                _ => return Err(FitError::setting(key, "expected true or false")),
+            },
+            other => {
+                return Err(FitError::setting(
+                    other,
+                    format!("unknown fit setting (known: {})", SETTING_KEYS.join(", ")),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn set_terms(&mut self, key: &'static str, rule: TermRule) -> Result<(), FitError> {
+        if let Some(first) = self.terms_key.filter(|&k| k != key) {
+            return Err(FitError::setting(
+                key,
+                format!(
+                    "`{first}` and `{key}` each choose the relaxation times: give at most one \
+                     of terms, terms_per_decade and tau"
+                ),
+            ));
+        }
+        self.terms = Some(rule);
+        self.terms_key = Some(key);
+        Ok(())
+    }
+
+    /// These settings over `below`: what these leave unset comes from
+    /// `below` (an entry over a manifest's defaults over the flags, the
+    /// flags over a scene's `[fit]`).
+    pub fn over(&self, below: &FitSettings) -> FitSettings {
+        FitSettings {
+            method: self.method.or(below.method),
+            lambda: self.lambda.or(below.lambda),
+            seed: self.seed.or(below.seed),
+            starts: self.starts.or(below.starts),
+            terms: self.terms.clone().or_else(|| below.terms.clone()),
+            max_evaluations: self.max_evaluations.or(below.max_evaluations),
+            tolerance: self.tolerance.or(below.tolerance),
+            e1_max: self.e1_max.or(below.e1_max),
+            shift: self.shift.or(below.shift),
+            t_ref: self.t_ref.or(below.t_ref),
+            cross_check: self.cross_check.or(below.cross_check),
+            terms_key: self.terms_key.or(below.terms_key),
+        }
+    }
+
+    /// Writes the given settings into `params`; the others keep their
+    /// values. Ranges are checked by [`FitParams::check`].
+    pub fn apply(&self, params: &mut FitParams) {
+        if let Some(method) = self.method {
+            params.method = method;
+        }
+        if let Some(lambda) = self.lambda {
+            params.lambda = lambda;
+        }
+        if let Some(seed) = self.seed {
+            params.seed = seed;
+        }
+        if let Some(starts) = self.starts {
+            params.starts = starts;
+        }
+        if let Some(terms) = &self.terms {
+            params.terms = terms.clone();
+        }
+        if let Some(budget) = self.max_evaluations {
+            params.max_evaluations = Some(budget);
+        }
+        if let Some(tolerance) = self.tolerance {
+            params.model_tolerance = tolerance;
+        }
+        if let Some(e1_max) = self.e1_max {
+            params.e1_max = e1_max;
+        }
+        if let Some(kind) = self.shift {
+            params.shift.kind = kind;
+        }
+        if let Some(t_ref) = self.t_ref {
+            params.shift.t_ref = Some(t_ref);
+        }
+        if let Some(cross_check) = self.cross_check {
+            params.shift.cross_check = cross_check;
+        }
+    }
+}
+
+fn text_of<'v>(key: &str, value: &'v SettingValue<'_>) -> Result<&'v str, FitError> {
+    match value {
+        SettingValue::Text(text) => Ok(text),
+        other => Err(FitError::setting(
+            key,
+            format!("expected text, got {}", describe(other)),
+        )),
+    }
+}
+
+fn number(key: &str, value: &SettingValue<'_>) -> Result<f64, FitError> {
+    match value {
+        SettingValue::Number(x) => Ok(*x),
+        SettingValue::Integer(n) => Ok(*n as f64),
+        SettingValue::Text(text) => text
+            .trim()
+            .parse::<f64>()
+            .map_err(|_| FitError::setting(key, format!("expected a number, got {text:?}"))),
+        other => Err(FitError::setting(
+            key,
+            format!("expected a number, got {}", describe(other)),
+        )),
+    }
+}
+
+fn whole<T: TryFrom<i64> + FromStr>(key: &str, value: &SettingValue<'_>) -> Result<T, FitError> {
+    let refuse =
+        |shown: String| FitError::setting(key, format!("expected a whole number ≥ 0, got {shown}"));
+    match value {
+        SettingValue::Integer(n) => T::try_from(*n).map_err(|_| refuse(n.to_string())),
+        SettingValue::Text(text) => text.trim().parse().map_err(|_| refuse(format!("{text:?}"))),
+        other => Err(refuse(describe(other))),
+    }
+}
+
+fn describe(value: &SettingValue<'_>) -> String {
+    match value {
+        SettingValue::Text(t) => format!("{t:?}"),
+        SettingValue::Number(x) => x.to_string(),
+        SettingValue::Integer(n) => n.to_string(),
+        SettingValue::Boolean(b) => b.to_string(),
+        SettingValue::Numbers(_) => "a list".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn set(pairs: &[(&str, SettingValue<'_>)]) -> Result<FitSettings, FitError> {
+        let mut s = FitSettings::default();
+        for (key, value) in pairs {
+            s.set(key, value.clone())?;
+        }
+        Ok(s)
+    }
+
+    #[test]
+    fn the_three_spellings_of_a_density_are_one_setting() {
+        let text = set(&[("terms", SettingValue::Text("2/decade"))]).unwrap();
+        let number = set(&[("terms_per_decade", SettingValue::Number(2.0))]).unwrap();
+        let integer = set(&[("terms_per_decade", SettingValue::Integer(2))]).unwrap();
+        assert_eq!(text.terms, Some(TermRule::PerDecade(2.0)));
+        assert_eq!(number.terms, text.terms);
+        assert_eq!(integer.terms, text.terms);
+        assert_eq!(
+            set(&[("terms", SettingValue::Integer(24))]).unwrap().terms,
+            Some(TermRule::Count(24))
+        );
+        assert_eq!("auto".parse::<TermRule>().unwrap(), TermRule::Auto);
+        assert_eq!(" 12 ".parse::<TermRule>().unwrap(), TermRule::Count(12));
+    }
+
+    #[test]
+    fn two_spellings_of_the_relaxation_times_are_refused() {
+        let e = set(&[
+            ("terms", SettingValue::Integer(20)),
+            ("tau", SettingValue::Numbers(vec![1e-3, 1e-2])),
+        ])
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("`terms` and `tau`"), "{e}");
+        // The same key twice is a layering, not a conflict.
+        assert!(
+            set(&[
+                ("terms", SettingValue::Integer(20)),
+                ("terms", SettingValue::Text("auto")),
+            ])
+            .is_ok()
+        );
+    }
+
+    #[test]
+    fn method_aliases_and_refusals() {
+        for (text, method) in [
+            ("auto", Method::LevenbergMarquardt),
+            ("lm", Method::LevenbergMarquardt),
+            ("l-bfgs", Method::Lbfgs),
+            ("amoeba", Method::NelderMead),
+        ] {
+            assert_eq!(text.parse::<Method>().unwrap(), method);
+        }
+        let e = "newton".parse::<Method>().unwrap_err().to_string();
+        assert!(e.contains("unknown method \"newton\""), "{e}");
+        let e = set(&[("method", SettingValue::Integer(3))])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`method`") && e.contains("expected text"), "{e}");
+    }
+
+    #[test]
+    fn lambda_takes_numbers_and_auto_and_refuses_negatives() {
+        assert_eq!(
+            set(&[("lambda", SettingValue::Number(0.5))])
+                .unwrap()
+                .lambda,
+            Some(Lambda::Fixed(0.5))
+        );
+        assert_eq!("auto".parse::<Lambda>().unwrap(), Lambda::Auto);
+        for bad in ["-1", "nan", "inf", "big"] {
+            assert!(bad.parse::<Lambda>().is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn unknown_keys_and_wrong_kinds_name_the_key() {
+        let e = set(&[("lamda", SettingValue::Number(1.0))])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`lamda`") && e.contains("unknown"), "{e}");
+        let e = set(&[("seed", SettingValue::Integer(-1))])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`seed`") && e.contains("-1"), "{e}");
+        let e = set(&[("shift", SettingValue::Text("arrhenius"))])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("\"wlf\" or \"free\""), "{e}");
+    }
+
+    #[test]
+    fn layers_fill_what_is_unset_and_apply_keeps_defaults() {
+        let entry = set(&[("starts", SettingValue::Integer(1))]).unwrap();
+        let defaults = set(&[
+            ("starts", SettingValue::Integer(5)),
+            ("seed", SettingValue::Text("7")),
+        ])
+        .unwrap();
+        let layered = entry.over(&defaults);
+        assert_eq!((layered.starts, layered.seed), (Some(1), Some(7)));
+        let mut params = FitParams::default();
+        layered.apply(&mut params);
+        assert_eq!((params.starts, params.seed), (1, 7));
+        assert_eq!(params.lambda, FitParams::default().lambda);
+    }
+}
