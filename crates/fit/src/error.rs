@@ -34,8 +34,6 @@ pub enum FitError {
         /// What is wrong.
         problem: String,
     },
-    /// A solver used up its budget of objective evaluations (internal: the
-    /// solver drivers turn it into a stop reason, it never reaches a user).
     /// The fit ended with a number that is not finite (the key names it);
     /// no result can be trusted or written.
     #[error(
@@ -43,8 +41,6 @@ pub enum FitError {
          the model cannot represent"
     )]
     NonFinite(String),
-    #[error("the budget of {0} objective evaluations is used up")]
-    BudgetExhausted(usize),
     /// The forward model refused a scene or a material.
     #[error(transparent)]
     Model(#[from] ModelError),

@@ -9,15 +9,19 @@
 //! - [`params`]: fit settings, checked before any numerics run.
 //! - [`tau_grid`]: the relaxation-time grid and the rule for its ends.
 //! - `parametrization`: θ ↦ Prony series, positivity and scale anchors.
-//! - `problem`: the objective of Eq. (B3) as residuals with exact Jacobian.
-//! - [`solvers`]: Levenberg–Marquardt (default), L-BFGS and Nelder–Mead.
+//! - `objective`: the objective of Eq. (B3) as residuals with exact Jacobian.
+//! - [`solvers`]: Levenberg–Marquardt (default), L-BFGS and Nelder–Mead, each
+//!   run on the objective through a wrapper that counts its evaluations.
 //! - `regularization`: the data-driven choice of the smoothness weight λ.
 //! - `shift`: the time–temperature shift of a temperature set (WLF or free)
 //!   and shifts by overlapping curves.
 //! - `analysis`: the determined window, determined terms, uncertainty bands.
 //! - [`quality`]: goodness of fit (χ² and runs tests).
 //! - [`sanity`]: warnings for inputs and results outside the theory or any lab.
-//! - [`fit`]: the driver tying them together; [`report`]: its result.
+//! - `temperature_set`: the start and the cross-check of a temperature set's
+//!   shift.
+//! - [`driver`]: the driver tying them together, entered by [`fit()`];
+//!   [`report`]: its result.
 //! - [`master`]: DMA isotherms to a master curve: shift factors, their
 //!   WLF or Arrhenius law, and a smooth causal Prony series.
 
@@ -60,6 +64,7 @@
 
 pub mod condense;
 pub mod data;
+pub mod driver;
 pub mod error;
 pub mod fit;
 pub mod master;
@@ -72,15 +77,15 @@ pub mod solvers;
 pub mod tau_grid;
 
 mod analysis;
+mod objective;
 mod parametrization;
-mod problem;
 pub mod quality;
 mod shift;
 mod temperature_set;
 
 pub use data::Measurements;
+pub use driver::fit;
 pub use error::FitError;
-pub use fit::fit;
 pub use params::{
     FitParams, Lambda, Method, ModulusAnchor, RollingSetup, ScaleAnchor, ShiftKind, ShiftSettings,
     StartMaterial, TermRule, ValidFitParams,

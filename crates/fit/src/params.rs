@@ -112,7 +112,7 @@ pub struct FitParams {
     pub seed: u64,
     /// Number of starts: 1 runs the neutral start alone; k ≥ 2 adds four
     /// bump-shaped spectra and k − 1 seeded perturbations of the neutral
-    /// start (see [`crate::fit`]).
+    /// start (see [`crate::driver`]).
     pub starts: usize,
     /// Budget of objective evaluations per solver run (None: the method's
     /// default).
@@ -267,143 +267,22 @@ fn positive(key: &str, value: f64) -> Result<f64, FitError> {
 
 impl FitParams {
     /// Validates every setting against the rolling set-up and reduces the
-    /// scale anchor to a known |E| at one frequency.
+    /// scale anchor to a known |E| at one frequency. The settings are
+    /// checked group by group in a fixed order, so that of several invalid
+    /// settings the same one is always reported.
     pub fn check(self, setup: RollingSetup) -> Result<ValidFitParams, FitError> {
         let e1_max = positive("E1_max", self.e1_max)?;
-        let nu = setup.substrate.poisson;
-        let plane_strain = 1.0 - nu * nu;
         let anchor = match self.anchor {
             None => None,
-            Some(ScaleAnchor::StaticModulus(e0)) => {
-                let e0 = positive("E0", e0)?;
-                Some(ModulusAnchor {
-                    omega: 0.0,
-                    modulus: e0,
-                    source: "E0",
-                })
-            }
-            Some(ScaleAnchor::ModulusAt { omega, modulus }) => Some(ModulusAnchor {
-                omega: positive("E_at.omega", omega)?,
-                modulus: positive("E_at.E", modulus)?,
-                source: "E_at",
-            }),
-            Some(ScaleAnchor::ContactRadius { speed, radius }) => {
-                let speed = positive("contact_radius.v", speed)?;
-                let radius = positive("contact_radius.r", radius)?;
-                let g = setup.geometry;
-                if radius >= g.radius {
-                    return Err(FitError::setting(
-                        "contact_radius.r",
-                        format!(
-                            "{radius} m is not smaller than the body's radius {} m: \
-                             Hertz contact does not apply",
-                            g.radius
-                        ),
-                    ));
-                }
-                // Invert Hertz for |E_eff| at the contact's own frequency
-                // ω = v/r (the centre of the band v/r … 20 v/r it probes).
-                let e_eff = match g.shape {
-                    Shape::Sphere => 0.75 * g.load * g.radius / radius.powi(3),
-                    Shape::Cylinder => 4.0 * g.load * g.radius / (PI * radius * radius),
-                };
-                let omega = match setup.contact {
-                    ContactSize::Dynamic => speed / radius,
-                    ContactSize::Static => 0.0,
-                };
-                Some(ModulusAnchor {
-                    omega,
-                    modulus: e_eff * plane_strain,
-                    source: "contact_radius",
-                })
-            }
+            Some(anchor) => Some(reduce_anchor(anchor, &setup, e1_max)?),
         };
-        if let Some(a) = anchor
-            && a.modulus >= e1_max
-        {
-            return Err(FitError::setting(
-                a.source,
-                format!(
-                    "the anchored modulus {:e} Pa is not below E1_max = {e1_max:e} Pa",
-                    a.modulus
-                ),
-            ));
-        }
-        match &self.terms {
-            TermRule::PerDecade(d) => {
-                if !(d.is_finite() && *d >= 0.5 && *d <= 10.0) {
-                    return Err(FitError::setting(
-                        "terms",
-                        format!("{d} terms per decade: use 0.5 to 10"),
-                    ));
-                }
-            }
-            TermRule::Count(n) => {
-                if *n < 2 || *n > 200 {
-                    return Err(FitError::setting(
-                        "terms",
-                        format!("{n} terms: use 2 to 200"),
-                    ));
-                }
-            }
-            TermRule::Auto => {}
-            TermRule::Explicit(tau) => {
-                if tau.len() < 2 {
-                    return Err(FitError::setting(
-                        "tau",
-                        "give at least two relaxation times",
-                    ));
-                }
-                for (i, &t) in tau.iter().enumerate() {
-                    positive(&format!("tau[{i}]"), t)?;
-                    if i > 0 && t <= tau[i - 1] {
-                        return Err(FitError::setting(
-                            "tau",
-                            format!("relaxation times must increase (tau[{i}] = {t})"),
-                        ));
-                    }
-                }
-            }
-        }
-        if let Lambda::Fixed(l) = self.lambda
-            && !(l.is_finite() && l >= 0.0)
-        {
-            return Err(FitError::setting(
-                "lambda",
-                format!("{l} must be a finite number ≥ 0"),
-            ));
-        }
-        if self.starts == 0 || self.starts > 100 {
-            return Err(FitError::setting(
-                "starts",
-                format!("{} starts: use 1 to 100", self.starts),
-            ));
-        }
-        if let Some(0) = self.max_evaluations {
-            return Err(FitError::setting("max_evaluations", "must be at least 1"));
-        }
+        check_terms(&self.terms)?;
+        self.check_runs()?;
         let model_tolerance = positive("tolerance", self.model_tolerance)?;
         if let Some(s) = &self.start {
-            positive("material.E0", s.static_modulus)?;
-            if !(s.glassy_modulus.is_finite() && s.glassy_modulus > s.static_modulus) {
-                return Err(FitError::setting(
-                    "material.E1",
-                    "the starting glassy modulus must exceed the static one",
-                ));
-            }
+            check_start(s)?;
         }
-        if let Some(t) = self.shift.t_ref
-            && !t.is_finite()
-        {
-            return Err(FitError::setting(
-                "T_ref",
-                format!("{t} must be a finite temperature"),
-            ));
-        }
-        if let Some((c1, c2)) = self.shift.wlf_start {
-            positive("C1", c1)?;
-            positive("C2", c2)?;
-        }
+        check_shift(&self.shift)?;
         Ok(ValidFitParams {
             method: self.method,
             terms: self.terms,
@@ -421,6 +300,172 @@ impl FitParams {
             path_top: None,
         })
     }
+
+    /// λ, the number of starts and the evaluation budget.
+    fn check_runs(&self) -> Result<(), FitError> {
+        if let Lambda::Fixed(l) = self.lambda
+            && !(l.is_finite() && l >= 0.0)
+        {
+            return Err(FitError::setting(
+                "lambda",
+                format!("{l} must be a finite number ≥ 0"),
+            ));
+        }
+        if self.starts == 0 || self.starts > 100 {
+            return Err(FitError::setting(
+                "starts",
+                format!("{} starts: use 1 to 100", self.starts),
+            ));
+        }
+        if let Some(0) = self.max_evaluations {
+            return Err(FitError::setting("max_evaluations", "must be at least 1"));
+        }
+        Ok(())
+    }
+}
+
+/// The scale anchor as a known |E| at one frequency, which must lie below
+/// E1_max.
+fn reduce_anchor(
+    anchor: ScaleAnchor,
+    setup: &RollingSetup,
+    e1_max: f64,
+) -> Result<ModulusAnchor, FitError> {
+    let a = match anchor {
+        ScaleAnchor::StaticModulus(e0) => {
+            let e0 = positive("E0", e0)?;
+            ModulusAnchor {
+                omega: 0.0,
+                modulus: e0,
+                source: "E0",
+            }
+        }
+        ScaleAnchor::ModulusAt { omega, modulus } => ModulusAnchor {
+            omega: positive("E_at.omega", omega)?,
+            modulus: positive("E_at.E", modulus)?,
+            source: "E_at",
+        },
+        ScaleAnchor::ContactRadius { speed, radius } => contact_anchor(speed, radius, setup)?,
+    };
+    if a.modulus >= e1_max {
+        return Err(FitError::setting(
+            a.source,
+            format!(
+                "the anchored modulus {:e} Pa is not below E1_max = {e1_max:e} Pa",
+                a.modulus
+            ),
+        ));
+    }
+    Ok(a)
+}
+
+/// |E| from a contact radius `radius` measured at rolling speed `speed`:
+/// Hertz inverted for |E_eff|.
+fn contact_anchor(
+    speed: f64,
+    radius: f64,
+    setup: &RollingSetup,
+) -> Result<ModulusAnchor, FitError> {
+    let speed = positive("contact_radius.v", speed)?;
+    let radius = positive("contact_radius.r", radius)?;
+    let g = setup.geometry;
+    if radius >= g.radius {
+        return Err(FitError::setting(
+            "contact_radius.r",
+            format!(
+                "{radius} m is not smaller than the body's radius {} m: \
+                 Hertz contact does not apply",
+                g.radius
+            ),
+        ));
+    }
+    let nu = setup.substrate.poisson;
+    let plane_strain = 1.0 - nu * nu;
+    // Invert Hertz for |E_eff| at the contact's own frequency
+    // ω = v/r (the centre of the band v/r … 20 v/r it probes).
+    let e_eff = match g.shape {
+        Shape::Sphere => 0.75 * g.load * g.radius / radius.powi(3),
+        Shape::Cylinder => 4.0 * g.load * g.radius / (PI * radius * radius),
+    };
+    let omega = match setup.contact {
+        ContactSize::Dynamic => speed / radius,
+        ContactSize::Static => 0.0,
+    };
+    Ok(ModulusAnchor {
+        omega,
+        modulus: e_eff * plane_strain,
+        source: "contact_radius",
+    })
+}
+
+/// The relaxation-time rule.
+fn check_terms(terms: &TermRule) -> Result<(), FitError> {
+    match terms {
+        TermRule::PerDecade(d) => {
+            if !(d.is_finite() && *d >= 0.5 && *d <= 10.0) {
+                return Err(FitError::setting(
+                    "terms",
+                    format!("{d} terms per decade: use 0.5 to 10"),
+                ));
+            }
+        }
+        TermRule::Count(n) => {
+            if *n < 2 || *n > 200 {
+                return Err(FitError::setting(
+                    "terms",
+                    format!("{n} terms: use 2 to 200"),
+                ));
+            }
+        }
+        TermRule::Auto => {}
+        TermRule::Explicit(tau) => {
+            if tau.len() < 2 {
+                return Err(FitError::setting(
+                    "tau",
+                    "give at least two relaxation times",
+                ));
+            }
+            for (i, &t) in tau.iter().enumerate() {
+                positive(&format!("tau[{i}]"), t)?;
+                if i > 0 && t <= tau[i - 1] {
+                    return Err(FitError::setting(
+                        "tau",
+                        format!("relaxation times must increase (tau[{i}] = {t})"),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A starting material.
+fn check_start(s: &StartMaterial) -> Result<(), FitError> {
+    positive("material.E0", s.static_modulus)?;
+    if !(s.glassy_modulus.is_finite() && s.glassy_modulus > s.static_modulus) {
+        return Err(FitError::setting(
+            "material.E1",
+            "the starting glassy modulus must exceed the static one",
+        ));
+    }
+    Ok(())
+}
+
+/// The settings of a temperature-set fit.
+fn check_shift(shift: &ShiftSettings) -> Result<(), FitError> {
+    if let Some(t) = shift.t_ref
+        && !t.is_finite()
+    {
+        return Err(FitError::setting(
+            "T_ref",
+            format!("{t} must be a finite temperature"),
+        ));
+    }
+    if let Some((c1, c2)) = shift.wlf_start {
+        positive("C1", c1)?;
+        positive("C2", c2)?;
+    }
+    Ok(())
 }
 
 /// The bundled example's set-up (a 5 mm steel ball at 1 N on a thick rubber,

@@ -25,7 +25,7 @@
 //!   in ln λ.
 //! - Generalised cross-validation (kept for comparison): the λ minimising
 //!   GCV(λ) = N·misfit/(N − t(λ))², t the influence trace of
-//!   [`crate::analysis`].
+//!   `analysis`.
 //!
 //! # References
 //! - V.A. Morozov, "On the solution of functional equations by the method of

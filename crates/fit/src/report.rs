@@ -6,6 +6,7 @@ use serde::Serialize;
 
 pub use crate::analysis::ModulusPoint;
 use crate::regularization::LambdaRule;
+pub use crate::shift::{LogShift, ShiftRecord};
 
 /// The recovered Prony series at the reference state.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -106,75 +107,6 @@ pub struct RunRecord {
     pub history: Vec<[f64; 2]>,
 }
 
-/// The time–temperature shift of a temperature set (docs/ARCHITECTURE.md,
-/// "Conventions"): E*(ω, T) = E*(ω a_T, T_ref).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "model", rename_all = "lowercase")]
-pub enum ShiftRecord {
-    /// WLF: log10 a_T = −C1 (T − T_ref)/(C2 + T − T_ref).
-    Wlf {
-        /// Reference temperature, °C.
-        #[serde(rename = "T_ref")]
-        t_ref: f64,
-        /// C1 (dimensionless).
-        #[serde(rename = "C1")]
-        c1: f64,
-        /// C2, K.
-        #[serde(rename = "C2")]
-        c2: f64,
-        /// 1σ of C1 from the curvature of V.
-        #[serde(rename = "C1_sigma")]
-        c1_sigma: f64,
-        /// 1σ of C2, K.
-        #[serde(rename = "C2_sigma")]
-        c2_sigma: f64,
-        /// log10 a_T at each measured temperature (from C1, C2).
-        #[serde(rename = "log_aT")]
-        log_shift: Vec<LogShift>,
-    },
-    /// One free log10 a_T per temperature, 0 at T_ref.
-    Free {
-        /// Reference temperature, °C (one of the measured temperatures).
-        #[serde(rename = "T_ref")]
-        t_ref: f64,
-        /// log10 a_T per measured temperature.
-        #[serde(rename = "log_aT")]
-        log_shift: Vec<LogShift>,
-    },
-}
-
-impl ShiftRecord {
-    /// T_ref, °C.
-    pub fn t_ref(&self) -> f64 {
-        match self {
-            ShiftRecord::Wlf { t_ref, .. } | ShiftRecord::Free { t_ref, .. } => *t_ref,
-        }
-    }
-
-    /// (C1, C2) of a WLF shift.
-    pub fn wlf_constants(&self) -> Option<(f64, f64)> {
-        match self {
-            ShiftRecord::Wlf { c1, c2, .. } => Some((*c1, *c2)),
-            ShiftRecord::Free { .. } => None,
-        }
-    }
-
-    /// log10 a_T at temperature `t` (°C), when `t` is one of the set's.
-    pub fn log_shift_at(&self, t: f64) -> Option<f64> {
-        self.log_shifts()
-            .iter()
-            .find(|s| (s.temperature - t).abs() <= crate::shift::SAME_TEMPERATURE)
-            .map(|s| s.log_shift)
-    }
-
-    /// log10 a_T per measured temperature.
-    pub fn log_shifts(&self) -> &[LogShift] {
-        match self {
-            ShiftRecord::Wlf { log_shift, .. } | ShiftRecord::Free { log_shift, .. } => log_shift,
-        }
-    }
-}
-
 /// The cross-check of a temperature set's shifts.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ShiftCrossCheck {
@@ -207,20 +139,6 @@ pub struct CrossCheckRow {
     pub single_misfit_per_point: f64,
 }
 
-/// log10 a_T at one temperature.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct LogShift {
-    /// Temperature, °C.
-    #[serde(rename = "T")]
-    pub temperature: f64,
-    /// log10 a_T.
-    #[serde(rename = "log_aT")]
-    pub log_shift: f64,
-    /// 1σ of log10 a_T (0 at T_ref of a free shift).
-    #[serde(rename = "log_aT_sigma")]
-    pub log_shift_sigma: f64,
-}
-
 /// Everything a fit produced.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FitReport {
@@ -230,7 +148,7 @@ pub struct FitReport {
     pub poisson: f64,
     /// The window the data determine (at T_ref for a temperature set): the
     /// part of the probed window where tan δ is known to better than
-    /// [`crate::analysis::DETERMINED_RELATIVE_SIGMA`] (1σ, bias included).
+    /// 10 % (1σ, bias included; `analysis::DETERMINED_RELATIVE_SIGMA`).
     pub window: Window,
     /// The window the data's speeds probe (v_min/r … 20 v_max/r), of which
     /// `window` is the determined part.

@@ -27,7 +27,7 @@
 //!   Rheology Bulletin 78(2) (2009) 16–31 (shifting by overlap, vertical
 //!   factors from data).
 
-use super::Isotherm;
+use super::isotherm::Isotherm;
 use crate::error::FitError;
 use crate::shift::overlap::{Curve, joint_relative_shift, offset_at};
 

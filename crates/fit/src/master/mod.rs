@@ -12,7 +12,7 @@
 //! b_T.
 //!
 //! Steps, each in its own file:
-//! 1. [`horizontal`]: neighbouring isotherms overlapped in log E′ and
+//! 1. `horizontal`: neighbouring isotherms overlapped in log E′ and
 //!    log tan δ give log a_T (and log b_T) up to a constant.
 //! 2. [`temperature_law`]: WLF or Arrhenius fitted to those shifts with a
 //!    free offset; the offset fixes log a_{T_ref} = 0. With the law
@@ -33,28 +33,17 @@
 //!   guide", Rheology Bulletin 78(2) (2009) 16–31.
 
 pub(crate) mod horizontal;
+mod isotherm;
 pub mod prony_fit;
 pub mod temperature_law;
 
+pub use isotherm::Isotherm;
 pub use prony_fit::{PronyFit, TAU_PER_DECADE, fit_prony, tau_grid};
 pub use temperature_law::{ArrheniusFit, WlfFit};
 
 use rollfit_model::ViscoelasticModulus;
 
 use crate::error::FitError;
-
-/// One DMA isotherm: E*(ω) at one temperature.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Isotherm {
-    /// Temperature, °C.
-    pub temperature: f64,
-    /// Angular frequencies, rad/s, monotone (a sweep up or down).
-    pub omega: Vec<f64>,
-    /// E′ at each frequency, Pa.
-    pub storage: Vec<f64>,
-    /// E″ at each frequency, Pa.
-    pub loss: Vec<f64>,
-}
 
 /// The law of the horizontal shift factor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

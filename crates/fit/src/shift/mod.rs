@@ -20,31 +20,16 @@
 //!   1980, ch. 11.
 
 pub(crate) mod overlap;
+mod record;
+mod temperatures;
 
 use std::f64::consts::LN_10;
 
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::params::{ShiftKind, ShiftSettings};
-use crate::report::{LogShift, ShiftRecord};
-
-/// Temperatures closer than this (°C) are the same temperature.
-pub(crate) const SAME_TEMPERATURE: f64 = 1e-9;
-
-/// The distinct temperatures of a data set, ascending.
-pub(crate) fn distinct_temperatures(data: &Measurements) -> Vec<f64> {
-    let mut t: Vec<f64> = data.temperature().map(|t| t.to_vec()).unwrap_or_default();
-    t.sort_by(f64::total_cmp);
-    t.dedup_by(|a, b| (*a - *b).abs() <= SAME_TEMPERATURE);
-    t
-}
-
-/// The index in `temps` of temperature `t`.
-pub(crate) fn index_of(temps: &[f64], t: f64) -> Option<usize> {
-    temps
-        .iter()
-        .position(|&x| (x - t).abs() <= SAME_TEMPERATURE)
-}
+pub use record::{LogShift, ShiftRecord};
+pub(crate) use temperatures::{distinct_temperatures, index_of};
 
 #[derive(Debug, Clone)]
 enum Kind {

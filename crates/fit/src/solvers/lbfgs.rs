@@ -18,16 +18,16 @@ use argmin::solver::linesearch::MoreThuenteLineSearch;
 use argmin::solver::quasinewton::LBFGS;
 use nalgebra::DVector;
 
-use super::{StopReason, stop_from_argmin, stop_from_error};
-use crate::problem::Problem;
+use super::counting::{Counted, stop_from_argmin};
+use super::outcome::StopReason;
 
 /// Minimises from `start`; returns (iterations, stop reason).
-pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReason) {
+pub(crate) fn minimize(counted: &Counted<'_, '_>, start: &[f64]) -> (usize, StopReason) {
     // argmin's tolerances are absolute; scale them by V at the start so that
     // σ-weighted (V ~ N) and relative (V ~ N·1e-4) residuals stop alike.
-    let v0 = match problem.evaluate(start, false) {
+    let v0 = match counted.evaluate(start, false) {
         Ok(e) => e.objective(),
-        Err(e) => return (0, stop_from_error(&e)),
+        Err(refusal) => return (0, refusal.stop_reason()),
     };
     let line_search = MoreThuenteLineSearch::new();
     let solver = match LBFGS::new(line_search, 10)
@@ -37,8 +37,8 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
         Ok(s) => s,
         Err(e) => return (0, StopReason::Stall(e.to_string())),
     };
-    let budget = problem.budget.get() as u64;
-    let result = Executor::new(problem, solver)
+    let budget = counted.budget() as u64;
+    let result = Executor::new(counted, solver)
         .configure(|state| {
             state
                 .param(DVector::from_column_slice(start))
@@ -57,20 +57,18 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
                     StopReason::Budget
                 }
                 // The line search ends the run in its own words when an
-                // evaluation is refused; the problem's counter says why.
-                TerminationStatus::Terminated(TerminationReason::SolverExit(_))
-                    if problem.budget_used_up() =>
-                {
-                    StopReason::Budget
-                }
+                // evaluation is refused; the wrapper says why.
                 TerminationStatus::Terminated(TerminationReason::SolverExit(text)) => {
-                    StopReason::LineSearchFailure(text.clone())
+                    match counted.halt() {
+                        Some(halt) => halt.stop_reason(),
+                        None => StopReason::LineSearchFailure(text.clone()),
+                    }
                 }
                 TerminationStatus::Terminated(other) => StopReason::Stall(other.text().into()),
                 TerminationStatus::NotTerminated => StopReason::Stall("not terminated".into()),
             };
             (iterations, stop)
         }
-        Err(e) => (problem.history.borrow().len(), stop_from_argmin(&e)),
+        Err(e) => (counted.recorded(), stop_from_argmin(&e)),
     }
 }

@@ -23,9 +23,9 @@ use std::cell::Cell;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
 use nalgebra::{DMatrix, DVector, Dyn, Owned};
 
-use super::{StopReason, Tolerance, stop_from_error};
-use crate::error::FitError;
-use crate::problem::{Evaluation, Problem};
+use super::counting::{Counted, Refusal};
+use super::outcome::{StopReason, Tolerance};
+use crate::objective::Evaluation;
 
 /// Relative reduction of V and relative step below which a run has
 /// converged: far below anything noise lets one resolve (a change of V by
@@ -49,14 +49,14 @@ const REFUSED_RESIDUAL: f64 = 1e8;
 /// logarithms and a step of a few units already changes H_k by e^k.
 const STEP_BOUND: f64 = 0.1;
 
-struct Adapter<'p, 'a> {
-    problem: &'p Problem<'a>,
+struct Adapter<'c, 'o, 'a> {
+    counted: &'c Counted<'o, 'a>,
     theta: DVector<f64>,
-    current: Result<Evaluation, FitError>,
+    current: Result<Evaluation, Refusal>,
     jacobians: Cell<usize>,
 }
 
-impl LeastSquaresProblem<f64, Dyn, Dyn> for Adapter<'_, '_> {
+impl LeastSquaresProblem<f64, Dyn, Dyn> for Adapter<'_, '_, '_> {
     type ResidualStorage = Owned<f64, Dyn>;
     type JacobianStorage = Owned<f64, Dyn, Dyn>;
     type ParameterStorage = Owned<f64, Dyn>;
@@ -65,7 +65,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Adapter<'_, '_> {
         self.theta.copy_from(theta);
         // The Jacobian costs about 1.4 μ-evaluations in the forward model's
         // one-pass scheme, so it is computed with every trial point.
-        self.current = self.problem.evaluate(theta.as_slice(), true);
+        self.current = self.counted.evaluate(theta.as_slice(), true);
     }
 
     fn params(&self) -> DVector<f64> {
@@ -78,10 +78,10 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Adapter<'_, '_> {
             // A trial point the forward model refuses (an absurd material far
             // outside the trust region's intent) is reported as a very poor
             // point, so the trust region shrinks instead of the run ending;
-            // running out of budget still ends it.
-            Err(FitError::BudgetExhausted(_)) => None,
-            Err(_) => Some(DVector::from_element(
-                self.problem.residual_count(),
+            // a halted run (budget, abandonment) still ends.
+            Err(Refusal::Halted(_)) => None,
+            Err(Refusal::Failed(_)) => Some(DVector::from_element(
+                self.counted.objective().residual_count(),
                 REFUSED_RESIDUAL,
             )),
         }
@@ -95,7 +95,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Adapter<'_, '_> {
 
 /// Minimises from `start`; returns (iterations, stop reason).
 pub(crate) fn minimize(
-    problem: &Problem<'_>,
+    counted: &Counted<'_, '_>,
     start: &[f64],
     tolerance: Tolerance,
 ) -> (usize, StopReason) {
@@ -106,13 +106,13 @@ pub(crate) fn minimize(
     let theta = DVector::from_column_slice(start);
     // Evaluated at the start once, as `set_params` would.
     let adapter = Adapter {
-        problem,
+        counted,
         theta,
-        current: problem.evaluate(start, true),
+        current: counted.evaluate(start, true),
         jacobians: Cell::new(0),
     };
     let n = start.len();
-    let budget = problem.budget.get();
+    let budget = counted.budget();
     let solver = LevenbergMarquardt::new()
         .with_ftol(tol)
         .with_xtol(LM_TOLERANCE)
@@ -135,7 +135,7 @@ pub(crate) fn minimize(
             "no further improvement possible in {what} at machine precision"
         )),
         TerminationReason::User(_) | TerminationReason::Numerical(_) => match &adapter.current {
-            Err(error) => stop_from_error(error),
+            Err(refusal) => refusal.stop_reason(),
             Ok(_) => StopReason::ModelFailure("non-finite residuals".into()),
         },
         other => StopReason::Stall(format!("{other:?}")),

@@ -14,14 +14,14 @@ use argmin::core::{Executor, State, TerminationReason, TerminationStatus};
 use argmin::solver::neldermead::NelderMead;
 use nalgebra::DVector;
 
-use super::{StopReason, stop_from_argmin};
-use crate::problem::Problem;
+use super::counting::{Counted, stop_from_argmin};
+use super::outcome::StopReason;
 
 /// Edge of the initial simplex in log-parameters.
 const SIMPLEX_STEP: f64 = 0.5;
 
 /// Minimises from `start`; returns (iterations, stop reason).
-pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReason) {
+pub(crate) fn minimize(counted: &Counted<'_, '_>, start: &[f64]) -> (usize, StopReason) {
     let x0 = DVector::from_column_slice(start);
     let mut simplex = vec![x0.clone()];
     for j in 0..start.len() {
@@ -33,8 +33,8 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
         Ok(s) => s,
         Err(e) => return (0, StopReason::Stall(e.to_string())),
     };
-    let budget = problem.budget.get() as u64;
-    let result = Executor::new(problem, solver)
+    let budget = counted.budget() as u64;
+    let result = Executor::new(counted, solver)
         .configure(|state| state.max_iters(budget))
         .run();
     match result {
@@ -52,6 +52,6 @@ pub(crate) fn minimize(problem: &Problem<'_>, start: &[f64]) -> (usize, StopReas
             };
             (state.get_iter() as usize, stop)
         }
-        Err(e) => (problem.history.borrow().len(), stop_from_argmin(&e)),
+        Err(e) => (counted.recorded(), stop_from_argmin(&e)),
     }
 }

@@ -1,9 +1,9 @@
 //! Temperature sets: one master curve at T_ref from μ(v) measured at several
 //! temperatures, and the cross-check of its shifts.
 //!
-//! The joint fit (see [`crate::fit`]) fits the Prony master curve and the
-//! shift together, evaluating the master curve at the reduced speeds v·a_T
-//! ([`crate::shift`]). What this module adds:
+//! The joint fit (see [`crate::driver`]) fits the Prony master curve and
+//! the shift together, evaluating the master curve at the reduced speeds
+//! v·a_T ([`crate::shift`]). What this module adds:
 //!
 //! 1. A model-free start for the shift: the measured ln μ(log10 v) curves of
 //!    neighbouring temperatures are overlapped ([`crate::shift::overlap`]),
@@ -14,14 +14,30 @@
 //!    scale anchor carried to that temperature with the model-free start
 //!    shift, so the check does not lean on the joint fit), and the
 //!    single-temperature tan δ(ω) curves — which rolling data fix far
-//!    better than |E| — are overlapped to estimate the shifts again.
+//!    better than |E| — are overlapped to estimate the shifts again
+//!    ([`cross_check`]).
+//!
+//! The fits these steps need are the driver's; they are passed in as a
+//! function (a [`Fit`]), so that this module does not depend on the driver
+//! that uses it.
+
+pub(crate) mod cross_check;
 
 use crate::data::Measurements;
 use crate::error::FitError;
-use crate::params::{ModulusAnchor, ShiftKind, ValidFitParams};
-use crate::report::{CrossCheckRow, FitReport, ShiftCrossCheck};
+use crate::params::{ShiftKind, ValidFitParams};
+use crate::report::FitReport;
 use crate::shift::overlap::{Curve, chained_shifts};
 use crate::shift::{ShiftParam, distinct_temperatures, index_of};
+
+/// A whole fit of some measurements under some settings: the driver's
+/// entry point, [`crate::driver::fit`].
+pub(crate) trait Fit:
+    Fn(&Measurements, &ValidFitParams) -> Result<FitReport, FitError>
+{
+}
+
+impl<F: Fn(&Measurements, &ValidFitParams) -> Result<FitReport, FitError>> Fit for F {}
 
 /// The shift of a temperature set with its starting θ_s.
 #[derive(Debug, Clone)]
@@ -59,7 +75,7 @@ fn reduced_range(param: &ShiftParam, data: &Measurements, theta: &[f64]) -> (f64
 }
 
 /// The rows of `data` at each of the distinct temperatures `temps`.
-fn rows_by_temperature(data: &Measurements, temps: &[f64]) -> Vec<Vec<usize>> {
+pub(super) fn rows_by_temperature(data: &Measurements, temps: &[f64]) -> Vec<Vec<usize>> {
     let mut rows = vec![Vec::new(); temps.len()];
     for (i, &t) in data.temperature().unwrap_or_default().iter().enumerate() {
         if let Some(j) = index_of(temps, t) {
@@ -142,12 +158,13 @@ pub(crate) fn temperature_set(
 /// 4 decades, 20 K apart) ended 10 decades off at −20 °C with a 27 %
 /// misfit, while WLF's two constants, tied to every temperature at once,
 /// gave the shifts within 0.04 decade. So λ and the τ grid are chosen with
-/// WLF shifts, and the free shifts are then fitted at that λ from the WLF
-/// solution ([`crate::fit`]).
+/// WLF shifts (by `fit_set`), and the free shifts are then fitted at that λ
+/// from the WLF solution ([`crate::driver`]).
 pub(crate) fn wlf_before_free(
     data: &Measurements,
     params: &ValidFitParams,
     start: &ShiftStart,
+    fit_set: impl Fit,
 ) -> Option<(FitReport, ShiftStart)> {
     let temps = start.param.temperatures().to_vec();
     if params.shift.kind != ShiftKind::Free || temps.len() < 3 {
@@ -155,9 +172,11 @@ pub(crate) fn wlf_before_free(
     }
     let mut wlf = params.clone();
     wlf.shift.kind = ShiftKind::Wlf;
+    // Only the WLF fit's material, λ and runs are used: its own cross-check
+    // would be work thrown away.
     wlf.shift.cross_check = false;
     wlf.bands = false;
-    let report = crate::fit::fit(data, &wlf).ok()?;
+    let report = fit_set(data, &wlf).ok()?;
     let shift = report.shift.as_ref()?;
     let log_shift: Vec<f64> = temps
         .iter()
@@ -168,10 +187,11 @@ pub(crate) fn wlf_before_free(
     Some((report, free))
 }
 
-/// The fit of all rows of a set as one curve at the start shift's reduced
-/// speeds v·a_T (no shift fitted), which gives the joint fit its τ grid, its
-/// starting material and the top of its λ path ([`crate::fit`]). `None`
-/// when that fit fails; the joint fit then walks the whole λ path.
+/// The fit (by `fit_curve`) of all rows of a set as one curve at the start
+/// shift's reduced speeds v·a_T (no shift fitted), which gives the joint fit
+/// its τ grid, its starting material and the top of its λ path
+/// ([`crate::driver`]). `None` when that fit fails; the joint fit then walks
+/// the whole λ path.
 ///
 /// Why: at the large λ where the λ path begins, the spectrum is nearly a
 /// power law and so is μ(v); the temperatures' curves slide along it, and
@@ -182,6 +202,7 @@ pub(crate) fn material_first(
     data: &Measurements,
     params: &ValidFitParams,
     start: &ShiftStart,
+    fit_curve: impl Fit,
 ) -> Option<FitReport> {
     let (ln_a, _) = start.param.point_shifts(&start.theta);
     let reduced: Vec<f64> = data
@@ -197,99 +218,9 @@ pub(crate) fn material_first(
         None,
     )
     .ok()?;
+    // Without a temperature column the rows are one curve: no shift, and so
+    // no cross-check, is fitted to them.
     let mut single = params.clone();
     single.bands = false;
-    single.shift.cross_check = false;
-    crate::fit::fit(&one_curve, &single).ok()
-}
-
-/// The cross-check of `report`'s shift: single-temperature fits overlapped
-/// by tan δ. `Err` carries a reason the check could not be made (reported
-/// as a warning, not a failure of the joint fit).
-pub(crate) fn cross_check(
-    data: &Measurements,
-    params: &ValidFitParams,
-    report: &FitReport,
-    start: &ShiftStart,
-) -> Result<ShiftCrossCheck, String> {
-    let joint = report
-        .shift
-        .as_ref()
-        .ok_or_else(|| "the joint fit has no shift".to_string())?;
-    let temps = start.param.temperatures().to_vec();
-    let rows = rows_by_temperature(data, &temps);
-    let (start_log_shift, _) = start.param.log_shifts(&start.theta);
-    let mut curves = Vec::with_capacity(temps.len());
-    let mut misfits = Vec::with_capacity(temps.len());
-    for (j, r) in rows.iter().enumerate() {
-        let pick = |col: &[f64]| r.iter().map(|&i| col[i]).collect::<Vec<f64>>();
-        let subset = Measurements::new(
-            pick(data.speeds()),
-            pick(data.friction()),
-            data.sigma().map(pick),
-            None,
-        )
-        .map_err(|e| e.to_string())?;
-        let mut single = params.clone();
-        single.shift.cross_check = false;
-        // |E_T(ω_a/a_T)| = |E_ref(ω_a)|: the anchor moves with the start shift.
-        single.anchor = params.anchor.map(|a| ModulusAnchor {
-            omega: a.omega / 10f64.powf(start_log_shift[j]),
-            ..a
-        });
-        let fitted = crate::fit::fit(&subset, &single)
-            .map_err(|e| format!("the fit of T = {} °C alone failed: {e}", temps[j]))?;
-        misfits.push(fitted.misfit_per_point);
-        curves.push(Curve::new(
-            fitted
-                .curve
-                .iter()
-                .map(|p| (p.omega.log10(), p.tan_delta.ln()))
-                .collect(),
-        ));
-    }
-    let chain = chained_shifts(&curves).ok_or_else(|| {
-        "the tan δ windows of neighbouring single-temperature fits do not overlap".to_string()
-    })?;
-    let joint_at: Vec<f64> = temps
-        .iter()
-        .map(|&t| joint.log_shift_at(t).unwrap_or(f64::NAN))
-        .collect();
-    // Chained shifts are relative: tie them to T_ref when it was measured,
-    // else to the joint fit's mean.
-    let (offset, method) = match index_of(&temps, start.param.t_ref()) {
-        Some(r) => (
-            chain[r],
-            "single-temperature fits overlapped by ln tan δ(log10 ω), neighbour to neighbour, \
-             relative to T_ref",
-        ),
-        None => (
-            chain.iter().zip(&joint_at).map(|(c, j)| c - j).sum::<f64>() / temps.len() as f64,
-            "single-temperature fits overlapped by ln tan δ(log10 ω), neighbour to neighbour; \
-             T_ref was not measured, so the chain is aligned to the joint fit's mean",
-        ),
-    };
-    let rows: Vec<CrossCheckRow> = temps
-        .iter()
-        .enumerate()
-        .map(|(j, &t)| {
-            let single = chain[j] - offset;
-            CrossCheckRow {
-                temperature: t,
-                log_shift_joint: joint_at[j],
-                log_shift_single: single,
-                difference: single - joint_at[j],
-                single_misfit_per_point: misfits[j],
-            }
-        })
-        .collect();
-    let n = rows.len() as f64;
-    let rms_difference = (rows.iter().map(|r| r.difference.powi(2)).sum::<f64>() / n).sqrt();
-    let max_difference = rows.iter().fold(0.0f64, |m, r| m.max(r.difference.abs()));
-    Ok(ShiftCrossCheck {
-        method: method.into(),
-        temperatures: rows,
-        rms_difference,
-        max_difference,
-    })
+    fit_curve(&one_curve, &single).ok()
 }

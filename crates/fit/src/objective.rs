@@ -13,12 +13,13 @@
 //! ([`rollfit_model::Scene::friction_with_gradient`]) through the chain rule
 //! of [`crate::parametrization`].
 //!
-//! The same problem serves Levenberg–Marquardt (as residuals and Jacobian)
-//! and argmin's solvers (as `CostFunction` V and `Gradient` 2Jᵀr).
+//! The objective is a pure function of θ at a given λ: it holds no budget,
+//! best point or history. The solvers see it through
+//! [`crate::solvers::counting`], which counts evaluations against a budget,
+//! keeps the best point and the history, and abandons hopeless starts; that
+//! wrapper serves Levenberg–Marquardt (as residuals and Jacobian) and
+//! argmin's solvers (as `CostFunction` V and `Gradient` 2Jᵀr).
 
-use std::cell::{Cell, RefCell};
-
-use argmin::core::{CostFunction, Error as ArgminError, Gradient};
 use nalgebra::{DMatrix, DVector};
 use rollfit_model::{Prony, Scene};
 
@@ -42,10 +43,11 @@ fn smooth_excess(x: f64) -> (f64, f64) {
     (x * x / (x + d), x * (x + 2.0 * d) / ((x + d) * (x + d)))
 }
 
-/// The fit problem at one λ.
-pub(crate) struct Problem<'a> {
+/// V(θ) at one λ, as residuals and their Jacobian.
+pub(crate) struct Objective<'a> {
     pub setup: &'a RollingSetup,
     pub data: &'a Measurements,
+    /// s_i: σ_i when measured, else μ_i.
     pub scales: Vec<f64>,
     pub param: Parametrization,
     /// The temperature shift of a temperature set; its parameters follow
@@ -53,21 +55,8 @@ pub(crate) struct Problem<'a> {
     pub shift: Option<ShiftParam>,
     pub lambda: f64,
     pub e1_max: f64,
+    /// The forward model's relative tolerance.
     pub tolerance: f64,
-    /// Forward-model evaluations so far (one per residual vector).
-    pub evaluations: Cell<usize>,
-    /// Evaluations allowed before [`FitError::BudgetExhausted`].
-    pub budget: Cell<usize>,
-    /// The best (V, θ) seen, kept so that a solver that stops on an error
-    /// (line search, budget) still yields its best point.
-    pub best: RefCell<Option<(f64, Vec<f64>)>>,
-    /// (evaluations, best V so far) after every evaluation.
-    pub history: RefCell<Vec<(usize, f64)>>,
-    /// An exploratory run is abandoned when after this many evaluations its
-    /// best V is still above this value: (evaluations, V).
-    pub abandon_above: Cell<Option<(usize, f64)>>,
-    /// Set when a run was abandoned.
-    pub abandoned: Cell<bool>,
 }
 
 /// Residuals (and Jacobian) at one θ.
@@ -90,7 +79,7 @@ impl Evaluation {
     }
 }
 
-impl<'a> Problem<'a> {
+impl Objective<'_> {
     /// Rows of the residual vector.
     pub fn residual_count(&self) -> usize {
         self.data.len() + self.smoothness_count() + 1
@@ -148,10 +137,6 @@ impl<'a> Problem<'a> {
 
     /// Residuals, and the Jacobian when `with_jacobian`.
     pub fn evaluate(&self, theta: &[f64], with_jacobian: bool) -> Result<Evaluation, FitError> {
-        if self.evaluations.get() >= self.budget.get() {
-            return Err(FitError::BudgetExhausted(self.budget.get()));
-        }
-        self.evaluations.set(self.evaluations.get() + 1);
         if theta.iter().any(|t| !t.is_finite()) {
             return Err(FitError::setting(
                 "parameters",
@@ -237,98 +222,12 @@ impl<'a> Problem<'a> {
                 }
             }
         }
-        let evaluation = Evaluation {
+        Ok(Evaluation {
             residuals,
             jacobian,
             mu,
             misfit,
-        };
-        self.record(theta, evaluation.objective());
-        Ok(evaluation)
-    }
-
-    fn record(&self, theta: &[f64], objective: f64) {
-        let mut best = self.best.borrow_mut();
-        let improved = best.as_ref().is_none_or(|(v, _)| objective < *v);
-        if improved {
-            *best = Some((objective, theta.to_vec()));
-        }
-        let best_value = best.as_ref().map_or(objective, |(v, _)| *v);
-        self.history
-            .borrow_mut()
-            .push((self.evaluations.get(), best_value));
-        if let Some((at, above)) = self.abandon_above.get()
-            && self.evaluations.get() >= at
-            && best_value > above
-        {
-            // The next evaluation reports the budget used up, which ends
-            // every solver; `abandoned` tells the driver why.
-            self.abandoned.set(true);
-            self.budget.set(self.evaluations.get());
-        }
-    }
-
-    /// Whether the evaluation budget is used up (an abandoned run's too):
-    /// the next evaluation would be refused.
-    pub fn budget_used_up(&self) -> bool {
-        self.evaluations.get() >= self.budget.get()
-    }
-
-    /// Resets the counters and the record for a new solver run with `budget`
-    /// evaluations.
-    pub fn reset(&self, budget: usize) {
-        self.abandoned.set(false);
-        self.evaluations.set(0);
-        self.budget.set(budget);
-        *self.best.borrow_mut() = None;
-        self.history.borrow_mut().clear();
-    }
-}
-
-/// V reported to argmin at a trial point the forward model refuses (an
-/// absurd material a long line-search step or a simplex move produced): a
-/// very poor but finite value, so the line search backtracks and the simplex
-/// contracts instead of the run ending. Running out of budget still ends it.
-const REFUSED_OBJECTIVE: f64 = 1e30;
-
-fn refused(e: &FitError) -> bool {
-    !matches!(e, FitError::BudgetExhausted(_))
-}
-
-/// The fit's error as argmin's, kept as its value so that the solver
-/// drivers recover it by type (`solvers::stop_from_argmin`).
-fn to_argmin(e: FitError) -> ArgminError {
-    ArgminError::new(e)
-}
-
-impl CostFunction for &Problem<'_> {
-    type Param = DVector<f64>;
-    type Output = f64;
-
-    fn cost(&self, theta: &Self::Param) -> Result<f64, ArgminError> {
-        match self.evaluate(theta.as_slice(), false) {
-            Ok(e) => Ok(e.objective()),
-            Err(e) if refused(&e) => Ok(REFUSED_OBJECTIVE),
-            Err(e) => Err(to_argmin(e)),
-        }
-    }
-}
-
-impl Gradient for &Problem<'_> {
-    type Param = DVector<f64>;
-    type Gradient = DVector<f64>;
-
-    fn gradient(&self, theta: &Self::Param) -> Result<Self::Gradient, ArgminError> {
-        match self.evaluate(theta.as_slice(), true) {
-            Ok(e) => {
-                let jac = e
-                    .jacobian
-                    .ok_or_else(|| ArgminError::msg("the model returned no Jacobian"))?;
-                Ok(2.0 * jac.transpose() * e.residuals)
-            }
-            Err(e) if refused(&e) => Ok(DVector::zeros(theta.len())),
-            Err(e) => Err(to_argmin(e)),
-        }
+        })
     }
 }
 
@@ -337,15 +236,15 @@ mod tests {
     use super::*;
     use crate::params::ModulusAnchor;
 
-    /// A problem at λ = 0.3 with a tight model tolerance and no budget.
-    fn test_problem<'a>(
+    /// The objective at λ = 0.3 with a tight model tolerance.
+    fn test_objective<'a>(
         setup: &'a RollingSetup,
         data: &'a Measurements,
         param: Parametrization,
         shift: Option<ShiftParam>,
         e1_max: f64,
-    ) -> Problem<'a> {
-        Problem {
+    ) -> Objective<'a> {
+        Objective {
             setup,
             data,
             scales: data.residual_scales(),
@@ -354,12 +253,6 @@ mod tests {
             lambda: 0.3,
             e1_max,
             tolerance: 1e-10,
-            evaluations: Default::default(),
-            budget: Cell::new(usize::MAX),
-            best: Default::default(),
-            history: Default::default(),
-            abandon_above: Default::default(),
-            abandoned: Default::default(),
         }
     }
 
@@ -399,8 +292,8 @@ mod tests {
                     }
                 })
                 .collect();
-            let problem = test_problem(&setup, &data, param, None, 1e8);
-            let e = problem.evaluate(&theta, true).unwrap();
+            let objective = test_objective(&setup, &data, param, None, 1e8);
+            let e = objective.evaluate(&theta, true).unwrap();
             let jac = e.jacobian.unwrap();
             for j in 0..n {
                 let step = 1e-5;
@@ -408,8 +301,8 @@ mod tests {
                 let mut dn = theta.clone();
                 up[j] += step;
                 dn[j] -= step;
-                let ru = problem.evaluate(&up, false).unwrap().residuals;
-                let rd = problem.evaluate(&dn, false).unwrap().residuals;
+                let ru = objective.evaluate(&up, false).unwrap().residuals;
+                let rd = objective.evaluate(&dn, false).unwrap().residuals;
                 for i in 0..ru.len() {
                     let fd = (ru[i] - rd[i]) / (2.0 * step);
                     assert!(
@@ -459,16 +352,16 @@ mod tests {
                 .map(|k| 3.0 + 0.4 * (k as f64).sin())
                 .collect();
             theta.extend(shift.theta_of_wlf(8.86, 101.6));
-            let problem = test_problem(&setup, &data, param, Some(shift), 1e10);
-            let jac = problem.evaluate(&theta, true).unwrap().jacobian.unwrap();
-            for j in problem.param.free_count()..theta.len() {
+            let objective = test_objective(&setup, &data, param, Some(shift), 1e10);
+            let jac = objective.evaluate(&theta, true).unwrap().jacobian.unwrap();
+            for j in objective.param.free_count()..theta.len() {
                 let step = 1e-5;
                 let mut up = theta.clone();
                 let mut dn = theta.clone();
                 up[j] += step;
                 dn[j] -= step;
-                let ru = problem.evaluate(&up, false).unwrap().residuals;
-                let rd = problem.evaluate(&dn, false).unwrap().residuals;
+                let ru = objective.evaluate(&up, false).unwrap().residuals;
+                let rd = objective.evaluate(&dn, false).unwrap().residuals;
                 for i in 0..ru.len() {
                     let fd = (ru[i] - rd[i]) / (2.0 * step);
                     assert!(

@@ -1,0 +1,247 @@
+//! The result of a fit, put together once everything in it is known: the
+//! fit on its τ grid with the window the data determine ([`GridOutcome`]),
+//! then the parts only the whole fit knows ([`Whole`]) — the term rule, the
+//! shift cross-check, the sanity warnings, the condensing of dense data and
+//! the totals.
+
+use rollfit_model::{Prony, Scene, ViscoelasticModulus};
+
+use crate::analysis::{DETERMINED_RELATIVE_SIGMA, determined_stretch};
+use crate::condense::Condensed;
+use crate::data::Measurements;
+use crate::error::FitError;
+use crate::params::ValidFitParams;
+use crate::report::{AnchorRecord, FitReport, ShiftCrossCheck, TermsRecord, Window};
+use crate::sanity;
+
+use super::optimum::Optimum;
+use super::profile::ScaleProfile;
+
+/// Largest difference (decades) between the joint fit's shifts and the
+/// single-temperature fits' that passes without a warning.
+const CROSS_CHECK_TOLERANCE: f64 = 0.3;
+
+/// What the fit on one τ grid found.
+#[derive(Debug, Clone)]
+pub(super) struct GridOutcome {
+    /// The analysed optimum, its bands widened by the scale profile and its
+    /// curve cut to `window`.
+    pub fit: Optimum,
+    /// The window the data determine (the probed window without bands).
+    pub window: Window,
+    /// (factor, misfit, λ) of the scale profile of an unanchored fit.
+    pub scale_profile: Vec<[f64; 3]>,
+}
+
+impl GridOutcome {
+    /// The outcome of `fit`, with the scale `profile` of an unanchored fit
+    /// and, with `bands`, the window and curve cut to what the data
+    /// determine.
+    pub(super) fn new(mut fit: Optimum, profile: Option<ScaleProfile>, bands: bool) -> Self {
+        let scale_profile = match profile {
+            Some(profile) => {
+                profile.widen(&mut fit.curve);
+                fit.runs.extend(profile.runs);
+                profile.points
+            }
+            None => Vec::new(),
+        };
+        let window = if bands {
+            restrict_to_determined(&mut fit)
+        } else {
+            fit.probed_window
+        };
+        GridOutcome {
+            fit,
+            window,
+            scale_profile,
+        }
+    }
+}
+
+/// Cuts the curve to the stretch the data determine
+/// ([`determined_stretch`]) and returns its window; when tan δ is
+/// determined to [`DETERMINED_RELATIVE_SIGMA`] nowhere, keeps the probed
+/// window and warns.
+fn restrict_to_determined(fit: &mut Optimum) -> Window {
+    match determined_stretch(&fit.curve) {
+        Some((first, last)) if last > first => {
+            fit.curve.truncate(last + 1);
+            fit.curve.drain(..first);
+            Window {
+                omega_min: fit.curve[0].omega,
+                omega_max: fit.curve[fit.curve.len() - 1].omega,
+            }
+        }
+        _ => {
+            fit.warnings.push(format!(
+                "the data determine tan δ to ±{:.0} % (1σ) at no frequency: the whole probed \
+                 window is reported, and its bands are wide",
+                100.0 * DETERMINED_RELATIVE_SIGMA
+            ));
+            fit.probed_window
+        }
+    }
+}
+
+/// Everything the report of a whole fit is made of.
+pub(super) struct Whole<'x> {
+    /// The data fitted (the bins of condensed data).
+    pub data: &'x Measurements,
+    /// The settings.
+    pub params: &'x ValidFitParams,
+    /// The fit of the master curve.
+    pub grid: GridOutcome,
+    /// How the number of terms was chosen.
+    pub terms: TermsRecord,
+    /// How a temperature set's starting shift was found.
+    pub set_notes: Vec<String>,
+    /// The shift cross-check of a temperature set, or why it was not made.
+    pub cross_check: Option<Result<ShiftCrossCheck, String>>,
+    /// The sanity warnings on data and result.
+    pub sanity: Vec<String>,
+    /// Dense data: how they were condensed, and the fitted μ at every row.
+    pub condensed: Option<(&'x Condensed, Vec<f64>)>,
+    /// Wall time of the whole fit, s.
+    pub wall_time_s: f64,
+}
+
+/// The report of the whole fit.
+pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
+    let Whole {
+        data,
+        params,
+        grid,
+        terms,
+        set_notes,
+        cross_check,
+        sanity,
+        condensed,
+        wall_time_s,
+    } = whole;
+    let GridOutcome {
+        fit,
+        window,
+        scale_profile,
+    } = grid;
+    let mut warnings = fit.warnings;
+    warnings.extend(set_notes);
+    let shift_cross_check = match cross_check {
+        Some(Ok(check)) => {
+            if check.max_difference > CROSS_CHECK_TOLERANCE {
+                warnings.push(format!(
+                    "the shifts of the joint fit and of the single-temperature fits \
+                     differ by up to {:.2} decades (see shift_cross_check)",
+                    check.max_difference
+                ));
+            }
+            Some(check)
+        }
+        Some(Err(why)) => {
+            warnings.push(format!("shift cross-check not made: {why}"));
+            None
+        }
+        None => None,
+    };
+    warnings.extend(sanity);
+    let mut fit_quality = fit.fit_quality;
+    let (condensed, mu_fit) = match condensed {
+        Some((c, mu_fit)) => {
+            warnings.push(c.note());
+            if c.record.scatter.is_some() {
+                fit_quality.noise_source = "scatter within bins";
+            }
+            (Some(c.record.clone()), mu_fit)
+        }
+        None => (None, fit.mu),
+    };
+    FitReport {
+        model: fit.model,
+        poisson: params.setup.substrate.poisson,
+        window,
+        probed_window: fit.probed_window,
+        shift: fit.shift,
+        method: fit.method.name(),
+        objective: fit.objective,
+        misfit: fit.misfit,
+        misfit_per_point: fit.misfit_per_point,
+        sigma_weights: data.sigma().is_some(),
+        iterations: fit.iterations,
+        evaluations: fit.runs.iter().map(|r| r.evaluations).sum(),
+        converged: fit.stop.converged(),
+        stop_reason: fit.stop.describe(),
+        wall_time_s,
+        lambda: fit.lambda,
+        terms,
+        anchor: params.anchor.map(|a| AnchorRecord {
+            source: a.source,
+            omega: a.omega,
+            modulus: a.modulus,
+        }),
+        effective_parameters: fit.effective_parameters,
+        noise: fit.noise,
+        fit_quality,
+        seed: params.seed,
+        warnings,
+        runs: fit.runs,
+        history: fit.history,
+        scale_profile,
+        shift_cross_check,
+        condensed,
+        shift_theta: fit.shift_theta,
+        curve: fit.curve,
+        mu_fit,
+    }
+}
+
+/// The fitted μ at every row of `data` (the rows of condensed data): the
+/// fitted master curve at v·a_T.
+pub(super) fn fitted_friction(
+    data: &Measurements,
+    params: &ValidFitParams,
+    fit: &Optimum,
+) -> Result<Vec<f64>, FitError> {
+    let speeds = reduced_speeds(data, fit);
+    let m = &fit.model;
+    let prony = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
+    let setup = &params.setup;
+    let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, prony)?
+        .with_tolerance(params.model_tolerance)?;
+    Ok(scene.friction_sweep(&speeds)?)
+}
+
+/// The speeds of `data` on the master curve: v·a_T for a temperature set.
+fn reduced_speeds(data: &Measurements, fit: &Optimum) -> Vec<f64> {
+    match (&fit.shift, data.temperature()) {
+        (Some(shift), Some(temps)) => data
+            .speeds()
+            .iter()
+            .zip(temps)
+            .map(|(v, t)| v * 10f64.powf(shift.log_shift_at(*t).unwrap_or(0.0)))
+            .collect(),
+        _ => data.speeds().to_vec(),
+    }
+}
+
+/// The sanity checks of [`crate::sanity`] on the data and the fitted
+/// material, at the reduced speeds (v·a_T) for a temperature set.
+pub(super) fn sanity_warnings(
+    data: &Measurements,
+    params: &ValidFitParams,
+    fit: &Optimum,
+) -> Result<Vec<String>, FitError> {
+    let setup = &params.setup;
+    let speeds = reduced_speeds(data, fit);
+    let m = &fit.model;
+    let prony = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
+    let mut out = sanity::input_warnings(setup, data.speeds(), Some(data.friction()));
+    out.extend(sanity::material_warnings(
+        setup,
+        &speeds,
+        &|omega| prony.modulus(omega),
+        m.static_modulus,
+        m.glassy_modulus,
+        true,
+    ));
+    Ok(out.into_iter().map(|w| w.message).collect())
+}

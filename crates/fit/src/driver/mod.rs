@@ -1,0 +1,230 @@
+//! The fit driver: τ grid, starts, λ choice, solver runs, analysis.
+//!
+//! 1. The τ grid of [`crate::tau_grid`] for the data's speeds (for
+//!    `terms = "auto"`: 1, 2 and 3 per decade, chosen by AICc).
+//! 2. A neutral start: a flat spectrum with E1/E0 = 1000 at the anchored
+//!    (or starting, or 1 MPa) scale.
+//! 3. λ: fixed, or the decreasing path of [`crate::regularization`] with
+//!    warm starts, then refinement.
+//! 4. At the chosen λ, further starts are run: four spectra concentrated in
+//!    a bump at different places of the probed band, and seeded
+//!    perturbations of the neutral start (N(0, 1) in each log-parameter);
+//!    the best V wins.
+//! 5. Curvature, window, determined terms and bands at the optimum.
+//!
+//! Results are deterministic for a given seed: the solvers are
+//! deterministic and the perturbations come from ChaCha8 seeded with it.
+//!
+//! Where each step lives: the entry [`fit`] and the fits a temperature set
+//! is built from (here); the τ grid and the choice of terms (`terms.rs`);
+//! the starts (`starts.rs`); λ (`lambda.rs`); the solver runs on one grid
+//! (`grid.rs`); the analysis of the optimum (`optimum.rs`); the scale
+//! profile of an unanchored fit (`profile.rs`); the report (`assemble.rs`).
+//! The objective is the crate's `objective` module's, the solvers are
+//! [`crate::solvers`]'.
+
+mod assemble;
+mod grid;
+mod lambda;
+mod optimum;
+mod profile;
+mod starts;
+mod terms;
+
+use std::time::Instant;
+
+use crate::condense::condense;
+use crate::data::Measurements;
+use crate::error::FitError;
+use crate::parametrization::Parametrization;
+use crate::params::{Lambda, TermRule, ValidFitParams};
+use crate::regularization::path;
+use crate::report::{FitReport, LambdaRecord};
+use crate::temperature_set::cross_check::cross_check;
+use crate::temperature_set::{ShiftStart, material_first, temperature_set, wlf_before_free};
+
+use assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
+use grid::solve_on_grid;
+use profile::profile_scale;
+use terms::{AUTO_DENSITIES, TermChoice, grid, terms_record};
+
+/// Fits `data` under `params`.
+pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
+    let clock = Instant::now();
+    let condensed = condense(rows)?;
+    let data = condensed.as_ref().map_or(rows, |c| &c.data);
+    let set = temperature_set(data, params)?;
+    let set = set.as_ref();
+    let (outcome, candidates) = master_curve(data, params, set)?;
+    let terms = terms_record(&outcome.fit.model.tau, &params.terms, candidates);
+    let cross_check = match set {
+        Some(set) if params.shift.cross_check => Some(cross_check(
+            data,
+            params,
+            outcome.fit.shift.as_ref(),
+            set,
+            fit,
+        )),
+        _ => None,
+    };
+    let sanity = sanity_warnings(data, params, &outcome.fit)?;
+    let condensed = match &condensed {
+        Some(c) => {
+            let mu_fit = fitted_friction(rows, params, &outcome.fit)?;
+            Some((c, mu_fit))
+        }
+        None => None,
+    };
+    let report = assemble(Whole {
+        data,
+        params,
+        set_notes: set.map_or_else(Vec::new, |s| s.notes.clone()),
+        grid: outcome,
+        terms,
+        cross_check,
+        sanity,
+        condensed,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+    });
+    if let Some(what) = report.first_non_finite() {
+        return Err(FitError::NonFinite(what));
+    }
+    Ok(report)
+}
+
+/// The master curve (and a temperature set's shift) with the AICc of each
+/// density tried: for a free shift of three or more temperatures from a
+/// WLF fit, for another set from a fit of its rows as one curve, else on
+/// the grid of the term rule.
+fn master_curve(
+    data: &Measurements,
+    params: &ValidFitParams,
+    set: Option<&ShiftStart>,
+) -> Result<(GridOutcome, Vec<[f64; 2]>), FitError> {
+    let range = set.map_or_else(|| data.speed_range(), |s| s.range);
+    let via_wlf = set.and_then(|s| wlf_before_free(data, params, s, fit));
+    let first = match (&via_wlf, set) {
+        (None, Some(s)) => material_first(data, params, s, fit),
+        _ => None,
+    };
+    match (&params.terms, via_wlf, first) {
+        (_, Some((wlf, start)), _) => {
+            let candidates = wlf.terms.candidates.clone();
+            Ok((free_from_wlf(data, params, wlf, &start)?, candidates))
+        }
+        (_, None, Some(first)) => {
+            let candidates = first.terms.candidates.clone();
+            let start = set.ok_or_else(|| FitError::setting("shift", "no temperature set"))?;
+            Ok((joint_from_material(data, params, first, start)?, candidates))
+        }
+        (TermRule::Auto, None, None) => {
+            let mut choice = TermChoice::default();
+            for density in AUTO_DENSITIES {
+                let tau = grid(range, params, &TermRule::PerDecade(density));
+                match fit_on_grid(data, params, tau, None, set) {
+                    Ok(outcome) => choice.offer(density, data.len(), outcome),
+                    Err(FitError::InsufficientData(_)) => continue,
+                    Err(e) => return Err(e),
+                }
+            }
+            choice.into_best()
+        }
+        (rule, None, None) => Ok((
+            fit_on_grid(data, params, grid(range, params, rule), None, set)?,
+            Vec::new(),
+        )),
+    }
+}
+
+/// The fit on one τ grid, from `warm` (a material θ of this grid's
+/// parametrisation) instead of the neutral start when given; for a
+/// temperature set `set` holds the shift and its starting θ_s. An
+/// unanchored fit's bands are widened by its scale profile.
+fn fit_on_grid(
+    data: &Measurements,
+    params: &ValidFitParams,
+    tau: Vec<f64>,
+    warm: Option<Vec<f64>>,
+    set: Option<&ShiftStart>,
+) -> Result<GridOutcome, FitError> {
+    let optimum = solve_on_grid(data, params, tau, warm, set)?;
+    let profile = match params.anchor {
+        None => Some(profile_scale(data, params, &optimum, set)?),
+        Some(_) => None,
+    };
+    Ok(GridOutcome::new(optimum, profile, params.bands))
+}
+
+/// Free shifts fitted at the λ and on the τ grid of a joint fit with WLF
+/// shifts, from its material and shifts (see
+/// [`crate::temperature_set::wlf_before_free`] for why); the outcome keeps
+/// the WLF fit's λ rule, path and runs, and says what was done.
+fn free_from_wlf(
+    data: &Measurements,
+    params: &ValidFitParams,
+    wlf: FitReport,
+    start: &ShiftStart,
+) -> Result<GridOutcome, FitError> {
+    let m = &wlf.model;
+    let tau = m.tau.clone();
+    let param = Parametrization::new(tau.clone(), params.anchor);
+    let warm = param.theta_of(m.static_modulus, &m.strengths);
+    let mut fixed = params.clone();
+    fixed.lambda = Lambda::Fixed(wlf.lambda.value);
+    fixed.terms = TermRule::Explicit(tau.clone());
+    let mut outcome = fit_on_grid(data, &fixed, tau, Some(warm), Some(start))?;
+    let fit = &mut outcome.fit;
+    fit.lambda = LambdaRecord {
+        value: fit.lambda.value,
+        ..wlf.lambda
+    };
+    fit.runs = wlf.runs.into_iter().chain(fit.runs.drain(..)).collect();
+    fit.warnings.push(format!(
+        "free shifts: λ = {:.3e} and the τ grid were chosen with WLF shifts, and the free \
+         log10 a_T then fitted at that λ from the WLF solution (at the large λ where the λ path \
+         begins, free shifts slide along a power-law curve undetermined)",
+        fit.lambda.value
+    ));
+    Ok(outcome)
+}
+
+/// The joint fit of a temperature set from a fit of its rows as one curve at
+/// the start shift's reduced speeds ([`crate::temperature_set::material_first`]):
+/// on that fit's τ grid, from its material and the start shift, with the λ
+/// path beginning at its λ. The outcome keeps the joint fit's λ choice and
+/// every run.
+fn joint_from_material(
+    data: &Measurements,
+    params: &ValidFitParams,
+    first: FitReport,
+    start: &ShiftStart,
+) -> Result<GridOutcome, FitError> {
+    let m = &first.model;
+    let tau = m.tau.clone();
+    let param = Parametrization::new(tau.clone(), params.anchor);
+    let warm = param.theta_of(m.static_modulus, &m.strengths);
+    let mut joint = params.clone();
+    if params.lambda == Lambda::Auto {
+        joint.path_top = Some(first.lambda.value.max(path()[path().len() - 1]));
+    }
+    let mut outcome = fit_on_grid(data, &joint, tau, Some(warm), Some(start))?;
+    let fit = &mut outcome.fit;
+    fit.runs = first
+        .runs
+        .into_iter()
+        .map(|mut r| {
+            r.stage = format!("one curve: {}", r.stage);
+            r
+        })
+        .chain(fit.runs.drain(..))
+        .collect();
+    fit.warnings.push(format!(
+        "temperature set: the τ grid and the top of the λ path (λ = {:.3e}) come from a fit of \
+         all rows as one curve at the starting shifts; the shift and the material were then \
+         fitted together from there (at the large λ where the path otherwise begins the \
+         spectrum is nearly a power law, along which the temperatures' curves slide \
+         undetermined)",
+        first.lambda.value
+    ));
+    Ok(outcome)
+}

@@ -1,0 +1,88 @@
+//! The record of a fitted shift, as fit.json holds it under `shift`.
+
+use serde::Serialize;
+
+use super::temperatures::SAME_TEMPERATURE;
+
+/// The time–temperature shift of a temperature set (docs/ARCHITECTURE.md,
+/// "Conventions"): E*(ω, T) = E*(ω a_T, T_ref).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "model", rename_all = "lowercase")]
+pub enum ShiftRecord {
+    /// WLF: log10 a_T = −C1 (T − T_ref)/(C2 + T − T_ref).
+    Wlf {
+        /// Reference temperature, °C.
+        #[serde(rename = "T_ref")]
+        t_ref: f64,
+        /// C1 (dimensionless).
+        #[serde(rename = "C1")]
+        c1: f64,
+        /// C2, K.
+        #[serde(rename = "C2")]
+        c2: f64,
+        /// 1σ of C1 from the curvature of V.
+        #[serde(rename = "C1_sigma")]
+        c1_sigma: f64,
+        /// 1σ of C2, K.
+        #[serde(rename = "C2_sigma")]
+        c2_sigma: f64,
+        /// log10 a_T at each measured temperature (from C1, C2).
+        #[serde(rename = "log_aT")]
+        log_shift: Vec<LogShift>,
+    },
+    /// One free log10 a_T per temperature, 0 at T_ref.
+    Free {
+        /// Reference temperature, °C (one of the measured temperatures).
+        #[serde(rename = "T_ref")]
+        t_ref: f64,
+        /// log10 a_T per measured temperature.
+        #[serde(rename = "log_aT")]
+        log_shift: Vec<LogShift>,
+    },
+}
+
+impl ShiftRecord {
+    /// T_ref, °C.
+    pub fn t_ref(&self) -> f64 {
+        match self {
+            ShiftRecord::Wlf { t_ref, .. } | ShiftRecord::Free { t_ref, .. } => *t_ref,
+        }
+    }
+
+    /// (C1, C2) of a WLF shift.
+    pub fn wlf_constants(&self) -> Option<(f64, f64)> {
+        match self {
+            ShiftRecord::Wlf { c1, c2, .. } => Some((*c1, *c2)),
+            ShiftRecord::Free { .. } => None,
+        }
+    }
+
+    /// log10 a_T at temperature `t` (°C), when `t` is one of the set's.
+    pub fn log_shift_at(&self, t: f64) -> Option<f64> {
+        self.log_shifts()
+            .iter()
+            .find(|s| (s.temperature - t).abs() <= SAME_TEMPERATURE)
+            .map(|s| s.log_shift)
+    }
+
+    /// log10 a_T per measured temperature.
+    pub fn log_shifts(&self) -> &[LogShift] {
+        match self {
+            ShiftRecord::Wlf { log_shift, .. } | ShiftRecord::Free { log_shift, .. } => log_shift,
+        }
+    }
+}
+
+/// log10 a_T at one temperature.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LogShift {
+    /// Temperature, °C.
+    #[serde(rename = "T")]
+    pub temperature: f64,
+    /// log10 a_T.
+    #[serde(rename = "log_aT")]
+    pub log_shift: f64,
+    /// 1σ of log10 a_T (0 at T_ref of a free shift).
+    #[serde(rename = "log_aT_sigma")]
+    pub log_shift_sigma: f64,
+}
