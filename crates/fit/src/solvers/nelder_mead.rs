@@ -10,7 +10,7 @@
 //! - J.A. Nelder, R. Mead, "A simplex method for function minimization",
 //!   Computer Journal 7 (1965) 308–313.
 
-use argmin::core::{Executor, State, TerminationReason, TerminationStatus};
+use argmin::core::{CostFunction, Executor, State, TerminationReason, TerminationStatus};
 use argmin::solver::neldermead::NelderMead;
 use nalgebra::DVector;
 
@@ -34,6 +34,14 @@ pub(crate) fn minimize(counted: &Counted<'_, '_>, start: &[f64]) -> (usize, Stop
         Err(e) => return (0, StopReason::Stall(e.to_string())),
     };
     let budget = counted.budget() as u64;
+    // argmin evaluates the whole initial simplex before its first iteration
+    // and panics when the budget refuses one of those evaluations: a budget
+    // that cannot pay for the simplex ends the run at its start point, as
+    // the other methods end a run their budget cuts short.
+    if budget <= start.len() as u64 {
+        let _ = counted.cost(&x0);
+        return (0, StopReason::Budget);
+    }
     let result = Executor::new(counted, solver)
         .configure(|state| state.max_iters(budget))
         .run();

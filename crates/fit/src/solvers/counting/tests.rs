@@ -182,3 +182,25 @@ fn solvers_report_budget_and_abandonment_by_type() {
         }
     }
 }
+
+/// A budget smaller than Nelder–Mead's first simplex ends the run at its
+/// start point as `Budget` (argmin would panic inside its initialisation).
+#[test]
+fn nelder_mead_below_its_simplex_stops_at_the_start() {
+    let setup = crate::params::example_setup();
+    let data = data();
+    let objective = objective(&setup, &data);
+    let (start, _) = worse_and_better(&objective);
+    let v_start = objective.evaluate(&start, false).unwrap().objective();
+    for budget in [1, 2, start.len()] {
+        let r = run(
+            Method::NelderMead,
+            Counted::new(&objective, budget),
+            &start,
+            Tolerance::Final,
+        );
+        assert_eq!(r.stop, StopReason::Budget, "budget {budget}");
+        assert_eq!(r.evaluations, 1, "budget {budget}");
+        assert_eq!((r.objective, r.theta.clone()), (v_start, start.clone()));
+    }
+}
