@@ -127,9 +127,7 @@ impl Measurements {
             && sigma.as_ref().is_none_or(|s| s.len() == n)
             && temperature.as_ref().is_none_or(|t| t.len() == n);
         if !lengths_agree {
-            return Err(FitError::InsufficientData(
-                "the data columns have different lengths".into(),
-            ));
+            return Err(FitError::ColumnLengths);
         }
         check_column(&speeds, "v")?;
         check_column(&friction, "mu")?;

@@ -23,9 +23,13 @@ pub enum FitError {
         /// What the value must satisfy.
         requirement: &'static str,
     },
-    /// The data set as a whole cannot be fitted.
+    /// The data set as a whole cannot be fitted (too few measurements,
+    /// speeds, temperatures or isotherms; the text says which and why).
     #[error("{0}")]
     InsufficientData(String),
+    /// The columns handed to [`crate::Measurements::new`] differ in length.
+    #[error("the data columns have different lengths")]
+    ColumnLengths,
     /// A fit setting is outside its valid range.
     #[error("fit setting `{key}`: {problem}")]
     InvalidSetting {
@@ -41,6 +45,12 @@ pub enum FitError {
          the model cannot represent"
     )]
     NonFinite(String),
+    /// A broken invariant of the fit itself, not a fault of the input: a
+    /// front end reports it as a fault of rollfit, not of the user's files.
+    #[error(
+        "internal fault of the fit: {0} (a bug in rollfit; please report it with the scene and data)"
+    )]
+    Internal(&'static str),
     /// The forward model refused a scene or a material.
     #[error(transparent)]
     Model(#[from] ModelError),

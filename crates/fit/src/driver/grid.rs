@@ -184,9 +184,10 @@ impl<'a> GridSolver<'a> {
         let r = run(self.params.method, counted, from, self.tolerance);
         self.runs.push(record(leg.stage, lambda, &r));
         let e = objective.evaluate(&r.theta, true)?;
-        let jac = e.jacobian.as_ref().ok_or_else(|| {
-            FitError::InsufficientData("the forward model returned no Jacobian".into())
-        })?;
+        let jac = e
+            .jacobian
+            .as_ref()
+            .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
         let c = curvature(jac, self.data.len(), e.misfit, self.data.sigma().is_some());
         let bound = e.residuals[e.residuals.len() - 1];
         Ok((

@@ -150,7 +150,7 @@ fn bisect_discrepancy(
         let best = trials
             .into_iter()
             .min_by(|a, b| a.0.misfit.total_cmp(&b.0.misfit))
-            .ok_or_else(|| FitError::InsufficientData("empty λ path".into()))?;
+            .ok_or(FitError::Internal("empty λ path"))?;
         return Ok(best);
     }
     // Between trials[last − 1] (χ² > N) and trials[last] (χ² ≤ N).

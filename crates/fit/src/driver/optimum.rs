@@ -100,9 +100,10 @@ pub(super) fn analyse(
 ) -> Result<Optimum, FitError> {
     objective.lambda = chosen.trial.lambda;
     let e = objective.evaluate(&chosen.trial.theta, true)?;
-    let jac = e.jacobian.as_ref().ok_or_else(|| {
-        FitError::InsufficientData("the forward model returned no Jacobian".into())
-    })?;
+    let jac = e
+        .jacobian
+        .as_ref()
+        .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
     let sigma_known = data.sigma().is_some();
     let c = curvature(jac, data.len(), e.misfit, sigma_known);
     let param = &objective.param;
