@@ -441,7 +441,7 @@ pub fn build_master_curve(
             .iter()
             .find(|s| s.temperature == iso.temperature)
             .copied()
-            .ok_or_else(|| FitError::Internal("isotherm without a shift"))?;
+            .ok_or(FitError::Internal("isotherm without a shift"))?;
         let (a, b) = (10f64.powf(s.log_shift), 10f64.powf(s.log_vertical));
         for i in 0..iso.omega.len() {
             points.push(MasterPoint {
