@@ -168,7 +168,7 @@ fn the_fits_own_curve_at_three_temperatures_matches() {
 fn a_trios_export_and_the_dma_wlf_flag() {
     let dir = TempDir::new("trios");
     let fit = copy_fit(&dir, "hn-rubber-tset");
-    let fixture = root().join("crates/report/tests/fixtures/trios_shear_two_steps.txt");
+    let fixture = root().join("crates/io/tests/fixtures/trios_shear_two_steps.txt");
     let out = run(&fit, &fixture, &["--dma-wlf", "20,8.86,101.6"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let json = compare_json(&fit);

@@ -395,7 +395,7 @@ fn fixtures(root: &Path) {
     fs::write(root.join("manifest.toml"), MANIFEST).unwrap();
     fs::copy(repo.join("data/hn-rubber-dma.csv"), root.join("dma.csv")).unwrap();
     fs::copy(
-        repo.join("crates/report/tests/fixtures/trios_tensile.txt"),
+        repo.join("crates/io/tests/fixtures/trios_tensile.txt"),
         root.join("trios.txt"),
     )
     .unwrap();

@@ -54,8 +54,7 @@ use std::path::Path;
 use anyhow::{Context, Result, bail, ensure};
 use rollfit_fit::Measurements;
 use rollfit_fit::data::{MIN_RELATIVE_SIGMA, SIGMA_REQUIREMENT, column_requirement};
-
-use crate::output;
+use rollfit_io::csv_text;
 
 use headers::{Conversion, Header, Quantity};
 
@@ -635,7 +634,7 @@ fn table(
                 } else {
                     format!(
                         " ({} {} in SI)",
-                        output::number(value),
+                        csv_text::number(value),
                         column.quantity.key()
                     )
                 };
@@ -661,7 +660,7 @@ fn table(
                 "{}: column {} = {}: {SIGMA_REQUIREMENT}",
                 source.cell(row.number, column.index),
                 column.display(),
-                output::number(sigma)
+                csv_text::number(sigma)
             );
         }
         for q in wanted {

@@ -9,7 +9,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
-use rollfit_report::dma::{DmaData, DmaOptions, ModulusKind, shift::isotherms};
+use rollfit_io::dma::{DmaData, DmaOptions, ModulusKind, isotherms};
 
 /// A master curve built from a DMA file.
 pub struct DmaMaster {

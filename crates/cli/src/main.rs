@@ -4,15 +4,13 @@
 //! programs rely on.
 
 mod commands;
-mod csv_columns;
 mod data_file;
 mod dma_master;
 mod manifest;
 mod material_file;
-mod output;
 mod scene_file;
+mod stdout;
 mod table_file;
-mod text_file;
 
 use std::process::ExitCode;
 

@@ -65,7 +65,7 @@ pub struct Entry {
 
 /// Reads and checks the manifest at `path`; every error names `path`.
 pub fn load(path: &Path) -> Result<Manifest> {
-    let text = crate::text_file::read_utf8(path, "manifest")?;
+    let text = rollfit_io::text_file::read_utf8(path, "manifest")?;
     let base = path.parent().unwrap_or(Path::new(""));
     parse(&text, base).with_context(|| format!("manifest {}", path.display()))
 }

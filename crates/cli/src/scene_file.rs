@@ -493,10 +493,10 @@ pub enum ModulusName {
 }
 
 impl ModulusName {
-    fn kind(self) -> rollfit_report::dma::ModulusKind {
+    fn kind(self) -> rollfit_io::dma::ModulusKind {
         match self {
-            ModulusName::Shear => rollfit_report::dma::ModulusKind::Shear,
-            ModulusName::Young => rollfit_report::dma::ModulusKind::Young,
+            ModulusName::Shear => rollfit_io::dma::ModulusKind::Shear,
+            ModulusName::Young => rollfit_io::dma::ModulusKind::Young,
         }
     }
 }
@@ -719,7 +719,7 @@ pub struct ForwardSetup {
 
 /// Reads, parses and validates a scene file; every error names `path`.
 pub fn load(path: &Path) -> Result<SceneFile> {
-    let text = crate::text_file::read_utf8(path, "scene file")?;
+    let text = rollfit_io::text_file::read_utf8(path, "scene file")?;
     parse(&text).with_context(|| format!("scene file {}", path.display()))
 }
 

@@ -9,7 +9,7 @@
 //! moduli positive: the model interpolates in log–log, where zero and
 //! negative values have no place.
 //!
-//! Every other form the DMA reader accepts ([`rollfit_report::dma`]) is read
+//! Every other form the DMA reader accepts ([`rollfit_io::dma`]) is read
 //! by it, so that the formats are defined once: shear columns `G_storage`,
 //! `G_loss` (E = 2(1+ν)G with the scene's ν), unit-suffixed names
 //! (`omega_rad_s`, `f_Hz`, `G_storage_kPa`, `E_loss_MPa`, `T_C`, `T_K`), a
@@ -33,10 +33,8 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail, ensure};
-use rollfit_report::dma::{DmaData, DmaOptions, ModulusKind, shift};
-use rollfit_report::fit_dir::csv_line;
-
-use crate::csv_columns;
+use rollfit_io::csv_columns::{self, csv_line};
+use rollfit_io::dma::{DmaData, DmaOptions, ModulusKind, isotherms};
 
 /// A master curve as read: angular frequency (rad/s), storage and loss
 /// Young's moduli (Pa), in increasing frequency.
@@ -84,7 +82,7 @@ pub fn read_with(path: &Path, poisson: f64, kind: Option<ModulusKind>) -> Result
 }
 
 /// Column names the DMA reader reads and the plain reader does not (see
-/// `rollfit_report::dma::csv_form`): shear moduli, a temperature, and
+/// `rollfit_io::dma::csv_form`): shear moduli, a temperature, and
 /// unit-suffixed spellings, including the contradictory `omega_Hz` and
 /// `f_rad_s` it refuses with a message saying why.
 fn is_dma_column(name: &str) -> bool {
@@ -169,7 +167,7 @@ fn read_dma(
              moduli (E = 2(1+ν)G) needs [substrate] poisson in (−1, 0.5], not {poisson}"
         );
     }
-    let isotherms = shift::isotherms(&data.points);
+    let isotherms = isotherms(&data.points);
     if isotherms.len() > 1 {
         // With a few isotherms each is named with its lines; a whole
         // temperature programme by its temperatures.
@@ -275,10 +273,7 @@ pub fn parse(text: &str) -> Result<ModulusTable> {
         .comment(Some(b'#'))
         .trim(csv::Trim::All)
         .from_reader(text.as_bytes());
-    let header = csv_columns::header(
-        &mut reader,
-        "the table is empty: expected a header row (omega or f, E_storage, E_loss) and data rows",
-    )?;
+    let header = csv_columns::header(&mut reader, "omega or f, E_storage, E_loss")?;
     let position = |name: &str| header.iter().position(|h| h == name);
     let (frequency_column, frequency) = match (position("omega"), position("f")) {
         (Some(i), None) => (i, Frequency::Angular),

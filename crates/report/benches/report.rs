@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rollfit_report::FitDir;
+use rollfit_io::FitDir;
 use rollfit_report::html::report_html;
 use rollfit_report::plot::pictures;
 

@@ -85,7 +85,8 @@
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::dma::DmaPoint;
+use rollfit_io::dma::DmaPoint;
+
 use crate::error::ReportError;
 
 /// Relaxation times per decade of the causal model: a smooth spectrum off
@@ -168,9 +169,7 @@ pub use rollfit_fit::master::tau_grid;
 /// a causal Prony series and measures the misfit (see the module doc).
 pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
     if points.is_empty() {
-        return Err(ReportError::Unanswerable(
-            "causality check: no DMA points".to_string(),
-        ));
+        return Err(ReportError::NoPoints);
     }
     let omega_lo = points.iter().map(|p| p.omega).fold(f64::INFINITY, f64::min);
     let omega_hi = points.iter().map(|p| p.omega).fold(0.0, f64::max);
@@ -198,11 +197,7 @@ pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
     }
     // 1/E″ of a subnormal E″ overflows; the SVD would panic on it.
     if a.iter().any(|x| !x.is_finite()) {
-        return Err(ReportError::Unanswerable(
-            "causality check: the DMA moduli span more than a floating-point number can weigh \
-             (a modulus near 1e-308?)"
-                .to_string(),
-        ));
+        return Err(ReportError::ModuliOutOfRange);
     }
     let b = DVector::from_element(2 * n, 1.0);
     let x = nnls(&a, &b);

@@ -1,7 +1,7 @@
 //! The recovered master curve against DMA data.
 //!
 //! The DMA points are moved to the fit's reference state
-//! ([`DmaData::shifted`]: reduced frequency ω_r = ω a_T) and compared with
+//! ([`ToReference::shifted`]: reduced frequency ω_r = ω a_T) and compared with
 //! the recovered E*(ω) = [`FitDir::modulus_at`] at the N points whose ω_r
 //! lies in the fit's window [ω_min, ω_max] (fit.json `window`: outside it
 //! the μ(v) data do not determine the curve, so differences there say
@@ -22,10 +22,12 @@
 
 use serde::Serialize;
 
+use rollfit_io::FitDir;
+use rollfit_io::dma::{DmaData, DmaOptions, DmaPoint};
+
 use crate::causality::{self, CausalFit};
-use crate::dma::{DmaData, DmaOptions, DmaPoint};
+use crate::dma_shift::ToReference;
 use crate::error::ReportError;
-use crate::fit_dir::FitDir;
 
 /// log10 a_T of one DMA isotherm.
 #[derive(Debug, Clone, Copy, Serialize)]

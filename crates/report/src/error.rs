@@ -1,52 +1,89 @@
-//! The one error type of the report crate.
+//! The one error type of the report crate: what stops a comparison with
+//! DMA data or a picture. Reading the fit folder and the DMA file is the
+//! io crate's, with its own error ([`rollfit_io::IoError`]).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use thiserror::Error;
 
-/// Everything that can stop a report or a comparison. Every variant names
-/// the file it is about; bad rows name their line (counting from 1, as an
-/// editor does).
+/// Everything that can stop a report or a comparison. A DMA file is named
+/// by its path; temperatures are shown to 0.1 °C.
 #[derive(Debug, Error)]
 pub enum ReportError {
-    /// A file could not be read.
-    #[error("{}: {source}", path.display())]
-    Io {
-        /// The file.
+    /// Some DMA points have a temperature and some do not.
+    #[error(
+        "{}: {without} of {total} points have no temperature: cannot tell which isotherm they \
+         belong to",
+        path.display()
+    )]
+    MixedTemperatures {
+        /// The DMA file.
         path: PathBuf,
-        /// What the system said.
-        source: std::io::Error,
+        /// Points without a temperature.
+        without: usize,
+        /// All points.
+        total: usize,
     },
-    /// A file is readable but its content is not what it must be.
-    #[error("{}: {message}", path.display())]
-    Format {
-        /// The file.
+    /// A DMA isotherm outside what the fit's shift covers.
+    #[error(
+        "{}: the DMA isotherm at {temperature:.1} °C cannot be shifted with the fit's {model} \
+         shift (it covers {lo} to {hi} °C{}); give the DMA's own WLF constants with --dma-wlf \
+         T_REF,C1,C2 (`rollfit master` finds them from the isotherms)",
+        path.display(),
+        if *wlf { ", and WLF diverges below T_ref − C2" } else { "" }
+    )]
+    OutsideFitShift {
+        /// The DMA file.
         path: PathBuf,
-        /// What is wrong, with the key or column.
-        message: String,
+        /// The isotherm, °C.
+        temperature: f64,
+        /// The fit's shift model.
+        model: String,
+        /// Lowest temperature the shift covers, °C.
+        lo: f64,
+        /// Highest, °C.
+        hi: f64,
+        /// The fit's shift is WLF.
+        wlf: bool,
     },
-    /// One line of a table is wrong.
-    #[error("{}, line {line}: {message}", path.display())]
-    Line {
-        /// The file.
+    /// A DMA temperature at or below the divergence of the DMA's own WLF.
+    #[error(
+        "{}: {temperature:.1} °C is at or below the divergence of the DMA's WLF (T_ref − C2 = \
+         {pole} °C): it cannot be shifted",
+        path.display()
+    )]
+    BelowDmaWlfPole {
+        /// The DMA file.
         path: PathBuf,
-        /// Line number, counting from 1.
-        line: usize,
-        /// What is wrong, with the column.
-        message: String,
+        /// °C.
+        temperature: f64,
+        /// T_ref − C2 of the DMA's WLF, °C.
+        pole: f64,
     },
-    /// The fit's model cannot be rebuilt (a fit.json edited by hand).
-    #[error("{}: model: {source}", path.display())]
-    Model {
-        /// The fit.json.
+    /// Several DMA temperatures and no shift to bring them together.
+    #[error(
+        "{}: {} temperatures ({} °C) but the fit has no shift (it is not a temperature set): give \
+         the DMA's own WLF constants with --dma-wlf T_REF,C1,C2 (`rollfit master` finds them \
+         from the isotherms)",
+        path.display(),
+        temperatures.len(),
+        temperatures.iter().map(|t| format!("{t:.1}")).collect::<Vec<_>>().join(", ")
+    )]
+    NoShift {
+        /// The DMA file.
         path: PathBuf,
-        /// What the model crate refused.
-        source: rollfit_model::ModelError,
+        /// The isotherms, °C.
+        temperatures: Vec<f64>,
     },
-    /// The data cannot answer the question asked (e.g. a DMA file whose
-    /// temperatures cannot be shifted with the fit's shift).
-    #[error("{0}")]
-    Unanswerable(String),
+    /// The causality check was given no points.
+    #[error("causality check: no DMA points")]
+    NoPoints,
+    /// Moduli whose weights overflow.
+    #[error(
+        "causality check: the DMA moduli span more than a floating-point number can weigh (a \
+         modulus near 1e-308?)"
+    )]
+    ModuliOutOfRange,
     /// Drawing a picture failed.
     #[error("picture {name}: {message}")]
     Plot {
@@ -55,70 +92,4 @@ pub enum ReportError {
         /// What plotters or the encoder said.
         message: String,
     },
-}
-
-impl ReportError {
-    pub(crate) fn format(path: impl Into<PathBuf>, message: impl Into<String>) -> Self {
-        ReportError::Format {
-            path: path.into(),
-            message: message.into(),
-        }
-    }
-
-    pub(crate) fn line(path: impl Into<PathBuf>, line: usize, message: impl Into<String>) -> Self {
-        ReportError::Line {
-            path: path.into(),
-            line,
-            message: message.into(),
-        }
-    }
-
-    pub(crate) fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
-        ReportError::Io {
-            path: path.into(),
-            source,
-        }
-    }
-
-    /// Bytes that are not text in the file's encoding: the line, the byte
-    /// offset in the file (from 0) and the byte of the line (from 1), so
-    /// that a hex editor and a text editor both find it. `offset` indexes
-    /// `bytes`, the whole file; `what` says what was expected there.
-    pub(crate) fn encoding(path: &Path, bytes: &[u8], offset: usize, what: &str) -> Self {
-        let before = &bytes[..offset.min(bytes.len())];
-        let line_start = before
-            .iter()
-            .rposition(|&b| b == b'\n')
-            .map_or(0, |i| i + 1);
-        let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
-        let found = bytes
-            .get(offset)
-            .map_or("the end of the file".to_string(), |b| {
-                format!("byte 0x{b:02X}")
-            });
-        ReportError::line(
-            path,
-            line,
-            format!(
-                "{what}: {found} at byte offset {offset} (byte {} of the line)",
-                offset - line_start + 1
-            ),
-        )
-    }
-}
-
-/// The text of a file that must be UTF-8 (what rollfit writes), or an
-/// error naming the line and byte offset of the first invalid byte rather
-/// than the system's bare "stream did not contain valid UTF-8".
-pub(crate) fn read_utf8(path: &Path) -> Result<String, ReportError> {
-    let bytes = std::fs::read(path).map_err(|e| ReportError::io(path, e))?;
-    String::from_utf8(bytes).map_err(|e| {
-        let offset = e.utf8_error().valid_up_to();
-        let what = if e.utf8_error().error_len().is_none() {
-            "not UTF-8 (a character cut off by the end of the file)"
-        } else {
-            "not UTF-8"
-        };
-        ReportError::encoding(path, e.as_bytes(), offset, what)
-    })
 }

@@ -6,8 +6,8 @@
 use std::fmt::Write as _;
 
 use crate::compare::Comparison;
-use crate::fit_dir::FitDir;
 use crate::plot::Picture;
+use rollfit_io::fit_dir::FitDir;
 
 /// The page's style: readable without any external resource.
 const STYLE: &str = "

@@ -1,20 +1,19 @@
-//! Reports of a rollfit fit: the pictures a user would otherwise draw by
-//! hand (μ(v) with residuals, the recovered master curve with its window and
-//! bands, the relaxation spectrum, convergence, temperature-set plots), one
-//! self-contained HTML page, and the comparison of the recovered master
-//! curve with DMA data, including a causality (Kramers–Kronig) check of the
-//! DMA data themselves.
+//! Reports of a rollfit fit (docs/ARCHITECTURE.md, "Crates"): the pictures
+//! a user would otherwise draw by hand (μ(v) with residuals, the recovered
+//! master curve with its window and bands, the relaxation spectrum,
+//! convergence, temperature-set plots), one self-contained HTML page, and
+//! the comparison of the recovered master curve with DMA data, including a
+//! causality (Kramers–Kronig) check of the DMA data themselves.
 //!
-//! Everything here reads a fit directory as `rollfit fit` writes it
-//! ([`FitDir`]) and returns bytes; the command line writes them (atomically).
+//! Everything here works on a fit folder and DMA data as the io crate reads
+//! them ([`rollfit_io::FitDir`], [`rollfit_io::dma::DmaData`]) and returns
+//! bytes or numbers; it reads and writes no file itself.
 
 pub mod causality;
 pub mod compare;
-pub mod dma;
+pub mod dma_shift;
 pub mod error;
-pub mod fit_dir;
 pub mod html;
 pub mod plot;
 
 pub use error::ReportError;
-pub use fit_dir::FitDir;

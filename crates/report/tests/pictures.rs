@@ -11,7 +11,7 @@ mod common;
 
 use common::{Decoded, count, decode};
 use plotters::style::RGBColor;
-use rollfit_report::FitDir;
+use rollfit_io::FitDir;
 use rollfit_report::plot::master_curve::DmaMarker;
 use rollfit_report::plot::{Picture, pictures, style};
 

@@ -33,11 +33,12 @@ use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use rollfit_fit::FitError;
-use serde_json::Value;
+use rollfit_io::fit_dir::columns::FIT_JSON;
+use rollfit_io::fit_dir::digest::Digest;
+use rollfit_io::{csv_text, output};
 
 use crate::commands::fit::{Job, Settings, fit_files};
 use crate::manifest::{self, Entry};
-use crate::output;
 
 /// The lock file of a batch's output folder.
 const BATCH_LOCK: &str = ".rollfit-batch.lock";
@@ -269,27 +270,7 @@ pub fn run(args: &Args) -> Result<()> {
             dir.display()
         );
     }
-    // Two batches writing one folder would mix their results: a whole batch
-    // holds the folder's lock alone, the shards of one share it and each
-    // holds its own. Taking it also proves the folder writable before the
-    // first fit.
-    let _locks = match args.shard {
-        None => vec![output::FolderLock::take(&dir, BATCH_LOCK, true)?],
-        Some(s) => vec![
-            output::FolderLock::take(&dir, BATCH_LOCK, false)?,
-            output::FolderLock::take(
-                &dir,
-                &format!(".rollfit-batch-{}-of-{}.lock", s.index, s.count),
-                true,
-            )?,
-        ],
-    };
-    // What killed runs left: staging folders beside the entries, and
-    // temporary files inside them.
-    output::remove_stale(&dir);
-    for entry in &manifest.entries {
-        output::remove_stale(&dir.join(&entry.name));
-    }
+    let _locks = lock_and_clean(&dir, args.shard, &manifest.entries)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.jobs.unwrap_or(0))
         .thread_name(|i| format!("rollfit-batch-{i}"))
@@ -345,6 +326,41 @@ pub fn run(args: &Args) -> Result<()> {
         count(Status::Skipped)
     );
 
+    verdict(args, &results, &summary)
+}
+
+/// Takes DIR's lock and removes what killed runs left. Two batches writing
+/// one folder would mix their results: a whole batch holds the folder's
+/// lock alone, the shards of one share it and each holds its own. Taking it
+/// also proves the folder writable before the first fit.
+fn lock_and_clean(
+    dir: &Path,
+    shard: Option<Shard>,
+    entries: &[Entry],
+) -> Result<Vec<output::FolderLock>> {
+    let locks = match shard {
+        None => vec![output::FolderLock::take(dir, BATCH_LOCK, true)?],
+        Some(s) => vec![
+            output::FolderLock::take(dir, BATCH_LOCK, false)?,
+            output::FolderLock::take(
+                dir,
+                &format!(".rollfit-batch-{}-of-{}.lock", s.index, s.count),
+                true,
+            )?,
+        ],
+    };
+    // What killed runs left: staging folders beside the entries, and
+    // temporary files inside them.
+    output::remove_stale(dir);
+    for entry in entries {
+        output::remove_stale(&dir.join(&entry.name));
+    }
+    Ok(locks)
+}
+
+/// The batch's exit: warnings for what the flags accept, an error listing
+/// what they do not (failed entries, unconverged or poor fits).
+fn verdict(args: &Args, results: &[EntryResult], summary: &Path) -> Result<()> {
     let names = |pick: &dyn Fn(&EntryResult) -> bool| {
         results
             .iter()
@@ -407,11 +423,10 @@ pub fn run(args: &Args) -> Result<()> {
 /// summary describes the files it points to.
 fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> EntryResult {
     let folder = dir.join(&entry.name);
-    let existing = folder.join("fit.json");
-    if existing.is_file() && !force {
+    if folder.join(FIT_JSON).is_file() && !force {
         return from_disk(
             entry,
-            &existing,
+            &folder,
             Status::Skipped,
             vec!["existing result kept (--force refits)".into()],
         );
@@ -467,7 +482,7 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> Ent
             };
             let mut parts = with_notes(head);
             parts.extend(report.warnings.iter().map(|w| format!("warning: {w}")));
-            from_disk(entry, &existing, status, parts)
+            from_disk(entry, &folder, status, parts)
         }
         Ok(Err(error)) => EntryResult::failed(entry, with_notes(format!("{error:#}")).join("; ")),
         Err(payload) => {
@@ -484,42 +499,24 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> Ent
     }
 }
 
-/// The row of an entry from the fit.json at `path`: its numbers, and for a
-/// kept result (`Status::Skipped`) its convergence and verdict in the
+/// The row of an entry from its fit.json in `folder`: its numbers, and for
+/// a kept result (`Status::Skipped`) its convergence and verdict in the
 /// message after `parts`.
-fn from_disk(entry: &Entry, path: &Path, status: Status, parts: Vec<String>) -> EntryResult {
-    let report: Value = match std::fs::read(path)
-        .map_err(|e| e.to_string())
-        .and_then(|bytes| serde_json::from_slice(&bytes).map_err(|e| e.to_string()))
-    {
-        Ok(value) => value,
-        Err(e) => {
-            return EntryResult::failed(
-                entry,
-                format!(
-                    "cannot read the result {}: {e} (remove it or give --force to refit)",
-                    path.display()
-                ),
-            );
-        }
+fn from_disk(entry: &Entry, folder: &Path, status: Status, parts: Vec<String>) -> EntryResult {
+    let digest = match Digest::read(folder) {
+        Ok(digest) => digest,
+        Err(e) => return EntryResult::failed(entry, e.to_string()),
     };
-    let number = |v: &Value| v.as_f64();
-    let converged = report["converged"].as_bool();
+    let converged = digest.converged;
     let mut message = parts.join("; ");
-    // Results written before fit_quality existed have no verdict.
-    let poor_fit = report["fit_quality"]["verdict"].as_str() == Some("poor");
     if status == Status::Skipped {
         if converged == Some(false) {
-            let reason = report["stop_reason"].as_str().unwrap_or("no reason given");
+            let reason = digest.stop_reason.as_deref().unwrap_or("no reason given");
             message += &format!("; it did not converge: {reason}");
         }
-        if poor_fit && converged != Some(false) {
-            let reasons: Vec<&str> = report["fit_quality"]["reasons"]
-                .as_array()
-                .map(|r| r.iter().filter_map(Value::as_str).collect())
-                .unwrap_or_default();
+        if digest.poor_fit && converged != Some(false) {
             message += "; it does not describe the data (fit_quality poor)";
-            for reason in reasons {
+            for reason in &digest.reasons {
                 message += &format!("; fit quality: {reason}");
             }
         }
@@ -527,14 +524,14 @@ fn from_disk(entry: &Entry, path: &Path, status: Status, parts: Vec<String>) -> 
     EntryResult {
         name: entry.name.clone(),
         status,
-        objective: number(&report["objective"]),
-        misfit_per_point: number(&report["misfit_per_point"]),
-        omega_min: number(&report["window"]["omega_min"]),
-        omega_max: number(&report["window"]["omega_max"]),
-        wall_time_s: number(&report["wall_time_s"]),
+        objective: digest.objective,
+        misfit_per_point: digest.misfit_per_point,
+        omega_min: digest.omega_min,
+        omega_max: digest.omega_max,
+        wall_time_s: digest.wall_time_s,
         converged,
-        poor_fit,
-        wlf: number(&report["shift"]["C1"]).zip(number(&report["shift"]["C2"])),
+        poor_fit: digest.poor_fit,
+        wlf: digest.wlf,
         message,
     }
 }
@@ -542,7 +539,7 @@ fn from_disk(entry: &Entry, path: &Path, status: Status, parts: Vec<String>) -> 
 fn summary_csv(results: &[EntryResult]) -> Result<Vec<u8>> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record(SUMMARY_COLUMNS)?;
-    let cell = |x: Option<f64>| x.map(output::number).unwrap_or_default();
+    let cell = |x: Option<f64>| x.map(csv_text::number).unwrap_or_default();
     for r in results {
         writer.write_record([
             r.name.clone(),

@@ -29,12 +29,12 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
 use rollfit_fit::{Lambda, Method};
+use rollfit_io::{csv_text, output};
 use rollfit_model::exact::{ExactSettings, RollingCylinder};
 use rollfit_model::{ContactSize, Prony, Scene, ViscoelasticModulus};
 use rollfit_report::plot::speed_accuracy::{CostPoint, SpeedAccuracyFigure};
 use rollfit_report::plot::{SeriesLabelPosition, render};
 
-use crate::output;
 use crate::{data_file, scene_file};
 
 /// Arguments of `rollfit bench`.
@@ -215,10 +215,10 @@ pub fn run(args: &Args) -> Result<()> {
             "{},{},{},{},{},{}\n",
             r.rung,
             r.setting,
-            output::number(r.time_per_mu),
-            output::number(r.max_error),
-            output::number(r.rms_error),
-            output::number(r.numerical_error)
+            csv_text::number(r.time_per_mu),
+            csv_text::number(r.max_error),
+            csv_text::number(r.rms_error),
+            csv_text::number(r.numerical_error)
         ));
     }
     let mut fit_text = String::from(
@@ -229,9 +229,9 @@ pub fn run(args: &Args) -> Result<()> {
             "{},{},{},{},{},{}\n",
             r.method,
             r.budget,
-            output::number(r.wall_time),
+            csv_text::number(r.wall_time),
             r.evaluations,
-            output::number(r.tan_delta_rms),
+            csv_text::number(r.tan_delta_rms),
             r.converged
         ));
     }

@@ -12,11 +12,12 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use rollfit_report::FitDir;
+use rollfit_io::FitDir;
+use rollfit_io::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind};
+use rollfit_io::output;
 use rollfit_report::compare::{Comparison, compare};
-use rollfit_report::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind};
 
-use crate::output;
+use crate::stdout;
 
 /// Arguments of `rollfit compare`.
 #[derive(Debug, clap::Args)]
@@ -56,7 +57,7 @@ pub struct DmaFlags {
 }
 
 impl DmaFlags {
-    /// The options of the report crate.
+    /// The options of the DMA reader and of the comparison.
     pub fn options(&self) -> DmaOptions {
         DmaOptions {
             kind: self.dma_modulus.map(|k| match k {
@@ -116,7 +117,7 @@ pub fn run(args: &Args) -> Result<()> {
     for warning in &result.warnings {
         eprintln!("warning: {warning}");
     }
-    output::write_stdout(table(&result).as_bytes())?;
+    stdout::write_stdout(table(&result).as_bytes())?;
     eprintln!("wrote {}", target.display());
     Ok(())
 }

@@ -16,27 +16,12 @@ use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::{
     FitError, FitParams, FitReport, Lambda, Method, RollingSetup, ShiftRecord, TermRule,
 };
+use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
+use rollfit_io::output;
 use rollfit_model::Shape;
-use serde::Serialize;
 
 use crate::data_file::{self, DataTable};
-use crate::output;
 use crate::scene_file;
-
-/// Columns of modulus.csv: docs/ARCHITECTURE.md, "Contract", fixes the
-/// first four (Young's modulus, Pa; ω in rad/s); then |E*| and the 1σ band
-/// of each quantity.
-pub const MODULUS_COLUMNS: [&str; 9] = [
-    "omega",
-    "E_storage",
-    "E_loss",
-    "tan_delta",
-    "abs_E",
-    "E_storage_sigma",
-    "E_loss_sigma",
-    "tan_delta_sigma",
-    "abs_E_sigma",
-];
 
 /// Arguments of `rollfit fit`.
 #[derive(Debug, clap::Args)]
@@ -257,7 +242,7 @@ pub struct Outcome {
     /// The one temperature of the data's `T` column, °C.
     pub temperature: Option<f64>,
     /// fit.json, modulus.csv and mu.csv.
-    files: [(&'static str, Vec<u8>); 3],
+    files: FitFiles,
 }
 
 impl Outcome {
@@ -265,12 +250,7 @@ impl Outcome {
     /// ([`output::replace_folder`]): a reader finds either the previous
     /// complete result or this one.
     pub fn commit(&self, dir: &Path) -> Result<()> {
-        let files: Vec<(&str, &[u8])> = self
-            .files
-            .iter()
-            .map(|(name, bytes)| (*name, bytes.as_slice()))
-            .collect();
-        output::replace_folder(dir, &files)
+        Ok(output::replace_folder(dir, &self.files.named())?)
     }
 }
 
@@ -327,11 +307,19 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     })?;
 
     // Everything is encoded before the disk is touched.
-    let files = [
-        ("mu.csv", mu_csv(&table, &report)?),
-        ("modulus.csv", modulus_csv(&report)?),
-        ("fit.json", fit_json(job, &report, temperature)?),
-    ];
+    let measured = Measured {
+        speeds: &table.speeds,
+        friction: &table.friction,
+        sigma: table.sigma.as_deref(),
+        temperature: table.temperature.as_deref(),
+    };
+    let input = FitInput {
+        scene: job.scene.display().to_string(),
+        data: job.data.display().to_string(),
+        temperature,
+        rollfit_version: env!("CARGO_PKG_VERSION"),
+    };
+    let files = FitFiles::encode(&report, &measured, &input)?;
     Ok(Outcome {
         report,
         temperature,
@@ -359,100 +347,6 @@ fn describe_setup(setup: &RollingSetup) -> String {
         "{shape} R = {} m, load {} {unit}, ν = {}",
         g.radius, g.load, setup.substrate.poisson
     )
-}
-
-/// fit.json: the report (docs/ARCHITECTURE.md, "Contract", in the fit
-/// library's field order) plus where it came from.
-#[derive(Serialize)]
-struct FitJson<'a> {
-    #[serde(flatten)]
-    report: &'a FitReport,
-    input: Input,
-    rollfit_version: &'static str,
-}
-
-/// The inputs of a fit, as given on the command line.
-#[derive(Serialize)]
-struct Input {
-    scene: String,
-    data: String,
-    points: usize,
-    /// The one temperature of the data's `T` column, °C.
-    #[serde(rename = "T", skip_serializing_if = "Option::is_none")]
-    temperature: Option<f64>,
-}
-
-fn fit_json(job: &Job<'_>, report: &FitReport, temperature: Option<f64>) -> Result<Vec<u8>> {
-    let value = FitJson {
-        report,
-        input: Input {
-            scene: job.scene.display().to_string(),
-            data: job.data.display().to_string(),
-            points: report.mu_fit.len(),
-            temperature,
-        },
-        rollfit_version: env!("CARGO_PKG_VERSION"),
-    };
-    let mut bytes = serde_json::to_vec_pretty(&value).context("cannot encode the fit report")?;
-    bytes.push(b'\n');
-    Ok(bytes)
-}
-
-fn modulus_csv(report: &FitReport) -> Result<Vec<u8>> {
-    output::csv_bytes(
-        &MODULUS_COLUMNS,
-        report.curve.iter().map(|p| p.values().to_vec()),
-    )
-}
-
-/// mu.csv: v, mu_measured, mu_fit, [sigma], residual = (μ_fit − μ)/μ, and
-/// for a temperature set T, log_aT and v_reduced = v·a_T (the speed on the
-/// master curve at T_ref), in the data's order.
-fn mu_csv(table: &DataTable, report: &FitReport) -> Result<Vec<u8>> {
-    if report.mu_fit.len() != table.speeds.len() {
-        bail!(
-            "the fit returned {} fitted values for {} data points",
-            report.mu_fit.len(),
-            table.speeds.len()
-        );
-    }
-    let mut header = vec!["v", "mu_measured", "mu_fit"];
-    if table.sigma.is_some() {
-        header.push("sigma");
-    }
-    header.push("residual");
-    let shift = report.shift.as_ref();
-    if shift.is_some() {
-        header.extend(["T", "log_aT", "v_reduced"]);
-    }
-    let mut rows = Vec::with_capacity(table.speeds.len());
-    for i in 0..table.speeds.len() {
-        let (v, mu, fit) = (table.speeds[i], table.friction[i], report.mu_fit[i]);
-        let mut row = vec![v, mu, fit];
-        if let Some(sigma) = &table.sigma {
-            row.push(sigma[i]);
-        }
-        row.push((fit - mu) / mu);
-        if let Some(shift) = shift {
-            let t = table
-                .temperature
-                .as_ref()
-                .map(|t| t[i])
-                .context("a temperature set without a T value")?;
-            let log_a = shift
-                .log_shifts()
-                .iter()
-                .min_by(|a, b| {
-                    (a.temperature - t)
-                        .abs()
-                        .total_cmp(&(b.temperature - t).abs())
-                })
-                .map_or(f64::NAN, |s| s.log_shift);
-            row.extend([t, log_a, v * 10f64.powf(log_a)]);
-        }
-        rows.push(row);
-    }
-    output::csv_bytes(&header, rows)
 }
 
 /// A few lines for a person at a terminal.

@@ -26,16 +26,17 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rollfit_fit::RollingSetup;
 use rollfit_fit::sanity;
+use rollfit_io::{csv_text, output};
 use rollfit_model::ladder::AutoSweep;
 use rollfit_model::{ModelError, Shape, ViscoelasticModulus};
 use rollfit_report::plot::{
     self, Picture, forward_sweep::ForwardSweepFigure, forward_sweep::SweepCurve,
 };
 
-use crate::output;
 use crate::scene_file::{
     self, DynScene, ForwardBlock, ForwardRung, ForwardSetup, MaterialKind, SceneFile,
 };
+use crate::stdout;
 use crate::table_file;
 
 /// CSV columns, in order (docs/ARCHITECTURE.md, "Contract", fixes `v` and `mu`; the rest is ours):
@@ -164,8 +165,8 @@ pub fn run(args: &Args) -> Result<()> {
         .iter()
         .zip(&solved)
         .flat_map(|(block, solved)| rows(block, &setup.speeds, solved));
-    let refuse = |e: anyhow::Error| {
-        e.context(format!(
+    let refuse = |e: rollfit_io::IoError| {
+        anyhow::Error::from(e).context(format!(
             "scene file {}: the model gives a number that is not finite; check [geometry] \
              radius and load and the material's moduli for values far outside a rolling \
              contact",
@@ -173,7 +174,7 @@ pub fn run(args: &Args) -> Result<()> {
         ))
     };
     let bytes = match args.noise {
-        None => output::csv_text_bytes(&header(&COLUMNS, extra), rows).map_err(refuse)?,
+        None => csv_text::csv_text_bytes(&header(&COLUMNS, extra), rows).map_err(refuse)?,
         Some(rel) => {
             // One stream over the whole file, in row order.
             let exact: Vec<f64> = mu.iter().flatten().copied().collect();
@@ -190,10 +191,10 @@ pub fn run(args: &Args) -> Result<()> {
             }
             let rows = rows.zip(noisy).map(|(mut row, (m, sigma))| {
                 // [v, mu_exact, rest.., (T)] → [v, mu, sigma, mu_exact, rest.., (T)]
-                row.splice(1..1, [output::number(m), output::number(sigma)]);
+                row.splice(1..1, [csv_text::number(m), csv_text::number(sigma)]);
                 row
             });
-            output::csv_text_bytes(&header(&NOISY_COLUMNS, extra), rows).map_err(refuse)?
+            csv_text::csv_text_bytes(&header(&NOISY_COLUMNS, extra), rows).map_err(refuse)?
         }
     };
     match &args.output {
@@ -205,7 +206,7 @@ pub fn run(args: &Args) -> Result<()> {
             output::write_atomically(&out.with_extension("png"), &picture.png)?;
             output::write_atomically(&out.with_extension("svg"), picture.svg.as_bytes())?;
         }
-        None => output::write_stdout(&bytes)?,
+        None => stdout::write_stdout(&bytes)?,
     }
     eprintln!("{}", summary(&setup, &solved, &mu));
     for line in sanity_warnings(&setup, &mu) {
@@ -448,11 +449,11 @@ fn rows<'a>(
             if let Some(error) = &solved.error {
                 row.push(error[i]);
             }
-            let mut row: Vec<String> = row.into_iter().map(output::number).collect();
+            let mut row: Vec<String> = row.into_iter().map(csv_text::number).collect();
             if let Some(auto) = &solved.auto {
                 row.push(auto.rungs[i].name().to_string());
             }
-            row.extend(temperature.map(output::number));
+            row.extend(temperature.map(csv_text::number));
             row
         })
 }

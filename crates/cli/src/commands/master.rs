@@ -21,15 +21,19 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use rollfit_fit::master::{MasterSettings, ShiftLaw};
+use rollfit_io::dma::{DmaPoint, ModulusKind};
+use rollfit_io::fit_dir::columns::{
+    E_LOSS, E_STORAGE, LOG_AT, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
+};
+use rollfit_io::{csv_text, output};
 use rollfit_model::ViscoelasticModulus;
 use rollfit_report::causality::{self, CausalFit};
-use rollfit_report::dma::{DmaPoint, ModulusKind};
 use rollfit_report::plot::{self, dma_master as figure};
 use serde::Serialize;
 
 use crate::commands::compare::DmaModulus;
 use crate::dma_master::{self, DmaMaster};
-use crate::output;
+use crate::stdout;
 
 /// Arguments of `rollfit master`.
 #[derive(Debug, clap::Args)]
@@ -111,7 +115,7 @@ pub fn run(args: &Args) -> Result<()> {
     let files = encode(&built, &causal, args.poisson)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
     output::replace_folder(&args.output, &named)?;
-    output::write_stdout(summary(&built, &causal).as_bytes())?;
+    stdout::write_stdout(summary(&built, &causal).as_bytes())?;
     eprintln!("wrote {}", args.output.display());
     Ok(())
 }
@@ -143,15 +147,8 @@ fn encode(
     poisson: f64,
 ) -> Result<Vec<(&'static str, Vec<u8>)>> {
     let master = &built.master;
-    let master_csv = output::csv_bytes(
-        &[
-            "omega",
-            "E_storage",
-            "E_loss",
-            "tan_delta",
-            "T",
-            "omega_measured",
-        ],
+    let master_csv = csv_text::csv_bytes(
+        &[OMEGA, E_STORAGE, E_LOSS, TAN_DELTA, T, "omega_measured"],
         master.points.iter().map(|p| {
             vec![
                 p.reduced_omega,
@@ -163,8 +160,8 @@ fn encode(
             ]
         }),
     )?;
-    let shift_csv = output::csv_text_bytes(
-        &["T", "log_aT", "log_aT_measured", "log_bT", "points"],
+    let shift_csv = csv_text::csv_text_bytes(
+        &[T, LOG_AT, "log_aT_measured", "log_bT", "points"],
         master.shift.shifts.iter().map(|s| {
             let mut row: Vec<String> = [
                 s.temperature,
@@ -173,15 +170,16 @@ fn encode(
                 s.log_vertical,
             ]
             .into_iter()
-            .map(output::number)
+            .map(csv_text::number)
             .collect();
             row.push(s.points.to_string());
             row
         }),
     )?;
     let curve = prony_curve(built);
-    let modulus_csv = output::csv_bytes(
-        &["omega", "E_storage", "E_loss", "tan_delta"],
+    let modulus_csv = csv_text::csv_bytes(
+        // The first columns of a fit's modulus.csv, which the contract fixes.
+        &MODULUS_COLUMNS[..4],
         curve.iter().map(|&(w, s, l)| vec![w, s, l, l / s]),
     )?;
     let material = crate::material_file::encode(built)?;
@@ -226,7 +224,7 @@ fn encode(
     Ok(vec![
         ("master.csv", master_csv),
         ("shift.csv", shift_csv),
-        ("modulus.csv", modulus_csv),
+        (MODULUS_CSV, modulus_csv),
         ("material.toml", material),
         ("master.json", json),
         ("master.png", picture.png),

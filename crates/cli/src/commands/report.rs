@@ -11,12 +11,12 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use rollfit_report::FitDir;
+use rollfit_io::FitDir;
+use rollfit_io::output;
 use rollfit_report::html::{ComparisonSection, report_html};
 use rollfit_report::plot::{self, master_curve::DmaMarker};
 
 use super::compare::{DmaFlags, comparison};
-use crate::output;
 
 /// Arguments of `rollfit report`.
 #[derive(Debug, clap::Args)]

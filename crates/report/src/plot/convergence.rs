@@ -9,7 +9,7 @@ use plotters::prelude::*;
 
 use super::axes::{lg, log_axis, log_range};
 use super::{DrawResult, Figure, draw_legend, style};
-use crate::fit_dir::{FitDir, RunSummary};
+use rollfit_io::fit_dir::{FitDir, RunSummary};
 
 /// V against evaluations per run.
 pub struct ConvergenceFigure<'a> {

@@ -9,7 +9,7 @@ use plotters::prelude::*;
 
 use super::axes::{self, lg, log_axis, log_range};
 use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
-use crate::fit_dir::{FitDir, FrictionRow};
+use rollfit_io::fit_dir::{FitDir, FrictionRow};
 
 /// μ(v) with residuals.
 pub struct FrictionFigure<'a> {

@@ -12,8 +12,8 @@ use plotters::prelude::*;
 
 use super::axes::{lg, log_axis, log_range};
 use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
-use crate::fit_dir::FitDir;
 use num_complex::Complex64;
+use rollfit_io::fit_dir::FitDir;
 
 /// Decades drawn beyond each end of the window.
 const OUTSIDE_DECADES: f64 = 2.0;
@@ -203,7 +203,7 @@ impl Figure for MasterCurveFigure<'_> {
             .collect();
 
         let rows = &self.fit.modulus;
-        let band = |value: &dyn Fn(&crate::fit_dir::ModulusRow) -> (f64, Option<f64>)| {
+        let band = |value: &dyn Fn(&rollfit_io::fit_dir::ModulusRow) -> (f64, Option<f64>)| {
             let mut lower = Vec::new();
             let mut upper = Vec::new();
             for r in rows {

@@ -208,7 +208,7 @@ where
 /// spectrum, convergence, and for a temperature set the master friction
 /// curve and the shift. `dma` holds DMA points at the reference state.
 pub fn pictures(
-    fit: &crate::FitDir,
+    fit: &rollfit_io::FitDir,
     dma: &[master_curve::DmaMarker],
 ) -> Result<Vec<Picture>, ReportError> {
     let mut pictures = vec![

@@ -9,7 +9,7 @@ use plotters::prelude::*;
 
 use super::axes::{lg, log_axis, log_range};
 use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
-use crate::fit_dir::FitDir;
+use rollfit_io::fit_dir::FitDir;
 
 /// H_k against τ_k.
 pub struct SpectrumFigure<'a> {

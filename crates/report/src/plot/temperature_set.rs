@@ -11,7 +11,7 @@ use plotters::prelude::*;
 use super::axes::{lg, linear_range, log_axis, log_range};
 use super::friction::{temperature_groups, temperature_label};
 use super::{DrawResult, Figure, draw_legend, draw_mesh, format_tick, style};
-use crate::fit_dir::FitDir;
+use rollfit_io::fit_dir::FitDir;
 
 /// μ against v·a_T.
 pub struct MasterFrictionFigure<'a> {
@@ -49,7 +49,7 @@ impl Figure for MasterFrictionFigure<'_> {
         DB::ErrorType: 'static,
     {
         let rows = &self.fit.friction;
-        let reduced = |r: &crate::fit_dir::FrictionRow| r.reduced_speed.unwrap_or(r.speed);
+        let reduced = |r: &rollfit_io::fit_dir::FrictionRow| r.reduced_speed.unwrap_or(r.speed);
         let x_range = log_range(rows.iter().map(reduced), 0.2, -8.0..0.0);
         let y_range = log_range(
             rows.iter().flat_map(|r| [r.mu_measured, r.mu_fit]),

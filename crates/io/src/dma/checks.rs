@@ -1,0 +1,129 @@
+//! The checks every DMA form shares (docs/ARCHITECTURE.md, "Contract",
+//! "DMA files"): ω and E′ positive and within what any solid measures, a
+//! temperature within (−273.15, 1000] °C; a point with E″ ≤ 0 dropped with
+//! a warning; at least one point left.
+
+use std::path::Path;
+
+use super::form::{FieldNames, RawPoint};
+use super::point::DmaPoint;
+use crate::error::IoError;
+
+/// Accepted angular frequencies, rad/s.
+const OMEGA_RANGE: (f64, f64) = (1e-30, 1e30);
+
+/// The largest accepted modulus, Pa (after a shear modulus is converted).
+const MAX_MODULUS: f64 = 1e13;
+
+/// E″/E′ below which a point is dropped as unresolved.
+const MIN_TAN_DELTA: f64 = 1e-9;
+
+/// The smallest accepted storage modulus, Pa.
+const MIN_STORAGE: f64 = 1e-3;
+
+/// The checks common to all forms: ω > 0, E′ > 0 (errors); E″ ≤ 0 (point
+/// dropped with a warning); at least one point left. Multiplies the moduli
+/// by `factor` (2(1+ν) for shear). Returns the points kept and their lines.
+pub(super) fn check_points(
+    path: &Path,
+    raw: Vec<RawPoint>,
+    names: &FieldNames,
+    factor: f64,
+    warnings: &mut Vec<String>,
+) -> Result<(Vec<DmaPoint>, Vec<usize>), IoError> {
+    let mut points = Vec::with_capacity(raw.len());
+    let mut lines = Vec::with_capacity(raw.len());
+    let mut dropped = 0usize;
+    for p in raw {
+        check_point(path, &p, names, factor)?;
+        // No instrument resolves tan δ below about 1e-4; a smaller E″ is
+        // noise around zero (and 1/E″ weights overflow near 1e-308).
+        if p.loss <= MIN_TAN_DELTA * p.storage {
+            dropped += 1;
+            warnings.push(format!(
+                "{}, line {}: {}: loss modulus {} ≤ 0 or below 1e-9 E′ (not physical; below the instrument's phase resolution?): point dropped",
+                path.display(),
+                p.line,
+                names.loss,
+                p.loss
+            ));
+            continue;
+        }
+        points.push(DmaPoint {
+            omega: p.omega,
+            storage: factor * p.storage,
+            loss: factor * p.loss,
+            temperature: p.temperature,
+        });
+        lines.push(p.line);
+    }
+    if points.is_empty() {
+        let path = path.to_path_buf();
+        return Err(if dropped > 0 {
+            IoError::NoUsablePoints { path, dropped }
+        } else {
+            IoError::NoDataPoints { path }
+        });
+    }
+    Ok((points, lines))
+}
+
+/// The errors of one point (see [`check_points`]).
+fn check_point(path: &Path, p: &RawPoint, names: &FieldNames, factor: f64) -> Result<(), IoError> {
+    let line = p.line;
+    let path = || path.to_path_buf();
+    if p.omega <= 0.0 {
+        return Err(IoError::FrequencyNotPositive {
+            path: path(),
+            line,
+            column: names.omega.clone(),
+            value: p.omega,
+        });
+    }
+    if p.storage <= 0.0 {
+        return Err(IoError::StorageNotPositive {
+            path: path(),
+            line,
+            column: names.storage.clone(),
+            value: p.storage,
+        });
+    }
+    // Far outside any DMA measurement, and beyond what the causality
+    // check's τ grid and least squares can represent.
+    if !(OMEGA_RANGE.0..=OMEGA_RANGE.1).contains(&p.omega) {
+        return Err(IoError::FrequencyOutOfRange {
+            path: path(),
+            line,
+            column: names.omega.clone(),
+            value: p.omega,
+        });
+    }
+    for (column, value) in [(&names.storage, p.storage), (&names.loss, p.loss)] {
+        if factor * value > MAX_MODULUS {
+            return Err(IoError::ModulusTooLarge {
+                path: path(),
+                line,
+                column: column.clone(),
+                value,
+            });
+        }
+    }
+    if factor * p.storage < MIN_STORAGE {
+        return Err(IoError::StorageTooSmall {
+            path: path(),
+            line,
+            column: names.storage.clone(),
+            value: p.storage,
+        });
+    }
+    if let Some(t) = p.temperature
+        && !(t > -273.15 && t <= 1000.0)
+    {
+        return Err(IoError::TemperatureOutOfRange {
+            path: path(),
+            line,
+            value: t,
+        });
+    }
+    Ok(())
+}

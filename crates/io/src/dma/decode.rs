@@ -1,0 +1,91 @@
+//! The text of a DMA file (docs/ARCHITECTURE.md, "Contract", "DMA
+//! files"): TRIOS writes UTF-8, but older versions and Windows tools write
+//! UTF-16 (with a byte-order mark) or Latin-1 (° as byte 0xB0); [`decode`]
+//! reads all three, for both forms.
+
+use std::path::Path;
+
+use crate::error::{InvalidText, IoError};
+use crate::text_file::invalid_text;
+
+/// Text of a file: UTF-16 when it starts with a byte-order mark, UTF-8
+/// when valid (a UTF-8 mark dropped), Latin-1 when nothing in it is UTF-8
+/// beyond ASCII.
+///
+/// Refused, with the line and byte offset: a UTF-16 file with an unpaired
+/// surrogate or an odd number of bytes (cut off), and invalid UTF-8 in a
+/// file that is UTF-8 elsewhere or says so with its mark: that is damage
+/// or two encodings spliced, and reading it as Latin-1 would quietly turn
+/// every "°C" of it into "Â°C".
+pub fn decode(path: &Path, bytes: &[u8]) -> Result<String, IoError> {
+    match bytes {
+        [0xFF, 0xFE, ..] => utf16(path, bytes, true),
+        [0xFE, 0xFF, ..] => utf16(path, bytes, false),
+        _ => {
+            let marked = bytes.starts_with(&[0xEF, 0xBB, 0xBF]);
+            let body = if marked { &bytes[3..] } else { bytes };
+            match std::str::from_utf8(body) {
+                Ok(text) => Ok(text.to_string()),
+                Err(e) => {
+                    let offset = (bytes.len() - body.len()) + e.valid_up_to();
+                    if marked {
+                        Err(invalid_text(
+                            path,
+                            bytes,
+                            offset,
+                            InvalidText::InvalidAfterMark,
+                        ))
+                    } else if body.utf8_chunks().any(|c| !c.valid().is_ascii()) {
+                        Err(invalid_text(
+                            path,
+                            bytes,
+                            offset,
+                            InvalidText::MixedEncodings,
+                        ))
+                    } else {
+                        Ok(body.iter().map(|&b| char::from(b)).collect())
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// UTF-16 text after its byte-order mark, little- or big-endian.
+fn utf16(path: &Path, bytes: &[u8], little: bool) -> Result<String, IoError> {
+    let body = &bytes[2..];
+    let units = body.chunks_exact(2).map(|c| {
+        if little {
+            u16::from_le_bytes([c[0], c[1]])
+        } else {
+            u16::from_be_bytes([c[0], c[1]])
+        }
+    });
+    let mut text = String::with_capacity(body.len() / 2);
+    let mut unit = 0usize;
+    for c in char::decode_utf16(units) {
+        match c {
+            Ok(c) => {
+                text.push(c);
+                unit += c.len_utf16();
+            }
+            Err(e) => {
+                return Err(IoError::UnpairedSurrogate {
+                    path: path.to_path_buf(),
+                    line: text.matches('\n').count() + 1,
+                    unit: e.unpaired_surrogate(),
+                    offset: 2 + 2 * unit,
+                });
+            }
+        }
+    }
+    if body.len() % 2 == 1 {
+        return Err(IoError::OddUtf16Length {
+            path: path.to_path_buf(),
+            line: text.matches('\n').count() + 1,
+            length: bytes.len(),
+            offset: bytes.len() - 1,
+        });
+    }
+    Ok(text)
+}

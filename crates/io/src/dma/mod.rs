@@ -1,0 +1,160 @@
+//! DMA data: storage and loss moduli measured by dynamic mechanical analysis
+//! (or an oscillatory shear rheometer), read from a file as Young's moduli
+//! and grouped into isotherms.
+//!
+//! Two file forms (docs/ARCHITECTURE.md, "Contract", "DMA files"):
+//! - CSV ([`csv_form`]): a frequency column `f` (Hz) or `omega` (rad/s),
+//!   storage and loss columns `E_storage`, `E_loss` (Young's) or
+//!   `G_storage`, `G_loss` (shear), optional `T` (°C). Unit-suffixed
+//!   spellings such as `omega_rad_s`, `f_Hz`, `G_storage_Pa`,
+//!   `E_loss_MPa`, `T_C` or `T_K` are read with their unit.
+//! - the TA Instruments TRIOS "LIMS" text export ([`trios`]), which
+//!   carries its own units and says (through its variables and instrument)
+//!   whether the moduli are shear or tensile.
+//!
+//! Both are decoded by [`decode`] (UTF-8, UTF-16 with a byte-order mark,
+//! Latin-1). Shear moduli become Young's moduli with the fit's Poisson's
+//! ratio ν, frequency-independent as everywhere in rollfit:
+//!
+//! E*(ω) = 2 (1 + ν) G*(ω),
+//!
+//! so E′ = 2(1+ν) G′, E″ = 2(1+ν) G″ and tan δ is unchanged.
+//!
+//! Points at several temperatures are grouped into isotherms
+//! ([`isotherms`]); moving them to a fit's reference state is the report
+//! crate's (`rollfit_report::dma_shift`), building a master curve of them
+//! the fit crate's (`rollfit_fit::master`).
+//!
+//! What is checked when reading (`checks.rs`): the file is whole and in one
+//! encoding (a cut-off or damaged file is refused with its line, see
+//! [`csv_form`] and [`trios`]), ω > 0, E′ > 0, every number finite. A
+//! point with E″ ≤ 0 is dropped with a warning naming its line and column
+//! rather than refusing the whole file: a negative loss modulus is not
+//! physical (E″ ≥ 0 for a passive solid), and real exports carry one now
+//! and then where the loss angle is below the instrument's phase
+//! resolution (the 468MP adhesive's coldest point, glassy, reads
+//! E″ = −30 MPa against E′ = 550 MPa); every metric compares logarithms or
+//! ratios of E″, which a zero or negative E″ has none of.
+//!
+//! # References
+//! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley 1980,
+//!   Ch. 1 (E = 2(1+ν)G) and Ch. 11 (reduced variables).
+//! - TA Instruments, *TRIOS Software: Export to LIMS*, the "LIMS" text
+//!   export format (sections, `Variables`/`Units` lines, `Data point`
+//!   rows).
+
+use std::path::{Path, PathBuf};
+
+use crate::error::IoError;
+
+mod checks;
+pub mod csv_form;
+pub mod decode;
+mod form;
+mod isotherm;
+mod point;
+pub mod trios;
+
+use form::FormRead;
+pub use isotherm::{ISOTHERM_TOLERANCE, Isotherm, isotherms};
+pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind};
+
+/// A DMA file read, its moduli as Young's moduli in Pa.
+#[derive(Debug, Clone)]
+pub struct DmaData {
+    /// The file.
+    pub path: PathBuf,
+    /// The points in file order, as measured.
+    pub points: Vec<DmaPoint>,
+    /// The file line (from 1) of each entry of `points`, same order: for
+    /// messages about a point.
+    pub lines: Vec<usize>,
+    /// What the file held (before conversion to Young's).
+    pub kind: ModulusKind,
+    /// "csv" or "trios-lims".
+    pub format: &'static str,
+    /// Points dropped, columns or steps skipped, and how the file was
+    /// read where that was a decision (shear or tensile, ν).
+    pub warnings: Vec<String>,
+    /// How the file was read where the file itself said so (a CSV's shear
+    /// columns converted with ν): worth knowing, nothing to check.
+    pub notes: Vec<String>,
+}
+
+impl DmaData {
+    /// Reads a DMA file: TRIOS LIMS when its first line is `[Version]` or
+    /// mentions the LIMS export, CSV otherwise (the extension is not
+    /// consulted: exports are renamed freely). Shear moduli become Young's
+    /// with `poisson` (the fit's ν).
+    pub fn read(path: &Path, poisson: f64, options: &DmaOptions) -> Result<DmaData, IoError> {
+        if !(poisson > -1.0 && poisson <= 0.5) {
+            // Not the DMA file's fault: say whose number it is.
+            return Err(IoError::DmaPoisson {
+                path: path.to_path_buf(),
+                poisson,
+            });
+        }
+        let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let text = decode::decode(path, &bytes)?;
+        let (read, format) = if trios::is_lims(&text) {
+            (trios::parse(path, &text, options)?, "trios-lims")
+        } else {
+            let mut read = csv_form::parse(path, &text)?;
+            if options.kind.is_some_and(|k| k != read.kind) {
+                read.warnings.push(format!(
+                    "{}: the CSV's column names say {} moduli; the requested modulus kind applies to TRIOS files only and is ignored",
+                    path.display(),
+                    read.kind.name()
+                ));
+            }
+            (read, "csv")
+        };
+        let FormRead {
+            points: raw,
+            kind,
+            names,
+            mut warnings,
+        } = read;
+        let mut notes = Vec::new();
+        let factor = match kind {
+            ModulusKind::Young => 1.0,
+            ModulusKind::Shear => {
+                let conversion = format!(
+                    "{}: shear moduli G′, G″ converted to Young's with E = 2(1+ν)G, ν = {poisson} (the fit's)",
+                    path.display()
+                );
+                // A TRIOS file's kind was inferred (a warning); a CSV's
+                // column names state it (a note).
+                if format == "csv" {
+                    notes.push(conversion);
+                } else {
+                    warnings.push(conversion);
+                }
+                2.0 * (1.0 + poisson)
+            }
+        };
+        let (points, lines) = checks::check_points(path, raw, &names, factor, &mut warnings)?;
+        Ok(DmaData {
+            path: path.to_path_buf(),
+            points,
+            lines,
+            kind,
+            format,
+            warnings,
+            notes,
+        })
+    }
+
+    /// The measured temperatures grouped into isotherms (°C, ascending):
+    /// points within [`ISOTHERM_TOLERANCE`] of their neighbour belong to
+    /// one isotherm, whose temperature is their mean.
+    pub fn temperatures(&self) -> Vec<f64> {
+        isotherms(&self.points)
+            .iter()
+            .map(|i| i.temperature)
+            .collect()
+    }
+}

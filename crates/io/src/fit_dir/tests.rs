@@ -1,0 +1,253 @@
+//! Unit tests of the fit folder: fit.json edited by hand is refused naming
+//! the key and line; invalid bytes are located.
+
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use super::columns::MODULUS_COLUMNS;
+use super::write::MODULUS_VALUES;
+use super::*;
+
+/// A fit folder of its own under the system's temporary folder,
+/// removed on drop.
+struct Folder(PathBuf);
+
+impl Folder {
+    /// fit.json as given, with a valid mu.csv and modulus.csv.
+    fn new(name: &str, fit_json: &[u8]) -> Folder {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let path = std::env::temp_dir().join(format!(
+            "rollfit-io-fitdir-{}-{name}-{n}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).unwrap();
+        std::fs::write(path.join("fit.json"), fit_json).unwrap();
+        std::fs::write(path.join("mu.csv"), "v,mu_measured,mu_fit\n1e-3,0.1,0.1\n").unwrap();
+        std::fs::write(
+            path.join("modulus.csv"),
+            "omega,E_storage,E_loss,tan_delta\n1,1e6,1e5,0.1\n10,2e6,2e5,0.1\n",
+        )
+        .unwrap();
+        Folder(path)
+    }
+
+    fn error(&self) -> String {
+        match FitDir::read(&self.0) {
+            Ok(_) => panic!("{}: expected an error", self.0.display()),
+            Err(e) => e.to_string(),
+        }
+    }
+}
+
+impl Drop for Folder {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A temperature set's fit.json, one key per line (line numbers below
+/// count on it).
+const GOOD: &str = r#"{
+  "model": {"kind": "prony", "E1": 1e9, "tau": [0.001, 0.01], "H": [4e8, 5e8]},
+  "poisson": 0.5,
+  "window": {"omega_min": 0.1, "omega_max": 1000.0},
+  "method": "test",
+  "objective": 0.0,
+  "iterations": 3,
+  "converged": true,
+  "wall_time_s": 0.5,
+  "shift": {"model": "wlf", "T_ref": 20.0, "C1": 8.86, "C2": 101.6,
+    "log_aT": [{"T": 0.0, "log_aT": 1.26}, {"T": 40.0, "log_aT": -1.2}]}
+}
+"#;
+
+fn edited(name: &str, from: &str, to: &str) -> Folder {
+    assert!(GOOD.contains(from), "{from}");
+    Folder::new(name, GOOD.replacen(from, to, 1).as_bytes())
+}
+
+fn assert_contains(text: &str, fragments: &[&str]) {
+    for f in fragments {
+        assert!(text.contains(f), "{f:?} not in:\n{text}");
+    }
+}
+
+#[test]
+fn the_unedited_fit_json_reads() {
+    let folder = Folder::new("good", GOOD.as_bytes());
+    let fit = FitDir::read(&folder.0).unwrap();
+    assert_eq!(fit.summary.shift.unwrap().model, "wlf");
+    assert_eq!(fit.summary.iterations, 3);
+}
+
+/// Issue 14, hole 5: an unknown shift model was read as WLF.
+#[test]
+fn unknown_or_incomplete_shift_models_are_refused() {
+    let e = edited("foo", r#""model": "wlf""#, r#""model": "foo""#).error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 10",
+            "shift.model = \"foo\": unknown shift model; allowed: \"wlf\", \"free\"",
+        ],
+    );
+    let e = edited("noc2", r#", "C2": 101.6"#, "").error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 10",
+            "shift.model = \"wlf\" needs the key shift.C2",
+        ],
+    );
+    let e = edited("free", r#""model": "wlf""#, r#""model": "free""#).error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 10",
+            "shift.C1 does not belong to shift.model = \"free\"",
+        ],
+    );
+    let free = GOOD.replacen(r#""model": "wlf", "#, r#""model": "free", "#, 1);
+    let free = free.replacen(r#", "C1": 8.86, "C2": 101.6"#, "", 1);
+    let folder = Folder::new("free-ok", free.as_bytes());
+    assert_eq!(
+        FitDir::read(&folder.0)
+            .unwrap()
+            .summary
+            .shift
+            .unwrap()
+            .model,
+        "free"
+    );
+}
+
+/// Issue 14, hole 5: ν and WLF constants outside their range were
+/// accepted, and a bad ν was blamed on the DMA file later.
+#[test]
+fn poisson_and_wlf_constants_out_of_range_are_refused_naming_fit_json() {
+    for (name, nu) in [("nu1", "1"), ("nu-1", "-1"), ("nu06", "0.6")] {
+        let e = edited(name, r#""poisson": 0.5"#, &format!(r#""poisson": {nu}"#)).error();
+        assert_contains(
+            &e,
+            &[
+                "fit.json, line 3",
+                &format!("poisson = {nu}: Poisson's ratio must lie in (−1, 0.5]"),
+            ],
+        );
+    }
+    let e = edited("c2", r#""C2": 101.6"#, r#""C2": -5"#).error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 10",
+            "shift.C2 = -5: the WLF constant C2 must be > 0 K",
+        ],
+    );
+    let e = edited("c1", r#""C1": 8.86"#, r#""C1": 0"#).error();
+    assert_contains(&e, &["fit.json, line 10", "shift.C1 = 0"]);
+    // C2 = 10 K: the WLF form diverges at 10 °C, above the 0 °C isotherm.
+    let e = edited("pole", r#""C2": 101.6"#, r#""C2": 10"#).error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 11",
+            "shift.log_aT[0].T = 0 °C: C2 + T − T_ref = -10 K is not positive",
+            "diverges at T_ref − C2 = 10 °C",
+        ],
+    );
+}
+
+/// Issue 14, hole 5: null (a NaN as serde_json writes it) or a
+/// non-finite number where a number belongs: the key, not only
+/// "invalid type: null".
+#[test]
+fn null_and_non_finite_numbers_are_refused_naming_the_key() {
+    let e = edited("objective", r#""objective": 0.0"#, r#""objective": null"#).error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 6",
+            "`objective` is null where a number is required",
+        ],
+    );
+    let e = edited("tau", "[0.001, 0.01]", "[0.001, null]").error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 2",
+            "`model.tau[1]` is null where a number is required",
+        ],
+    );
+    let e = edited("iterations", r#""iterations": 3"#, r#""iterations": null"#).error();
+    assert_contains(
+        &e,
+        &["fit.json, line 7", "`iterations` is null where a count"],
+    );
+    let e = edited("shiftT", r#"{"T": 40.0"#, r#"{"T": null"#).error();
+    assert_contains(&e, &["fit.json, line 11", "`shift.log_aT[1].T` is null"]);
+    let e = edited("huge", r#""E1": 1e9"#, r#""E1": 1e999"#).error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 2",
+            "`model.E1`",
+            "out of range",
+            "must be finite",
+        ],
+    );
+    let e = edited("nan", r#""wall_time_s": 0.5"#, r#""wall_time_s": NaN"#).error();
+    assert_contains(&e, &["fit.json, line 9", "`wall_time_s`", "must be finite"]);
+    let e = edited("inf", r#""objective": 0.0"#, r#""objective": -Infinity"#).error();
+    assert_contains(&e, &["fit.json, line 6", "`objective`", "must be finite"]);
+    let e = edited("converged", r#""converged": true"#, r#""converged": null"#).error();
+    assert_contains(
+        &e,
+        &[
+            "fit.json, line 8",
+            "`converged` is null where a boolean is required",
+        ],
+    );
+    let e = edited("missing", r#""E1": 1e9, "#, "").error();
+    assert_contains(&e, &["fit.json, line 2", "`model`", "missing field `E1`"]);
+}
+
+/// Issue 14, hole 4: "stream did not contain valid UTF-8" said neither
+/// where nor which byte.
+#[test]
+fn invalid_utf8_in_a_fit_folder_is_located_by_line_and_offset() {
+    let mut bytes = GOOD.as_bytes().to_vec();
+    let offset = GOOD.find("test").unwrap();
+    bytes[offset] = 0xFF;
+    let line_start = GOOD[..offset].rfind('\n').unwrap() + 1;
+    let folder = Folder::new("json-bytes", &bytes);
+    assert_contains(
+        &folder.error(),
+        &[
+            "fit.json, line 5",
+            &format!(
+                "not UTF-8: byte 0xFF at byte offset {offset} (byte {} of the line)",
+                offset - line_start + 1
+            ),
+        ],
+    );
+    let folder = Folder::new("csv-bytes", GOOD.as_bytes());
+    let mut mu = b"v,mu_measured,mu_fit\n1e-3,0.1,0.1\n2e-3,0.".to_vec();
+    let offset = mu.len();
+    mu.extend(b"\xE9,0.1\n");
+    std::fs::write(folder.0.join("mu.csv"), mu).unwrap();
+    assert_contains(
+        &folder.error(),
+        &[
+            "mu.csv, line 3",
+            &format!("not UTF-8: byte 0xE9 at byte offset {offset} (byte 8 of the line)"),
+        ],
+    );
+}
+
+/// modulus.csv's writer and its column list agree.
+#[test]
+fn modulus_values_follow_the_column_list() {
+    assert_eq!(MODULUS_VALUES.map(|(name, _)| name), MODULUS_COLUMNS);
+}

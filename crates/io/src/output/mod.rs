@@ -1,0 +1,23 @@
+//! Writing results to disk (docs/ARCHITECTURE.md, "Data flow"): a single
+//! file atomically (write to a temporary, then rename), a result folder
+//! replaced as a whole, and the lock that keeps two runs from writing one
+//! folder.
+//!
+//! Every temporary name is `.rollfit-<pid>-<n>.tmp` (short, so that a long
+//! output name still fits the file system's 255-byte limit, and with the
+//! writer's process id, so that a later run can tell a dead writer's
+//! leftovers from a live one's: [`remove_stale`]).
+
+mod atomic;
+mod dirs;
+mod folder;
+mod lock;
+mod temporary;
+
+pub use atomic::{check_target, write_atomically};
+pub use folder::{check_replaceable, replace_folder};
+pub use lock::FolderLock;
+pub use temporary::remove_stale;
+
+#[cfg(test)]
+mod tests;

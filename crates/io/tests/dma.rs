@@ -1,0 +1,839 @@
+//! DMA files read: the CSV forms, the TRIOS LIMS export, shear converted
+//! to Young's, and every refusal naming the file, line and column
+//! (docs/ARCHITECTURE.md, "Contract", "DMA files").
+//!
+//! Every expected value is computed here independently: the Prony and WLF
+//! formulas written out in the test, unit conversions by hand. Fixtures in
+//! tests/fixtures/ are the project's own (synthetic numbers from the model
+//! named in each file's comment).
+
+use std::f64::consts::PI;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use rollfit_io::IoError;
+use rollfit_io::dma::{DmaData, DmaOptions, ModulusKind};
+
+// ---------------------------------------------------------------- helpers
+
+/// A folder of its own under the system's temporary folder, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> TempDir {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let path =
+            std::env::temp_dir().join(format!("rollfit-io-dma-{}-{name}-{n}", std::process::id()));
+        let _ = fs::remove_dir_all(&path);
+        fs::create_dir_all(&path).unwrap();
+        TempDir(path)
+    }
+
+    fn write(&self, name: &str, content: &str) -> PathBuf {
+        let path = self.0.join(name);
+        fs::write(&path, content).unwrap();
+        path
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name)
+}
+
+/// A Prony series in the paper's form E*(ω) = E1 − Σ H_k/(1 + iωτ_k),
+/// written out: E′ = E1 − Σ H_k/(1 + ω²τ²), E″ = Σ H_k ωτ/(1 + ω²τ²).
+#[derive(Clone)]
+struct Series {
+    e1: f64,
+    h: Vec<f64>,
+    tau: Vec<f64>,
+}
+
+impl Series {
+    fn at(&self, omega: f64) -> (f64, f64) {
+        let mut storage = self.e1;
+        let mut loss = 0.0;
+        for (h, tau) in self.h.iter().zip(&self.tau) {
+            let x = omega * tau;
+            storage -= h / (1.0 + x * x);
+            loss += h * x / (1.0 + x * x);
+        }
+        (storage, loss)
+    }
+
+    /// A broad rubber: E0 = 2 MPa, E1 = 2 GPa, one term per decade with a
+    /// smooth (log-normal) strength distribution centred at τ = 1e-4 s.
+    fn broad_rubber() -> Series {
+        let tau: Vec<f64> = (-12..=4).map(|k| 10f64.powi(k)).collect();
+        let weights: Vec<f64> = tau
+            .iter()
+            .map(|t| (-(t.log10() + 4.0).powi(2) / 8.0).exp())
+            .collect();
+        let total: f64 = weights.iter().sum();
+        let (e0, e1) = (2e6, 2e9);
+        Series {
+            e1,
+            h: weights.iter().map(|w| (e1 - e0) * w / total).collect(),
+            tau,
+        }
+    }
+}
+
+/// WLF written out: log10 a_T = −C1 (T − T_ref)/(C2 + T − T_ref).
+fn wlf(t: f64, t_ref: f64, c1: f64, c2: f64) -> f64 {
+    -c1 * (t - t_ref) / (c2 + t - t_ref)
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+fn error_text(result: Result<DmaData, IoError>) -> String {
+    match result {
+        Ok(data) => panic!("expected an error, read {} points", data.points.len()),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn assert_contains(text: &str, fragments: &[&str]) {
+    for f in fragments {
+        assert!(text.contains(f), "{f:?} not in:\n{text}");
+    }
+}
+
+// ---------------------------------------------------------------- CSV forms
+
+/// Five points of the broad rubber (Young's, Pa) at 20 °C.
+fn reference_points() -> Vec<(f64, f64, f64)> {
+    let series = Series::broad_rubber();
+    [0.5, 3.0, 20.0, 150.0, 900.0]
+        .iter()
+        .map(|&omega| {
+            let (s, l) = series.at(omega);
+            (omega, s, l)
+        })
+        .collect()
+}
+
+fn assert_points(data: &DmaData, expected: &[(f64, f64, f64)], temperature: Option<f64>) {
+    assert_eq!(data.points.len(), expected.len());
+    for (p, &(omega, storage, loss)) in data.points.iter().zip(expected) {
+        assert!(relative(p.omega, omega) < 1e-13, "{p:?} vs ω {omega}");
+        assert!(
+            relative(p.storage, storage) < 1e-13,
+            "{p:?} vs E′ {storage}"
+        );
+        assert!(relative(p.loss, loss) < 1e-13, "{p:?} vs E″ {loss}");
+        match (p.temperature, temperature) {
+            (Some(t), Some(e)) => assert!((t - e).abs() < 1e-12, "T {t} vs {e}"),
+            (None, None) => {}
+            other => panic!("temperature {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn every_csv_form_reads_the_same_points() {
+    let dir = TempDir::new("forms");
+    let points = reference_points();
+    let nu = 0.5;
+    // (file name, header, row maker, expected temperature)
+    type Row = fn(f64, f64, f64) -> String;
+    let forms: Vec<(&str, &str, Row, Option<f64>)> = vec![
+        (
+            "plain.csv",
+            "omega,E_storage,E_loss",
+            |w, s, l| format!("{w:e},{s:e},{l:e}"),
+            None,
+        ),
+        (
+            "hz.csv",
+            "f,E_storage,E_loss,T",
+            |w, s, l| format!("{:e},{s:e},{l:e},20", w / (2.0 * PI)),
+            Some(20.0),
+        ),
+        (
+            "suffixed.csv",
+            "T_C,omega_rad_s,G_storage_Pa,G_loss_Pa,tan_delta",
+            |w, s, l| format!("20,{w:e},{:e},{:e},{:e}", s / 3.0, l / 3.0, l / s),
+            Some(20.0),
+        ),
+        (
+            "hz_mpa.csv",
+            "sample,f_Hz,E_loss_MPa,E_storage_MPa,T_K",
+            |w, s, l| {
+                format!(
+                    "A-1,{:e},{:e},{:e},293.15",
+                    w / (2.0 * PI),
+                    l / 1e6,
+                    s / 1e6
+                )
+            },
+            Some(20.0),
+        ),
+        (
+            "shear_kpa.csv",
+            "omega,G_storage_kPa,G_loss_GPa",
+            |w, s, l| format!("{w:e},{:e},{:e}", s / 3e3, l / 3e9),
+            None,
+        ),
+    ];
+    for (name, header, row, temperature) in forms {
+        let mut text = format!("# {name}: made for the test\n{header}\n");
+        for &(w, s, l) in &points {
+            text.push_str(&row(w, s, l));
+            text.push('\n');
+        }
+        text.push_str("\n# trailing comment\n");
+        let path = dir.write(name, &text);
+        let data = DmaData::read(&path, nu, &DmaOptions::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(data.format, "csv");
+        let shear = name.contains("shear") || name.contains("suffixed");
+        assert_eq!(
+            data.kind,
+            if shear {
+                ModulusKind::Shear
+            } else {
+                ModulusKind::Young
+            },
+            "{name}"
+        );
+        // T_K: 293.15 − 273.15 is 20 only up to the rounding of the
+        // subtraction (5.7e-14), hence the tolerance of assert_points.
+        assert_points(&data, &points, temperature);
+    }
+}
+
+#[test]
+fn shear_becomes_young_with_the_fits_poisson_ratio() {
+    let dir = TempDir::new("nu");
+    let path = dir.write("g.csv", "omega,G_storage,G_loss\n1,1e6,2e5\n10,2e6,5e5\n");
+    for nu in [0.5, 0.3, 0.0] {
+        let data = DmaData::read(&path, nu, &DmaOptions::default()).unwrap();
+        let factor = 2.0 + 2.0 * nu;
+        assert_eq!(data.kind, ModulusKind::Shear);
+        assert!(relative(data.points[0].storage, factor * 1e6) < 1e-15);
+        assert!(relative(data.points[1].loss, factor * 5e5) < 1e-15);
+        // The CSV's columns say shear: the conversion is a note, not a
+        // warning.
+        assert!(
+            data.notes.iter().any(|w| w.contains(&format!("ν = {nu}"))),
+            "{:?}",
+            data.notes
+        );
+        assert!(data.warnings.is_empty(), "{:?}", data.warnings);
+    }
+    // A CSV says shear with its column names; a contrary request is
+    // ignored, with a warning.
+    let young = DmaOptions {
+        kind: Some(ModulusKind::Young),
+        wlf: None,
+    };
+    let data = DmaData::read(&path, 0.5, &young).unwrap();
+    assert_eq!(data.kind, ModulusKind::Shear);
+    assert!(
+        data.warnings.iter().any(|w| w.contains("ignored")),
+        "{:?}",
+        data.warnings
+    );
+    let e = DmaData::read(&path, 0.7, &DmaOptions::default()).unwrap_err();
+    assert_contains(&e.to_string(), &["0.7"]);
+}
+
+// ---------------------------------------------------------------- TRIOS
+
+/// The fixtures' model (their Notes line): shear Prony with WLF.
+fn fixture_model(omega: f64, t: f64) -> (f64, f64) {
+    let series = Series {
+        e1: 1e8,
+        h: vec![3e7, 4e7, 2.5e7],
+        tau: vec![1e-3, 1e-2, 1e-1],
+    };
+    series.at(omega * 10f64.powf(wlf(t, 20.0, 8.86, 101.6)))
+}
+
+#[test]
+fn trios_lims_shear_export_with_its_units() {
+    let path = fixture("trios_shear_two_steps.txt");
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.format, "trios-lims");
+    assert_eq!(data.kind, ModulusKind::Shear);
+    assert_eq!(data.points.len(), 10);
+    assert!(
+        data.warnings.iter().any(|w| w.contains("shear")
+            && w.contains("Oscillation torque")
+            && w.contains("AresG2")),
+        "{:?}",
+        data.warnings
+    );
+    // Step 1: rad/s, °C, MPa and kPa; step 2: Hz, K, GPa and Pa.
+    let omegas = [1.0, 3.16227766017, 10.0, 31.6227766017, 100.0]
+        .into_iter()
+        .chain([0.1, 0.5, 1.0, 5.0, 10.0].into_iter().map(|f| 2.0 * PI * f));
+    let temperatures = [
+        20.01, 19.99, 20.02, 20.0, 19.98, 40.01, 39.99, 40.0, 40.02, 40.0,
+    ];
+    for ((p, omega), t) in data.points.iter().zip(omegas).zip(temperatures) {
+        let (g_storage, g_loss) = fixture_model(omega, t);
+        assert!(relative(p.omega, omega) < 1e-11, "{p:?}");
+        assert!((p.temperature.unwrap() - t).abs() < 1e-9, "{p:?}");
+        // ν = 0.5: E = 3 G; the file has 12 significant digits.
+        assert!(relative(p.storage, 3.0 * g_storage) < 1e-10, "{p:?}");
+        assert!(relative(p.loss, 3.0 * g_loss) < 1e-10, "{p:?}");
+    }
+    assert_eq!(data.temperatures().len(), 2);
+
+    // The user's word wins over the file's torque.
+    let young = DmaOptions {
+        kind: Some(ModulusKind::Young),
+        wlf: None,
+    };
+    let data = DmaData::read(&path, 0.5, &young).unwrap();
+    assert_eq!(data.kind, ModulusKind::Young);
+    let (g_storage, _) = fixture_model(1.0, 20.01);
+    assert!(relative(data.points[0].storage, g_storage) < 1e-10);
+}
+
+#[test]
+fn trios_lims_tensile_export_and_utf16() {
+    let path = fixture("trios_tensile.txt");
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.kind, ModulusKind::Young);
+    assert!(
+        data.warnings
+            .iter()
+            .any(|w| w.contains("Oscillation force"))
+    );
+    for (p, omega) in data.points.iter().zip([1.0, 10.0, 100.0]) {
+        let (s, l) = fixture_model(omega, 20.0);
+        assert!(
+            relative(p.storage, s) < 1e-10 && relative(p.loss, l) < 1e-10,
+            "{p:?}"
+        );
+    }
+    // The same text as UTF-16 with a byte-order mark, as Windows tools
+    // write it, and with a .csv name: the content decides.
+    let dir = TempDir::new("utf16");
+    let text = fs::read_to_string(&path).unwrap();
+    let mut bytes = vec![0xFF, 0xFE];
+    bytes.extend(text.encode_utf16().flat_map(u16::to_le_bytes));
+    let copy = dir.path().join("export.csv");
+    fs::write(&copy, bytes).unwrap();
+    let again = DmaData::read(&copy, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(again.format, "trios-lims");
+    assert_eq!(again.points, data.points);
+}
+
+// ---------------------------------------------------------------- bad input
+
+#[test]
+fn bad_csv_files_are_refused_with_file_line_and_column() {
+    let dir = TempDir::new("bad");
+    let options = DmaOptions::default();
+    let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
+
+    let missing = dir.path().join("absent.csv");
+    let e = error_text(DmaData::read(&missing, 0.5, &options));
+    assert_contains(&e, &["absent.csv"]);
+
+    let e = error_text(read("noloss.csv", "omega,E_storage,T\n1,1e6,20\n"));
+    assert_contains(
+        &e,
+        &[
+            "noloss.csv",
+            "no E_loss column",
+            "the header has: omega, E_storage, T",
+        ],
+    );
+    let e = error_text(read("nofreq.csv", "w,E_storage,E_loss\n1,1e6,1e5\n"));
+    assert_contains(
+        &e,
+        &[
+            "nofreq.csv",
+            "no frequency column",
+            "the header has: w, E_storage, E_loss",
+        ],
+    );
+    let e = error_text(read("nomod.csv", "omega,storage,loss\n1,1e6,1e5\n"));
+    assert_contains(&e, &["E_storage and E_loss (or G_storage and G_loss)"]);
+    let e = error_text(read("half.csv", "omega,G_storage\n1,1e6\n"));
+    assert_contains(&e, &["no G_loss column"]);
+
+    let e = error_text(read(
+        "text.csv",
+        "# c\nomega,E_storage,E_loss\n1,1e6,1e5\n2,abc,1e5\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "text.csv, line 4",
+            "column 2 (E_storage)",
+            "\"abc\" is not a number",
+        ],
+    );
+    let e = error_text(read("nan.csv", "omega,E_storage,E_loss\n1,1e6,NaN\n"));
+    assert_contains(
+        &e,
+        &[
+            "nan.csv, line 2",
+            "column 3 (E_loss)",
+            "not a finite number",
+        ],
+    );
+    let e = error_text(read("inf.csv", "omega,E_storage,E_loss\ninf,1e6,1e5\n"));
+    assert_contains(
+        &e,
+        &["inf.csv, line 2", "column 1 (omega)", "not a finite number"],
+    );
+    let e = error_text(read(
+        "zero.csv",
+        "f,E_storage,E_loss\n1,1e6,1e5\n0,1e6,1e5\n",
+    ));
+    assert_contains(&e, &["zero.csv, line 3", "column 1 (f)", "not positive"]);
+    let e = error_text(read("soft.csv", "omega,E_storage,E_loss\n1,-1e6,1e5\n"));
+    assert_contains(
+        &e,
+        &["soft.csv, line 2", "column 2 (E_storage)", "not positive"],
+    );
+    let e = error_text(read("short.csv", "omega,E_storage,E_loss\n1,1e6\n"));
+    assert_contains(&e, &["short.csv, line 2", "2 fields", "3 columns"]);
+    let e = error_text(read("empty.csv", "# nothing\nomega,E_storage,E_loss\n"));
+    assert_contains(&e, &["empty.csv", "no data rows"]);
+    let e = error_text(read("blank.csv", "# nothing at all\n"));
+    assert_contains(&e, &["blank.csv", "no header"]);
+
+    // A negative loss modulus is dropped with a warning naming it; a file
+    // with nothing else is refused.
+    let data = read("neg.csv", "omega,E_storage,E_loss\n1,1e6,1e5\n2,1e6,-3e4\n").unwrap();
+    assert_eq!(data.points.len(), 1);
+    assert!(
+        data.warnings.iter().any(|w| w.contains("neg.csv, line 3")
+            && w.contains("column 3 (E_loss)")
+            && w.contains("dropped")),
+        "{:?}",
+        data.warnings
+    );
+    let e = error_text(read("allneg.csv", "omega,E_storage,E_loss\n1,1e6,-1e5\n"));
+    assert_contains(&e, &["allneg.csv", "no usable points"]);
+}
+
+#[test]
+fn bad_trios_files_are_refused_with_line_and_variable() {
+    let dir = TempDir::new("badtrios");
+    let good = fs::read_to_string(fixture("trios_tensile.txt")).unwrap();
+    let options = DmaOptions::default();
+    let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
+
+    let e = error_text(read("unit.txt", &good.replacen("MPa\tMPa", "MPa\tpsi", 1)));
+    assert_contains(
+        &e,
+        &[
+            "unit.txt, line 21",
+            "Loss modulus",
+            "column 6",
+            "\"psi\"",
+            "Pa, kPa, MPa, GPa",
+        ],
+    );
+    let e = error_text(read("hz.txt", &good.replacen("\trad/s\t", "\trpm\t", 1)));
+    assert_contains(&e, &["hz.txt, line 21", "Angular frequency", "\"rpm\""]);
+    let e = error_text(read(
+        "novar.txt",
+        &good.replace("\tLoss modulus", "\tComplex modulus"),
+    ));
+    assert_contains(
+        &e,
+        &[
+            "novar.txt",
+            "no step has the variables needed",
+            "Complex modulus",
+        ],
+    );
+    let e = error_text(read(
+        "num.txt",
+        &good.replacen("Data point\t20\t1\t", "Data point\t20\tx\t", 1),
+    ));
+    assert_contains(
+        &e,
+        &["num.txt, line 22", "column 3 (Angular frequency)", "\"x\""],
+    );
+    let undecided = good
+        .replace("Oscillation force", "Amplitude")
+        .replace("RSA-G2", "Mystery 3000");
+    let e = error_text(read("kind.txt", &undecided));
+    assert_contains(
+        &e,
+        &[
+            "kind.txt",
+            "shear (G) or tensile (E)",
+            "Mystery 3000",
+            "--dma-modulus",
+        ],
+    );
+    let told = DmaOptions {
+        kind: Some(ModulusKind::Shear),
+        wlf: None,
+    };
+    let data = DmaData::read(&dir.path().join("kind.txt"), 0.5, &told).unwrap();
+    assert_eq!(data.kind, ModulusKind::Shear);
+    let e = error_text(read("nodata.txt", good.split("Data point").next().unwrap()));
+    assert_contains(&e, &["nodata.txt", "without data points"]);
+}
+
+/// Issue 14, hole 1: `f` and `omega` together, or a frequency whose
+/// name and unit disagree, was read as one of them without a word.
+#[test]
+fn csv_with_two_frequency_columns_or_contradictory_units_is_refused() {
+    let dir = TempDir::new("freq");
+    let options = DmaOptions::default();
+    let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
+
+    let e = error_text(read(
+        "both.csv",
+        "# f and omega\nf,omega,E_storage,E_loss\n1,6.283185307179586,1e6,1e5\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "both.csv, line 2",
+            "two frequency columns, column 1 (f) and column 2 (omega)",
+            "keep one",
+        ],
+    );
+    let e = error_text(read(
+        "suffixed.csv",
+        "omega_rad_s,E_storage,E_loss,f_Hz\n6.283185307179586,1e6,1e5,1\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "suffixed.csv, line 1",
+            "column 1 (omega_rad_s) and column 4 (f_Hz)",
+        ],
+    );
+    let e = error_text(read(
+        "omega_hz.csv",
+        "T,omega_Hz,E_storage,E_loss\n20,1,1e6,1e5\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "omega_hz.csv, line 1",
+            "column 2 (omega_Hz)",
+            "`omega` is an angular frequency, in rad/s, but the suffix says Hz",
+        ],
+    );
+    let e = error_text(read("f_rad.csv", "f_rad_s,E_storage,E_loss\n1,1e6,1e5\n"));
+    assert_contains(
+        &e,
+        &[
+            "f_rad.csv, line 1",
+            "column 1 (f_rad_s)",
+            "`f` is a frequency, in Hz, but the suffix says rad/s",
+        ],
+    );
+    // The same for the moduli and the temperature: which of two is meant
+    // is a guess with a factor 10⁶ or 273.15 K on it.
+    let e = error_text(read(
+        "two_storage.csv",
+        "omega,E_storage,E_loss,E_storage_MPa\n1,1e6,1e5,1\n",
+    ));
+    assert_contains(
+        &e,
+        &[
+            "two_storage.csv, line 1",
+            "two E_storage columns, column 2 (E_storage) and column 4 (E_storage_MPa)",
+        ],
+    );
+    let e = error_text(read(
+        "two_t.csv",
+        "omega,E_storage,E_loss,T_C,T_K\n1,1e6,1e5,20,293.15\n",
+    ));
+    assert_contains(
+        &e,
+        &["two_t.csv, line 1", "column 4 (T_C) and column 5 (T_K)"],
+    );
+}
+
+/// Issue 14, hole 2: a TRIOS export cut off was read in part; its
+/// `Number of points` was never checked.
+#[test]
+fn truncated_trios_export_is_refused() {
+    let dir = TempDir::new("trios-cut");
+    let good = fs::read_to_string(fixture("trios_shear_two_steps.txt")).unwrap();
+    let options = DmaOptions::default();
+    let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
+    let lines: Vec<&str> = good.lines().collect();
+    // The first `n` lines, each with its line break.
+    let head = |n: usize| {
+        lines[..n]
+            .iter()
+            .map(|l| format!("{l}\n"))
+            .collect::<String>()
+    };
+
+    // Cut inside the second step's Variables line (line 30): the first
+    // isotherm alone used to be read.
+    let cut = format!("{}Variables\tTemperature\tFreq", head(29));
+    let e = error_text(read("variables.txt", &cut));
+    assert_contains(
+        &e,
+        &[
+            "variables.txt, line 29",
+            "step \"Frequency sweep (40.0 °C)\" (line 27)",
+            "Number of points says 5",
+            "without data points",
+            "truncated",
+        ],
+    );
+    // Cut between rows: two of five rows left.
+    let e = error_text(read("rows.txt", &head(33)));
+    assert_contains(
+        &e,
+        &[
+            "rows.txt, line 29",
+            "step \"Frequency sweep (40.0 °C)\" (line 27)",
+            "Number of points says 5, but 2 data point rows follow (lines 32 to 33)",
+            "it ends at line 33",
+        ],
+    );
+    // Cut in the last row's last number (5000121.77315 → 5000121.7):
+    // the row count matches and the number parses.
+    let mid_number = format!(
+        "{}Data point\t313.15\t10\t50\t0.00617224643619\t6166024.9",
+        head(35)
+    );
+    let e = error_text(read("number.txt", &mid_number));
+    assert_contains(
+        &e,
+        &[
+            "number.txt, line 36",
+            "step \"Frequency sweep (40.0 °C)\" (line 27)",
+            "without a line break",
+            "cut off",
+        ],
+    );
+    // Cut mid-row, before the used columns end.
+    let mid_row = format!("{}Data point\t313.15\t10\t50\t0.006", head(35));
+    let e = error_text(read("row.txt", &mid_row));
+    assert_contains(&e, &["row.txt, line 36", "without a line break"]);
+    // More rows than declared, and a count that is not one.
+    let extra = good.replacen("Number of points\t5", "Number of points\t4", 1);
+    let e = error_text(read("extra.txt", &extra));
+    assert_contains(
+        &e,
+        &[
+            "extra.txt, line 19",
+            "step \"Frequency sweep (20.0 °C)\" (line 17)",
+            "Number of points says 4, but 5 data point rows follow (lines 22 to 26)",
+        ],
+    );
+    let e = error_text(read(
+        "count.txt",
+        &good.replacen("Number of points\t5", "Number of points\tfive", 1),
+    ));
+    assert_contains(
+        &e,
+        &[
+            "count.txt, line 19",
+            "Number of points \"five\" is not a count",
+        ],
+    );
+    // The whole file, with and without CRLF line breaks, still reads.
+    assert_eq!(read("whole.txt", &good).unwrap().points.len(), 10);
+    let crlf = good.replace('\n', "\r\n");
+    assert_eq!(read("crlf.txt", &crlf).unwrap().points.len(), 10);
+}
+
+/// Issue 14, hole 3: a CSV cut inside its last row.
+#[test]
+fn csv_cut_in_its_last_row_is_refused_or_flagged() {
+    let dir = TempDir::new("csv-cut");
+    let options = DmaOptions::default();
+    let read = |name: &str, text: &str| DmaData::read(&dir.write(name, text), 0.5, &options);
+    let head = "omega,E_storage,E_loss\n1,1e6,1e5\n";
+
+    let e = error_text(read("cells.csv", &format!("{head}2,1.2e")));
+    assert_contains(
+        &e,
+        &[
+            "cells.csv, line 3",
+            "2 fields, but the header has 3 columns",
+            "no value for column 3 (E_loss)",
+            "cut off",
+        ],
+    );
+    let e = error_text(read("exponent.csv", &format!("{head}2,1e6,1.2e")));
+    assert_contains(
+        &e,
+        &[
+            "exponent.csv, line 3",
+            "column 3 (E_loss)",
+            "\"1.2e\" is not a number",
+        ],
+    );
+    let e = error_text(read("dot.csv", &format!("{head}2,1e6,1.2e+")));
+    assert_contains(&e, &["dot.csv, line 3", "column 3 (E_loss)", "\"1.2e+\""]);
+    // A number cut to one that still parses: only the missing line break
+    // tells, and CSV files without one are common: read, with a warning.
+    let data = read("digits.csv", &format!("{head}2,1e6,1.2")).unwrap();
+    assert_eq!(data.points.len(), 2);
+    assert!(
+        data.warnings
+            .iter()
+            .any(|w| w.contains("digits.csv, line 3") && w.contains("without a line break")),
+        "{:?}",
+        data.warnings
+    );
+    let data = read("whole.csv", &format!("{head}2,1e6,1.2e5\n")).unwrap();
+    assert!(data.warnings.is_empty(), "{:?}", data.warnings);
+}
+
+/// Issue 14, hole 4: invalid bytes were "stream did not contain valid
+/// UTF-8" (fit folder) or quietly read as Latin-1 (DMA); now the file, the
+/// line and the byte offset.
+#[test]
+fn invalid_bytes_in_dma_files_are_located_by_line_and_offset() {
+    let dir = TempDir::new("bytes");
+    let options = DmaOptions::default();
+    let write = |name: &str, bytes: &[u8]| {
+        let path = dir.path().join(name);
+        fs::write(&path, bytes).unwrap();
+        path
+    };
+
+    // UTF-8 (the ° of line 1) with a stray 0xFF in line 3, byte 3.
+    let mut bytes = "# 20 °C\nomega,E_storage,E_loss\n1,".as_bytes().to_vec();
+    let offset = bytes.len();
+    bytes.extend(b"\xFF,1e5\n");
+    let e = error_text(DmaData::read(&write("mixed.csv", &bytes), 0.5, &options));
+    assert_contains(
+        &e,
+        &[
+            "mixed.csv, line 3",
+            "invalid UTF-8",
+            &format!("byte 0xFF at byte offset {offset} (byte 3 of the line)"),
+        ],
+    );
+    // A UTF-8 mark says UTF-8 for the whole file.
+    let mut marked = vec![0xEF, 0xBB, 0xBF];
+    marked.extend(b"omega,E_storage,E_loss\n1,1e6,1e5\n2,1e6,");
+    let offset = marked.len();
+    marked.extend(b"\xB05\n");
+    let e = error_text(DmaData::read(&write("bom.csv", &marked), 0.5, &options));
+    assert_contains(
+        &e,
+        &[
+            "bom.csv, line 3",
+            "byte-order mark",
+            &format!("byte 0xB0 at byte offset {offset} (byte 7 of the line)"),
+        ],
+    );
+    // Latin-1 throughout is still read (° as 0xB0 in a comment).
+    let latin1 = b"# 20 \xB0C\nomega,E_storage,E_loss\n1,1e6,1e5\n";
+    let data = DmaData::read(&write("latin1.csv", latin1), 0.5, &options).unwrap();
+    assert_eq!(data.points.len(), 1);
+
+    // UTF-16: an unpaired surrogate in line 2, and an odd byte count.
+    let text = fs::read_to_string(fixture("trios_tensile.txt")).unwrap();
+    let units: Vec<u16> = text.encode_utf16().collect();
+    let second_line = units.iter().position(|&u| u == u16::from(b'\n')).unwrap() + 1;
+    let mut bad = units.clone();
+    bad[second_line + 3] = 0xD800;
+    let utf16 = |units: &[u16]| {
+        let mut bytes = vec![0xFF, 0xFE];
+        bytes.extend(units.iter().flat_map(|u| u.to_le_bytes()));
+        bytes
+    };
+    let e = error_text(DmaData::read(
+        &write("surrogate.txt", &utf16(&bad)),
+        0.5,
+        &options,
+    ));
+    assert_contains(
+        &e,
+        &[
+            "surrogate.txt, line 2",
+            "unpaired surrogate 0xD800",
+            &format!("byte offset {}", 2 + 2 * (second_line + 3)),
+        ],
+    );
+    let mut odd = utf16(&units);
+    odd.pop();
+    let e = error_text(DmaData::read(&write("odd.txt", &odd), 0.5, &options));
+    assert_contains(
+        &e,
+        &["odd.txt, line 24", "odd number of bytes", "truncated"],
+    );
+}
+
+/// data/hn-rubber-dma.csv (the bundled example's DMA sweep, made with the
+/// command in data/README.md) is the hn-rubber truth at six significant
+/// digits: the Havriliak–Negami modulus of rollfit-model, G = E/3.
+#[test]
+fn the_bundled_dma_sweep_is_the_truth_of_the_example() {
+    use rollfit_model::{HavriliakNegami, ViscoelasticModulus};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/hn-rubber-dma.csv");
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.points.len(), 21);
+    let truth = HavriliakNegami::new(2.0e6, 2.0e9, 1.0e-3, 0.55, 0.4).unwrap();
+    for p in &data.points {
+        let e = truth.modulus(p.omega);
+        assert!(relative(p.storage, e.re) < 1e-5, "E′ at {}", p.omega);
+        assert!(relative(p.loss, e.im) < 1e-5, "E″ at {}", p.omega);
+    }
+}
+
+/// Found while fixing issue 14: the csv crate's record position is where
+/// it began to read, before skipped comment and blank lines and, in CRLF
+/// files (the 468MP CSV is one), a line early; messages named the wrong
+/// line.
+#[test]
+fn csv_errors_name_the_right_line_below_comments_blank_lines_and_in_crlf_files() {
+    let dir = TempDir::new("lines");
+    let cases = [
+        (
+            "comment.csv",
+            "omega,E_storage,E_loss\n1,1e6,1e5\n# mid\n2,abc,1e5\n",
+            4,
+        ),
+        (
+            "blank.csv",
+            "omega,E_storage,E_loss\n1,1e6,1e5\n\n\n2,abc,1e5\n",
+            5,
+        ),
+        (
+            "crlf.csv",
+            "omega,E_storage,E_loss\r\n1,1e6,1e5\r\n2,abc,1e5\r\n",
+            3,
+        ),
+        (
+            "crlf_comment.csv",
+            "\r\n# x\r\n\r\nomega,E_storage,E_loss\r\n1,1e6,1e5\r\n# y\r\n2,abc,1e5\r\n",
+            7,
+        ),
+    ];
+    for (name, text, line) in cases {
+        let e = error_text(DmaData::read(
+            &dir.write(name, text),
+            0.5,
+            &DmaOptions::default(),
+        ));
+        assert_contains(&e, &[&format!("{name}, line {line}:"), "\"abc\""]);
+    }
+}
