@@ -187,86 +187,99 @@ impl Figure for MasterCurveFigure<'_> {
         DB::ErrorType: 'static,
     {
         let x_range = self.omega_range();
-        let samples = self.samples(&x_range);
-        let inside = |x: f64| self.in_window(x);
-        let storage: Vec<(f64, f64)> = samples
-            .iter()
-            .filter_map(|s| lg(s.modulus.re).map(|y| (s.lg_omega, y)))
-            .collect();
-        let loss: Vec<(f64, f64)> = samples
-            .iter()
-            .filter_map(|s| lg(s.modulus.im).map(|y| (s.lg_omega, y)))
-            .collect();
-        let tan_delta: Vec<(f64, f64)> = samples
-            .iter()
-            .filter_map(|s| lg(s.modulus.im / s.modulus.re).map(|y| (s.lg_omega, y)))
-            .collect();
-
-        let rows = &self.fit.modulus;
-        let band = |value: &dyn Fn(&rollfit_io::fit_dir::ModulusRow) -> (f64, Option<f64>)| {
-            let mut lower = Vec::new();
-            let mut upper = Vec::new();
-            for r in rows {
-                let (v, s) = value(r);
-                if let Some(s) = s
-                    && let Some(hi) = lg(v + s.abs())
-                {
-                    let x = r.omega.log10();
-                    upper.push((x, hi));
-                    lower.push((x, lg(v - s.abs()).unwrap_or(f64::NEG_INFINITY)));
-                }
-            }
-            (lower, upper)
-        };
-        let storage_band = band(&|r| (r.storage, r.storage_sigma));
-        let loss_band = band(&|r| (r.loss, r.loss_sigma));
-        let tan_band = band(&|r| (r.tan_delta, r.tan_delta_sigma));
-
-        let dma_storage: Vec<(f64, f64)> = self
-            .dma
-            .iter()
-            .filter_map(|p| Some((lg(p.omega)?, lg(p.storage)?)))
-            .filter(|p| x_range.contains(&p.0))
-            .collect();
-        let dma_loss: Vec<(f64, f64)> = self
-            .dma
-            .iter()
-            .filter_map(|p| Some((lg(p.omega)?, lg(p.loss)?)))
-            .filter(|p| x_range.contains(&p.0))
-            .collect();
-        let dma_tan: Vec<(f64, f64)> = self
-            .dma
-            .iter()
-            .filter_map(|p| Some((lg(p.omega)?, lg(p.loss / p.storage)?)))
-            .filter(|p| x_range.contains(&p.0))
-            .collect();
-
+        let panels = self.panels(&x_range);
         let (upper_area, lower_area) = root.split_vertically(470);
+        self.draw_moduli(&upper_area, &panels, &x_range)?;
+        self.draw_tan_delta(&lower_area, &panels, &x_range)
+    }
+}
 
-        // E′ and E″.
-        let y_moduli = log_range(
-            storage
+/// What the two panels draw, as (log10 ω, log10 value): the fitted curves,
+/// their 1σ bands (lower, upper) and the DMA points inside the ω range.
+struct Panels {
+    storage: Curve,
+    loss: Curve,
+    tan_delta: Curve,
+    storage_band: (Curve, Curve),
+    loss_band: (Curve, Curve),
+    tan_band: (Curve, Curve),
+    dma_storage: Curve,
+    dma_loss: Curve,
+    dma_tan: Curve,
+}
+
+/// A value of a modulus.csv row and its 1σ, if any.
+type WithSigma = dyn Fn(&rollfit_io::fit_dir::ModulusRow) -> (f64, Option<f64>);
+
+impl MasterCurveFigure<'_> {
+    fn panels(&self, x_range: &Range<f64>) -> Panels {
+        let samples = self.samples(x_range);
+        let curve = |value: &dyn Fn(Complex64) -> f64| -> Curve {
+            samples
                 .iter()
-                .chain(&loss)
-                .chain(&dma_storage)
-                .chain(&dma_loss)
+                .filter_map(|s| lg(value(s.modulus)).map(|y| (s.lg_omega, y)))
+                .collect()
+        };
+        let dma = |value: &dyn Fn(&DmaMarker) -> f64| -> Curve {
+            self.dma
+                .iter()
+                .filter_map(|p| Some((lg(p.omega)?, lg(value(p))?)))
+                .filter(|p| x_range.contains(&p.0))
+                .collect()
+        };
+        Panels {
+            storage: curve(&|e| e.re),
+            loss: curve(&|e| e.im),
+            tan_delta: curve(&|e| e.im / e.re),
+            storage_band: self.band(&|r| (r.storage, r.storage_sigma)),
+            loss_band: self.band(&|r| (r.loss, r.loss_sigma)),
+            tan_band: self.band(&|r| (r.tan_delta, r.tan_delta_sigma)),
+            dma_storage: dma(&|p| p.storage),
+            dma_loss: dma(&|p| p.loss),
+            dma_tan: dma(&|p| p.loss / p.storage),
+        }
+    }
+
+    /// (lower, upper) edges of the 1σ band of a modulus.csv quantity.
+    fn band(&self, value: &WithSigma) -> (Curve, Curve) {
+        let mut lower = Vec::new();
+        let mut upper = Vec::new();
+        for r in &self.fit.modulus {
+            let (v, s) = value(r);
+            if let Some(s) = s
+                && let Some(hi) = lg(v + s.abs())
+            {
+                let x = r.omega.log10();
+                upper.push((x, hi));
+                lower.push((x, lg(v - s.abs()).unwrap_or(f64::NEG_INFINITY)));
+            }
+        }
+        (lower, upper)
+    }
+
+    /// E′ and E″ with their bands, and the DMA points.
+    fn draw_moduli<DB>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        panels: &Panels,
+        x_range: &Range<f64>,
+    ) -> DrawResult
+    where
+        DB: DrawingBackend,
+        DB::ErrorType: 'static,
+    {
+        let y_moduli = log_range(
+            panels
+                .storage
+                .iter()
+                .chain(&panels.loss)
+                .chain(&panels.dma_storage)
+                .chain(&panels.dma_loss)
                 .map(|p| 10f64.powf(p.1)),
             0.15,
             4.0..9.0,
         );
-        let clip = |band: (Curve, Curve), y: &Range<f64>| {
-            let (lower, upper) = band;
-            let lower = lower
-                .into_iter()
-                .map(|(x, v)| (x, v.max(y.start)))
-                .collect::<Vec<_>>();
-            let upper = upper
-                .into_iter()
-                .map(|(x, v)| (x, v.min(y.end)))
-                .collect::<Vec<_>>();
-            (lower, upper)
-        };
-        let mut chart = ChartBuilder::on(&upper_area)
+        let mut chart = ChartBuilder::on(area)
             .margin(12)
             .caption(
                 "Recovered master curve E*(ω)",
@@ -277,27 +290,23 @@ impl Figure for MasterCurveFigure<'_> {
             .build_cartesian_2d(log_axis(x_range.clone()), log_axis(y_moduli.clone()))?;
         shade_window(&mut chart, self.fit, &y_moduli, true)?;
         draw_mesh(&mut chart, "ω (rad/s)", "E′, E″ (Pa)", true)?;
-        let (lower, upper) = clip(storage_band, &y_moduli);
+        let (lower, upper) = clip(&panels.storage_band, &y_moduli);
         draw_band(&mut chart, &lower, &upper, style::STORAGE)?;
-        let (lower, upper) = clip(loss_band, &y_moduli);
+        let (lower, upper) = clip(&panels.loss_band, &y_moduli);
         draw_band(&mut chart, &lower, &upper, style::LOSS)?;
-        draw_curve(&mut chart, &storage, inside, style::STORAGE, "E′ (storage)")?;
-        draw_curve(&mut chart, &loss, inside, style::LOSS, "E″ (loss)")?;
-        if !dma_storage.is_empty() {
+        let inside = |x: f64| self.in_window(x);
+        draw_curve(
+            &mut chart,
+            &panels.storage,
+            inside,
+            style::STORAGE,
+            "E′ (storage)",
+        )?;
+        draw_curve(&mut chart, &panels.loss, inside, style::LOSS, "E″ (loss)")?;
+        if !panels.dma_storage.is_empty() {
+            draw_dma_squares(&mut chart, &panels.dma_storage, style::STORAGE, "DMA E′")?;
             chart
-                .draw_series(dma_storage.iter().map(|&p| {
-                    EmptyElement::at(p)
-                        + Rectangle::new([(-4, -4), (4, 4)], style::STORAGE.filled())
-                        + Rectangle::new([(-4, -4), (4, 4)], style::DMA.stroke_width(1))
-                }))?
-                .label("DMA E′")
-                .legend(|(x, y)| {
-                    EmptyElement::at((x + 10, y))
-                        + Rectangle::new([(-4, -4), (4, 4)], style::STORAGE.filled())
-                        + Rectangle::new([(-4, -4), (4, 4)], style::DMA.stroke_width(1))
-                });
-            chart
-                .draw_series(dma_loss.iter().map(|&p| {
+                .draw_series(panels.dma_loss.iter().map(|&p| {
                     EmptyElement::at(p)
                         + TriangleMarker::new((0, 0), 6, style::LOSS.filled())
                         + TriangleMarker::new((0, 0), 6, style::DMA.stroke_width(1))
@@ -309,45 +318,83 @@ impl Figure for MasterCurveFigure<'_> {
                         + TriangleMarker::new((0, 0), 6, style::DMA.stroke_width(1))
                 });
         }
-        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)
+    }
 
-        // tan δ.
+    /// tan δ with its band, and the DMA points.
+    fn draw_tan_delta<DB>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        panels: &Panels,
+        x_range: &Range<f64>,
+    ) -> DrawResult
+    where
+        DB: DrawingBackend,
+        DB::ErrorType: 'static,
+    {
         let y_tan = log_range(
-            tan_delta.iter().chain(&dma_tan).map(|p| 10f64.powf(p.1)),
+            panels
+                .tan_delta
+                .iter()
+                .chain(&panels.dma_tan)
+                .map(|p| 10f64.powf(p.1)),
             0.15,
             -2.0..0.0,
         );
-        let mut chart = ChartBuilder::on(&lower_area)
+        let mut chart = ChartBuilder::on(area)
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(75)
             .build_cartesian_2d(log_axis(x_range.clone()), log_axis(y_tan.clone()))?;
         shade_window(&mut chart, self.fit, &y_tan, false)?;
         draw_mesh(&mut chart, "ω (rad/s)", "tan δ", true)?;
-        let (lower, upper) = clip(tan_band, &y_tan);
+        let (lower, upper) = clip(&panels.tan_band, &y_tan);
         draw_band(&mut chart, &lower, &upper, style::TAN_DELTA)?;
         draw_curve(
             &mut chart,
-            &tan_delta,
-            inside,
+            &panels.tan_delta,
+            |x: f64| self.in_window(x),
             style::TAN_DELTA,
             "tan δ = E″/E′",
         )?;
-        if !dma_tan.is_empty() {
-            chart
-                .draw_series(dma_tan.iter().map(|&p| {
-                    EmptyElement::at(p)
-                        + Rectangle::new([(-4, -4), (4, 4)], style::TAN_DELTA.filled())
-                        + Rectangle::new([(-4, -4), (4, 4)], style::DMA.stroke_width(1))
-                }))?
-                .label("DMA tan δ")
-                .legend(|(x, y)| {
-                    EmptyElement::at((x + 10, y))
-                        + Rectangle::new([(-4, -4), (4, 4)], style::TAN_DELTA.filled())
-                        + Rectangle::new([(-4, -4), (4, 4)], style::DMA.stroke_width(1))
-                });
+        if !panels.dma_tan.is_empty() {
+            draw_dma_squares(&mut chart, &panels.dma_tan, style::TAN_DELTA, "DMA tan δ")?;
         }
-        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
-        Ok(())
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)
     }
+}
+
+/// A band's edges clipped to the y range, so that the filled polygon stays
+/// inside the plot.
+fn clip(band: &(Curve, Curve), y: &Range<f64>) -> (Curve, Curve) {
+    let (lower, upper) = band;
+    let lower = lower.iter().map(|&(x, v)| (x, v.max(y.start))).collect();
+    let upper = upper.iter().map(|&(x, v)| (x, v.min(y.end))).collect();
+    (lower, upper)
+}
+
+/// DMA points as squares filled in the quantity's colour.
+fn draw_dma_squares<'a, DB>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<super::axes::LogAxis, super::axes::LogAxis>>,
+    points: &[(f64, f64)],
+    colour: RGBColor,
+    label: &str,
+) -> DrawResult
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+{
+    chart
+        .draw_series(points.iter().map(|&p| {
+            EmptyElement::at(p)
+                + Rectangle::new([(-4, -4), (4, 4)], colour.filled())
+                + Rectangle::new([(-4, -4), (4, 4)], style::DMA.stroke_width(1))
+        }))?
+        .label(label)
+        .legend(move |(x, y)| {
+            EmptyElement::at((x + 10, y))
+                + Rectangle::new([(-4, -4), (4, 4)], colour.filled())
+                + Rectangle::new([(-4, -4), (4, 4)], style::DMA.stroke_width(1))
+        });
+    Ok(())
 }
