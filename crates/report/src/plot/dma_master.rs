@@ -19,7 +19,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axes::{lg, linear_range, log_axis, log_range};
 use super::parts::{dashed_key, legend_box, place_legend, plot_size, runs};
-use super::{DrawResult, Figure, draw_legend, draw_mesh, format_tick, style};
+use super::{DrawResult, Figure, draw_legend, draw_mesh, draw_shift_mesh, format_tick, style};
 
 /// Width of the left column (master curve and tan δ), px.
 const LEFT_WIDTH: u32 = 740;
@@ -485,20 +485,7 @@ impl DmaMasterFigure<'_> {
             .x_label_area_size(45)
             .y_label_area_size(60)
             .build_cartesian_2d(x_range, legend.y)?;
-        let plain_label = |v: &f64| format_tick(*v);
-        chart
-            .configure_mesh()
-            .x_desc("T (°C)")
-            .y_desc("log₁₀ a_T")
-            .x_label_formatter(&plain_label)
-            .y_label_formatter(&plain_label)
-            .x_labels(6)
-            .label_style(("sans-serif", style::TICK_LABEL))
-            .axis_desc_style(("sans-serif", style::AXIS_DESCRIPTION))
-            .bold_line_style(RGBColor(200, 200, 200))
-            .light_line_style(RGBColor(236, 236, 236))
-            .max_light_lines(0)
-            .draw()?;
+        draw_shift_mesh(&mut chart, Some(6))?;
         for (i, run) in curve.iter().enumerate() {
             let series = chart.draw_series(LineSeries::new(
                 run.iter().copied(),

@@ -25,6 +25,7 @@ use std::error::Error;
 use std::sync::Once;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use crate::error::ReportError;
@@ -172,6 +173,35 @@ where
         mesh.y_label_formatter(&plain_label).y_max_light_lines(0);
     }
     mesh.draw()?;
+    Ok(())
+}
+
+/// The mesh of a shift-factor chart, log10 a_T against T on linear axes,
+/// in the house style; `x_labels` caps the temperature ticks (None:
+/// plotters' own count).
+pub(crate) fn draw_shift_mesh<DB>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    x_labels: Option<usize>,
+) -> DrawResult
+where
+    DB: DrawingBackend,
+    DB::ErrorType: 'static,
+{
+    let plain_label = |v: &f64| format_tick(*v);
+    let mut mesh = chart.configure_mesh();
+    mesh.x_desc("T (°C)")
+        .y_desc("log₁₀ a_T")
+        .x_label_formatter(&plain_label)
+        .y_label_formatter(&plain_label);
+    if let Some(n) = x_labels {
+        mesh.x_labels(n);
+    }
+    mesh.label_style(("sans-serif", style::TICK_LABEL))
+        .axis_desc_style(("sans-serif", style::AXIS_DESCRIPTION))
+        .bold_line_style(RGBColor(200, 200, 200))
+        .light_line_style(RGBColor(236, 236, 236))
+        .max_light_lines(0)
+        .draw()?;
     Ok(())
 }
 

@@ -10,7 +10,7 @@ use plotters::prelude::*;
 
 use super::axes::{lg, linear_range, log_axis, log_range};
 use super::friction::{temperature_groups, temperature_label};
-use super::{DrawResult, Figure, draw_legend, draw_mesh, format_tick, style};
+use super::{DrawResult, Figure, draw_legend, draw_mesh, draw_shift_mesh, format_tick, style};
 use rollfit_io::fit_dir::FitDir;
 
 /// μ against v·a_T.
@@ -147,19 +147,7 @@ impl Figure for ShiftFigure<'_> {
             .x_label_area_size(45)
             .y_label_area_size(75)
             .build_cartesian_2d(x_range, y_range)?;
-        let plain_label = |v: &f64| format_tick(*v);
-        chart
-            .configure_mesh()
-            .x_desc("T (°C)")
-            .y_desc("log₁₀ a_T")
-            .x_label_formatter(&plain_label)
-            .y_label_formatter(&plain_label)
-            .label_style(("sans-serif", style::TICK_LABEL))
-            .axis_desc_style(("sans-serif", style::AXIS_DESCRIPTION))
-            .bold_line_style(RGBColor(200, 200, 200))
-            .light_line_style(RGBColor(236, 236, 236))
-            .max_light_lines(0)
-            .draw()?;
+        draw_shift_mesh(&mut chart, None)?;
         if !wlf_curve.is_empty() {
             chart
                 .draw_series(LineSeries::new(wlf_curve, style::WLF.stroke_width(2)))?
