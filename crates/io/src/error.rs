@@ -4,20 +4,28 @@
 //! (docs/ARCHITECTURE.md, "Contract", "Commands"): the file, `, line N`
 //! where one line is at fault, what is wrong and, where it helps, what to
 //! do. A system error is the [`std::error::Error::source`], which the
-//! command line's `{:#}` prints after a colon.
+//! command line's `{:#}` prints after a colon. Measured data, modulus
+//! tables and TRIOS exports have an enum each ([`DataError`],
+//! [`TableError`], [`TriosError`]), reached as one variant of [`IoError`].
 
 use std::path::PathBuf;
 
 use thiserror::Error;
 
 mod boxed;
+pub(crate) mod data;
 mod fault;
 mod parts;
+pub(crate) mod table;
+mod trios;
 
 pub use boxed::{DuplicateQuantity, UnknownUnit};
+pub use data::{CellRef, ColumnName, DataError, RowRef, RowsRef, column_letter};
 pub use fault::Fault;
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
-use parts::{count_mismatch, field_count_tail, found_byte, holders_note, null_expected, place};
+use parts::{field_count_tail, found_byte, holders_note, null_expected, place};
+pub use table::{TableError, TableIsotherm};
+pub use trios::TriosError;
 
 /// Everything that can stop reading or writing a rollfit file.
 ///
@@ -512,89 +520,17 @@ pub enum IoError {
         missing: String,
         header: Vec<String>,
     },
-    /// A TRIOS `Number of points` that is not a count.
-    #[error(
-        "{}, line {line}: {step}: Number of points \"{text}\" is not a count",
-        path.display()
-    )]
-    StepCountNotANumber {
-        path: PathBuf,
-        line: usize,
-        step: StepRef,
-        text: String,
-    },
-    /// A TRIOS step whose `Data point` rows are not as many as it says.
-    #[error(
-        "{}, line {line}: {step}: Number of points says {declared}, but {}",
-        path.display(),
-        count_mismatch(*declared, *found, *rows, *last_line)
-    )]
-    StepCountMismatch {
-        path: PathBuf,
-        /// Line of `Number of points`.
-        line: usize,
-        step: StepRef,
-        declared: usize,
-        found: usize,
-        /// First and last line of the rows found.
-        rows: Option<(usize, usize)>,
-        /// The file's last line.
-        last_line: usize,
-    },
-    /// A TRIOS file cut inside a step.
-    #[error(
-        "{}, line {line}: the file ends inside {step} without a line break after this line: the \
-         export looks cut off in the middle of it (a row or a number may be incomplete); if the \
-         file is complete, end it with a line break",
-        path.display()
-    )]
-    CutInStep {
-        path: PathBuf,
-        /// The last line.
-        line: usize,
-        step: StepRef,
-    },
-    /// A TRIOS step with data but without `Variables` and `Units`.
-    #[error(
-        "{}, line {line}: {step} has data points but no Variables and Units lines",
-        path.display()
-    )]
-    StepWithoutVariables {
-        path: PathBuf,
-        /// Line of `[Step]`.
-        line: usize,
-        step: StepRef,
-    },
-    /// A TRIOS variable in a unit rollfit does not know.
+    /// A TRIOS export that cannot be read: see [`TriosError`].
     #[error(transparent)]
-    UnknownUnit(Box<UnknownUnit>),
-    /// A TRIOS file without any `Data point` row.
-    #[error("{}: TRIOS export without data points", path.display())]
-    TriosWithoutPoints { path: PathBuf },
-    /// No TRIOS step has frequency, storage and loss.
-    #[error(
-        "{}: no step has the variables needed (Angular frequency or Frequency, Storage modulus, \
-         Loss modulus): {}",
-        path.display(),
-        skipped.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ")
-    )]
-    NoUsableStep {
-        path: PathBuf,
-        /// The steps with data, each with its variables.
-        skipped: Vec<SkippedStep>,
-    },
-    /// Neither the variables nor the instrument say shear or tensile.
-    #[error(
-        "{}: cannot tell whether Storage and Loss modulus are shear (G) or tensile (E): no torque \
-         or Oscillation force variable{}; give --dma-modulus shear or --dma-modulus young",
-        path.display(),
-        instrument.as_ref().map_or(String::new(), |i| format!("; instrument type {i}"))
-    )]
-    ModulusKindUnknown {
-        path: PathBuf,
-        /// `Instrument type`, when the file gives it.
-        instrument: Option<String>,
-    },
+    Trios(Box<TriosError>),
+
+    // ------------------------------------------------------------ data, tables
+    /// A measured-data file that cannot be read: see [`DataError`].
+    #[error(transparent)]
+    Data(Box<DataError>),
+    /// A modulus table that cannot be read: see [`TableError`].
+    #[error(transparent)]
+    Table(Box<TableError>),
 
     // ------------------------------------------------------------ writing
     /// A number that is not finite in an output table.

@@ -1,11 +1,19 @@
 //! The file formats of rollfit (docs/ARCHITECTURE.md, "Crates" and
 //! "Contract"): what the tool reads and writes, and how it writes it.
 //!
+//! - [`data`]: measured rolling friction, text (`,`, `;` or tab, decimal
+//!   commas, any common encoding) or a workbook, with header aliases and
+//!   units converted to SI;
+//! - [`table`]: modulus tables, the material of a scene's
+//!   `model = "table"`: a plain `omega`/`f`, `E_storage`, `E_loss` CSV or
+//!   any DMA form holding one temperature;
 //! - [`fit_dir`]: the fit folder, fit.json, mu.csv and modulus.csv, written
 //!   and read back by one module with its names defined once
 //!   ([`fit_dir::columns`]);
 //! - [`dma`]: DMA files, the CSV form and the TRIOS LIMS export, as Young's
 //!   moduli grouped into isotherms;
+//! - [`columns`]: column names shared by a writer and its readers beyond
+//!   the fit folder's;
 //! - [`csv_text`], [`csv_columns`], [`text_file`]: CSV text as rollfit
 //!   writes it, what the CSV readers share, UTF-8 text with the place of a
 //!   bad byte;
@@ -13,16 +21,37 @@
 //!   the lock of a folder.
 //!
 //! Every function returns [`IoError`], whose messages name the file and,
-//! where there is one, the line, column or key at fault. Nothing here
-//! prints; the command line decides what a user sees.
+//! where there is one, the line, column or key at fault (measured data and
+//! modulus tables through [`DataError`] and [`TableError`], whose causes
+//! inside a file are the source of a variant naming the file: `{:#}` prints
+//! both, as the command line does). Nothing here prints; the command line
+//! decides what a user sees.
 
+pub mod columns;
 pub mod csv_columns;
 pub mod csv_text;
+pub mod data;
 pub mod dma;
 pub mod error;
 pub mod fit_dir;
 pub mod output;
+pub mod table;
 pub mod text_file;
 
-pub use error::{Fault, IoError};
+pub use data::DataTable;
+pub use error::{DataError, Fault, IoError, TableError};
 pub use fit_dir::FitDir;
+pub use table::ModulusTable;
+
+/// An error as the command line prints it (`{:#}` of anyhow): the message,
+/// then each source after a colon.
+#[cfg(test)]
+pub(crate) fn chain(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut source = error.source();
+    while let Some(s) = source {
+        text += &format!(": {s}");
+        source = s.source();
+    }
+    text
+}

@@ -26,7 +26,9 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rollfit_fit::RollingSetup;
 use rollfit_fit::sanity;
-use rollfit_io::{csv_text, output};
+use rollfit_io::columns::MU;
+use rollfit_io::fit_dir::columns::{SIGMA, T, V};
+use rollfit_io::{csv_text, output, table};
 use rollfit_model::ladder::AutoSweep;
 use rollfit_model::{ModelError, Shape, ViscoelasticModulus};
 use rollfit_report::plot::{
@@ -37,7 +39,6 @@ use crate::scene_file::{
     self, DynScene, ForwardBlock, ForwardRung, ForwardSetup, MaterialKind, SceneFile,
 };
 use crate::stdout;
-use crate::table_file;
 
 /// CSV columns, in order (docs/ARCHITECTURE.md, "Contract", fixes `v` and `mu`; the rest is ours):
 /// speed v (m/s); friction coefficient μ; its low-speed asymptote (Eqs.
@@ -45,8 +46,8 @@ use crate::table_file;
 /// (Pa), the same on every row; pressure-centroid shift x̄ = μR (m);
 /// Greenwood–Tabor hysteresis fraction α that reproduces μ (Eq. 20).
 pub const COLUMNS: [&str; 7] = [
-    "v",
-    "mu",
+    V,
+    MU,
     "mu_low_speed",
     "contact_size_static",
     "mean_pressure_static",
@@ -58,9 +59,9 @@ pub const COLUMNS: [&str; 7] = [
 /// the noiseless μ; then the columns after `mu` in [`COLUMNS`], computed
 /// from the noiseless μ (they describe the model, not the measurement).
 pub const NOISY_COLUMNS: [&str; 9] = [
-    "v",
-    "mu",
-    "sigma",
+    V,
+    MU,
+    SIGMA,
     "mu_exact",
     "mu_low_speed",
     "contact_size_static",
@@ -72,7 +73,7 @@ pub const NOISY_COLUMNS: [&str; 9] = [
 /// The column added last, after [`COLUMNS`] or [`NOISY_COLUMNS`], when
 /// `[sweep]` sets a temperature: the temperature of the row, °C (the name
 /// the fit's data reader takes a temperature set from).
-pub const TEMPERATURE_COLUMN: &str = "T";
+pub const TEMPERATURE_COLUMN: &str = T;
 
 /// Arguments of `rollfit forward`.
 #[derive(Debug, clap::Args)]
@@ -217,7 +218,7 @@ pub fn run(args: &Args) -> Result<()> {
 
 /// A contact-map error of a "table" material with what a user can do
 /// about it: the table lines that cause it (see
-/// [`table_file::explain_contact_map`]); other errors pass unchanged.
+/// [`table::explain_contact_map`]); other errors pass unchanged.
 fn explain_table_error(
     file: &SceneFile,
     scene: &Path,
@@ -248,7 +249,7 @@ fn explain_table_error(
     let omega = omega * block.shift.map_or(1.0, |s| 10f64.powf(s.log10_a_t));
     anyhow::anyhow!(
         "{message}\n{}",
-        table_file::explain_contact_map(&table, &table_path, omega, exponent)
+        table::explain_contact_map(&table, &table_path, omega, exponent)
     )
 }
 

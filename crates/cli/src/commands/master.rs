@@ -21,6 +21,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use rollfit_fit::master::{MasterSettings, ShiftLaw};
+use rollfit_io::columns::OMEGA_MEASURED;
 use rollfit_io::dma::{DmaPoint, ModulusKind};
 use rollfit_io::fit_dir::columns::{
     E_LOSS, E_STORAGE, LOG_AT, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
@@ -148,7 +149,7 @@ fn encode(
 ) -> Result<Vec<(&'static str, Vec<u8>)>> {
     let master = &built.master;
     let master_csv = csv_text::csv_bytes(
-        &[OMEGA, E_STORAGE, E_LOSS, TAN_DELTA, T, "omega_measured"],
+        &[OMEGA, E_STORAGE, E_LOSS, TAN_DELTA, T, OMEGA_MEASURED],
         master.points.iter().map(|p| {
             vec![
                 p.reduced_omega,

@@ -33,12 +33,8 @@ use crate::csv_columns::csv_line;
 use crate::error::{ColumnRef, Contradiction, DuplicateQuantity, IoError};
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA, T};
 
-/// The frequency column in hertz.
-pub const F: &str = "f";
-/// The shear storage modulus column.
-pub const G_STORAGE: &str = "G_storage";
-/// The shear loss modulus column.
-pub const G_LOSS: &str = "G_loss";
+/// The columns only DMA files have, defined with the other shared names.
+pub use crate::columns::{F, G_LOSS, G_STORAGE};
 
 /// One recognised column: its index, header name and the factor to SI
 /// (plus an offset, for kelvin).

@@ -44,7 +44,7 @@ use std::path::Path;
 
 use super::form::{FieldNames, FormRead, RawPoint};
 use super::point::{DmaOptions, ModulusKind};
-use crate::error::{ColumnRef, IoError, SkippedStep, StepRef, UnknownUnit};
+use crate::error::{ColumnRef, IoError, SkippedStep, StepRef, TriosError, UnknownUnit};
 
 /// Units of a quantity: (name in the file, factor, offset) to SI.
 type Units = [(&'static str, f64, f64)];
@@ -151,10 +151,11 @@ pub(crate) fn parse(path: &Path, text: &str, options: &DmaOptions) -> Result<For
     let Some(names) = names else {
         let path = path.to_path_buf();
         return Err(if skipped.is_empty() {
-            IoError::TriosWithoutPoints { path }
+            TriosError::TriosWithoutPoints { path }
         } else {
-            IoError::NoUsableStep { path, skipped }
-        });
+            TriosError::NoUsableStep { path, skipped }
+        }
+        .into());
     };
     for s in skipped {
         warnings.push(format!(
@@ -208,7 +209,7 @@ fn scan<'a>(path: &Path, text: &'a str) -> Result<Scan<'a>, IoError> {
             "Data point" => step.rows.push((line, fields)),
             "Number of points" => {
                 let value = fields.get(1).map_or("", |s| s.trim());
-                let count = value.parse().map_err(|_| IoError::StepCountNotANumber {
+                let count = value.parse().map_err(|_| TriosError::StepCountNotANumber {
                     path: path.to_path_buf(),
                     line,
                     step: step.label(),
@@ -235,7 +236,7 @@ fn check_whole(path: &Path, text: &str, scan: &Scan) -> Result<(), IoError> {
                 (Some((first, _)), Some((last, _))) => Some((*first, *last)),
                 _ => None,
             };
-            return Err(IoError::StepCountMismatch {
+            return Err(TriosError::StepCountMismatch {
                 path: path.to_path_buf(),
                 line,
                 step: step.label(),
@@ -243,18 +244,20 @@ fn check_whole(path: &Path, text: &str, scan: &Scan) -> Result<(), IoError> {
                 found,
                 rows,
                 last_line: scan.last_line,
-            });
+            }
+            .into());
         }
     }
     let cut =
         !text.ends_with(['\n', '\r']) && text.lines().last().is_some_and(|l| !l.trim().is_empty());
     if scan.in_step && cut {
         let step = scan.steps.last().expect("in a step");
-        return Err(IoError::CutInStep {
+        return Err(TriosError::CutInStep {
             path: path.to_path_buf(),
             line: scan.last_line,
             step: step.label(),
-        });
+        }
+        .into());
     }
     Ok(())
 }
@@ -266,11 +269,12 @@ type StepRead = Result<(Vec<RawPoint>, FieldNames), SkippedStep>;
 /// The points of a step with data (see [`StepRead`]).
 fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
     let (Some(vars), Some(units)) = (&step.variables, &step.units) else {
-        return Err(IoError::StepWithoutVariables {
+        return Err(TriosError::StepWithoutVariables {
             path: path.to_path_buf(),
             line: step.line,
             step: step.label(),
-        });
+        }
+        .into());
     };
     let omega = step.variable(&["Angular frequency"]).map(|i| (i, true));
     let omega = omega.or_else(|| step.variable(&["Frequency"]).map(|i| (i, false)));
@@ -292,7 +296,7 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
                 factor: t.1,
                 offset: t.2,
             }),
-            None => Err(IoError::UnknownUnit(Box::new(UnknownUnit {
+            None => Err(TriosError::UnknownUnit(Box::new(UnknownUnit {
                 path: path.to_path_buf(),
                 line: units.0,
                 step: step.label(),
@@ -382,10 +386,11 @@ fn decide_kind(
     }
     let instrument_note = instrument.map_or(String::new(), |i| format!("; instrument type {i}"));
     let Some((kind, why)) = kind_of(steps, instrument) else {
-        return Err(IoError::ModulusKindUnknown {
+        return Err(TriosError::ModulusKindUnknown {
             path: path.to_path_buf(),
             instrument: instrument.map(str::to_string),
-        });
+        }
+        .into());
     };
     warnings.push(format!(
         "{file}: Storage and Loss modulus read as {} moduli ({why}{instrument_note}); give --dma-modulus {} if they are not",

@@ -1,0 +1,24 @@
+//! Column names that one part of rollfit writes and another reads, or that
+//! two readers share, beyond the fit folder's own
+//! ([`crate::fit_dir::columns`], whose `v`, `sigma`, `T` and `mu_measured`
+//! the measured-data reader takes too, and whose `omega`, `E_storage`,
+//! `E_loss` and `T` the DMA and modulus-table readers do): defined once, so
+//! that a writer and its readers cannot drift apart (docs/ARCHITECTURE.md,
+//! "Contract": extend them, do not rename what exists).
+
+/// The friction coefficient μ: the canonical column of measured data
+/// ("Measured data"), written by `rollfit forward` ("Forward CSV") and read
+/// by [`crate::data`].
+pub const MU: &str = "mu";
+
+/// The frequency a point of master.csv was measured at, rad/s, before its
+/// shift (`rollfit master` output, "master.csv"). The modulus-table reader
+/// ([`crate::table`]) recognises master.csv by it.
+pub const OMEGA_MEASURED: &str = "omega_measured";
+
+/// The frequency column in hertz of a DMA file or modulus table.
+pub const F: &str = "f";
+/// The shear storage modulus column of a DMA file (G′, Pa).
+pub const G_STORAGE: &str = "G_storage";
+/// The shear loss modulus column of a DMA file (G″, Pa).
+pub const G_LOSS: &str = "G_loss";

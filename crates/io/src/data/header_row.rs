@@ -1,0 +1,155 @@
+//! The header of measured data (docs/ARCHITECTURE.md, "Contract",
+//! "Measured data"): the first row, above any row of numbers, that names a
+//! speed and a friction column (rows above it are titles); the columns it
+//! names, each with its unit ([`super::headers`]); and a units row right
+//! below it (`mm/s;-;°C`, no number, a speed unit under the speed column),
+//! which gives the units of the columns whose names have none. Refused: a
+//! unit not understood, two columns of one quantity.
+
+use super::cell::{Cell, Row};
+use super::headers::{self, Header};
+use super::quantity::Quantity;
+use super::source::Source;
+use super::units::{Conversion, Unit, speed_unit};
+use crate::error::{ColumnName, DataError};
+
+/// What each cell of `row` names as a header.
+pub(super) fn classify(row: &Row) -> Vec<Header> {
+    row.cells
+        .iter()
+        .map(|c| headers::classify(&c.name()))
+        .collect()
+}
+
+/// The index of the header row: the first row naming a speed and a
+/// friction column, searched until the first row of numbers.
+pub(super) fn find_header(rows: &[Row]) -> Option<usize> {
+    for (i, row) in rows.iter().enumerate() {
+        if row.is_numeric() {
+            return None;
+        }
+        let names = classify(row);
+        let has = |q: Quantity| names.iter().any(|h| h.quantity() == Some(q));
+        if has(Quantity::Speed) && has(Quantity::Friction) {
+            return Some(i);
+        }
+    }
+    None
+}
+
+/// A column read: where, its header as written, what and in which unit.
+pub(super) struct Column {
+    pub index: usize,
+    pub raw: String,
+    pub quantity: Quantity,
+    pub conversion: Conversion,
+}
+
+impl Column {
+    /// The column as messages name it.
+    pub fn name(&self) -> ColumnName {
+        ColumnName {
+            header: self.raw.clone(),
+            quantity: self.quantity,
+        }
+    }
+}
+
+/// The columns of a header, each with the unit its name gives, in the
+/// order of [`Quantity::ALL`].
+pub(super) type NamedColumns = Vec<(Column, Option<Unit>)>;
+
+/// The units of a units row, one per column of [`NamedColumns`] (`None`
+/// where the column's name gives one, or the row none).
+pub(super) type RowUnits = Vec<Option<Unit>>;
+
+/// The columns named by `rows[0]` (the header), each with its unit, and the
+/// units of a units row `rows[1]` if it is one. Errors: a unit not
+/// understood, two columns of one quantity.
+pub(super) fn columns(
+    source: &Source,
+    rows: &[Row],
+) -> Result<(NamedColumns, Option<RowUnits>), DataError> {
+    let row = &rows[0];
+    let mut columns: NamedColumns = Vec::new();
+    for (index, (cell, header)) in row.cells.iter().zip(classify(row)).enumerate() {
+        let raw = cell.name();
+        let (quantity, unit) = match header {
+            Header::Other => continue,
+            Header::BadUnit { quantity, unit } => {
+                return Err(DataError::UnknownUnit {
+                    row: source.row(row.number),
+                    header: raw,
+                    quantity,
+                    unit,
+                });
+            }
+            Header::Column { quantity, unit } => (quantity, unit),
+        };
+        if let Some((other, _)) = columns.iter().find(|(c, _)| c.quantity == quantity) {
+            return Err(DataError::TwoColumns {
+                row: source.row(row.number),
+                quantity,
+                first: other.raw.clone(),
+                first_index: other.index,
+                second: raw,
+                second_index: index,
+            });
+        }
+        columns.push((
+            Column {
+                index,
+                raw,
+                quantity,
+                conversion: Conversion::NONE,
+            },
+            unit,
+        ));
+    }
+    columns.sort_by_key(|(c, _)| c.quantity.index());
+    let units = rows
+        .get(1)
+        .and_then(|next| units_row(source, next, &columns))
+        .transpose()?;
+    Ok((columns, units))
+}
+
+/// The units of a row of units right below the header (`mm/s;-;°C`), for
+/// the columns whose names give none; None if `row` is not one (it must
+/// hold no number and a speed unit under the speed column).
+fn units_row(
+    source: &Source,
+    row: &Row,
+    columns: &NamedColumns,
+) -> Option<Result<RowUnits, DataError>> {
+    let number = |c: &Cell| match c {
+        Cell::Number(_) => true,
+        Cell::Text(t) => t.replace(',', ".").parse::<f64>().is_ok(),
+        _ => false,
+    };
+    if row.cells.iter().any(number) {
+        return None;
+    }
+    let text = |index: usize| match row.cells.get(index) {
+        Some(Cell::Text(t)) => t.trim_matches(['(', ')', '[', ']']).trim().to_string(),
+        _ => String::new(),
+    };
+    let speed = columns
+        .iter()
+        .find(|(c, _)| c.quantity == Quantity::Speed)?;
+    speed_unit(&text(speed.0.index))?;
+    let mut units = Vec::new();
+    for (column, named) in columns {
+        let written = text(column.index);
+        let Ok(unit) = headers::unit_cell(column.quantity, &written) else {
+            return Some(Err(DataError::UnknownUnitInUnitsRow {
+                cell: source.cell(row.number, column.index),
+                header: column.raw.clone(),
+                quantity: column.quantity,
+                unit: written,
+            }));
+        };
+        units.push(if named.is_some() { None } else { unit });
+    }
+    Some(Ok(units))
+}

@@ -1,0 +1,318 @@
+//! The rows below the header of measured data (docs/ARCHITECTURE.md,
+//! "Contract", "Measured data"), read into a [`DataTable`]: each value
+//! converted to SI and checked against the fit library's ranges
+//! (`rollfit_fit::data`), rows with an empty or NaN cell in a column read
+//! skipped with one warning, blank rows and trailing empty cells ignored,
+//! and what the reading decided (titles above the header, a units row,
+//! the delimiter, decimal commas, each column's name and unit) said in
+//! notes.
+
+use rollfit_fit::data::{MIN_RELATIVE_SIGMA, column_requirement};
+
+use super::DataTable;
+use super::cell::{Row, number};
+use super::header_row::{self, Column, NamedColumns, classify};
+use super::quantity::Quantity;
+use super::source::Source;
+use super::units::Conversion;
+use crate::error::DataError;
+use crate::error::data::{delimiter_name, key_list};
+
+/// The table of `rows` with its header at `header` (None: no header found,
+/// an error about the first row); `notes` so far (the encoding, the
+/// sheet).
+pub(super) fn table(
+    source: &Source,
+    rows: &[Row],
+    header: Option<usize>,
+    mut notes: Vec<String>,
+) -> Result<DataTable, DataError> {
+    let first = rows
+        .iter()
+        .position(|r| !r.is_blank())
+        .ok_or(DataError::Empty)?;
+    let Some(header) = header else {
+        return Err(no_header(source, &rows[first]));
+    };
+    let header_row = &rows[header];
+    if header > first {
+        let titles = rows[first..header].iter().filter(|r| !r.is_blank()).count();
+        notes.push(format!(
+            "header on {}; the {titles} {}{} above it (titles) ignored",
+            source.row(header_row.number),
+            source.row_word(),
+            if titles == 1 { "" } else { "s" }
+        ));
+    }
+    let (mut columns, units) = header_row::columns(source, &rows[header..])?;
+    let mut start = header + 1;
+    if let Some(units) = units {
+        start += 1;
+        notes.push(format!(
+            "units from {}, below the header",
+            source.row(rows[header + 1].number)
+        ));
+        for (column, unit) in columns.iter_mut().zip(units) {
+            if let Some(unit) = unit {
+                column.1 = Some(unit);
+            }
+        }
+    }
+    let (columns, column_notes) = with_units(columns);
+    let read = read_rows(source, &rows[start..], header_row, &columns)?;
+    notes.extend(delimiter_note(source, read.decimal_commas));
+    notes.extend(column_notes);
+    finish(source, &columns, read, notes)
+}
+
+/// The error of a file without a header: what `row`, its first row, does
+/// not name.
+fn no_header(source: &Source, row: &Row) -> DataError {
+    let names = classify(row);
+    DataError::NoHeader {
+        row: source.row(row.number),
+        missing: [Quantity::Speed, Quantity::Friction]
+            .into_iter()
+            .filter(|q| !names.iter().any(|h| h.quantity() == Some(*q)))
+            .collect(),
+        found: row.names(),
+        delimiter: source.delimiter(),
+    }
+}
+
+/// The columns with their conversions, and a note for each column whose
+/// name or unit is not the canonical one.
+fn with_units(columns: NamedColumns) -> (Vec<Column>, Vec<String>) {
+    let mut notes = Vec::new();
+    let columns = columns
+        .into_iter()
+        .map(|(column, unit)| {
+            let key = column.quantity.key();
+            let raw = format!("{:?}", column.raw);
+            match &unit {
+                Some(u) if !u.conversion.is_identity() => notes.push(format!(
+                    "column {raw} read as {key} in {}, converted to {} ({})",
+                    u.label,
+                    match column.quantity.si_unit() {
+                        "" => "a fraction",
+                        si => si,
+                    },
+                    u.conversion.describe()
+                )),
+                Some(u) if column.raw != key => {
+                    notes.push(format!("column {raw} read as {key} in {}", u.label))
+                }
+                None if column.raw != key => {
+                    let si = column.quantity.si_unit();
+                    notes.push(if si.is_empty() {
+                        format!("column {raw} read as {key}")
+                    } else {
+                        format!("column {raw} read as {key} in {si} (no unit given)")
+                    })
+                }
+                _ => {}
+            }
+            Column {
+                conversion: unit.map_or(Conversion::NONE, |u| u.conversion),
+                ..column
+            }
+        })
+        .collect();
+    (columns, notes)
+}
+
+/// The delimiter of a text file other than `,`, and whether decimal commas
+/// were read.
+fn delimiter_note(source: &Source, decimal_commas: bool) -> Option<String> {
+    match (source.delimiter(), decimal_commas) {
+        (Some(','), _) | (None, false) => None,
+        (Some(d), false) => Some(format!("columns separated by {}", delimiter_name(d))),
+        (Some(d), true) => Some(format!(
+            "columns separated by {}, decimal commas read as decimal points",
+            delimiter_name(d)
+        )),
+        (None, true) => Some("decimal commas read as decimal points".into()),
+    }
+}
+
+/// What the rows below the header hold.
+struct Read {
+    /// The values of each quantity, in the order of [`Quantity::ALL`].
+    values: [Vec<f64>; 4],
+    /// The line of each row kept.
+    lines: Vec<u64>,
+    /// The lines of the rows skipped.
+    skipped: Vec<u64>,
+    /// Which quantities had empty cells.
+    skipped_in: [bool; 4],
+    /// A decimal comma was read.
+    decimal_commas: bool,
+}
+
+/// Reads `rows`, the rows below the header (and units row) `header_row`.
+fn read_rows(
+    source: &Source,
+    rows: &[Row],
+    header_row: &Row,
+    columns: &[Column],
+) -> Result<Read, DataError> {
+    let mut read = Read {
+        values: Default::default(),
+        lines: Vec::new(),
+        skipped: Vec::new(),
+        skipped_in: [false; 4],
+        decimal_commas: false,
+    };
+    for row in rows {
+        if row.is_blank() {
+            continue;
+        }
+        check_width(source, row, header_row, columns)?;
+        let values = read_row(source, row, columns, &mut read)?;
+        let wanted = columns.iter().map(|c| c.quantity.index());
+        if wanted.clone().any(|q| values[q].is_none()) {
+            read.skipped.push(row.number);
+            continue;
+        }
+        check_sigma(source, row, columns, &values)?;
+        for q in wanted {
+            read.values[q].extend(values[q]);
+        }
+        read.lines.push(row.number);
+    }
+    Ok(read)
+}
+
+/// Refuses a row with a value beyond the header's columns, or one that
+/// ends before a column read.
+fn check_width(
+    source: &Source,
+    row: &Row,
+    header_row: &Row,
+    columns: &[Column],
+) -> Result<(), DataError> {
+    let width = header_row.cells.len();
+    let extra = row.cells.get(width..).unwrap_or_default();
+    if extra.iter().any(|c| !c.is_empty()) {
+        return Err(DataError::ExtraFields {
+            row: source.row(row.number),
+            fields: row.cells.len() - row.trailing_empty(),
+            header_row: source.row(header_row.number),
+            width,
+            comma_delimited: !source.decimal_comma(),
+        });
+    }
+    let needed = columns.iter().map(|c| c.index + 1).max().unwrap_or(0);
+    if row.cells.len() < needed {
+        return Err(DataError::MissingFields {
+            row: source.row(row.number),
+            fields: row.cells.len(),
+            header_row: source.row(header_row.number),
+            width,
+        });
+    }
+    Ok(())
+}
+
+/// The values of `row` in SI, in the order of [`Quantity::ALL`] (None for
+/// an empty or NaN cell, marked in `read.skipped_in`), each checked
+/// against its quantity's range.
+fn read_row(
+    source: &Source,
+    row: &Row,
+    columns: &[Column],
+    read: &mut Read,
+) -> Result<[Option<f64>; 4], DataError> {
+    let mut values = [None; 4];
+    for column in columns {
+        let at = || (source.cell(row.number, column.index), column.name());
+        let cell = &row.cells[column.index];
+        let Some(number) = number(cell, source, &mut read.decimal_commas, &at)? else {
+            read.skipped_in[column.quantity.index()] = true;
+            continue;
+        };
+        let value = column.conversion.apply(number.value, &number.decimal);
+        if let Some(requirement) = column_requirement(column.quantity.key(), value) {
+            let (cell, column_name) = at();
+            return Err(DataError::OutOfRange {
+                cell,
+                column: column_name,
+                text: number.shown,
+                value,
+                // A range bound on a converted value: show what it became.
+                converted: !column.conversion.is_identity() && value > 0.0,
+                requirement,
+            });
+        }
+        values[column.quantity.index()] = Some(value);
+    }
+    Ok(values)
+}
+
+/// Refuses a standard deviation too small against its row's μ.
+fn check_sigma(
+    source: &Source,
+    row: &Row,
+    columns: &[Column],
+    values: &[Option<f64>; 4],
+) -> Result<(), DataError> {
+    if let (Some(sigma), Some(mu)) = (
+        values[Quantity::Sigma.index()],
+        values[Quantity::Friction.index()],
+    ) && sigma < MIN_RELATIVE_SIGMA * mu
+    {
+        let column = columns
+            .iter()
+            .find(|c| c.quantity == Quantity::Sigma)
+            .expect("a sigma value comes from a sigma column");
+        return Err(DataError::SigmaTooSmall {
+            cell: source.cell(row.number, column.index),
+            column: column.name(),
+            sigma,
+        });
+    }
+    Ok(())
+}
+
+/// The table of what was read, with the warning about skipped rows.
+fn finish(
+    source: &Source,
+    columns: &[Column],
+    read: Read,
+    notes: Vec<String>,
+) -> Result<DataTable, DataError> {
+    let mut warnings = Vec::new();
+    if !read.skipped.is_empty() {
+        let quantities: Vec<Quantity> = Quantity::ALL
+            .into_iter()
+            .filter(|q| read.skipped_in[q.index()])
+            .collect();
+        let n = read.skipped.len();
+        warnings.push(format!(
+            "skipped {n} row{} with empty or NaN cells in {}: {}",
+            if n == 1 { "" } else { "s" },
+            key_list(&quantities),
+            source.rows(&read.skipped)
+        ));
+        if read.lines.is_empty() {
+            return Err(DataError::AllRowsSkipped {
+                quantities,
+                rows: source.rows(&read.skipped),
+            });
+        }
+    }
+    if read.lines.is_empty() {
+        return Err(DataError::NoDataRows);
+    }
+    let [speeds, friction, sigma, temperature] = read.values;
+    let has = |q: Quantity| columns.iter().any(|c| c.quantity == q);
+    Ok(DataTable {
+        speeds,
+        friction,
+        sigma: has(Quantity::Sigma).then_some(sigma),
+        temperature: has(Quantity::Temperature).then_some(temperature),
+        lines: read.lines,
+        notes,
+        warnings,
+    })
+}

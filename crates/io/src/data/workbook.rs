@@ -1,0 +1,151 @@
+//! Workbooks as measured data (docs/ARCHITECTURE.md, "Contract", "Measured
+//! data"): Excel (.xlsx, .xlsm, .xlsb, .xls) and OpenDocument (.ods), read
+//! with calamine. A file is a workbook by its extension or, whatever its
+//! name, by its first bytes (a zip archive or an OLE compound file), so an
+//! .xlsx saved as `data.csv` is still read.
+//!
+//! The first sheet is read, or the one named (`rollfit fit --sheet NAME`,
+//! matched exactly, else case-insensitively). Cells hold numbers or numeric
+//! text (decimal commas allowed: there is no delimiter to confuse them
+//! with); rows whose first cell with anything in it is text starting with
+//! `#` are comments; the header is found and read as in a text file.
+//! Empty cells and spreadsheet errors (#DIV/0!, #N/A) are cells without a
+//! value; booleans and dates are not numbers. Messages name the sheet and
+//! the cell: `sheet "Run 1", cell B7`.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use calamine::{Data, Reader};
+
+use super::DataTable;
+use super::cell::{Cell, Row, is_comment_or_blank};
+use super::header_row::find_header;
+use super::rows::table;
+use super::source::Source;
+use crate::error::DataError;
+
+/// The extensions read as workbooks (compared in lower case).
+const EXTENSIONS: [&str; 6] = ["xlsx", "xlsm", "xlsb", "xls", "xla", "ods"];
+
+/// The start of a zip archive (.xlsx, .xlsm, .xlsb, .ods).
+const ZIP: [u8; 4] = *b"PK\x03\x04";
+/// The start of an OLE compound file (.xls).
+const OLE: [u8; 8] = [0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A, 0xE1];
+
+/// Whether `path` with content `bytes` is a workbook.
+pub(super) fn is_workbook(path: &Path, bytes: &[u8]) -> bool {
+    has_workbook_extension(path) || bytes.starts_with(&ZIP) || bytes.starts_with(&OLE)
+}
+
+fn has_workbook_extension(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| EXTENSIONS.contains(&e.to_lowercase().as_str()))
+}
+
+/// Reads the sheet `wanted` (default: the first) of the workbook `bytes`.
+pub(super) fn parse(
+    path: &Path,
+    bytes: Vec<u8>,
+    wanted: Option<&str>,
+) -> Result<DataTable, DataError> {
+    let mut notes = Vec::new();
+    if !has_workbook_extension(path) {
+        notes.push("the file is a workbook (by its content), read as one".to_string());
+    }
+    let mut workbook = calamine::open_workbook_auto_from_rs(Cursor::new(bytes))
+        .map_err(|error| DataError::NotWorkbook { error })?;
+    let name = choose_sheet(&workbook.sheet_names(), wanted, &mut notes)?;
+    let range = workbook
+        .worksheet_range(&name)
+        .map_err(|error| DataError::UnreadableSheet {
+            sheet: name.clone(),
+            error,
+        })?;
+    let (row0, column0) = range.start().unwrap_or((0, 0));
+    let rows: Vec<Row> = range
+        .rows()
+        .enumerate()
+        .map(|(i, cells)| Row {
+            number: u64::from(row0) + i as u64 + 1,
+            cells: std::iter::repeat_n(Cell::Empty, column0 as usize)
+                .chain(cells.iter().map(cell))
+                .collect(),
+        })
+        .filter(|row| !is_comment(row))
+        .collect();
+    if rows.iter().all(Row::is_blank) {
+        return Err(DataError::EmptySheet { sheet: name });
+    }
+    let header = find_header(&rows);
+    table(&Source::Sheet { name }, &rows, header, notes)
+}
+
+/// The sheet to read of `names`: `wanted` (matched exactly, else
+/// case-insensitively when that matches one), or the first, with a note
+/// when there are others.
+fn choose_sheet(
+    names: &[String],
+    wanted: Option<&str>,
+    notes: &mut Vec<String>,
+) -> Result<String, DataError> {
+    let listed = || {
+        names
+            .iter()
+            .map(|n| format!("{n:?}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let Some(wanted) = wanted else {
+        let first = names.first().ok_or(DataError::NoSheets)?.clone();
+        if names.len() > 1 {
+            notes.push(format!(
+                "sheet {first:?}, the first of {} ({}); choose another with --sheet",
+                names.len(),
+                listed()
+            ));
+        }
+        return Ok(first);
+    };
+    let folded: Vec<&String> = names
+        .iter()
+        .filter(|n| n.to_lowercase() == wanted.to_lowercase())
+        .collect();
+    names
+        .iter()
+        .find(|n| *n == wanted)
+        .or(match folded.as_slice() {
+            [one] => Some(*one),
+            _ => None,
+        })
+        .cloned()
+        .ok_or_else(|| DataError::NoSuchSheet {
+            wanted: wanted.to_string(),
+            sheets: names.to_vec(),
+        })
+}
+
+/// A row whose first cell with anything in it is text starting with `#`.
+fn is_comment(row: &Row) -> bool {
+    match row.cells.iter().find(|c| !c.is_empty()) {
+        Some(Cell::Text(t)) => is_comment_or_blank(t),
+        _ => false,
+    }
+}
+
+fn cell(data: &Data) -> Cell {
+    match data {
+        Data::Empty => Cell::Empty,
+        Data::Int(i) => Cell::Number(*i as f64),
+        Data::Float(x) => Cell::Number(*x),
+        Data::String(s) => Cell::text(s),
+        Data::Error(_) => Cell::Missing,
+        Data::Bool(b) => Cell::Other(format!("the boolean {}", if *b { "TRUE" } else { "FALSE" })),
+        Data::DateTime(d) => Cell::Other(format!("the date/time {d}")),
+        Data::DateTimeIso(s) | Data::DurationIso(s) => Cell::Other(format!("the date/time {s}")),
+    }
+}
+
+#[cfg(test)]
+pub(super) mod tests;

@@ -1,0 +1,340 @@
+//! Workbooks are written here, in the tests, with the zip crate:
+//! the few XML parts calamine needs, no binary fixtures.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use zip::write::SimpleFileOptions;
+
+use super::*;
+use crate::chain;
+use crate::data::{read, read_sheet};
+use crate::error::column_letter;
+
+/// A cell of a test sheet.
+#[derive(Clone, Copy)]
+enum X<'a> {
+    /// A number.
+    N(f64),
+    /// Text.
+    S(&'a str),
+    /// A spreadsheet error value (#DIV/0!).
+    Error,
+    /// Nothing.
+    E,
+}
+
+fn zip_archive(parts: &[(&str, String)]) -> Vec<u8> {
+    let mut zip = zip::ZipWriter::new(Cursor::new(Vec::new()));
+    let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    for (name, content) in parts {
+        zip.start_file(*name, options).unwrap();
+        zip.write_all(content.as_bytes()).unwrap();
+    }
+    zip.finish().unwrap().into_inner()
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// An .xlsx workbook of `sheets` (name, rows from A1).
+fn xlsx(sheets: &[(&str, Vec<Vec<X>>)]) -> Vec<u8> {
+    const MAIN: &str = "http://schemas.openxmlformats.org/spreadsheetml/2006/main";
+    const RELS: &str = "http://schemas.openxmlformats.org/package/2006/relationships";
+    const DOC: &str = "http://schemas.openxmlformats.org/officeDocument/2006/relationships";
+    let mut types = String::from(
+        r#"<?xml version="1.0" encoding="UTF-8" standalone="yes"?><Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types"><Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/><Default Extension="xml" ContentType="application/xml"/><Override PartName="/xl/workbook.xml" ContentType="application/vnd.openxmlformats-officedocument.spreadsheetml.sheet.main+xml"/>"#,
+    );
+    let mut workbook = format!(r#"<workbook xmlns="{MAIN}" xmlns:r="{DOC}"><sheets>"#);
+    let mut rels = format!(r#"<Relationships xmlns="{RELS}">"#);
+    let mut parts = Vec::new();
+    for (i, (name, rows)) in sheets.iter().enumerate() {
+        let n = i + 1;
+        types += &format!(
+            r#"<Override PartName="/xl/worksheets/sheet{n}.xml" ContentType="application/vnd.openxmlformats-officedocument.spreadsheetml.worksheet+xml"/>"#
+        );
+        workbook += &format!(
+            r#"<sheet name="{}" sheetId="{n}" r:id="rId{n}"/>"#,
+            escape(name)
+        );
+        rels += &format!(
+            r#"<Relationship Id="rId{n}" Type="{DOC}/worksheet" Target="worksheets/sheet{n}.xml"/>"#
+        );
+        let mut sheet = format!(r#"<worksheet xmlns="{MAIN}"><sheetData>"#);
+        for (r, row) in rows.iter().enumerate() {
+            sheet += &format!(r#"<row r="{}">"#, r + 1);
+            for (c, x) in row.iter().enumerate() {
+                let at = format!("{}{}", column_letter(c), r + 1);
+                sheet += &match x {
+                    X::N(v) => format!(r#"<c r="{at}"><v>{v:e}</v></c>"#),
+                    X::S(s) => format!(
+                        r#"<c r="{at}" t="inlineStr"><is><t>{}</t></is></c>"#,
+                        escape(s)
+                    ),
+                    X::Error => format!(r#"<c r="{at}" t="e"><v>#DIV/0!</v></c>"#),
+                    X::E => String::new(),
+                };
+            }
+            sheet += "</row>";
+        }
+        sheet += "</sheetData></worksheet>";
+        parts.push((format!("xl/worksheets/sheet{n}.xml"), sheet));
+    }
+    types += "</Types>";
+    workbook += "</sheets></workbook>";
+    rels += "</Relationships>";
+    let mut all = vec![
+        ("[Content_Types].xml".to_string(), types),
+        (
+            "_rels/.rels".to_string(),
+            format!(
+                r#"<Relationships xmlns="{RELS}"><Relationship Id="rId1" Type="{DOC}/officeDocument" Target="xl/workbook.xml"/></Relationships>"#
+            ),
+        ),
+        ("xl/workbook.xml".to_string(), workbook),
+        ("xl/_rels/workbook.xml.rels".to_string(), rels),
+    ];
+    all.extend(parts);
+    let all: Vec<(&str, String)> = all.iter().map(|(n, c)| (n.as_str(), c.clone())).collect();
+    zip_archive(&all)
+}
+
+/// An .ods workbook of one sheet.
+fn ods(name: &str, rows: Vec<Vec<X>>) -> Vec<u8> {
+    let mut table = format!(r#"<table:table table:name="{}">"#, escape(name));
+    for row in rows {
+        table += "<table:table-row>";
+        for x in row {
+            table += &match x {
+                X::N(v) => format!(
+                    r#"<table:table-cell office:value-type="float" office:value="{v:e}"><text:p>{v}</text:p></table:table-cell>"#
+                ),
+                X::S(s) => format!(
+                    r#"<table:table-cell office:value-type="string"><text:p>{}</text:p></table:table-cell>"#,
+                    escape(s)
+                ),
+                X::Error | X::E => "<table:table-cell/>".to_string(),
+            };
+        }
+        table += "</table:table-row>";
+    }
+    table += "</table:table>";
+    let content = format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?><office:document-content xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0" office:version="1.2"><office:body><office:spreadsheet>{table}</office:spreadsheet></office:body></office:document-content>"#
+    );
+    let manifest = r#"<?xml version="1.0" encoding="UTF-8"?><manifest:manifest xmlns:manifest="urn:oasis:names:tc:opendocument:xmlns:manifest:1.0" manifest:version="1.2"><manifest:file-entry manifest:full-path="/" manifest:media-type="application/vnd.oasis.opendocument.spreadsheet"/><manifest:file-entry manifest:full-path="content.xml" manifest:media-type="text/xml"/></manifest:manifest>"#;
+    zip_archive(&[
+        (
+            "mimetype",
+            "application/vnd.oasis.opendocument.spreadsheet".to_string(),
+        ),
+        ("META-INF/manifest.xml", manifest.to_string()),
+        ("content.xml", content),
+    ])
+}
+
+/// A fresh temporary folder for one test.
+fn temp_dir(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rollfit-data-file-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+fn two_runs() -> Vec<u8> {
+    use X::*;
+    xlsx(&[
+        (
+            "Run 1",
+            vec![
+                vec![S("Measurement 2024-03-01")],
+                vec![],
+                vec![S("velocity (mm/s)"), S("COF"), S("COF std"), S("T (°C)")],
+                vec![N(0.5), N(0.05), N(0.001), N(20.0)],
+                vec![S("1,5"), S("0.06"), N(0.001), N(20.0)],
+                vec![N(2.5), Error, N(0.001), N(20.0)],
+                vec![N(3.5), E, N(0.001), N(20.0)],
+                vec![N(4.5), N(0.08), N(0.001), N(20.0)],
+            ],
+        ),
+        (
+            "Run 2",
+            vec![
+                vec![S("v"), S("mu"), S("T_K")],
+                vec![N(1e-3), N(0.1), N(293.15)],
+                vec![N(1e-2), N(0.2), N(313.15)],
+            ],
+        ),
+    ])
+}
+
+#[test]
+fn xlsx_first_sheet_by_default() {
+    let dir = temp_dir("first-sheet");
+    let path = write(&dir, "runs.xlsx", &two_runs());
+    let t = read(&path).unwrap();
+    assert_eq!(t.speeds, [0.5e-3, 1.5e-3, 4.5e-3]);
+    assert_eq!(t.friction, [0.05, 0.06, 0.08]);
+    assert_eq!(t.sigma, Some(vec![0.001; 3]));
+    assert_eq!(t.temperature, Some(vec![20.0; 3]));
+    assert_eq!(t.lines, [4, 5, 8]);
+    assert_eq!(
+        t.notes,
+        [
+            "sheet \"Run 1\", the first of 2 (\"Run 1\", \"Run 2\"); choose another with --sheet",
+            "header on sheet \"Run 1\", row 3; the 1 row above it (titles) ignored",
+            "decimal commas read as decimal points",
+            "column \"velocity (mm/s)\" read as v in mm/s, converted to m/s (×1e-3)",
+            "column \"COF\" read as mu",
+            "column \"COF std\" read as sigma",
+            "column \"T (°C)\" read as T in °C",
+        ]
+    );
+    assert_eq!(
+        t.warnings,
+        ["skipped 2 rows with empty or NaN cells in mu: sheet \"Run 1\", rows 6, 7"]
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn xlsx_sheet_by_name_and_unknown_sheet() {
+    let dir = temp_dir("by-name");
+    let path = write(&dir, "runs.XLSX", &two_runs());
+    for name in ["Run 2", "run 2"] {
+        let t = read_sheet(&path, Some(name)).unwrap();
+        assert_eq!(t.speeds, [1e-3, 1e-2]);
+        assert_eq!(t.temperature, Some(vec![20.0, 40.0]));
+        assert_eq!(t.lines, [2, 3]);
+    }
+    let m = chain(&read_sheet(&path, Some("Run 3")).unwrap_err());
+    assert!(
+        m.contains("runs.XLSX: no sheet \"Run 3\": the workbook has \"Run 1\", \"Run 2\""),
+        "{m}"
+    );
+    // --sheet with a text file.
+    let csv = write(&dir, "plain.csv", b"v,mu\n1,0.1\n");
+    let m = chain(&read_sheet(&csv, Some("Run 1")).unwrap_err());
+    assert!(
+        m.contains("plain.csv") && m.contains("not a workbook"),
+        "{m}"
+    );
+    // A workbook saved under a .csv name is read by its content.
+    let disguised = write(&dir, "runs.csv", &two_runs());
+    let t = read(&disguised).unwrap();
+    assert_eq!(t.speeds.len(), 3);
+    assert!(t.notes[0].contains("by its content"), "{:?}", t.notes);
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn xlsx_errors_name_the_sheet_and_the_cell() {
+    use X::*;
+    let dir = temp_dir("errors");
+    let bad = xlsx(&[(
+        "Run 1",
+        vec![
+            vec![S("Speed (m/s)"), S("COF")],
+            vec![N(1.0), N(0.1)],
+            vec![N(2.0), N(0.1)],
+            vec![N(3.0), N(0.1)],
+            vec![N(4.0), N(0.1)],
+            vec![N(5.0), N(0.1)],
+            vec![N(6.0), S("abc")],
+        ],
+    )]);
+    let path = write(&dir, "bad.xlsx", &bad);
+    let m = chain(&read(&path).unwrap_err());
+    assert!(
+        m.contains("data file ")
+            && m.contains(
+                "bad.xlsx: sheet \"Run 1\", cell B7: column `COF` (mu): \"abc\" is not a number"
+            ),
+        "{m}"
+    );
+    let negative = xlsx(&[("S", vec![vec![S("v"), S("mu")], vec![N(-1.0), N(0.1)]])]);
+    let path = write(&dir, "negative.xlsx", &negative);
+    let m = chain(&read(&path).unwrap_err());
+    assert!(
+        m.contains("sheet \"S\", cell A2: column `v` = -1: must be greater than zero"),
+        "{m}"
+    );
+    let missing = xlsx(&[(
+        "Run 1",
+        vec![vec![S("Speed"), S("Force (N)")], vec![N(1.0), N(2.0)]],
+    )]);
+    let path = write(&dir, "missing.xlsx", &missing);
+    let m = chain(&read(&path).unwrap_err());
+    assert!(
+        m.contains(
+            "sheet \"Run 1\", row 1 (header): no friction column (mu, µ, COF, friction \
+             coefficient, coefficient of friction, …); found \"Speed\", \"Force (N)\""
+        ),
+        "{m}"
+    );
+    let dates = xlsx(&[("S", vec![vec![S("v"), S("mu"), S("v_mm_s")]])]);
+    let path = write(&dir, "two.xlsx", &dates);
+    let m = chain(&read(&path).unwrap_err());
+    assert!(
+        m.contains("two speed columns, \"v\" (column A) and \"v_mm_s\" (column C)"),
+        "{m}"
+    );
+    let path = write(&dir, "empty.xlsx", &xlsx(&[("Empty", vec![])]));
+    let m = chain(&read(&path).unwrap_err());
+    assert!(m.contains("sheet \"Empty\" is empty"), "{m}");
+    let path = write(&dir, "broken.xlsx", b"PK\x03\x04 not really a zip");
+    let m = chain(&read(&path).unwrap_err());
+    assert!(
+        m.contains("broken.xlsx: cannot read the file as a workbook"),
+        "{m}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn ods_workbook() {
+    use X::*;
+    let dir = temp_dir("ods");
+    let book = ods(
+        "Messung",
+        vec![
+            vec![S("Geschwindigkeit"), S("speed_um_s"), S("µ")],
+            vec![S("x"), N(250.0), N(0.125)],
+            vec![S("y"), S("2,5E+02"), S("0,25")],
+        ],
+    );
+    let path = write(&dir, "messung.ods", &book);
+    let t = read(&path).unwrap();
+    assert_eq!(t.speeds, [2.5e-4, 2.5e-4]);
+    assert_eq!(t.friction, [0.125, 0.25]);
+    assert!(
+        t.notes
+            .iter()
+            .any(|n| n == "column \"speed_um_s\" read as v in µm/s, converted to m/s (×1e-6)"),
+        "{:?}",
+        t.notes
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn column_letters() {
+    let letters: Vec<String> = [0, 1, 25, 26, 27, 51, 52, 701, 702]
+        .into_iter()
+        .map(column_letter)
+        .collect();
+    assert_eq!(
+        letters,
+        ["A", "B", "Z", "AA", "AB", "AZ", "BA", "ZZ", "AAA"]
+    );
+}

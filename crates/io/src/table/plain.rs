@@ -1,0 +1,153 @@
+//! The plain modulus table (docs/ARCHITECTURE.md, "Contract", "Scene
+//! file"): CSV with `,` between the columns and decimal points, `#`
+//! comments, a header naming one frequency column, `omega` (rad/s) or `f`
+//! (Hz), and `E_storage`, `E_loss` (Young's, Pa); other columns ignored.
+//! Each number must be finite and positive, a modulus at most 1e13 Pa, ω
+//! within 1e-30 … 1e30 rad/s, the rows in strictly increasing frequency,
+//! and there must be two at least. Errors name the line and column but not
+//! the file: [`super::read`] wraps them in
+//! [`crate::error::TableError::Plain`], which does.
+
+use std::f64::consts::PI;
+
+use super::ModulusTable;
+use crate::columns::F;
+use crate::csv_columns::{self, csv_line};
+use crate::error::{IoError, TableError};
+use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA};
+
+/// The largest accepted E′ or E″, Pa: above any solid's modulus, and small
+/// enough that the contact map ω·a(ω) built from the table stays finite.
+const MAX_MODULUS: f64 = 1e13;
+
+/// Accepted angular frequencies, rad/s: wider than any master curve, far
+/// inside the floating-point range the contact map needs.
+const OMEGA_RANGE: (f64, f64) = (1e-30, 1e30);
+
+/// Which kind of frequency the table gives.
+#[derive(Clone, Copy)]
+enum Frequency {
+    /// `omega`, rad/s.
+    Angular,
+    /// `f`, Hz.
+    Hertz,
+}
+
+/// Parses and checks a plain modulus table (the CSV text of a file).
+pub fn parse(text: &str) -> Result<ModulusTable, IoError> {
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let header = csv_columns::header(&mut reader, "omega or f, E_storage, E_loss")?;
+    let (columns, frequency) = columns(&header)?;
+    let names = [
+        header[columns[0]].to_string(),
+        E_STORAGE.to_string(),
+        E_LOSS.to_string(),
+    ];
+    let mut table = ModulusTable {
+        omega: Vec::new(),
+        storage: Vec::new(),
+        loss: Vec::new(),
+        lines: Vec::new(),
+        notes: Vec::new(),
+    };
+    let mut previous_line = 0;
+    for record in reader.records() {
+        let record = record.map_err(|source| TableError::MalformedRow { source })?;
+        // Counted as the DMA reader counts (comments, blank lines, CRLF).
+        let line = csv_line(text, record.position()) as u64;
+        let values = row(&record, line, &columns, &names)?;
+        let omega = match frequency {
+            Frequency::Angular => values[0],
+            Frequency::Hertz => 2.0 * PI * values[0],
+        };
+        if !(OMEGA_RANGE.0..=OMEGA_RANGE.1).contains(&omega) {
+            return Err(TableError::FrequencyOutOfRange {
+                line,
+                column: names[0].clone(),
+                value: values[0],
+            }
+            .into());
+        }
+        if let Some(&last) = table.omega.last()
+            && omega <= last
+        {
+            return Err(TableError::NotIncreasing {
+                line,
+                column: names[0].clone(),
+                value: values[0],
+                previous: previous_line,
+            }
+            .into());
+        }
+        table.omega.push(omega);
+        table.storage.push(values[1]);
+        table.loss.push(values[2]);
+        table.lines.push(line as usize);
+        previous_line = line;
+    }
+    if table.omega.len() < 2 {
+        return Err(TableError::TooFewRows {
+            rows: table.omega.len(),
+        }
+        .into());
+    }
+    Ok(table)
+}
+
+/// The indices of the frequency, storage and loss columns of `header`, and
+/// the kind of frequency.
+fn columns(header: &csv::StringRecord) -> Result<([usize; 3], Frequency), TableError> {
+    let position = |name: &str| header.iter().position(|h| h == name);
+    let names = || header.iter().map(str::to_string).collect::<Vec<_>>();
+    let (frequency_column, frequency) = match (position(OMEGA), position(F)) {
+        (Some(i), None) => (i, Frequency::Angular),
+        (None, Some(i)) => (i, Frequency::Hertz),
+        (Some(_), Some(_)) => return Err(TableError::BothFrequencies),
+        (None, None) => return Err(TableError::NoFrequency { header: names() }),
+    };
+    let mut columns = [frequency_column, 0, 0];
+    for (slot, name) in columns.iter_mut().skip(1).zip([E_STORAGE, E_LOSS]) {
+        *slot = position(name).ok_or_else(|| TableError::NoModulus {
+            name,
+            shear: header.iter().any(|h| h.starts_with("G_")),
+            header: names(),
+        })?;
+    }
+    Ok((columns, frequency))
+}
+
+/// The frequency, storage and loss values of `record` on file line `line`:
+/// finite and positive, the moduli at most [`MAX_MODULUS`].
+fn row(
+    record: &csv::StringRecord,
+    line: u64,
+    columns: &[usize; 3],
+    names: &[String; 3],
+) -> Result<[f64; 3], IoError> {
+    let mut values = [0.0; 3];
+    for ((value, &column), name) in values.iter_mut().zip(columns).zip(names) {
+        *value = csv_columns::finite(record, column, line, name)?;
+        if *value <= 0.0 {
+            return Err(TableError::NotPositive {
+                line,
+                column: name.clone(),
+                value: *value,
+            }
+            .into());
+        }
+    }
+    for (value, name) in values.iter().zip(names).skip(1) {
+        if *value > MAX_MODULUS {
+            return Err(TableError::ModulusTooLarge {
+                line,
+                column: name.clone(),
+                value: *value,
+            }
+            .into());
+        }
+    }
+    Ok(values)
+}
