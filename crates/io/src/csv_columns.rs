@@ -6,6 +6,19 @@
 
 use crate::error::IoError;
 
+/// A reader of rollfit's CSV tables: `#` starts a comment line and cells are
+/// trimmed. `headed`: the first record is the header (false: the caller
+/// finds it itself); `flexible`: rows may differ in length (the caller
+/// checks them with line numbers of its own).
+pub fn reader(text: &str, headed: bool, flexible: bool) -> csv::Reader<&[u8]> {
+    csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .has_headers(headed)
+        .flexible(flexible)
+        .from_reader(text.as_bytes())
+}
+
 /// Reads the header row of `reader` and checks it names at least one column
 /// and none twice; `expected` lists the columns for the message about a
 /// file without a header.

@@ -117,12 +117,7 @@ const MODULUS_UNITS: [(&str, f64, f64); 4] = [
 
 /// Parses the CSV text of `path`.
 pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .has_headers(false)
-        .flexible(true)
-        .from_reader(text.as_bytes());
+    let mut reader = crate::csv_columns::reader(text, false, true);
     let mut records = reader.records();
     let (header_line, names): (usize, Vec<String>) = loop {
         match records.next() {

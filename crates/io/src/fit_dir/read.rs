@@ -134,12 +134,7 @@ impl Table {
     }
 
     fn parse(path: &Path, text: &str) -> Result<Table, IoError> {
-        let mut reader = csv::ReaderBuilder::new()
-            .comment(Some(b'#'))
-            .trim(csv::Trim::All)
-            .has_headers(false)
-            .flexible(true)
-            .from_reader(text.as_bytes());
+        let mut reader = crate::csv_columns::reader(text, false, true);
         let mut header: Option<Vec<String>> = None;
         let mut rows = Vec::new();
         for record in reader.records() {

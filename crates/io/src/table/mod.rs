@@ -126,10 +126,7 @@ fn is_dma_column(name: &str) -> bool {
 /// The header row of the CSV `text` (comments skipped), or `None` when
 /// there is none to read.
 fn header_names(text: &str) -> Option<Vec<String>> {
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
+    let mut reader = crate::csv_columns::reader(text, true, false);
     let header = reader.headers().ok()?;
     Some(header.iter().map(str::to_string).collect())
 }

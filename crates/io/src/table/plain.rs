@@ -35,10 +35,7 @@ enum Frequency {
 
 /// Parses and checks a plain modulus table (the CSV text of a file).
 pub fn parse(text: &str) -> Result<ModulusTable, IoError> {
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
+    let mut reader = csv_columns::reader(text, true, false);
     let header = csv_columns::header(&mut reader, "omega or f, E_storage, E_loss")?;
     let (columns, frequency) = columns(&header)?;
     let names = [
