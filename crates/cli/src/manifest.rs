@@ -11,13 +11,16 @@
 //! # optional: method, lambda, seed, starts, terms
 //! ```
 //!
-//! Paths are relative to the manifest's folder. The settings take the
-//! values of the `fit` flags (`--method`, `--lambda`, `--seed`, `--starts`,
-//! `--terms`): names and `"auto"` as strings, numbers as numbers (or as
-//! strings, e.g. `terms = "2/decade"`).
+//! Paths are relative to the manifest's folder. The settings are those of
+//! the `fit` flags (`--method`, `--lambda`, `--seed`, `--starts`,
+//! `--terms`), spelled as in a scene's `[fit]` and read by the same parser,
+//! [`FitSettings::set`] (through [`crate::scene_file::fit_settings`]):
+//! names and `"auto"` as strings, numbers as numbers (or as strings, e.g.
+//! `terms = "2/decade"`).
 //!
 //! Everything is checked before a fit runs: TOML syntax, unknown keys and
-//! bad setting values while deserializing (toml then points at the line),
+//! bad setting values (syntax and range, [`FitSettings::check`]) while
+//! deserializing (toml then points at the line),
 //! then what serde cannot see — missing keys, names, duplicates, files that
 //! do not exist. Every message names the entry (by name, else by its
 //! position) and its line; the caller adds the manifest's path. Only the
@@ -29,19 +32,24 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
-use rollfit_fit::{FitError, FitParams, Lambda, Method, RollingSetup, TermRule};
-use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
+use rollfit_fit::FitSettings;
 use serde::Deserialize;
-use serde::de::{self, Deserializer, Visitor};
+use serde::de::{Deserializer, MapAccess, Visitor};
 use toml::Spanned;
 
-use crate::commands::fit::{self, Settings};
+use crate::scene_file::fit_settings::{Key, TableSettings, join};
+
+/// The settings a manifest takes: those of the `fit` flags.
+const SETTINGS: [&str; 5] = ["method", "lambda", "seed", "starts", "terms"];
+
+/// The keys of an `[[entry]]`: its own, then the settings.
+const ENTRY_KEYS: [&str; 9] = join(["name", "scene", "data", "sheet"], SETTINGS);
 
 /// A checked manifest.
 #[derive(Debug, Clone)]
 pub struct Manifest {
     /// `[defaults]` (all unset without the table).
-    pub defaults: Settings,
+    pub defaults: FitSettings,
     /// The entries in file order.
     pub entries: Vec<Entry>,
 }
@@ -60,7 +68,7 @@ pub struct Entry {
     /// The sheet of a workbook data file (None: the first).
     pub sheet: Option<String>,
     /// The entry's own settings (over the defaults and the flags).
-    pub settings: Settings,
+    pub settings: FitSettings,
 }
 
 /// Reads and checks the manifest at `path`; every error names `path`.
@@ -80,7 +88,7 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
             None => anyhow!("{message}"),
         }
     })?;
-    let defaults = raw.defaults.map(RawSettings::settings).unwrap_or_default();
+    let defaults = raw.defaults.map(|d| d.0).unwrap_or_default();
     if raw.entry.is_empty() {
         bail!(
             "no entries: list each fit as an [[entry]] with a name, a scene and a data file \
@@ -163,7 +171,7 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
                 scene,
                 data,
                 sheet: raw_entry.sheet.take(),
-                settings: raw_entry.settings(),
+                settings: std::mem::take(&mut raw_entry.settings),
             });
         }
     }
@@ -171,40 +179,6 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
         bail!("{}", problems.join("\n"));
     }
     Ok(Manifest { defaults, entries })
-}
-
-/// `settings` over `below`: each setting `settings` leaves unset comes from
-/// `below`.
-pub fn layered(settings: &Settings, below: &Settings) -> Settings {
-    Settings {
-        method: settings.method.or(below.method),
-        lambda: settings.lambda.or(below.lambda),
-        seed: settings.seed.or(below.seed),
-        starts: settings.starts.or(below.starts),
-        terms: settings.terms.clone().or_else(|| below.terms.clone()),
-    }
-}
-
-/// Checks the ranges of the given settings with the fit library's own rules
-/// (applied to the default settings, which are valid, so only a given
-/// setting can fail). The set-up is a neutral stand-in: none of these
-/// settings depends on it.
-pub fn check_settings(settings: &Settings) -> Result<(), FitError> {
-    let mut params = FitParams::default();
-    fit::apply_flags(settings, &mut params);
-    let setup = RollingSetup {
-        geometry: Geometry {
-            shape: Shape::Sphere,
-            radius: 0.005,
-            load: 1.0,
-        },
-        substrate: Substrate {
-            poisson: 0.5,
-            film_thickness: None,
-        },
-        contact: ContactSize::Dynamic,
-    };
-    params.check(setup).map(|_| ())
 }
 
 /// A name that can be a result folder on any system: [A-Za-z0-9._-]+, not
@@ -313,199 +287,77 @@ fn contains(span: &Range<usize>, offset: usize) -> bool {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawManifest {
-    defaults: Option<RawSettings>,
+    defaults: Option<Defaults>,
     #[serde(default)]
     entry: Vec<Spanned<RawEntry>>,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+/// `[defaults]`: settings only.
+struct Defaults(FitSettings);
+
+impl<'de> Deserialize<'de> for Defaults {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct DefaultsVisitor;
+        impl<'de> Visitor<'de> for DefaultsVisitor {
+            type Value = Defaults;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("struct RawSettings")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Defaults, A::Error> {
+                let mut settings = TableSettings::new("");
+                while let Some(key) = map.next_key_seed(Key(&SETTINGS))? {
+                    map.next_value_seed(settings.value_of(key))?;
+                }
+                Ok(Defaults(settings.finish()))
+            }
+        }
+        deserializer.deserialize_map(DefaultsVisitor)
+    }
+}
+
+/// An `[[entry]]` as written: its own keys and its settings, each setting
+/// parsed and range-checked as it is read.
+#[derive(Default)]
 struct RawEntry {
     name: Option<Spanned<String>>,
     scene: Option<Spanned<String>>,
     data: Option<Spanned<String>>,
     sheet: Option<String>,
-    // Spelled out rather than `#[serde(flatten)]`: flatten does not work
-    // with deny_unknown_fields.
-    method: Option<MethodValue>,
-    lambda: Option<LambdaValue>,
-    seed: Option<u64>,
-    starts: Option<StartsValue>,
-    terms: Option<TermsValue>,
+    settings: FitSettings,
 }
 
-impl RawEntry {
-    fn settings(&mut self) -> Settings {
-        RawSettings {
-            method: self.method.take(),
-            lambda: self.lambda.take(),
-            seed: self.seed.take(),
-            starts: self.starts.take(),
-            terms: self.terms.take(),
-        }
-        .settings()
-    }
-}
-
-/// `[defaults]` and the settings of an entry.
-#[derive(Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSettings {
-    method: Option<MethodValue>,
-    lambda: Option<LambdaValue>,
-    seed: Option<u64>,
-    starts: Option<StartsValue>,
-    terms: Option<TermsValue>,
-}
-
-impl RawSettings {
-    fn settings(self) -> Settings {
-        Settings {
-            method: self.method.map(|m| m.0),
-            lambda: self.lambda.map(|l| l.0),
-            seed: self.seed,
-            starts: self.starts.map(|s| s.0),
-            terms: self.terms.map(|t| t.0),
-        }
-    }
-}
-
-/// Runs `check_settings` on one setting, as a deserialization error (so
-/// that toml names the line).
-fn in_range<E: de::Error>(settings: Settings) -> Result<Settings, E> {
-    check_settings(&settings).map_err(E::custom)?;
-    Ok(settings)
-}
-
-struct MethodValue(Method);
-struct LambdaValue(Lambda);
-struct StartsValue(usize);
-struct TermsValue(TermRule);
-
-impl<'de> Deserialize<'de> for MethodValue {
+impl<'de> Deserialize<'de> for RawEntry {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        struct V;
-        impl Visitor<'_> for V {
-            type Value = MethodValue;
+        struct EntryVisitor;
+        impl<'de> Visitor<'de> for EntryVisitor {
+            type Value = RawEntry;
             fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a solver name: \"auto\", \"levenberg-marquardt\", \"lbfgs\" or \"nelder-mead\"")
+                f.write_str("struct RawEntry")
             }
-            fn visit_str<E: de::Error>(self, v: &str) -> Result<MethodValue, E> {
-                fit::parse_method(v)
-                    .map(MethodValue)
-                    .map_err(|e| E::custom(format!("fit setting `method`: {e}")))
-            }
-        }
-        deserializer.deserialize_any(V)
-    }
-}
-
-impl<'de> Deserialize<'de> for LambdaValue {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        struct V;
-        impl V {
-            fn number<E: de::Error>(l: f64) -> Result<LambdaValue, E> {
-                let settings = in_range(Settings {
-                    lambda: Some(Lambda::Fixed(l)),
-                    ..Settings::default()
-                })?;
-                Ok(LambdaValue(settings.lambda.unwrap_or(Lambda::Fixed(l))))
-            }
-        }
-        impl Visitor<'_> for V {
-            type Value = LambdaValue;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a number ≥ 0 or \"auto\"")
-            }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<LambdaValue, E> {
-                V::number(v)
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<LambdaValue, E> {
-                V::number(v as f64)
-            }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<LambdaValue, E> {
-                V::number(v as f64)
-            }
-            fn visit_str<E: de::Error>(self, v: &str) -> Result<LambdaValue, E> {
-                match fit::parse_lambda(v) {
-                    Ok(Lambda::Fixed(l)) => V::number(l),
-                    Ok(lambda) => Ok(LambdaValue(lambda)),
-                    Err(e) => Err(E::custom(format!("fit setting `lambda`: {e}"))),
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<RawEntry, A::Error> {
+                let mut entry = RawEntry::default();
+                let mut settings = TableSettings::new("");
+                while let Some(key) = map.next_key_seed(Key(&ENTRY_KEYS))? {
+                    match key {
+                        "name" => entry.name = Some(map.next_value()?),
+                        "scene" => entry.scene = Some(map.next_value()?),
+                        "data" => entry.data = Some(map.next_value()?),
+                        "sheet" => entry.sheet = Some(map.next_value()?),
+                        setting => map.next_value_seed(settings.value_of(setting))?,
+                    }
                 }
+                entry.settings = settings.finish();
+                Ok(entry)
             }
         }
-        deserializer.deserialize_any(V)
-    }
-}
-
-impl<'de> Deserialize<'de> for StartsValue {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        struct V;
-        impl Visitor<'_> for V {
-            type Value = StartsValue;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a whole number of starts (1 to 100)")
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<StartsValue, E> {
-                let n = usize::try_from(v).map_err(|_| {
-                    E::custom(format!("fit setting `starts`: {v} starts: use 1 to 100"))
-                })?;
-                self.visit_u64(n as u64)
-            }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<StartsValue, E> {
-                let n = usize::try_from(v).unwrap_or(usize::MAX);
-                in_range(Settings {
-                    starts: Some(n),
-                    ..Settings::default()
-                })?;
-                Ok(StartsValue(n))
-            }
-        }
-        deserializer.deserialize_any(V)
-    }
-}
-
-impl<'de> Deserialize<'de> for TermsValue {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        struct V;
-        impl V {
-            fn checked<E: de::Error>(rule: TermRule) -> Result<TermsValue, E> {
-                in_range(Settings {
-                    terms: Some(rule.clone()),
-                    ..Settings::default()
-                })?;
-                Ok(TermsValue(rule))
-            }
-        }
-        impl Visitor<'_> for V {
-            type Value = TermsValue;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a whole number of terms, \"auto\" or a density such as \"2/decade\"")
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<TermsValue, E> {
-                match u64::try_from(v) {
-                    Ok(n) => self.visit_u64(n),
-                    Err(_) => Err(E::custom(format!(
-                        "fit setting `terms`: {v} terms: use 2 to 200"
-                    ))),
-                }
-            }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<TermsValue, E> {
-                V::checked(TermRule::Count(usize::try_from(v).unwrap_or(usize::MAX)))
-            }
-            fn visit_str<E: de::Error>(self, v: &str) -> Result<TermsValue, E> {
-                match fit::parse_terms(v) {
-                    Ok(rule) => V::checked(rule),
-                    Err(e) => Err(E::custom(format!("fit setting `terms`: {e}"))),
-                }
-            }
-        }
-        deserializer.deserialize_any(V)
+        deserializer.deserialize_map(EntryVisitor)
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use rollfit_fit::{FitError, Lambda, SettingValue, TermRule};
+
     use super::*;
 
     #[test]
@@ -530,28 +382,63 @@ mod tests {
 
     #[test]
     fn layers_and_checks() {
-        let top = Settings {
-            lambda: Some(Lambda::Fixed(1.0)),
-            ..Settings::default()
-        };
-        let below = Settings {
-            lambda: Some(Lambda::Auto),
-            starts: Some(2),
-            ..Settings::default()
-        };
-        let both = layered(&top, &below);
+        let mut top = FitSettings::default();
+        top.set("lambda", SettingValue::Number(1.0)).unwrap();
+        let mut below = FitSettings::default();
+        below.set("lambda", SettingValue::Text("auto")).unwrap();
+        below.set("starts", SettingValue::Integer(2)).unwrap();
+        let both = top.over(&below);
         assert_eq!(both.lambda, Some(Lambda::Fixed(1.0)));
         assert_eq!(both.starts, Some(2));
         assert_eq!(both.method, None);
-        assert!(check_settings(&both).is_ok());
-        let zero = Settings {
-            starts: Some(0),
-            ..Settings::default()
-        };
+        assert!(both.check().is_ok());
+        let mut zero = FitSettings::default();
+        zero.set("starts", SettingValue::Integer(0)).unwrap();
         assert!(matches!(
-            check_settings(&zero),
+            zero.check(),
             Err(FitError::InvalidSetting { key, .. }) if key == "starts"
         ));
+    }
+
+    /// A manifest's settings are read by the fit library's parser and
+    /// checked as they are read: the message names the key and its line.
+    #[test]
+    fn settings_are_parsed_and_checked_where_written() {
+        let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+        let entry =
+            "[[entry]]\nname = \"a\"\nscene = \"hn-rubber.toml\"\ndata = \"hn-rubber.csv\"\n";
+        let manifest = parse(
+            &format!("[defaults]\nterms = \"3/decade\"\nseed = \"4\"\n{entry}lambda = \"auto\"\n"),
+            &base,
+        )
+        .unwrap();
+        assert_eq!(manifest.defaults.terms, Some(TermRule::PerDecade(3.0)));
+        assert_eq!(manifest.defaults.seed, Some(4));
+        assert_eq!(manifest.entries[0].settings.lambda, Some(Lambda::Auto));
+        for (setting, fragments) in [
+            ("terms = \"x/decade\"", &["`terms`", "per decade"][..]),
+            ("terms = 500", &["`terms`", "use 2 to 200"][..]),
+            ("starts = true", &["`starts`", "whole number"][..]),
+            ("lambda = nan", &["`lambda`", "finite"][..]),
+            ("method = [1.0]", &["`method`", "expected text"][..]),
+        ] {
+            let err = format!(
+                "{:#}",
+                parse(&format!("{entry}{setting}\n"), &base).unwrap_err()
+            );
+            assert!(err.contains("entry \"a\" (1 of 1, line 1)"), "{err}");
+            assert!(err.contains("line 5"), "{err}");
+            for fragment in fragments {
+                assert!(err.contains(fragment), "{fragment:?} in {err}");
+            }
+        }
+        // terms_per_decade is the scene's alias of terms; the manifest
+        // takes the settings of the flags, spelled once.
+        let err = format!(
+            "{:#}",
+            parse(&format!("{entry}terms_per_decade = 2\n"), &base).unwrap_err()
+        );
+        assert!(err.contains("unknown field `terms_per_decade`"), "{err}");
     }
 
     #[test]

@@ -6,8 +6,10 @@
 //! it finds, with the key it was written under, to [`FitSettings::set`]:
 //! that one function knows the keys, their aliases and their syntax, and
 //! each setting's text form is its type's [`FromStr`]. What the value means
-//! for the fit (ranges that depend on each other or on the rolling set-up)
-//! is checked later, once, by [`FitParams::check`].
+//! for the fit is checked by [`FitParams::check`] alone: a front door runs
+//! it on each setting as it reads it ([`FitSettings::check`], so that a
+//! value out of range is refused where it was written), and the fit runs it
+//! again on everything against the rolling set-up.
 //!
 //! | key | value | |
 //! |---|---|---|
@@ -29,11 +31,37 @@
 //! `terms = "2/decade"`, `--terms 2/decade` and `terms_per_decade = 2` are
 //! the same setting. The scale anchors (`E0`, `E_at`, `contact_radius`) are
 //! measurements rather than settings and stay with the scene reader.
+//!
+//! ```
+//! use rollfit_fit::{FitParams, FitSettings, SettingValue, TermRule};
+//!
+//! let mut scene = FitSettings::default();
+//! scene.set("terms_per_decade", SettingValue::Number(2.0))?;
+//! let mut flags = FitSettings::default();
+//! flags.set("terms", SettingValue::Text("2/decade"))?;
+//! flags.set("starts", SettingValue::Text("1"))?;
+//! flags.check()?;
+//! assert_eq!(flags.terms, scene.terms);
+//!
+//! let mut params = FitParams::default();
+//! flags.over(&scene).apply(&mut params);
+//! assert_eq!((params.terms, params.starts), (TermRule::PerDecade(2.0), 1));
+//! # Ok::<(), rollfit_fit::FitError>(())
+//! ```
 
 use std::str::FromStr;
 
+use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
+
 use crate::error::FitError;
-use crate::params::{FitParams, Lambda, Method, ShiftKind, TermRule};
+use crate::params::{FitParams, Lambda, Method, RollingSetup, ShiftKind, TermRule};
+
+/// What `lambda` takes, for messages.
+const LAMBDA_FORMS: &str =
+    "a finite number ≥ 0 (0 switches the smoothness penalty off) or \"auto\"";
+
+/// What `terms` takes, for messages.
+const TERMS_FORMS: &str = "a whole number of terms, \"auto\" or a density such as \"2/decade\"";
 
 impl FromStr for Method {
     type Err = FitError;
@@ -54,16 +82,23 @@ impl FromStr for Lambda {
             return Ok(Lambda::Auto);
         }
         match text.parse::<f64>() {
-            Ok(l) if l.is_finite() && l >= 0.0 => Ok(Lambda::Fixed(l)),
-            _ => Err(FitError::setting(
-                "lambda",
-                format!(
-                    "expected a finite number ≥ 0 (0 switches the smoothness penalty off) or \
-                     \"auto\", got {text:?}"
-                ),
-            )),
+            Ok(l) => fixed_lambda(l, &format!("{text:?}")),
+            Err(_) => Err(refuse_lambda(&format!("{text:?}"))),
         }
     }
+}
+
+/// A fixed λ: finite and ≥ 0 (`shown`: the value as the message shows it).
+fn fixed_lambda(l: f64, shown: &str) -> Result<Lambda, FitError> {
+    if l.is_finite() && l >= 0.0 {
+        Ok(Lambda::Fixed(l))
+    } else {
+        Err(refuse_lambda(shown))
+    }
+}
+
+fn refuse_lambda(shown: &str) -> FitError {
+    FitError::setting("lambda", format!("expected {LAMBDA_FORMS}, got {shown}"))
 }
 
 impl FromStr for TermRule {
@@ -88,13 +123,7 @@ impl FromStr for TermRule {
             };
         }
         text.parse::<usize>().map(TermRule::Count).map_err(|_| {
-            FitError::setting(
-                "terms",
-                format!(
-                    "expected a whole number of terms, \"auto\" or a density such as \
-                     \"2/decade\", got {text:?}"
-                ),
-            )
+            FitError::setting("terms", format!("expected {TERMS_FORMS}, got {text:?}"))
         })
     }
 }
@@ -187,12 +216,16 @@ impl FitSettings {
     /// the relaxation times are refused, naming the key.
     pub fn set(&mut self, key: &str, value: SettingValue<'_>) -> Result<(), FitError> {
         match key {
-            "method" => self.method = Some(text_of(key, &value)?.parse()?),
+            "method" => {
+                let name = text_of(key, &value, "a solver name such as \"lbfgs\"")?;
+                self.method = Some(name.parse()?);
+            }
             "lambda" => {
                 self.lambda = Some(match value {
-                    SettingValue::Number(l) => Lambda::from_str(&l.to_string())?,
-                    SettingValue::Integer(l) => Lambda::from_str(&l.to_string())?,
-                    other => text_of(key, &other)?.parse()?,
+                    SettingValue::Number(l) => fixed_lambda(l, &l.to_string())?,
+                    SettingValue::Integer(l) => fixed_lambda(l as f64, &l.to_string())?,
+                    SettingValue::Text(text) => text.parse()?,
+                    other => return Err(wrong_kind(key, &other, LAMBDA_FORMS)),
                 })
             }
             "seed" => self.seed = Some(whole(key, &value)?),
@@ -205,34 +238,45 @@ impl FitSettings {
                             FitError::setting(key, format!("{n} terms: use 2 to 200"))
                         })?)
                     }
-                    other => text_of(key, &other)?.parse()?,
+                    SettingValue::Text(text) => text.parse()?,
+                    other => return Err(wrong_kind(key, &other, TERMS_FORMS)),
                 };
                 self.set_terms("terms", rule)?;
             }
             "terms_per_decade" => {
                 let density = number(key, &value)?;
                 let rule = TermRule::from_str(&format!("{density}/decade")).map_err(|_| {
-                    FitError::setting(key, format!("{density}: must be greater than zero"))
+                    FitError::setting(
+                        key,
+                        format!("terms_per_decade = {density}: must be greater than zero"),
+                    )
                 })?;
                 self.set_terms("terms_per_decade", rule)?;
             }
             "tau" => match value {
-                SettingValue::Numbers(tau) => self.set_terms("tau", TermRule::Explicit(tau))?,
-                _ => {
-                    return Err(FitError::setting(
-                        key,
-                        "expected a list of relaxation times, s",
-                    ));
+                SettingValue::Numbers(tau) => {
+                    if let Some((i, t)) = tau
+                        .iter()
+                        .enumerate()
+                        .find(|(_, t)| !(t.is_finite() && **t > 0.0))
+                    {
+                        return Err(FitError::setting(
+                            key,
+                            format!("tau[{i}] = {t}: relaxation times must be greater than zero"),
+                        ));
+                    }
+                    self.set_terms("tau", TermRule::Explicit(tau))?
                 }
+                other => return Err(wrong_kind(key, &other, "a list of relaxation times, s")),
             },
             "tolerance" => self.tolerance = Some(number(key, &value)?),
             "E1_max" => self.e1_max = Some(number(key, &value)?),
             "T_ref" => self.t_ref = Some(number(key, &value)?),
-            "shift" => self.shift = Some(text_of(key, &value)?.parse()?),
+            "shift" => self.shift = Some(text_of(key, &value, "\"wlf\" or \"free\"")?.parse()?),
             "cross_check" => match value {
                 SettingValue::Boolean(b) => self.cross_check = Some(b),
                 SettingValue::Text(t @ ("true" | "false")) => self.cross_check = Some(t == "true"),
-                _ => return Err(FitError::setting(key, "expected true or false")),
+                other => return Err(wrong_kind(key, &other, "true or false")),
             },
             other => {
                 return Err(FitError::setting(
@@ -275,7 +319,45 @@ impl FitSettings {
             shift: self.shift.or(below.shift),
             t_ref: self.t_ref.or(below.t_ref),
             cross_check: self.cross_check.or(below.cross_check),
-            terms_key: self.terms_key.or(below.terms_key),
+            terms_key: if self.terms.is_some() {
+                self.terms_key
+            } else {
+                below.terms_key
+            },
+        }
+    }
+
+    /// Checks the ranges of the given settings by [`FitParams::check`]:
+    /// applied to the default parameters (which are valid, so only a given
+    /// setting can fail) with a neutral rolling set-up (no setting's range
+    /// depends on it). A front door calls it after each [`FitSettings::set`]
+    /// so that a value out of range is refused where it was written; the
+    /// fit checks everything again against the real set-up.
+    pub fn check(&self) -> Result<(), FitError> {
+        let mut params = FitParams::default();
+        self.apply(&mut params);
+        params.check(neutral_setup()).map(|_| ())
+    }
+
+    /// Whether these settings give the value that [`FitParams::check`]
+    /// refused under `key` (the key of a [`FitError::InvalidSetting`]), so
+    /// that a front door can say where the value came from. The
+    /// relaxation times answer to `terms`, `tau` and `tau[i]`.
+    pub fn gives(&self, key: &str) -> bool {
+        match key {
+            "method" => self.method.is_some(),
+            "lambda" => self.lambda.is_some(),
+            "seed" => self.seed.is_some(),
+            "starts" => self.starts.is_some(),
+            "terms" | "terms_per_decade" | "tau" => self.terms.is_some(),
+            key if key.starts_with("tau[") => self.terms.is_some(),
+            "max_evaluations" => self.max_evaluations.is_some(),
+            "tolerance" => self.tolerance.is_some(),
+            "E1_max" => self.e1_max.is_some(),
+            "shift" => self.shift.is_some(),
+            "T_ref" => self.t_ref.is_some(),
+            "cross_check" => self.cross_check.is_some(),
+            _ => false,
         }
     }
 
@@ -318,13 +400,28 @@ impl FitSettings {
     }
 }
 
-fn text_of<'v>(key: &str, value: &'v SettingValue<'_>) -> Result<&'v str, FitError> {
+/// A rolling set-up no setting's range depends on (a 5 mm ball at 1 N on a
+/// rubber half-space).
+fn neutral_setup() -> RollingSetup {
+    RollingSetup {
+        geometry: Geometry {
+            shape: Shape::Sphere,
+            radius: 0.005,
+            load: 1.0,
+        },
+        substrate: Substrate {
+            poisson: 0.5,
+            film_thickness: None,
+        },
+        contact: ContactSize::Dynamic,
+    }
+}
+
+/// The text of `value`; `what` says what the text names, for the message.
+fn text_of<'v>(key: &str, value: &'v SettingValue<'_>, what: &str) -> Result<&'v str, FitError> {
     match value {
         SettingValue::Text(text) => Ok(text),
-        other => Err(FitError::setting(
-            key,
-            format!("expected text, got {}", describe(other)),
-        )),
+        other => Err(wrong_kind(key, other, &format!("text ({what})"))),
     }
 }
 
@@ -336,10 +433,7 @@ fn number(key: &str, value: &SettingValue<'_>) -> Result<f64, FitError> {
             .trim()
             .parse::<f64>()
             .map_err(|_| FitError::setting(key, format!("expected a number, got {text:?}"))),
-        other => Err(FitError::setting(
-            key,
-            format!("expected a number, got {}", describe(other)),
-        )),
+        other => Err(wrong_kind(key, other, "a number")),
     }
 }
 
@@ -349,18 +443,21 @@ fn whole<T: TryFrom<i64> + FromStr>(key: &str, value: &SettingValue<'_>) -> Resu
     match value {
         SettingValue::Integer(n) => T::try_from(*n).map_err(|_| refuse(n.to_string())),
         SettingValue::Text(text) => text.trim().parse().map_err(|_| refuse(format!("{text:?}"))),
-        other => Err(refuse(describe(other))),
+        other => Err(wrong_kind(key, other, "a whole number ≥ 0")),
     }
 }
 
-fn describe(value: &SettingValue<'_>) -> String {
-    match value {
-        SettingValue::Text(t) => format!("{t:?}"),
-        SettingValue::Number(x) => x.to_string(),
-        SettingValue::Integer(n) => n.to_string(),
-        SettingValue::Boolean(b) => b.to_string(),
+/// A value of a kind `key` does not take, in serde's words (what a file's
+/// reader has always said): "invalid type: integer `3`, expected …".
+fn wrong_kind(key: &str, value: &SettingValue<'_>, expected: &str) -> FitError {
+    let kind = match value {
+        SettingValue::Text(t) => format!("string {t:?}"),
+        SettingValue::Number(x) => format!("floating point `{x}`"),
+        SettingValue::Integer(n) => format!("integer `{n}`"),
+        SettingValue::Boolean(b) => format!("boolean `{b}`"),
         SettingValue::Numbers(_) => "a list".into(),
-    }
+    };
+    FitError::setting(key, format!("invalid type: {kind}, expected {expected}"))
 }
 
 #[cfg(test)]
@@ -456,6 +553,55 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("\"wlf\" or \"free\""), "{e}");
+    }
+
+    #[test]
+    fn relaxation_times_must_be_positive() {
+        let e = set(&[("tau", SettingValue::Numbers(vec![1.0, -2.0]))])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`tau`") && e.contains("tau[1] = -2"), "{e}");
+        let e = set(&[("terms_per_decade", SettingValue::Integer(0))])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("terms_per_decade = 0"), "{e}");
+    }
+
+    #[test]
+    fn check_refuses_ranges_by_the_fit_rules_and_names_the_key() {
+        assert!(FitSettings::default().check().is_ok());
+        let e = set(&[("starts", SettingValue::Integer(0))])
+            .unwrap()
+            .check()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`starts`") && e.contains("use 1 to 100"), "{e}");
+        let e = set(&[("terms", SettingValue::Integer(1))])
+            .unwrap()
+            .check()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`terms`") && e.contains("use 2 to 200"), "{e}");
+        let s = set(&[("terms", SettingValue::Text("3/decade"))]).unwrap();
+        assert!(s.check().is_ok());
+        assert!(s.gives("terms") && s.gives("tau") && s.gives("tau[2]"));
+        assert!(!s.gives("starts") && !s.gives("E0"));
+    }
+
+    #[test]
+    fn a_lower_layer_keeps_its_spelling_only_where_it_gives_the_terms() {
+        let scene = set(&[("tau", SettingValue::Numbers(vec![1.0, 2.0]))]).unwrap();
+        let flags = set(&[("terms", SettingValue::Integer(20))]).unwrap();
+        let mut both = flags.over(&scene);
+        assert_eq!(both.terms, Some(TermRule::Count(20)));
+        // Setting `terms` again is a layering, not a second spelling.
+        assert!(both.set("terms", SettingValue::Text("auto")).is_ok());
+        let mut below = FitSettings::default().over(&scene);
+        let e = below
+            .set("terms", SettingValue::Integer(20))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`tau` and `terms`"), "{e}");
     }
 
     #[test]

@@ -32,7 +32,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use rollfit_fit::FitError;
+use rollfit_fit::{FitError, FitSettings};
 use rollfit_io::fit_dir::columns::FIT_JSON;
 use rollfit_io::fit_dir::digest::Digest;
 use rollfit_io::{csv_text, output};
@@ -255,7 +255,8 @@ impl EntryResult {
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
     // Everything is checked before the first fit starts.
-    manifest::check_settings(&args.settings).map_err(|e| match &e {
+    let flags = args.settings.fit_settings();
+    flags.check().map_err(|e| match &e {
         FitError::InvalidSetting { key, .. } => anyhow::anyhow!("command line: --{key}: {e}"),
         _ => anyhow::anyhow!("command line: {e}"),
     })?;
@@ -301,10 +302,7 @@ pub fn run(args: &Args) -> Result<()> {
             .par_iter()
             .with_max_len(1)
             .map(|entry| {
-                let settings = manifest::layered(
-                    &entry.settings,
-                    &manifest::layered(&args.settings, &manifest.defaults),
-                );
+                let settings = entry.settings.over(&flags.over(&manifest.defaults));
                 let result = run_entry(entry, &dir, &settings, args.force);
                 progress.finished(&result);
                 result
@@ -421,7 +419,7 @@ fn verdict(args: &Args, results: &[EntryResult], summary: &Path) -> Result<()> {
 /// Runs (or skips) one entry; every error and panic becomes a failed row.
 /// The row's numbers are read back from the fit.json on disk, so that the
 /// summary describes the files it points to.
-fn run_entry(entry: &Entry, dir: &Path, settings: &Settings, force: bool) -> EntryResult {
+fn run_entry(entry: &Entry, dir: &Path, settings: &FitSettings, force: bool) -> EntryResult {
     let folder = dir.join(&entry.name);
     if folder.join(FIT_JSON).is_file() && !force {
         return from_disk(

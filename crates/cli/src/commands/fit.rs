@@ -11,10 +11,11 @@
 //! unless `--allow-unconverged` or `--allow-poor-fit`.
 
 use std::path::{Path, PathBuf};
+use std::str::FromStr;
 
 use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::{
-    FitError, FitParams, FitReport, Lambda, Method, RollingSetup, ShiftRecord, TermRule,
+    FitError, FitReport, FitSettings, Lambda, Method, RollingSetup, ShiftRecord, TermRule,
 };
 use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
@@ -54,16 +55,17 @@ pub struct Args {
 }
 
 /// Fit settings that override the scene's [fit] table (shared by `fit` and
-/// `batch`).
+/// `batch`). Each flag's value goes through its type's `FromStr`, the
+/// syntax a scene's `[fit]` and a batch manifest share (crates/fit/src/settings.rs).
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Settings {
     /// Solver: auto (= levenberg-marquardt), levenberg-marquardt, lbfgs or
     /// nelder-mead. Overrides [fit] method.
-    #[arg(long, value_name = "NAME", value_parser = parse_method)]
+    #[arg(long, value_name = "NAME", value_parser = setting::<Method>)]
     pub method: Option<Method>,
     /// Smoothness weight λ ≥ 0 on ln H_k, or "auto" (discrepancy principle
     /// with sigma, else the marginal likelihood). Overrides [fit] lambda.
-    #[arg(long, value_name = "VALUE|auto", value_parser = parse_lambda, allow_hyphen_values = true)]
+    #[arg(long, value_name = "VALUE|auto", value_parser = setting::<Lambda>, allow_hyphen_values = true)]
     pub lambda: Option<Lambda>,
     /// Seed of the multi-start perturbations. Overrides [fit] seed.
     #[arg(long, value_name = "N")]
@@ -73,50 +75,31 @@ pub struct Settings {
     #[arg(long, value_name = "N")]
     pub starts: Option<usize>,
     /// Relaxation times: a count N, "auto" (1, 2 or 3 per decade by AICc) or
-    /// a density "X/decade". Overrides [fit] terms, terms_per_decade, tau.
-    #[arg(long, value_name = "N|auto|X/decade", value_parser = parse_terms)]
+    /// a density "X/decade". Overrides [fit] terms (or its aliases
+    /// terms_per_decade and tau).
+    #[arg(long, value_name = "N|auto|X/decade", value_parser = setting::<TermRule>)]
     pub terms: Option<TermRule>,
 }
 
-pub(crate) fn parse_method(text: &str) -> Result<Method, String> {
-    Method::parse(text.trim()).map_err(|e| match e {
+impl Settings {
+    /// The flags as fit settings (unset where not given).
+    pub fn fit_settings(&self) -> FitSettings {
+        let mut settings = FitSettings::default();
+        settings.method = self.method;
+        settings.lambda = self.lambda;
+        settings.seed = self.seed;
+        settings.starts = self.starts;
+        settings.terms = self.terms.clone();
+        settings
+    }
+}
+
+/// A flag's value by its type's `FromStr`; clap puts the problem after
+/// "invalid value 'TEXT' for '--FLAG'", which names the flag.
+fn setting<T: FromStr<Err = FitError>>(text: &str) -> Result<T, String> {
+    text.parse().map_err(|e| match e {
         FitError::InvalidSetting { problem, .. } => problem,
         other => other.to_string(),
-    })
-}
-
-pub(crate) fn parse_lambda(text: &str) -> Result<Lambda, String> {
-    let text = text.trim();
-    if text == "auto" {
-        return Ok(Lambda::Auto);
-    }
-    match text.parse::<f64>() {
-        Ok(l) if l.is_finite() && l >= 0.0 => Ok(Lambda::Fixed(l)),
-        _ => Err(format!(
-            "expected a finite number ≥ 0 (0 switches the smoothness penalty off) or \"auto\", \
-             got {text:?}"
-        )),
-    }
-}
-
-pub(crate) fn parse_terms(text: &str) -> Result<TermRule, String> {
-    let text = text.trim();
-    if text == "auto" {
-        return Ok(TermRule::Auto);
-    }
-    if let Some(density) = text.strip_suffix("/decade") {
-        return match density.trim().parse::<f64>() {
-            Ok(d) if d.is_finite() && d > 0.0 => Ok(TermRule::PerDecade(d)),
-            _ => Err(format!(
-                "expected a positive number of terms per decade before \"/decade\", got {text:?}"
-            )),
-        };
-    }
-    text.parse::<usize>().map(TermRule::Count).map_err(|_| {
-        format!(
-            "expected a whole number of terms, \"auto\" or a density such as \"2/decade\", \
-             got {text:?}"
-        )
     })
 }
 
@@ -126,32 +109,6 @@ pub fn default_output(data: &Path) -> Result<PathBuf> {
         .file_stem()
         .with_context(|| format!("data file {} has no file name", data.display()))?;
     Ok(Path::new("fits").join(stem))
-}
-
-/// Fit settings given on the command line, as the keys [`FitError`] names.
-pub(crate) fn apply_flags(args: &Settings, params: &mut FitParams) -> Vec<&'static str> {
-    let mut overridden = Vec::new();
-    if let Some(method) = args.method {
-        params.method = method;
-        overridden.push("method");
-    }
-    if let Some(lambda) = args.lambda {
-        params.lambda = lambda;
-        overridden.push("lambda");
-    }
-    if let Some(seed) = args.seed {
-        params.seed = seed;
-        overridden.push("seed");
-    }
-    if let Some(starts) = args.starts {
-        params.starts = starts;
-        overridden.push("starts");
-    }
-    if let Some(terms) = &args.terms {
-        params.terms = terms.clone();
-        overridden.extend(["terms", "tau"]);
-    }
-    overridden
 }
 
 /// Runs the command.
@@ -165,7 +122,7 @@ pub fn run(args: &Args) -> Result<()> {
         data: &args.data,
         sheet: args.sheet.as_deref(),
         dir: &dir,
-        settings: &args.settings,
+        settings: &args.settings.fit_settings(),
     };
     let outcome = fit_files(&job, |line| eprintln!("{line}"))?;
     let report = &outcome.report;
@@ -233,7 +190,9 @@ pub struct Job<'a> {
     /// The sheet of a workbook data file (None: the first).
     pub sheet: Option<&'a str>,
     pub dir: &'a Path,
-    pub settings: &'a Settings,
+    /// Over the scene's `[fit]`: the flags (for a batch, also the
+    /// manifest's settings, checked when the manifest was read).
+    pub settings: &'a FitSettings,
 }
 
 /// A finished fit and its result files, encoded but not yet written.
@@ -267,7 +226,7 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     let (setup, mut params) = file
         .fit_setup()
         .with_context(|| format!("scene file {}", scene_path.display()))?;
-    let overridden = apply_flags(job.settings, &mut params);
+    job.settings.apply(&mut params);
     let table = data_file::read_sheet(data_path, job.sheet)?;
     for note in &table.notes {
         log(&format!("note: data file {}: {note}", data_path.display()));
@@ -284,7 +243,7 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         .measurements()
         .with_context(|| format!("data file {}", data_path.display()))?;
     let valid = params.check(setup).map_err(|e| match &e {
-        FitError::InvalidSetting { key, .. } if overridden.contains(&key.as_str()) => {
+        FitError::InvalidSetting { key, .. } if job.settings.gives(key) => {
             anyhow!("command line: --{}: {e}", key)
         }
         _ => anyhow!("scene file {}: {e}", scene_path.display()),
@@ -482,10 +441,13 @@ fn fmt_short(x: f64) -> String {
 
 #[cfg(test)]
 mod tests {
+    use rollfit_fit::FitParams;
+
     use super::*;
 
     #[test]
     fn terms_flag_forms() {
+        let parse_terms = setting::<TermRule>;
         assert_eq!(parse_terms("15"), Ok(TermRule::Count(15)));
         assert_eq!(parse_terms("auto"), Ok(TermRule::Auto));
         assert_eq!(parse_terms("2/decade"), Ok(TermRule::PerDecade(2.0)));
@@ -497,6 +459,7 @@ mod tests {
 
     #[test]
     fn lambda_and_method_flags() {
+        let (parse_lambda, parse_method) = (setting::<Lambda>, setting::<Method>);
         assert_eq!(parse_lambda("auto"), Ok(Lambda::Auto));
         assert_eq!(parse_lambda("0"), Ok(Lambda::Fixed(0.0)));
         assert_eq!(parse_lambda("1e-3"), Ok(Lambda::Fixed(1e-3)));
@@ -510,6 +473,104 @@ mod tests {
             err.contains("\"newton\"") && err.contains("nelder-mead"),
             "{err}"
         );
+    }
+
+    /// The flags become the same settings a scene or a manifest gives.
+    #[test]
+    fn flags_are_fit_settings() {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Cli {
+            #[command(flatten)]
+            settings: Settings,
+        }
+        let cli = Cli::try_parse_from(["rollfit", "--terms", "2/decade", "--starts", "2"]).unwrap();
+        let flags = cli.settings.fit_settings();
+        assert_eq!(flags.terms, Some(TermRule::PerDecade(2.0)));
+        assert_eq!(flags.starts, Some(2));
+        assert!(flags.gives("terms") && flags.gives("tau") && !flags.gives("lambda"));
+        let err = Cli::try_parse_from(["rollfit", "--terms", "0/decade"])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            err.contains("--terms") && err.contains("per decade"),
+            "{err}"
+        );
+    }
+
+    /// One setting through every front door: the scene's `[fit]` under its
+    /// alias and its own spelling, the flag, and a manifest's `[defaults]`
+    /// and `[[entry]]` give the same fit parameters (3 per decade, not the
+    /// default 2); a bad value names the key at each door.
+    #[test]
+    fn one_setting_through_every_front_door() {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Cli {
+            #[command(flatten)]
+            settings: Settings,
+        }
+        let geometry = "[geometry]\nshape = \"sphere\"\nradius = 0.005\nload = 1.0\n";
+        let scene = |fit: &str| scene_file::parse(&format!("{geometry}[fit]\n{fit}\n"));
+        let params_of = |fit: &str| scene(fit).unwrap().fit_setup().unwrap().1;
+        let flags = |args: &[&str]| {
+            Cli::try_parse_from(["rollfit"].iter().chain(args)).map(|cli| cli.settings)
+        };
+        let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+        let entry =
+            "[[entry]]\nname = \"a\"\nscene = \"hn-rubber.toml\"\ndata = \"hn-rubber.csv\"\n";
+        let manifest = |text: &str| crate::manifest::parse(text, &base);
+
+        let default = FitParams::default();
+        let alias = params_of("terms_per_decade = 3");
+        assert_eq!(alias.terms, TermRule::PerDecade(3.0));
+        assert_ne!(
+            alias.terms, default.terms,
+            "the test needs a non-default value"
+        );
+        assert_eq!(params_of("terms = \"3/decade\""), alias);
+        let mut by_flag = params_of("");
+        flags(&["--terms", "3/decade"])
+            .unwrap()
+            .fit_settings()
+            .apply(&mut by_flag);
+        assert_eq!(by_flag, alias);
+        let read = manifest(&format!("[defaults]\nterms = \"3/decade\"\n{entry}")).unwrap();
+        let mut by_defaults = params_of("");
+        read.entries[0]
+            .settings
+            .over(&read.defaults)
+            .apply(&mut by_defaults);
+        assert_eq!(by_defaults, alias);
+        let read = manifest(&format!("{entry}terms = \"3/decade\"\n")).unwrap();
+        let mut by_entry = params_of("");
+        read.entries[0].settings.apply(&mut by_entry);
+        assert_eq!(by_entry, alias);
+
+        // A bad value names the key (and, in a file, its line).
+        for fit in ["terms = \"3/decennium\"", "terms_per_decade = -3"] {
+            let err = format!("{:#}", scene(fit).unwrap_err());
+            let key = fit.split(' ').next().unwrap();
+            for fragment in ["[fit]", &format!("`{key}`"), "line 6"] {
+                assert!(err.contains(fragment), "{fragment:?} in {err}");
+            }
+        }
+        let err = flags(&["--terms", "3/decennium"])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            err.contains("--terms") && err.contains("3/decennium"),
+            "{err}"
+        );
+        let err = format!(
+            "{:#}",
+            manifest(&format!("{entry}terms = \"3/decennium\"\n")).unwrap_err()
+        );
+        for fragment in ["entry \"a\"", "`terms`", "line 5", "3/decennium"] {
+            assert!(err.contains(fragment), "{fragment:?} in {err}");
+        }
     }
 
     #[test]

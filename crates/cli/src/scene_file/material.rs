@@ -1,0 +1,398 @@
+//! `[material]`: the modulus E*(ω) at the reference temperature, its keys
+//! per model, and what the fit and the exact solution take from it.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::{Context, Result, anyhow, bail};
+use rollfit_fit::StartMaterial;
+use rollfit_model::{
+    HavriliakNegami, ModelError, Prony, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus,
+};
+use serde::Deserialize;
+
+use super::setup::DEFAULT_POISSON;
+use super::shift::{ShiftKind, ShiftRule, ShiftSection};
+use super::values::{Real, RealOrList, reals};
+use crate::dma_master::{self, DmaMaster};
+use crate::table_file;
+
+/// Material model names as written in the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MaterialKind {
+    /// Standard linear solid: E0, E1, tau.
+    Sls,
+    /// Prony series: E1, H = [..], tau = [..].
+    Prony,
+    /// Tabulated master curve: file.
+    Table,
+    /// Havriliak–Negami: E0, E1, tau, alpha, beta.
+    #[serde(rename = "havriliak-negami", alias = "hn")]
+    HavriliakNegami,
+    /// DMA isotherms made into a master curve in memory (as `rollfit
+    /// master` does): file, optional T_ref, modulus, shift_law, vertical.
+    Dma,
+}
+
+impl MaterialKind {
+    fn name(self) -> &'static str {
+        match self {
+            MaterialKind::Sls => "sls",
+            MaterialKind::Prony => "prony",
+            MaterialKind::Table => "table",
+            MaterialKind::HavriliakNegami => "havriliak-negami",
+            MaterialKind::Dma => "dma",
+        }
+    }
+
+    fn keys(self) -> &'static str {
+        match self {
+            MaterialKind::Sls => "E0, E1, tau",
+            MaterialKind::Prony => "E1, H, tau",
+            MaterialKind::Table => "file",
+            MaterialKind::HavriliakNegami => "E0, E1, tau, alpha, beta",
+            MaterialKind::Dma => "file, and optionally T_ref, modulus, shift_law, vertical",
+        }
+    }
+}
+
+/// `[material]`: Young's modulus E*(ω) at the reference temperature.
+///
+/// One flat struct for all models, rather than a tagged enum, so that a key
+/// of the wrong model gets a message saying which model it belongs to instead
+/// of serde's generic "unknown field".
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    /// "sls", "prony", "table" or "havriliak-negami" ("hn").
+    pub model: MaterialKind,
+    /// Rubbery (static) Young's modulus E0, Pa ("sls", "havriliak-negami").
+    #[serde(rename = "E0")]
+    pub e0: Option<Real>,
+    /// Glassy Young's modulus E1, Pa ("sls", "prony", "havriliak-negami").
+    #[serde(rename = "E1")]
+    pub e1: Option<Real>,
+    /// Time constant τ, s ("sls", "havriliak-negami": one number; "prony":
+    /// one per term).
+    pub tau: Option<RealOrList>,
+    /// Havriliak–Negami width exponent α, 0 < α ≤ 1 ("havriliak-negami").
+    pub alpha: Option<Real>,
+    /// Havriliak–Negami asymmetry exponent β, 0 < β ≤ 1 ("havriliak-negami").
+    pub beta: Option<Real>,
+    /// Prony strengths H_k, Pa ("prony").
+    #[serde(rename = "H")]
+    pub h: Option<Vec<Real>>,
+    /// Modulus table ("table") or DMA file ("dma"), relative to the scene
+    /// file's folder.
+    pub file: Option<PathBuf>,
+    /// Reference temperature of the master curve, °C ("dma"; default as
+    /// `rollfit master`).
+    #[serde(rename = "T_ref")]
+    pub t_ref: Option<Real>,
+    /// What a TRIOS file's moduli are ("dma", "table"): "shear" or
+    /// "young" (a CSV says it with its column names).
+    pub modulus: Option<ModulusName>,
+    /// The law of the DMA shift factors ("dma"): "wlf" (default), "free"
+    /// or "arrhenius".
+    pub shift_law: Option<ShiftKind>,
+    /// Whether to find vertical shift factors ("dma"; default false).
+    pub vertical: Option<bool>,
+    /// `[material.shift]`: time–temperature shift.
+    pub shift: Option<ShiftSection>,
+    /// The master curve of a "dma" material, built once.
+    #[serde(skip)]
+    pub(crate) dma: DmaCache,
+}
+
+/// `modulus` as written in the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ModulusName {
+    /// G′, G″, converted with E = 2(1+ν)G.
+    Shear,
+    /// E′, E″.
+    Young,
+}
+
+impl ModulusName {
+    fn kind(self) -> rollfit_io::dma::ModulusKind {
+        match self {
+            ModulusName::Shear => rollfit_io::dma::ModulusKind::Shear,
+            ModulusName::Young => rollfit_io::dma::ModulusKind::Young,
+        }
+    }
+}
+
+/// The master curve of a "dma" material, built on first use (a forward
+/// sweep over several temperatures, the exact cylinder and the shift all
+/// need it), with the scene's Poisson's ratio that converts shear moduli.
+#[derive(Clone, Default)]
+pub(crate) struct DmaCache {
+    /// [substrate] poisson (set when the scene is parsed).
+    pub(super) poisson: Option<f64>,
+    built: std::sync::OnceLock<Arc<DmaMaster>>,
+}
+
+impl fmt::Debug for DmaCache {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("DmaCache")
+            .field("poisson", &self.poisson)
+            .field("built", &self.built.get().is_some())
+            .finish()
+    }
+}
+
+impl MaterialSection {
+    /// Checks that exactly the keys of the chosen model are present.
+    pub(super) fn check_keys(&self) -> Result<()> {
+        let kind = self.model;
+        let present = [
+            ("E0", self.e0.is_some()),
+            ("E1", self.e1.is_some()),
+            ("tau", self.tau.is_some()),
+            ("H", self.h.is_some()),
+            ("file", self.file.is_some()),
+            ("alpha", self.alpha.is_some()),
+            ("beta", self.beta.is_some()),
+        ];
+        let needed: &[&str] = match kind {
+            MaterialKind::Sls => &["E0", "E1", "tau"],
+            MaterialKind::Prony => &["E1", "H", "tau"],
+            MaterialKind::Table => &["file"],
+            MaterialKind::HavriliakNegami => &["E0", "E1", "tau", "alpha", "beta"],
+            MaterialKind::Dma => &["file"],
+        };
+        let optional = [
+            ("T_ref", self.t_ref.is_some(), &[MaterialKind::Dma][..]),
+            (
+                "shift_law",
+                self.shift_law.is_some(),
+                &[MaterialKind::Dma][..],
+            ),
+            (
+                "vertical",
+                self.vertical.is_some(),
+                &[MaterialKind::Dma][..],
+            ),
+            (
+                "modulus",
+                self.modulus.is_some(),
+                &[MaterialKind::Dma, MaterialKind::Table][..],
+            ),
+        ];
+        for (key, is_present, models) in optional {
+            if is_present && !models.contains(&kind) {
+                bail!(
+                    "[material]: key `{key}` does not belong to model \"{}\" (it takes {}); \
+                     `{key}` is for model {}",
+                    kind.name(),
+                    kind.keys(),
+                    models
+                        .iter()
+                        .map(|m| format!("\"{}\"", m.name()))
+                        .collect::<Vec<_>>()
+                        .join(" or ")
+                );
+            }
+        }
+        if kind == MaterialKind::Dma && self.shift.is_some() {
+            bail!(
+                "[material.shift] does not go with model = \"dma\": the shift factors come from \
+                 the isotherms themselves (`shift_law` chooses \"wlf\", \"free\" or \
+                 \"arrhenius\"); remove [material.shift]"
+            );
+        }
+        for (key, is_present) in present {
+            let wanted = needed.contains(&key);
+            if wanted && !is_present {
+                bail!(
+                    "[material]: model \"{}\" needs the key `{key}` (it takes {})",
+                    kind.name(),
+                    kind.keys()
+                );
+            }
+            if !wanted && is_present {
+                let hint = if kind == MaterialKind::Prony && key == "E0" {
+                    "; the static modulus of a Prony series is E0 = E1 - sum(H)"
+                } else {
+                    ""
+                };
+                bail!(
+                    "[material]: key `{key}` does not belong to model \"{}\" (it takes {}){hint}",
+                    kind.name(),
+                    kind.keys()
+                );
+            }
+        }
+        match (kind, &self.tau) {
+            (MaterialKind::Sls | MaterialKind::HavriliakNegami, Some(RealOrList::List(_))) => {
+                bail!(
+                    "[material]: model \"{}\" takes one relaxation time: `tau` must be a number, not an array",
+                    kind.name()
+                )
+            }
+            (MaterialKind::Prony, Some(RealOrList::One(_))) => bail!(
+                "[material]: model \"prony\" takes one relaxation time per term: \
+                 `tau` must be an array like H"
+            ),
+            _ => Ok(()),
+        }
+    }
+
+    /// The validated modulus at the reference temperature.
+    pub(crate) fn build(&self, base_dir: &Path) -> Result<Box<dyn ViscoelasticModulus>> {
+        self.check_keys()?;
+        let value = |r: Option<Real>| r.map_or(f64::NAN, |r| r.0);
+        let model = |e: ModelError| anyhow!("{e}");
+        Ok(match self.model {
+            MaterialKind::Sls => {
+                let tau = match self.tau {
+                    Some(RealOrList::One(t)) => t,
+                    _ => f64::NAN,
+                };
+                Box::new(
+                    StandardLinearSolid::new(value(self.e0), value(self.e1), tau).map_err(model)?,
+                )
+            }
+            MaterialKind::Prony => {
+                let tau = match &self.tau {
+                    Some(RealOrList::List(t)) => t.clone(),
+                    _ => Vec::new(),
+                };
+                let h = self.h.as_deref().map(reals).unwrap_or_default();
+                Box::new(Prony::new(value(self.e1), h, tau).map_err(model)?)
+            }
+            MaterialKind::HavriliakNegami => {
+                let tau = match self.tau {
+                    Some(RealOrList::One(t)) => t,
+                    _ => f64::NAN,
+                };
+                Box::new(
+                    HavriliakNegami::new(
+                        value(self.e0),
+                        value(self.e1),
+                        tau,
+                        value(self.alpha),
+                        value(self.beta),
+                    )
+                    .map_err(model)?,
+                )
+            }
+            MaterialKind::Dma => Box::new(self.dma_master(base_dir)?.master.fit.prony.clone()),
+            MaterialKind::Table => {
+                let (path, table) = self.read_table(base_dir)?;
+                for note in &table.notes {
+                    eprintln!("note: {note}");
+                }
+                Box::new(
+                    TabulatedModulus::new(table.omega, table.storage, table.loss)
+                        .map_err(|e| anyhow!("modulus table {}: {e}", path.display()))?,
+                )
+            }
+        })
+    }
+}
+impl MaterialSection {
+    /// The modulus table of a "table" material, in any form the DMA reader
+    /// accepts (shear columns converted with [substrate] poisson), and its
+    /// path.
+    pub(crate) fn read_table(
+        &self,
+        base_dir: &Path,
+    ) -> Result<(PathBuf, table_file::ModulusTable)> {
+        let file = self.file.as_ref().context("model \"table\" needs `file`")?;
+        let path = base_dir.join(file);
+        let table = table_file::read_with(
+            &path,
+            self.dma.poisson.unwrap_or(DEFAULT_POISSON),
+            self.modulus.map(ModulusName::kind),
+        )?;
+        Ok((path, table))
+    }
+
+    /// The master curve of a "dma" material, built on first use.
+    fn dma_master(&self, base_dir: &Path) -> Result<Arc<DmaMaster>> {
+        if let Some(built) = self.dma.built.get() {
+            return Ok(Arc::clone(built));
+        }
+        let file = self.file.as_ref().context("model \"dma\" needs `file`")?;
+        let settings = rollfit_fit::master::MasterSettings {
+            t_ref: self.t_ref.map(|r| r.0),
+            law: match self.shift_law {
+                None | Some(ShiftKind::Wlf) => rollfit_fit::master::ShiftLaw::Wlf,
+                Some(ShiftKind::Free) => rollfit_fit::master::ShiftLaw::Free,
+                Some(ShiftKind::Arrhenius) => rollfit_fit::master::ShiftLaw::Arrhenius,
+            },
+            vertical: self.vertical.unwrap_or(false),
+        };
+        let built = Arc::new(dma_master::build(
+            &base_dir.join(file),
+            self.dma.poisson.unwrap_or(DEFAULT_POISSON),
+            self.modulus.map(ModulusName::kind),
+            &settings,
+        )?);
+        let _ = self.dma.built.set(Arc::clone(&built));
+        Ok(built)
+    }
+
+    /// The time–temperature shift of this material: `[material.shift]`, or
+    /// for "dma" the master curve's own (None without either, or for one
+    /// isotherm).
+    pub(crate) fn shift_rule(&self, base_dir: &Path) -> Result<Option<ShiftRule>> {
+        if self.model == MaterialKind::Dma {
+            return ShiftRule::of_master(self.dma_master(base_dir)?.as_ref());
+        }
+        self.shift
+            .as_ref()
+            .map(|s| s.rule().context("[material.shift]"))
+            .transpose()
+    }
+
+    /// An "sls" (one term), "prony" or "dma" material as a Prony series;
+    /// None for other models.
+    pub(super) fn prony(&self, base_dir: &Path) -> Result<Option<Prony>> {
+        let modulus = self.build(base_dir)?;
+        Ok(match self.model {
+            MaterialKind::Sls => {
+                let tau = match self.tau {
+                    Some(RealOrList::One(t)) => t,
+                    _ => f64::NAN,
+                };
+                let e1 = self.e1.map_or(f64::NAN, |r| r.0);
+                let sls = StandardLinearSolid::new(modulus.static_modulus(), e1, tau)
+                    .map_err(|e| anyhow!("{e}"))?;
+                Some(sls.to_prony())
+            }
+            MaterialKind::Prony => {
+                let tau = match &self.tau {
+                    Some(RealOrList::List(t)) => t.clone(),
+                    _ => Vec::new(),
+                };
+                let h = self.h.as_deref().map(reals).unwrap_or_default();
+                let e1 = self.e1.map_or(f64::NAN, |r| r.0);
+                Some(Prony::new(e1, h, tau).map_err(|e| anyhow!("{e}"))?)
+            }
+            MaterialKind::Dma => Some(self.dma_master(base_dir)?.master.fit.prony.clone()),
+            _ => None,
+        })
+    }
+
+    /// E0 and E1 of an "sls" or "prony" material, as the fit's starting
+    /// point (other models give none).
+    pub(super) fn start(&self) -> Option<StartMaterial> {
+        let glassy_modulus = self.e1?.0;
+        let static_modulus = match self.model {
+            MaterialKind::Sls => self.e0?.0,
+            MaterialKind::Prony => {
+                glassy_modulus - self.h.as_deref()?.iter().map(|h| h.0).sum::<f64>()
+            }
+            _ => return None,
+        };
+        Some(StartMaterial {
+            static_modulus,
+            glassy_modulus,
+        })
+    }
+}
