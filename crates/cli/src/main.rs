@@ -10,13 +10,11 @@
 #![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 mod commands;
-mod data_file;
 mod dma_master;
 mod manifest;
 mod material_file;
 mod scene_file;
 mod stdout;
-mod table_file;
 
 use std::process::ExitCode;
 

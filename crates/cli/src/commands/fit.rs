@@ -21,8 +21,8 @@ use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
 use rollfit_model::Shape;
 
-use crate::data_file::{self, DataTable};
 use crate::scene_file;
+use rollfit_io::data::{DataTable, read_sheet};
 
 /// Arguments of `rollfit fit`.
 #[derive(Debug, clap::Args)]
@@ -227,7 +227,7 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         .fit_setup()
         .with_context(|| format!("scene file {}", scene_path.display()))?;
     job.settings.apply(&mut params);
-    let table = data_file::read_sheet(data_path, job.sheet)?;
+    let table = read_sheet(data_path, job.sheet)?;
     for note in &table.notes {
         log(&format!("note: data file {}: {note}", data_path.display()));
     }

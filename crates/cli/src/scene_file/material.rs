@@ -16,7 +16,7 @@ use super::setup::DEFAULT_POISSON;
 use super::shift::{ShiftKind, ShiftRule, ShiftSection};
 use super::values::{Real, RealOrList, reals};
 use crate::dma_master::{self, DmaMaster};
-use crate::table_file;
+use rollfit_io::table;
 
 /// Material model names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -298,13 +298,10 @@ impl MaterialSection {
     /// The modulus table of a "table" material, in any form the DMA reader
     /// accepts (shear columns converted with [substrate] poisson), and its
     /// path.
-    pub(crate) fn read_table(
-        &self,
-        base_dir: &Path,
-    ) -> Result<(PathBuf, table_file::ModulusTable)> {
+    pub(crate) fn read_table(&self, base_dir: &Path) -> Result<(PathBuf, table::ModulusTable)> {
         let file = self.file.as_ref().context("model \"table\" needs `file`")?;
         let path = base_dir.join(file);
-        let table = table_file::read_with(
+        let table = table::read(
             &path,
             self.dma.poisson.unwrap_or(DEFAULT_POISSON),
             self.modulus.map(ModulusName::kind),

@@ -10,7 +10,9 @@ use rollfit_fit::{Lambda, Method};
 use rollfit_model::{Prony, ViscoelasticModulus};
 
 use super::FitRow;
-use crate::{data_file, scene_file};
+use rollfit_io::data::read as read_data;
+
+use crate::scene_file;
 
 pub(super) fn fit_rows(
     scene_path: &Path,
@@ -28,7 +30,7 @@ pub(super) fn fit_rows(
         .build(base)
         .with_context(context)?;
     let (setup, params) = file.fit_setup().with_context(context)?;
-    let data = data_file::read(data_path)?
+    let data = read_data(data_path)?
         .measurements()
         .with_context(|| format!("data file {}", data_path.display()))?;
     let fit = |method: Method, lambda: Lambda, starts: usize, budget: Option<usize>| {
