@@ -469,20 +469,9 @@ fn check_shift(shift: &ShiftSettings) -> Result<(), FitError> {
 }
 
 /// The bundled example's set-up (a 5 mm steel ball at 1 N on a thick rubber,
-/// ν = 0.5, dynamic contact), shared by the unit tests.
+/// ν = 0.5, dynamic contact), shared by the unit tests: the neutral set-up
+/// the settings are checked against.
 #[cfg(test)]
 pub(crate) fn example_setup() -> RollingSetup {
-    use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
-    RollingSetup {
-        geometry: Geometry {
-            shape: Shape::Sphere,
-            radius: 0.005,
-            load: 1.0,
-        },
-        substrate: Substrate {
-            poisson: 0.5,
-            film_thickness: None,
-        },
-        contact: ContactSize::Dynamic,
-    }
+    crate::settings::neutral_setup()
 }

@@ -402,7 +402,7 @@ impl FitSettings {
 
 /// A rolling set-up no setting's range depends on (a 5 mm ball at 1 N on a
 /// rubber half-space).
-fn neutral_setup() -> RollingSetup {
+pub(crate) fn neutral_setup() -> RollingSetup {
     RollingSetup {
         geometry: Geometry {
             shape: Shape::Sphere,
