@@ -10,10 +10,6 @@
 #![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 mod commands;
-mod dma_master;
-mod manifest;
-mod material_file;
-mod scene_file;
 mod stdout;
 
 use std::process::ExitCode;

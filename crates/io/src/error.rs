@@ -15,15 +15,21 @@ use thiserror::Error;
 mod boxed;
 pub(crate) mod data;
 mod fault;
+pub(crate) mod manifest;
+pub(crate) mod master;
 mod parts;
+pub(crate) mod scene;
 pub(crate) mod table;
 mod trios;
 
 pub use boxed::{DuplicateQuantity, UnknownUnit};
 pub use data::{CellRef, ColumnName, DataError, RowRef, RowsRef, column_letter};
 pub use fault::Fault;
+pub use manifest::{EntryProblem, EntryRef, ManifestError, TomlPlace};
+pub use master::{DmaMasterError, TurnPoint};
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
 use parts::{field_count_tail, found_byte, holders_note, null_expected, place};
+pub use scene::SceneError;
 pub use table::{TableError, TableIsotherm};
 pub use trios::TriosError;
 
@@ -531,6 +537,15 @@ pub enum IoError {
     /// A modulus table that cannot be read: see [`TableError`].
     #[error(transparent)]
     Table(Box<TableError>),
+    /// A scene file that cannot be read: see [`SceneError`].
+    #[error(transparent)]
+    Scene(Box<SceneError>),
+    /// A batch manifest that cannot be read: see [`ManifestError`].
+    #[error(transparent)]
+    Manifest(Box<ManifestError>),
+    /// A DMA file that gives no master curve: see [`DmaMasterError`].
+    #[error(transparent)]
+    Master(Box<DmaMasterError>),
 
     // ------------------------------------------------------------ writing
     /// A number that is not finite in an output table.

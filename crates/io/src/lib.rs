@@ -1,6 +1,12 @@
 //! The file formats of rollfit (docs/ARCHITECTURE.md, "Crates" and
 //! "Contract"): what the tool reads and writes, and how it writes it.
 //!
+//! - [`scene`]: the scene file of `forward`, `fit` and `bench`, its
+//!   sections checked and turned into the model's objects;
+//! - [`manifest`]: the batch manifest of `rollfit batch`;
+//! - [`dma_master`]: a DMA file made a master curve (`rollfit master`, a
+//!   scene's `model = "dma"`), and [`material_file`]: the material.toml
+//!   `rollfit master` writes;
 //! - [`data`]: measured rolling friction, text (`,`, `;` or tab, decimal
 //!   commas, any common encoding) or a workbook, with header aliases and
 //!   units converted to SI;
@@ -21,31 +27,36 @@
 //!   the lock of a folder.
 //!
 //! Every function returns [`IoError`], whose messages name the file and,
-//! where there is one, the line, column or key at fault (measured data and
-//! modulus tables through [`DataError`] and [`TableError`], whose causes
-//! inside a file are the source of a variant naming the file: `{:#}` prints
-//! both, as the command line does). Nothing here prints; the command line
-//! decides what a user sees.
+//! where there is one, the line, column or key at fault (measured data,
+//! modulus tables, scene files, manifests and master curves through
+//! [`DataError`], [`TableError`], [`SceneError`], [`ManifestError`] and
+//! [`DmaMasterError`], whose causes inside a file are the source of a
+//! variant naming the file: `{:#}` prints both, as the command line does).
+//! Nothing here prints; the command line decides what a user sees (a
+//! reader's notes reach it through a callback).
 
 pub mod columns;
 pub mod csv_columns;
 pub mod csv_text;
 pub mod data;
 pub mod dma;
+pub mod dma_master;
 pub mod error;
 pub mod fit_dir;
+pub mod manifest;
+pub mod material_file;
 pub mod output;
+pub mod scene;
 pub mod table;
 pub mod text_file;
 
 pub use data::DataTable;
-pub use error::{DataError, Fault, IoError, TableError};
+pub use error::{DataError, DmaMasterError, Fault, IoError, ManifestError, SceneError, TableError};
 pub use fit_dir::FitDir;
 pub use table::ModulusTable;
 
 /// An error as the command line prints it (`{:#}` of anyhow): the message,
 /// then each source after a colon.
-#[cfg(test)]
 pub(crate) fn chain(error: &dyn std::error::Error) -> String {
     let mut text = error.to_string();
     let mut source = error.source();

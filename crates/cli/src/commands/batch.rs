@@ -38,7 +38,7 @@ use rollfit_io::fit_dir::digest::Digest;
 use rollfit_io::{csv_text, output};
 
 use crate::commands::fit::{Job, Settings, fit_files};
-use crate::manifest::{self, Entry};
+use rollfit_io::manifest::{self, Entry};
 
 /// The lock file of a batch's output folder.
 const BATCH_LOCK: &str = ".rollfit-batch.lock";

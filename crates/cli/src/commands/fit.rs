@@ -21,8 +21,8 @@ use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
 use rollfit_model::Shape;
 
-use crate::scene_file;
 use rollfit_io::data::{DataTable, read_sheet};
+use rollfit_io::scene as scene_file;
 
 /// Arguments of `rollfit fit`.
 #[derive(Debug, clap::Args)]
@@ -520,7 +520,7 @@ mod tests {
         let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
         let entry =
             "[[entry]]\nname = \"a\"\nscene = \"hn-rubber.toml\"\ndata = \"hn-rubber.csv\"\n";
-        let manifest = |text: &str| crate::manifest::parse(text, &base);
+        let manifest = |text: &str| rollfit_io::manifest::parse(text, &base);
 
         let default = FitParams::default();
         let alias = params_of("terms_per_decade = 3");
@@ -550,7 +550,7 @@ mod tests {
 
         // A bad value names the key (and, in a file, its line).
         for fit in ["terms = \"3/decennium\"", "terms_per_decade = -3"] {
-            let err = format!("{:#}", scene(fit).unwrap_err());
+            let err = format!("{:#}", anyhow::Error::from(scene(fit).unwrap_err()));
             let key = fit.split(' ').next().unwrap();
             for fragment in ["[fit]", &format!("`{key}`"), "line 6"] {
                 assert!(err.contains(fragment), "{fragment:?} in {err}");
@@ -566,7 +566,9 @@ mod tests {
         );
         let err = format!(
             "{:#}",
-            manifest(&format!("{entry}terms = \"3/decennium\"\n")).unwrap_err()
+            anyhow::Error::from(
+                manifest(&format!("{entry}terms = \"3/decennium\"\n")).unwrap_err()
+            )
         );
         for fragment in ["entry \"a\"", "`terms`", "line 5", "3/decennium"] {
             assert!(err.contains(fragment), "{fragment:?} in {err}");

@@ -35,10 +35,10 @@ use rollfit_report::plot::{
     self, Picture, forward_sweep::ForwardSweepFigure, forward_sweep::SweepCurve,
 };
 
-use crate::scene_file::{
-    self, DynScene, ForwardBlock, ForwardRung, ForwardSetup, MaterialKind, SceneFile,
-};
 use crate::stdout;
+use rollfit_io::scene::{
+    self as scene_file, DynScene, ForwardBlock, ForwardRung, ForwardSetup, MaterialKind, SceneFile,
+};
 
 /// CSV columns, in order (docs/ARCHITECTURE.md, "Contract", fixes `v` and `mu`; the rest is ours):
 /// speed v (m/s); friction coefficient μ; its low-speed asymptote (Eqs.
@@ -136,7 +136,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let file = scene_file::load(path)?;
     let setup = file
-        .forward_setup(path)
+        .forward_setup(path, &|note| eprintln!("note: {note}"))
         .with_context(|| format!("scene file {}", path.display()))?;
     // μ of each block, in row order.
     let solved = setup

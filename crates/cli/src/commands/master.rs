@@ -23,17 +23,17 @@ use anyhow::{Context, Result};
 use rollfit_fit::master::{MasterSettings, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
 use rollfit_io::dma::{DmaPoint, ModulusKind};
+use rollfit_io::dma_master::{self, DmaMaster};
 use rollfit_io::fit_dir::columns::{
     E_LOSS, E_STORAGE, LOG_AT, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
 };
-use rollfit_io::{csv_text, output};
+use rollfit_io::{csv_text, material_file, output};
 use rollfit_model::ViscoelasticModulus;
 use rollfit_report::causality::{self, CausalFit};
 use rollfit_report::plot::{self, dma_master as figure};
 use serde::Serialize;
 
 use crate::commands::compare::DmaModulus;
-use crate::dma_master::{self, DmaMaster};
 use crate::stdout;
 
 /// Arguments of `rollfit master`.
@@ -183,7 +183,7 @@ fn encode(
         &MODULUS_COLUMNS[..4],
         curve.iter().map(|&(w, s, l)| vec![w, s, l, l / s]),
     )?;
-    let material = crate::material_file::encode(built)?;
+    let material = material_file::encode(built)?;
     let mut json = serde_json::to_vec_pretty(&Summary::of(built, causal, poisson))
         .context("cannot format master.json")?;
     json.push(b'\n');

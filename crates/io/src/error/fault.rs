@@ -24,6 +24,20 @@ pub enum Fault {
         /// What serde_json said.
         source: serde_json::Error,
     },
+    /// A TOML encoding failed.
+    #[error("cannot format {file}")]
+    TomlEncode {
+        /// The file encoded ("material.toml").
+        file: &'static str,
+        /// What toml said.
+        source: toml::ser::Error,
+    },
+    /// A master curve without the constants of its own shift law.
+    #[error("{law} fit missing")]
+    LawMissing {
+        /// "WLF" or "Arrhenius".
+        law: &'static str,
+    },
     /// The fit returned another number of values than there are points.
     #[error("the fit returned {fitted} fitted values for {points} data points")]
     FittedCount {

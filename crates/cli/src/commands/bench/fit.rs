@@ -12,7 +12,7 @@ use rollfit_model::{Prony, ViscoelasticModulus};
 use super::FitRow;
 use rollfit_io::data::read as read_data;
 
-use crate::scene_file;
+use rollfit_io::scene as scene_file;
 
 pub(super) fn fit_rows(
     scene_path: &Path,
@@ -27,7 +27,7 @@ pub(super) fn fit_rows(
         .as_ref()
         .context("the fitting chart needs the truth in the scene's [material]")
         .with_context(context)?
-        .build(base)
+        .build(base, &|note| eprintln!("note: {note}"))
         .with_context(context)?;
     let (setup, params) = file.fit_setup().with_context(context)?;
     let data = read_data(data_path)?

@@ -12,7 +12,7 @@ use rollfit_model::exact::{ExactSettings, RollingCylinder};
 use rollfit_model::{ContactSize, Prony, Scene, ViscoelasticModulus};
 
 use super::{Dials, ForwardRow, REFERENCE_TOLERANCE};
-use crate::scene_file;
+use rollfit_io::scene as scene_file;
 
 /// Times `f` (one call evaluates `count` μ) until at least `min_time` has
 /// passed; seconds per μ.
@@ -50,6 +50,7 @@ pub(super) struct Forward {
 }
 
 pub(super) fn forward_rows(path: &Path, dials: &Dials<'_>) -> Result<Forward> {
+    let note = |note: &str| eprintln!("note: {note}");
     let file = scene_file::load(path)?;
     let section = file
         .material
@@ -57,7 +58,7 @@ pub(super) fn forward_rows(path: &Path, dials: &Dials<'_>) -> Result<Forward> {
         .context("bench needs a [material] section")?;
     let base = path.parent().unwrap_or(Path::new(""));
     let bench = Rungs {
-        material: Arc::from(section.build(base)?),
+        material: Arc::from(section.build(base, &note)?),
         setup: file.rolling_setup(),
     };
     let sweep = file
@@ -80,7 +81,7 @@ pub(super) fn forward_rows(path: &Path, dials: &Dials<'_>) -> Result<Forward> {
     // errors are against it, from three decades below the friction maximum
     // up (lower, its edge layers need more terms than the reference has);
     // otherwise against the paper's theory at a tight tolerance.
-    let reference = match file.exact_material(section, base, None) {
+    let reference = match file.exact_material(section, base, None, &note) {
         Ok(prony) => {
             let kept: Vec<f64> = sweep
                 .iter()
@@ -103,6 +104,8 @@ pub(super) fn forward_rows(path: &Path, dials: &Dials<'_>) -> Result<Forward> {
             }
         }
         Err(why) => {
+            // `{:#}` of anyhow: the message and its sources.
+            let why = anyhow::Error::from(why);
             let speeds = thin(&sweep, dials.max_speeds);
             Reference {
                 mu: bench

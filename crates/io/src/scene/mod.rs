@@ -1,5 +1,8 @@
-//! The scene file (TOML; docs/ARCHITECTURE.md, "Contract", "Scene file"):
-//! its schema and its conversion into validated model objects.
+//! The scene file (TOML; docs/ARCHITECTURE.md, "Contract", "Scene file"),
+//! read by `rollfit forward`, `fit`, `batch` and `bench`: its schema and
+//! its conversion into validated model objects. Errors are
+//! [`SceneError`]s, reached as [`IoError::Scene`]; the files a material
+//! refers to are read by [`crate::table`] and [`crate::dma_master`].
 //!
 //! Parsing happens in two steps. serde turns the text into the plain
 //! structs of the sections; type errors, unknown keys, non-finite numbers
@@ -12,19 +15,21 @@
 //! them; this module only prefixes their messages with the section they
 //! came from.
 //!
-//! One file per job: [`setup`] (`[geometry]`, `[substrate]`, `[contact]`),
-//! [`material`], [`shift`] (`[material.shift]` and shift rules), [`sweep`],
-//! [`fit`] (`[fit]` and the fit's set-up), [`fit_settings`] (fit settings
-//! in any TOML table, shared with the batch manifest), [`forward`] (the
-//! forward problem) and [`values`] (the number types).
+//! One file per job: `setup.rs` (`[geometry]`, `[substrate]`,
+//! `[contact]`), `material.rs`, `shift.rs` (`[material.shift]` and shift
+//! rules), `sweep.rs`, `fit.rs` (`[fit]` and the fit's set-up),
+//! `fit_settings.rs` (fit settings in any TOML table, shared with the
+//! batch manifest, [`crate::manifest`]), `forward.rs` (the forward
+//! problem) and `values.rs` (the number types).
 //!
 //! [`Scene`]: rollfit_model::Scene
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, anyhow, bail};
 use rollfit_model::{Scene, ViscoelasticModulus};
 use serde::Deserialize;
+
+use crate::error::{IoError, SceneError};
 
 mod fit;
 pub(crate) mod fit_settings;
@@ -36,13 +41,17 @@ mod sweep;
 mod values;
 
 // What the commands use, at the paths they have always used.
+pub use fit::{ContactAnchor, FIT_KEYS, FitSection, ModulusAnchor};
 pub use forward::{ForwardBlock, ForwardRung, ForwardSetup, ShiftApplied};
-pub use material::MaterialKind;
+pub use material::{MaterialKind, MaterialSection, ModulusName};
+pub use setup::{
+    ContactName, ContactSection, DEFAULT_ACCURACY, DEFAULT_POISSON, GeometrySection, ShapeName,
+    SubstrateSection,
+};
+pub use shift::{ShiftKind, ShiftPoint, ShiftSection};
+pub use sweep::{DEFAULT_SWEEP_COUNT, MAX_SWEEP_COUNT, SweepSection, SweepTemperature, log_spaced};
+pub use values::{Real, RealOrList};
 
-use fit::FitSection;
-use material::MaterialSection;
-use setup::{ContactName, ContactSection, DEFAULT_POISSON, GeometrySection, SubstrateSection};
-use sweep::SweepSection;
 use sweep::temperature_without_shift;
 
 /// The scene the forward model runs on: any material behind one pointer, so
@@ -70,17 +79,46 @@ pub struct SceneFile {
 }
 
 /// Reads, parses and validates a scene file; every error names `path`.
-pub fn load(path: &Path) -> Result<SceneFile> {
-    let text = rollfit_io::text_file::read_utf8(path, "scene file")?;
-    parse(&text).with_context(|| format!("scene file {}", path.display()))
+pub fn load(path: &Path) -> Result<SceneFile, IoError> {
+    let text = crate::text_file::read_utf8(path, "scene file")?;
+    parse_text(&text).map_err(|e| in_file(path, e).into())
 }
 
 /// Parses and validates scene-file text (the sections' internal consistency;
 /// the model checks physical ranges when the scene is built).
-pub fn parse(text: &str) -> Result<SceneFile> {
+pub fn parse(text: &str) -> Result<SceneFile, IoError> {
+    Ok(parse_text(text)?)
+}
+
+/// `error` behind the scene file's name ([`SceneError::InFile`]).
+pub fn in_file(path: &Path, error: impl Into<SceneError>) -> SceneError {
+    SceneError::InFile {
+        path: PathBuf::from(path),
+        source: Box::new(error.into()),
+    }
+}
+
+/// `error` behind the section it was found in ([`SceneError::InSection`]).
+pub(crate) trait InSection<T> {
+    /// The error behind `section` (with its brackets, `"[sweep]"`).
+    fn section(self, section: &'static str) -> Result<T, SceneError>;
+}
+
+impl<T, E: Into<SceneError>> InSection<T> for Result<T, E> {
+    fn section(self, section: &'static str) -> Result<T, SceneError> {
+        self.map_err(|e| SceneError::InSection {
+            section,
+            source: Box::new(e.into()),
+        })
+    }
+}
+
+/// [`parse`], with the scene's own error.
+fn parse_text(text: &str) -> Result<SceneFile, SceneError> {
     // toml's message already carries "line L, column C" and the offending line.
-    let mut file: SceneFile =
-        toml::from_str(text).map_err(|e| anyhow!("{}", e.to_string().trim_end()))?;
+    let mut file: SceneFile = toml::from_str(text).map_err(|error| SceneError::Toml {
+        error: Box::new(error),
+    })?;
     let poisson = file.substrate.poisson.map_or(DEFAULT_POISSON, |r| r.0);
     if let Some(material) = &mut file.material {
         material.dma.poisson = Some(poisson);
@@ -88,31 +126,28 @@ pub fn parse(text: &str) -> Result<SceneFile> {
     if let Some(material) = &file.material {
         material.check_keys()?;
         if let Some(shift) = &material.shift {
-            shift.check().context("[material.shift]")?;
+            shift.check().section("[material.shift]")?;
         }
     }
     file.contact.check()?;
     if file.contact.size == Some(ContactName::Auto)
         && file.sweep.as_ref().is_some_and(|s| s.tolerance.is_some())
     {
-        bail!(
-            "[sweep]: tolerance is set by size = \"auto\" itself (a tenth of [contact] \
-             accuracy); remove it, or choose a rung with size = \"dynamic\""
-        );
+        return Err(SceneError::AutoSetsTolerance);
     }
     if let Some(fit) = &file.fit {
-        fit.check().context("[fit]")?;
+        fit.check().section("[fit]")?;
     }
     if let Some(sweep) = &file.sweep {
-        sweep.speeds().context("[sweep]")?;
+        sweep.check_speeds().section("[sweep]")?;
         if let Some(temperature) = &sweep.temperature {
-            temperature.check().context("[sweep]")?;
+            temperature.check().section("[sweep]")?;
             if file
                 .material
                 .as_ref()
                 .is_some_and(|m| m.shift.is_none() && m.model != MaterialKind::Dma)
             {
-                bail!(temperature_without_shift(temperature));
+                return Err(temperature_without_shift(temperature));
             }
         }
     }

@@ -1,15 +1,18 @@
-//! A DMA file to a master curve: read the file (any form the DMA reader
-//! accepts), group its points into isotherms, and run
-//! `rollfit_fit::master` on them. Shared by `rollfit master` and the
-//! scene's `[material] model = "dma"`, so that both give the same series.
+//! A DMA file to a master curve: read the file (any form [`crate::dma`]
+//! accepts, docs/ARCHITECTURE.md, "Contract", "DMA files"), group its
+//! points into isotherms, and run `rollfit_fit::master` on them. Shared by
+//! `rollfit master` and a scene's `[material] model = "dma"`, so that both
+//! give the same series. Nothing is written here: `rollfit master` writes
+//! the folder, [`crate::material_file`] its material.toml.
 
 use std::path::Path;
 
-use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
-use rollfit_io::dma::{DmaData, DmaOptions, ModulusKind, isotherms};
+
+use crate::dma::{DmaData, DmaOptions, ModulusKind, isotherms};
+use crate::error::{DmaMasterError, IoError, TurnPoint};
 
 /// A master curve built from a DMA file.
 pub struct DmaMaster {
@@ -23,17 +26,21 @@ pub struct DmaMaster {
 
 /// Reads `path` and builds its master curve. `poisson` converts shear
 /// moduli (E = 2(1+ν)G); `kind` overrides a TRIOS file's shear/tensile
-/// decision. Errors name the file and, where one point is at fault, its
-/// line.
+/// decision. Errors ([`DmaMasterError`]) name the file and, where one
+/// point is at fault, its line.
 pub fn build(
     path: &Path,
     poisson: f64,
     kind: Option<ModulusKind>,
     settings: &MasterSettings,
-) -> Result<DmaMaster> {
+) -> Result<DmaMaster, IoError> {
     let options = DmaOptions { kind, wlf: None };
-    let data = DmaData::read(path, poisson, &options).map_err(|e| anyhow!("{e}"))?;
-    let file = path.display();
+    let data = DmaData::read(path, poisson, &options)
+        .map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
+    let in_file = |source: DmaMasterError| DmaMasterError::InFile {
+        path: path.to_path_buf(),
+        source: Box::new(source),
+    };
     let with_t = data
         .points
         .iter()
@@ -44,12 +51,12 @@ pub fn build(
         let t = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
         vec![(t, (0..data.points.len()).collect())]
     } else if with_t < data.points.len() {
-        bail!(
-            "DMA file {file}: {} of {} points have no temperature: cannot tell which isotherm \
-             they belong to",
-            data.points.len() - with_t,
-            data.points.len()
-        );
+        return Err(DmaMasterError::TemperatureMissing {
+            path: path.to_path_buf(),
+            missing: data.points.len() - with_t,
+            total: data.points.len(),
+        }
+        .into());
     } else {
         isotherms(&data.points)
             .into_iter()
@@ -62,11 +69,9 @@ pub fn build(
             })
             .collect()
     };
-    let line = |i: usize| data.lines.get(i).copied();
     let mut sets = Vec::with_capacity(groups.len());
     for (temperature, indices) in &groups {
-        check_monotone(&data, *temperature, indices, &line)
-            .with_context(|| format!("DMA file {file}"))?;
+        check_monotone(&data, *temperature, indices).map_err(in_file)?;
         let point = |i: &usize| data.points[*i];
         sets.push(Isotherm {
             temperature: *temperature,
@@ -77,11 +82,12 @@ pub fn build(
     }
     let valid = settings
         .check(&sets)
-        .map_err(|e| anyhow!("{e}"))
-        .with_context(|| format!("DMA file {file}"))?;
-    let master = build_master_curve(&sets, &valid)
-        .map_err(|e| anyhow!("{e}"))
-        .with_context(|| format!("DMA file {file}: master curve"))?;
+        .map_err(|error| in_file(DmaMasterError::Fit { error }))?;
+    let master =
+        build_master_curve(&sets, &valid).map_err(|error| DmaMasterError::MasterCurve {
+            path: path.to_path_buf(),
+            source: Box::new(DmaMasterError::Fit { error }),
+        })?;
     Ok(DmaMaster {
         data,
         settings: valid,
@@ -95,24 +101,19 @@ fn check_monotone(
     data: &DmaData,
     temperature: f64,
     indices: &[usize],
-    line: &dyn Fn(usize) -> Option<usize>,
-) -> Result<()> {
+) -> Result<(), DmaMasterError> {
     let omega: Vec<f64> = indices.iter().map(|&i| data.points[i].omega).collect();
     let Some(k) = sweep_turn(&omega) else {
         return Ok(());
     };
-    let at = |j: usize| match line(indices[j]) {
-        Some(l) => format!("line {l}: ω = {:e} rad/s", omega[j]),
-        None => format!("point {}: ω = {:e} rad/s", indices[j] + 1, omega[j]),
+    let at = |j: usize| TurnPoint {
+        line: data.lines.get(indices[j]).copied(),
+        index: indices[j],
+        omega: omega[j],
     };
-    let turn: Vec<String> = (k - 1..(k + 2).min(omega.len()))
+    let turn: Vec<TurnPoint> = (k - 1..(k + 2).min(omega.len()))
         .filter(|&j| j <= k || omega[k] != omega[k - 1])
         .map(at)
         .collect();
-    let turn = turn.join(", ");
-    bail!(
-        "the isotherm at {temperature:.2} °C has frequencies that are not monotone ({turn}): a \
-         sweep runs up or down once; split a repeated sweep into its own temperature or remove \
-         the repeated points"
-    )
+    Err(DmaMasterError::NotMonotone { temperature, turn })
 }

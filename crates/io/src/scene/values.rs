@@ -3,9 +3,10 @@
 
 use std::fmt;
 
-use anyhow::{Result, ensure};
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
+
+use crate::error::SceneError;
 
 /// A finite floating-point number from the scene file.
 ///
@@ -93,7 +94,10 @@ pub(crate) fn value_of(r: Option<Real>) -> f64 {
     r.map_or(f64::NAN, |r| r.0)
 }
 
-pub(crate) fn require_positive(key: &str, value: f64) -> Result<()> {
-    ensure!(value > 0.0, "{key} = {value}: must be greater than zero");
-    Ok(())
+pub(crate) fn require_positive(key: &'static str, value: f64) -> Result<(), SceneError> {
+    if value > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError::NotPositive { key, value })
+    }
 }

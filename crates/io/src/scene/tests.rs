@@ -1,6 +1,5 @@
 use std::path::Path;
 
-use anyhow::Result;
 use rollfit_fit::{FitParams, Lambda, Method, ScaleAnchor, TermRule};
 use rollfit_model::ContactSize;
 use rollfit_model::modulus::Arrhenius;
@@ -27,8 +26,8 @@ v_max = 1.0
 count = 7
 "#;
 
-fn setup(text: &str) -> Result<ForwardSetup> {
-    parse(text)?.forward_setup(Path::new("scene.toml"))
+fn setup(text: &str) -> Result<ForwardSetup, crate::IoError> {
+    parse(text)?.forward_setup(Path::new("scene.toml"), &|_| {})
 }
 
 #[test]
@@ -136,7 +135,7 @@ fn fit_section_gives_fit_params() {
 
 #[test]
 fn fit_section_conflicts_are_named() {
-    let err = |fit: &str| format!("{:#}", parse(&format!("{SLS}[fit]\n{fit}\n")).unwrap_err());
+    let err = |fit: &str| crate::chain(&parse(&format!("{SLS}[fit]\n{fit}\n")).unwrap_err());
     let m = err("E0 = 1e6\ncontact_radius = { v = 1e-6, r = 1e-3 }");
     assert!(
         m.contains("`E0`, `contact_radius`") && m.contains("at most one"),
@@ -187,12 +186,8 @@ fn temperature_list_gives_one_block_per_temperature() {
     assert_eq!(one.blocks.len(), 1);
     assert_eq!(one.blocks[0].shift, Some(shifts[1]));
 
-    let err = |list: &str| {
-        format!(
-            "{:#}",
-            parse(&format!("{text}temperature = {list}\n")).unwrap_err()
-        )
-    };
+    let err =
+        |list: &str| crate::chain(&parse(&format!("{text}temperature = {list}\n")).unwrap_err());
     assert!(err("[]").contains("[sweep]: `temperature = []`"));
     let m = err("[1.0, 2.0, 1.0]");
     assert!(
@@ -204,10 +199,7 @@ fn temperature_list_gives_one_block_per_temperature() {
         m.contains("[sweep] temperature[1]") && m.contains("finite"),
         "{m}"
     );
-    let m = format!(
-        "{:#}",
-        parse(&format!("{SLS}temperature = [1.0]\n")).unwrap_err()
-    );
+    let m = crate::chain(&parse(&format!("{SLS}temperature = [1.0]\n")).unwrap_err());
     assert!(
         m.contains("[sweep] temperature = [1]") && m.contains("[material.shift]"),
         "{m}"
@@ -228,15 +220,9 @@ fn arrhenius_shift() {
         s.blocks[0].shift.unwrap().log10_a_t,
         law.log10_shift(35.0).unwrap()
     );
-    let m = format!(
-        "{:#}",
-        parse(&text.replace("E_a = 1.5e5", "C1 = 8.0")).unwrap_err()
-    );
+    let m = crate::chain(&parse(&text.replace("E_a = 1.5e5", "C1 = 8.0")).unwrap_err());
     assert!(m.contains("do not belong to model \"arrhenius\""), "{m}");
-    let m = format!(
-        "{:#}",
-        parse(&text.replace("E_a = 1.5e5", "E_a = -1.0")).unwrap_err()
-    );
+    let m = crate::chain(&parse(&text.replace("E_a = 1.5e5", "E_a = -1.0")).unwrap_err());
     assert!(m.contains("E_a"), "{m}");
 }
 
@@ -247,27 +233,22 @@ fn arrhenius_shift() {
 fn dma_material_keys() {
     let dma = "[geometry]\nshape = \"sphere\"\nradius = 0.01\nload = 0.15\n[material]\n\
                model = \"dma\"\nfile = \"absent.csv\"\n";
-    let m = format!(
-        "{:#}",
-        setup(&format!("{dma}[sweep]\nv_min = 1e-6\nv_max = 1.0\n"))
+    let m = crate::chain(
+        &setup(&format!("{dma}[sweep]\nv_min = 1e-6\nv_max = 1.0\n"))
             .err()
-            .expect("a missing DMA file is an error")
+            .expect("a missing DMA file is an error"),
     );
     assert!(m.contains("absent.csv"), "{m}");
-    let m = format!("{:#}", parse(&format!("{dma}E1 = 1e7\n")).unwrap_err());
+    let m = crate::chain(&parse(&format!("{dma}E1 = 1e7\n")).unwrap_err());
     assert!(m.contains("`E1` does not belong to model \"dma\""), "{m}");
-    let m = format!(
-        "{:#}",
-        parse(&format!(
+    let m = crate::chain(
+        &parse(&format!(
             "{dma}[material.shift]\nmodel = \"wlf\"\nT_ref = 20.0\nC1 = 8.0\nC2 = 100.0\n"
         ))
-        .unwrap_err()
+        .unwrap_err(),
     );
     assert!(m.contains("does not go with model = \"dma\""), "{m}");
-    let m = format!(
-        "{:#}",
-        parse(&SLS.replace("tau = 1\n", "tau = 1\nT_ref = 20.0\n")).unwrap_err()
-    );
+    let m = crate::chain(&parse(&SLS.replace("tau = 1\n", "tau = 1\nT_ref = 20.0\n")).unwrap_err());
     assert!(
         m.contains("`T_ref` does not belong to model \"sls\"") && m.contains("\"dma\""),
         "{m}"
@@ -308,7 +289,7 @@ fn free_shift_follows_the_model_rule() {
     assert!((shift_at(10.0).unwrap() - 1.0).abs() < 1e-12);
     assert!((shift_at(40.0).unwrap() + 1.5).abs() < 1e-12);
     for t in [70.0, -0.5] {
-        let err = format!("{:#}", shift_at(t).unwrap_err());
+        let err = crate::chain(&shift_at(t).unwrap_err());
         for fragment in [
             "[material.shift] at [sweep] temperature",
             &format!("T = {t} °C"),
@@ -328,7 +309,7 @@ fn free_shift_entries_are_checked_by_the_model_and_named() {
             "tau = 1\n",
             &format!("tau = 1\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n{log_at}"),
         );
-        format!("{:#}", parse(&text).unwrap_err())
+        crate::chain(&parse(&text).unwrap_err())
     };
     let msg = err("log_aT = [{ T = 0.0, log_aT = 2.0 }, { T = 0.0, log_aT = 2.5 }]\n");
     assert!(
@@ -365,10 +346,7 @@ fn havriliak_negami_and_its_alias() {
         alias.blocks[0].scene.material().modulus(3.0),
         s.blocks[0].scene.material().modulus(3.0)
     );
-    let err = format!(
-        "{:#}",
-        parse(&text.replace("alpha = 0.5\n", "")).unwrap_err()
-    );
+    let err = crate::chain(&parse(&text.replace("alpha = 0.5\n", "")).unwrap_err());
     assert!(err.contains("needs the key `alpha`"), "{err}");
 }
 
@@ -383,18 +361,12 @@ fn log_spacing_is_exact_at_the_ends_and_increasing() {
 
 #[test]
 fn non_finite_numbers_are_reported_with_position() {
-    let err = format!(
-        "{:#}",
-        parse(&SLS.replace("radius = 0.01", "radius = nan")).unwrap_err()
-    );
+    let err = crate::chain(&parse(&SLS.replace("radius = 0.01", "radius = nan")).unwrap_err());
     assert!(
         err.contains("line 4") && err.contains("radius") && err.contains("finite"),
         "{err}"
     );
-    let err = format!(
-        "{:#}",
-        parse(&SLS.replace("tau = 1", "tau = -inf")).unwrap_err()
-    );
+    let err = crate::chain(&parse(&SLS.replace("tau = 1", "tau = -inf")).unwrap_err());
     assert!(err.contains("tau") && err.contains("finite"), "{err}");
 }
 
@@ -417,7 +389,7 @@ fn fit_settings_are_read_by_the_one_parser() {
     let settings = |fit: &str| {
         parse(&format!("{SLS}[fit]\n{fit}\n"))
             .map(|file| file.fit.unwrap().settings)
-            .map_err(|e| format!("{e:#}"))
+            .map_err(|e| crate::chain(&e))
     };
     let canonical = settings("terms = \"1.5/decade\"\nseed = 4").unwrap();
     assert_eq!(canonical.terms, Some(TermRule::PerDecade(1.5)));

@@ -1,13 +1,13 @@
 //! `[material.shift]` and the time–temperature shift rules of a scene's
-//! material (its own, or a DMA master curve's).
+//! material (its own, or a DMA master curve's; docs/ARCHITECTURE.md,
+//! "Contract", "Scene file").
 
-use anyhow::{Context, Result, anyhow, ensure};
-use rollfit_model::ModelError;
 use rollfit_model::modulus::{Arrhenius, FreeShift, Wlf};
 use serde::Deserialize;
 
 use super::values::{Real, value_of};
 use crate::dma_master::DmaMaster;
+use crate::error::{Fault, SceneError};
 
 /// Shift model names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -71,41 +71,41 @@ impl ShiftRule {
     /// Arrhenius, or a free shift interpolated linearly in T between its
     /// listed temperatures (T_ref included) and never extrapolated beyond
     /// them.
-    pub fn log10_shift(&self, temperature: f64) -> Result<f64> {
+    pub fn log10_shift(&self, temperature: f64) -> Result<f64, SceneError> {
+        let model = |error| SceneError::Model { error };
         let shift = match self {
-            ShiftRule::Wlf(wlf) => wlf.log10_shift(temperature).map_err(|e| anyhow!("{e}"))?,
-            ShiftRule::Arrhenius(law) => {
-                law.log10_shift(temperature).map_err(|e| anyhow!("{e}"))?
-            }
+            ShiftRule::Wlf(wlf) => wlf.log10_shift(temperature).map_err(model)?,
+            ShiftRule::Arrhenius(law) => law.log10_shift(temperature).map_err(model)?,
             // The only refusal for a finite temperature is one outside the
             // list, which the file can fix.
-            ShiftRule::Free(free) => free.log10_shift(temperature).map_err(|e| {
-                anyhow!("{e}; add a `log_aT` entry at or beyond it, or use model = \"wlf\"")
-            })?,
+            ShiftRule::Free(free) => free
+                .log10_shift(temperature)
+                .map_err(|error| SceneError::FreeShiftOutside { error })?,
         };
-        ensure!(
-            shift.is_finite(),
-            "log10 a_T at T = {temperature} °C is {shift}: the shift is not defined at this temperature"
-        );
+        if !shift.is_finite() {
+            return Err(SceneError::ShiftNotFinite { temperature, shift });
+        }
         Ok(shift)
     }
 
     /// The rule of a master curve's shift (None for one isotherm).
-    pub(super) fn of_master(built: &DmaMaster) -> Result<Option<ShiftRule>> {
+    pub(super) fn of_master(built: &DmaMaster) -> Result<Option<ShiftRule>, SceneError> {
         use rollfit_fit::master::ShiftLaw;
         let shift = &built.master.shift;
         if shift.shifts.len() < 2 {
             return Ok(None);
         }
         let t_ref = shift.t_ref;
-        let model = |e: ModelError| anyhow!("the DMA master curve's shift: {e}");
+        let model = |error| SceneError::MasterShift { error };
         Ok(Some(match shift.law {
             ShiftLaw::Wlf => {
-                let w = shift.wlf.context("WLF fit missing")?;
+                let w = shift.wlf.ok_or(Fault::LawMissing { law: "WLF" })?;
                 ShiftRule::Wlf(Wlf::new(t_ref, w.c1, w.c2).map_err(model)?)
             }
             ShiftLaw::Arrhenius => {
-                let a = shift.arrhenius.context("Arrhenius fit missing")?;
+                let a = shift
+                    .arrhenius
+                    .ok_or(Fault::LawMissing { law: "Arrhenius" })?;
                 ShiftRule::Arrhenius(Arrhenius::new(t_ref, a.activation_energy).map_err(model)?)
             }
             ShiftLaw::Free => ShiftRule::Free(
@@ -127,55 +127,47 @@ impl ShiftSection {
     /// Checks that exactly the keys of the chosen shift model are present
     /// and builds the model's shift from them; the model checks the values
     /// (positive WLF constants, distinct and finite free-shift entries).
-    pub(super) fn rule(&self) -> Result<ShiftRule> {
+    pub(super) fn rule(&self) -> Result<ShiftRule, SceneError> {
+        let model = |error| SceneError::Model { error };
         match self.model {
             ShiftKind::Wlf => {
-                ensure!(
-                    self.c1.is_some() && self.c2.is_some(),
-                    "model \"wlf\" needs the keys `C1` and `C2` (and `T_ref`)"
-                );
-                ensure!(
-                    self.log_at.is_none() && self.activation_energy.is_none(),
-                    "keys `log_aT` and `E_a` do not belong to model \"wlf\" (it takes T_ref, C1, C2)"
-                );
+                if self.c1.is_none() || self.c2.is_none() {
+                    return Err(SceneError::WlfKeysMissing);
+                }
+                if self.log_at.is_some() || self.activation_energy.is_some() {
+                    return Err(SceneError::WlfForeignKeys);
+                }
                 // The model names the offending key (T_ref, C1 or C2).
-                let wlf = Wlf::new(self.t_ref.0, value_of(self.c1), value_of(self.c2))
-                    .map_err(|e| anyhow!("{e}"))?;
+                let wlf =
+                    Wlf::new(self.t_ref.0, value_of(self.c1), value_of(self.c2)).map_err(model)?;
                 Ok(ShiftRule::Wlf(wlf))
             }
             ShiftKind::Arrhenius => {
-                ensure!(
-                    self.c1.is_none() && self.c2.is_none() && self.log_at.is_none(),
-                    "keys `C1`, `C2` and `log_aT` do not belong to model \"arrhenius\" (it takes \
-                     T_ref, E_a)"
-                );
-                let energy = self.activation_energy.context(
-                    "model \"arrhenius\" needs the key `E_a`, the activation energy in J/mol",
-                )?;
-                let law = Arrhenius::new(self.t_ref.0, energy.0).map_err(|e| anyhow!("{e}"))?;
+                if self.c1.is_some() || self.c2.is_some() || self.log_at.is_some() {
+                    return Err(SceneError::ArrheniusForeignKeys);
+                }
+                let energy = self
+                    .activation_energy
+                    .ok_or(SceneError::ArrheniusNeedsEnergy)?;
+                let law = Arrhenius::new(self.t_ref.0, energy.0).map_err(model)?;
                 Ok(ShiftRule::Arrhenius(law))
             }
             ShiftKind::Free => {
-                ensure!(
-                    self.c1.is_none() && self.c2.is_none() && self.activation_energy.is_none(),
-                    "keys `C1`, `C2` and `E_a` do not belong to model \"free\" (it takes T_ref, \
-                     log_aT)"
-                );
-                let listed = self.log_at.as_deref().context(
-                    "model \"free\" needs the key `log_aT`, one entry per measured temperature, \
-                     e.g. log_aT = [{ T = 0.0, log_aT = 2.1 }, { T = 40.0, log_aT = -1.3 }]",
-                )?;
+                if self.c1.is_some() || self.c2.is_some() || self.activation_energy.is_some() {
+                    return Err(SceneError::FreeForeignKeys);
+                }
+                let listed = self.log_at.as_deref().ok_or(SceneError::FreeNeedsList)?;
                 let entries = listed.iter().map(|p| (p.t.0, p.log_at.0)).collect();
                 // The model's "entry i" is the i-th element of `log_aT`.
-                let free = rollfit_model::modulus::FreeShift::new(self.t_ref.0, entries)
-                    .map_err(|e| anyhow!("`log_aT`: {e}"))?;
+                let free = FreeShift::new(self.t_ref.0, entries)
+                    .map_err(|error| SceneError::FreeShiftEntries { error })?;
                 Ok(ShiftRule::Free(free))
             }
         }
     }
 
     /// Checks the section by building its shift.
-    pub(super) fn check(&self) -> Result<()> {
+    pub(super) fn check(&self) -> Result<(), SceneError> {
         self.rule().map(|_| ())
     }
 }

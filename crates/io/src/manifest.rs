@@ -1,4 +1,5 @@
-//! The batch manifest of `rollfit batch` (TOML): which fits to run.
+//! The batch manifest of `rollfit batch` (TOML; docs/ARCHITECTURE.md,
+//! "Contract", "Commands", and "Data flow", `batch`): which fits to run.
 //!
 //! ```toml
 //! [defaults]              # optional: method, lambda, seed, starts, terms
@@ -14,7 +15,7 @@
 //! Paths are relative to the manifest's folder. The settings are those of
 //! the `fit` flags (`--method`, `--lambda`, `--seed`, `--starts`,
 //! `--terms`), spelled as in a scene's `[fit]` and read by the same parser,
-//! [`FitSettings::set`] (through [`crate::scene_file::fit_settings`]):
+//! [`FitSettings::set`] (through the scene reader's `fit_settings`):
 //! names and `"auto"` as strings, numbers as numbers (or as strings, e.g.
 //! `terms = "2/decade"`).
 //!
@@ -22,8 +23,9 @@
 //! bad setting values (syntax and range, [`FitSettings::check`]) while
 //! deserializing (toml then points at the line),
 //! then what serde cannot see — missing keys, names, duplicates, files that
-//! do not exist. Every message names the entry (by name, else by its
-//! position) and its line; the caller adds the manifest's path. Only the
+//! do not exist. Every message ([`ManifestError`]) names the entry (by
+//! name, else by its position) and its line; [`load`] adds the manifest's
+//! path ([`ManifestError::InFile`]). Only the
 //! contents of the scene and data files are left to the fits themselves: a
 //! broken scene fails its own entry, not the batch.
 
@@ -31,13 +33,13 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::FitSettings;
 use serde::Deserialize;
 use serde::de::{Deserializer, MapAccess, Visitor};
 use toml::Spanned;
 
-use crate::scene_file::fit_settings::{Key, TableSettings, join};
+use crate::error::{EntryProblem, EntryRef, IoError, ManifestError, TomlPlace};
+use crate::scene::fit_settings::{Key, TableSettings, join};
 
 /// The settings a manifest takes: those of the `fit` flags.
 const SETTINGS: [&str; 5] = ["method", "lambda", "seed", "starts", "terms"];
@@ -72,36 +74,50 @@ pub struct Entry {
 }
 
 /// Reads and checks the manifest at `path`; every error names `path`.
-pub fn load(path: &Path) -> Result<Manifest> {
-    let text = rollfit_io::text_file::read_utf8(path, "manifest")?;
+pub fn load(path: &Path) -> Result<Manifest, IoError> {
+    let text = crate::text_file::read_utf8(path, "manifest")?;
     let base = path.parent().unwrap_or(Path::new(""));
-    parse(&text, base).with_context(|| format!("manifest {}", path.display()))
+    check(&text, base).map_err(|e| {
+        ManifestError::InFile {
+            path: path.to_path_buf(),
+            source: Box::new(e),
+        }
+        .into()
+    })
 }
 
 /// Parses and checks manifest text; `base` is the folder relative paths
 /// start from.
-pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
-    let raw: RawManifest = toml::from_str(text).map_err(|e| {
-        let message = e.to_string().trim_end().to_string();
-        match e.span().and_then(|span| locate_entry(text, span.start)) {
-            Some(entry) => anyhow!("{entry}: {message}"),
-            None => anyhow!("{message}"),
-        }
+pub fn parse(text: &str, base: &Path) -> Result<Manifest, IoError> {
+    Ok(check(text, base)?)
+}
+
+/// [`parse`], with the manifest's own error.
+fn check(text: &str, base: &Path) -> Result<Manifest, ManifestError> {
+    let raw: RawManifest = toml::from_str(text).map_err(|error| ManifestError::Toml {
+        place: error.span().and_then(|span| locate_entry(text, span.start)),
+        error: Box::new(error),
     })?;
     let defaults = raw.defaults.map(|d| d.0).unwrap_or_default();
     if raw.entry.is_empty() {
-        bail!(
-            "no entries: list each fit as an [[entry]] with a name, a scene and a data file \
-             (see the README, \"Batches\")"
-        );
+        return Err(ManifestError::NoEntries);
     }
+    let entries = check_entries(text, base, raw.entry)?;
+    Ok(Manifest { defaults, entries })
+}
 
-    let total = raw.entry.len();
+/// The entries, checked: names, duplicates, files.
+fn check_entries(
+    text: &str,
+    base: &Path,
+    raw_entries: Vec<Spanned<RawEntry>>,
+) -> Result<Vec<Entry>, ManifestError> {
+    let total = raw_entries.len();
     let mut problems = Vec::new();
     let mut entries = Vec::new();
-    // (lower-cased name, its entry's description) of the names seen so far.
-    let mut seen: Vec<(String, String)> = Vec::new();
-    for (index, spanned) in raw.entry.into_iter().enumerate() {
+    // (lower-cased name, its entry) of the names seen so far.
+    let mut seen: Vec<(String, EntryRef)> = Vec::new();
+    for (index, spanned) in raw_entries.into_iter().enumerate() {
         let line = line_of(text, spanned.span().start);
         let mut raw_entry = spanned.into_inner();
         let name = raw_entry.name.as_ref().map(|n| n.get_ref().clone());
@@ -109,27 +125,25 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
         let mut complete = true;
         match &name {
             None => {
-                problems.push(format!(
-                    "{who}: missing `name` (the result folder, e.g. name = \"sample-1\")"
-                ));
+                problems.push(EntryProblem::MissingName { entry: who.clone() });
                 complete = false;
             }
             Some(name) => {
                 if let Err(why) = check_name(name) {
-                    problems.push(format!("{who}: name {name:?} {why}"));
+                    problems.push(EntryProblem::BadName {
+                        entry: who.clone(),
+                        name: name.clone(),
+                        why,
+                    });
                     complete = false;
                 } else {
                     let key = name.to_lowercase();
                     if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
-                        let same = if first.contains(&format!("{name:?}")) {
-                            "the same name"
-                        } else {
-                            "a name that differs only in case (one folder on many file systems)"
-                        };
-                        problems.push(format!(
-                            "{who}: duplicate name: {first} has {same}; names must be unique, \
-                             each names a result folder"
-                        ));
+                        problems.push(EntryProblem::DuplicateName {
+                            entry: who.clone(),
+                            first: first.clone(),
+                            same: first.to_string().contains(&format!("{name:?}")),
+                        });
                         complete = false;
                     } else {
                         seen.push((key, who.clone()));
@@ -137,9 +151,12 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
                 }
             }
         }
-        let mut file = |key: &str, value: &Option<Spanned<String>>| match value {
+        let mut file = |key: &'static str, value: &Option<Spanned<String>>| match value {
             None => {
-                problems.push(format!("{who}: missing `{key}` (path of the {key} file)"));
+                problems.push(EntryProblem::MissingFile {
+                    entry: who.clone(),
+                    key,
+                });
                 None
             }
             Some(value) => {
@@ -148,16 +165,13 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
                 if path.is_file() {
                     Some(path)
                 } else {
-                    let what = if path.exists() {
-                        "is not a file"
-                    } else {
-                        "does not exist"
-                    };
-                    problems.push(format!(
-                        "{who}: line {at}: {key} file {} {what} (paths are relative to the \
-                         manifest's folder)",
-                        path.display()
-                    ));
+                    problems.push(EntryProblem::NoSuchFile {
+                        entry: who.clone(),
+                        line: at,
+                        key,
+                        exists: path.exists(),
+                        path,
+                    });
                     None
                 }
             }
@@ -176,9 +190,9 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest> {
         }
     }
     if !problems.is_empty() {
-        bail!("{}", problems.join("\n"));
+        return Err(ManifestError::Entries { problems });
     }
-    Ok(Manifest { defaults, entries })
+    Ok(entries)
 }
 
 /// A name that can be a result folder on any system: [A-Za-z0-9._-]+, not
@@ -206,10 +220,12 @@ fn check_name(name: &str) -> Result<(), String> {
 }
 
 /// "entry "NAME" (K of N, line L)" or "entry K of N (line L)".
-fn describe(index: usize, total: usize, name: Option<&str>, line: usize) -> String {
-    match name {
-        Some(name) => format!("entry {name:?} ({} of {total}, line {line})", index + 1),
-        None => format!("entry {} of {total} (line {line})", index + 1),
+fn describe(index: usize, total: usize, name: Option<&str>, line: usize) -> EntryRef {
+    EntryRef {
+        index,
+        total,
+        name: name.map(str::to_string),
+        line,
     }
 }
 
@@ -225,7 +241,7 @@ fn line_of(text: &str, offset: usize) -> usize {
 
 /// The entry a toml error at byte `offset` lies in, described for a
 /// message; None outside every entry.
-fn locate_entry(text: &str, offset: usize) -> Option<String> {
+fn locate_entry(text: &str, offset: usize) -> Option<TomlPlace> {
     #[derive(Deserialize)]
     struct Outline {
         defaults: Option<Spanned<toml::Value>>,
@@ -238,7 +254,7 @@ fn locate_entry(text: &str, offset: usize) -> Option<String> {
                 .defaults
                 .is_some_and(|d| contains(&d.span(), offset))
             {
-                return Some("[defaults]".into());
+                return Some(TomlPlace::Defaults);
             }
             let total = outline.entry.len();
             let (index, entry) = outline
@@ -247,12 +263,12 @@ fn locate_entry(text: &str, offset: usize) -> Option<String> {
                 .enumerate()
                 .find(|(_, e)| contains(&e.span(), offset))?;
             let name = entry.get_ref().get("name").and_then(toml::Value::as_str);
-            Some(describe(
+            Some(TomlPlace::Entry(describe(
                 index,
                 total,
                 name,
                 line_of(text, entry.span().start),
-            ))
+            )))
         }
         // A syntax error: the [[entry]] header above it, by its number.
         Err(_) => {
@@ -275,7 +291,7 @@ fn locate_entry(text: &str, offset: usize) -> Option<String> {
                 }
                 start += line.len();
             }
-            current.map(|(k, line)| format!("entry {k} (line {line})"))
+            current.map(|(number, line)| TomlPlace::EntryHeader { number, line })
         }
     }
 }
@@ -422,10 +438,7 @@ mod tests {
             ("lambda = nan", &["`lambda`", "finite"][..]),
             ("method = [1.0]", &["`method`", "expected text"][..]),
         ] {
-            let err = format!(
-                "{:#}",
-                parse(&format!("{entry}{setting}\n"), &base).unwrap_err()
-            );
+            let err = crate::chain(&parse(&format!("{entry}{setting}\n"), &base).unwrap_err());
             assert!(err.contains("entry \"a\" (1 of 1, line 1)"), "{err}");
             assert!(err.contains("line 5"), "{err}");
             for fragment in fragments {
@@ -434,10 +447,8 @@ mod tests {
         }
         // terms_per_decade is the scene's alias of terms; the manifest
         // takes the settings of the flags, spelled once.
-        let err = format!(
-            "{:#}",
-            parse(&format!("{entry}terms_per_decade = 2\n"), &base).unwrap_err()
-        );
+        let err =
+            crate::chain(&parse(&format!("{entry}terms_per_decade = 2\n"), &base).unwrap_err());
         assert!(err.contains("unknown field `terms_per_decade`"), "{err}");
     }
 
@@ -459,15 +470,18 @@ mod tests {
         assert_eq!(line_of(text, text.find("name = \"b\"").unwrap()), 7);
         let b = text.find("\"b\"").unwrap();
         assert_eq!(
-            locate_entry(text, b).as_deref(),
+            locate_entry(text, b).map(|p| p.to_string()).as_deref(),
             Some("entry \"b\" (2 of 2, line 6)")
         );
-        assert_eq!(locate_entry(text, 12).as_deref(), Some("[defaults]"));
+        assert_eq!(
+            locate_entry(text, 12).map(|p| p.to_string()).as_deref(),
+            Some("[defaults]")
+        );
         // A syntax error: the entry by its number.
         let broken = text.replace("\"b\"", "\"b");
         let at = broken.find("\"b").unwrap();
         assert_eq!(
-            locate_entry(&broken, at).as_deref(),
+            locate_entry(&broken, at).map(|p| p.to_string()).as_deref(),
             Some("entry 2 (line 6)")
         );
     }

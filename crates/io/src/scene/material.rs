@@ -1,22 +1,26 @@
 //! `[material]`: the modulus E*(ω) at the reference temperature, its keys
-//! per model, and what the fit and the exact solution take from it.
+//! per model, and what the fit and the exact solution take from it
+//! (docs/ARCHITECTURE.md, "Contract", "Scene file"). A `table` is read by
+//! [`crate::table`], a `dma` file made a master curve by
+//! [`crate::dma_master`]; what they say is a [`SceneError::File`].
 
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::StartMaterial;
 use rollfit_model::{
     HavriliakNegami, ModelError, Prony, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus,
 };
 use serde::Deserialize;
 
+use super::InSection;
 use super::setup::DEFAULT_POISSON;
 use super::shift::{ShiftKind, ShiftRule, ShiftSection};
 use super::values::{Real, RealOrList, reals};
 use crate::dma_master::{self, DmaMaster};
-use rollfit_io::table;
+use crate::error::{IoError, SceneError};
+use crate::table;
 
 /// Material model names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -37,7 +41,8 @@ pub enum MaterialKind {
 }
 
 impl MaterialKind {
-    fn name(self) -> &'static str {
+    /// The name as written in the file ("sls", "havriliak-negami", …).
+    pub fn name(self) -> &'static str {
         match self {
             MaterialKind::Sls => "sls",
             MaterialKind::Prony => "prony",
@@ -117,10 +122,10 @@ pub enum ModulusName {
 }
 
 impl ModulusName {
-    fn kind(self) -> rollfit_io::dma::ModulusKind {
+    fn kind(self) -> crate::dma::ModulusKind {
         match self {
-            ModulusName::Shear => rollfit_io::dma::ModulusKind::Shear,
-            ModulusName::Young => rollfit_io::dma::ModulusKind::Young,
+            ModulusName::Shear => crate::dma::ModulusKind::Shear,
+            ModulusName::Young => crate::dma::ModulusKind::Young,
         }
     }
 }
@@ -146,7 +151,7 @@ impl fmt::Debug for DmaCache {
 
 impl MaterialSection {
     /// Checks that exactly the keys of the chosen model are present.
-    pub(super) fn check_keys(&self) -> Result<()> {
+    pub(super) fn check_keys(&self) -> Result<(), SceneError> {
         let kind = self.model;
         let present = [
             ("E0", self.e0.is_some()),
@@ -184,68 +189,55 @@ impl MaterialSection {
         ];
         for (key, is_present, models) in optional {
             if is_present && !models.contains(&kind) {
-                bail!(
-                    "[material]: key `{key}` does not belong to model \"{}\" (it takes {}); \
-                     `{key}` is for model {}",
-                    kind.name(),
-                    kind.keys(),
-                    models
-                        .iter()
-                        .map(|m| format!("\"{}\"", m.name()))
-                        .collect::<Vec<_>>()
-                        .join(" or ")
-                );
+                return Err(SceneError::KeyOfOtherModels {
+                    key,
+                    model: kind.name(),
+                    takes: kind.keys(),
+                    models: models.iter().map(|m| m.name()).collect(),
+                });
             }
         }
         if kind == MaterialKind::Dma && self.shift.is_some() {
-            bail!(
-                "[material.shift] does not go with model = \"dma\": the shift factors come from \
-                 the isotherms themselves (`shift_law` chooses \"wlf\", \"free\" or \
-                 \"arrhenius\"); remove [material.shift]"
-            );
+            return Err(SceneError::ShiftWithDma);
         }
         for (key, is_present) in present {
             let wanted = needed.contains(&key);
+            let (model, takes) = (kind.name(), kind.keys());
             if wanted && !is_present {
-                bail!(
-                    "[material]: model \"{}\" needs the key `{key}` (it takes {})",
-                    kind.name(),
-                    kind.keys()
-                );
+                return Err(SceneError::MissingKey { key, model, takes });
             }
             if !wanted && is_present {
-                let hint = if kind == MaterialKind::Prony && key == "E0" {
-                    "; the static modulus of a Prony series is E0 = E1 - sum(H)"
-                } else {
-                    ""
-                };
-                bail!(
-                    "[material]: key `{key}` does not belong to model \"{}\" (it takes {}){hint}",
-                    kind.name(),
-                    kind.keys()
-                );
+                return Err(SceneError::ForeignKey { key, model, takes });
             }
         }
         match (kind, &self.tau) {
             (MaterialKind::Sls | MaterialKind::HavriliakNegami, Some(RealOrList::List(_))) => {
-                bail!(
-                    "[material]: model \"{}\" takes one relaxation time: `tau` must be a number, not an array",
-                    kind.name()
-                )
+                Err(SceneError::TauNotNumber { model: kind.name() })
             }
-            (MaterialKind::Prony, Some(RealOrList::One(_))) => bail!(
-                "[material]: model \"prony\" takes one relaxation time per term: \
-                 `tau` must be an array like H"
-            ),
+            (MaterialKind::Prony, Some(RealOrList::One(_))) => Err(SceneError::TauNotList),
             _ => Ok(()),
         }
     }
 
-    /// The validated modulus at the reference temperature.
-    pub(crate) fn build(&self, base_dir: &Path) -> Result<Box<dyn ViscoelasticModulus>> {
+    /// The validated modulus at the reference temperature; `note` receives
+    /// what a modulus table's reader says about the file (how it was read).
+    pub fn build(
+        &self,
+        base_dir: &Path,
+        note: &dyn Fn(&str),
+    ) -> Result<Box<dyn ViscoelasticModulus>, IoError> {
+        Ok(self.make_modulus(base_dir, note)?)
+    }
+
+    /// [`Self::build`], with the scene's own error.
+    fn make_modulus(
+        &self,
+        base_dir: &Path,
+        note: &dyn Fn(&str),
+    ) -> Result<Box<dyn ViscoelasticModulus>, SceneError> {
         self.check_keys()?;
         let value = |r: Option<Real>| r.map_or(f64::NAN, |r| r.0);
-        let model = |e: ModelError| anyhow!("{e}");
+        let model = |error: ModelError| SceneError::Model { error };
         Ok(match self.model {
             MaterialKind::Sls => {
                 let tau = match self.tau {
@@ -283,12 +275,12 @@ impl MaterialSection {
             MaterialKind::Dma => Box::new(self.dma_master(base_dir)?.master.fit.prony.clone()),
             MaterialKind::Table => {
                 let (path, table) = self.read_table(base_dir)?;
-                for note in &table.notes {
-                    eprintln!("note: {note}");
+                for line in &table.notes {
+                    note(line);
                 }
                 Box::new(
                     TabulatedModulus::new(table.omega, table.storage, table.loss)
-                        .map_err(|e| anyhow!("modulus table {}: {e}", path.display()))?,
+                        .map_err(|error| SceneError::TableModel { path, error })?,
                 )
             }
         })
@@ -296,10 +288,13 @@ impl MaterialSection {
 }
 impl MaterialSection {
     /// The modulus table of a "table" material, in any form the DMA reader
-    /// accepts (shear columns converted with [substrate] poisson), and its
+    /// accepts (shear columns converted with `[substrate] poisson`), and its
     /// path.
-    pub(crate) fn read_table(&self, base_dir: &Path) -> Result<(PathBuf, table::ModulusTable)> {
-        let file = self.file.as_ref().context("model \"table\" needs `file`")?;
+    pub fn read_table(&self, base_dir: &Path) -> Result<(PathBuf, table::ModulusTable), IoError> {
+        let file = self
+            .file
+            .as_ref()
+            .ok_or(SceneError::NeedsFile { model: "table" })?;
         let path = base_dir.join(file);
         let table = table::read(
             &path,
@@ -310,11 +305,14 @@ impl MaterialSection {
     }
 
     /// The master curve of a "dma" material, built on first use.
-    fn dma_master(&self, base_dir: &Path) -> Result<Arc<DmaMaster>> {
+    fn dma_master(&self, base_dir: &Path) -> Result<Arc<DmaMaster>, SceneError> {
         if let Some(built) = self.dma.built.get() {
             return Ok(Arc::clone(built));
         }
-        let file = self.file.as_ref().context("model \"dma\" needs `file`")?;
+        let file = self
+            .file
+            .as_ref()
+            .ok_or(SceneError::NeedsFile { model: "dma" })?;
         let settings = rollfit_fit::master::MasterSettings {
             t_ref: self.t_ref.map(|r| r.0),
             law: match self.shift_law {
@@ -337,20 +335,25 @@ impl MaterialSection {
     /// The time–temperature shift of this material: `[material.shift]`, or
     /// for "dma" the master curve's own (None without either, or for one
     /// isotherm).
-    pub(crate) fn shift_rule(&self, base_dir: &Path) -> Result<Option<ShiftRule>> {
+    pub(crate) fn shift_rule(&self, base_dir: &Path) -> Result<Option<ShiftRule>, SceneError> {
         if self.model == MaterialKind::Dma {
             return ShiftRule::of_master(self.dma_master(base_dir)?.as_ref());
         }
         self.shift
             .as_ref()
-            .map(|s| s.rule().context("[material.shift]"))
+            .map(|s| s.rule().section("[material.shift]"))
             .transpose()
     }
 
     /// An "sls" (one term), "prony" or "dma" material as a Prony series;
     /// None for other models.
-    pub(super) fn prony(&self, base_dir: &Path) -> Result<Option<Prony>> {
-        let modulus = self.build(base_dir)?;
+    pub(super) fn prony(
+        &self,
+        base_dir: &Path,
+        note: &dyn Fn(&str),
+    ) -> Result<Option<Prony>, SceneError> {
+        let modulus = self.make_modulus(base_dir, note)?;
+        let model = |error: ModelError| SceneError::Model { error };
         Ok(match self.model {
             MaterialKind::Sls => {
                 let tau = match self.tau {
@@ -358,8 +361,8 @@ impl MaterialSection {
                     _ => f64::NAN,
                 };
                 let e1 = self.e1.map_or(f64::NAN, |r| r.0);
-                let sls = StandardLinearSolid::new(modulus.static_modulus(), e1, tau)
-                    .map_err(|e| anyhow!("{e}"))?;
+                let sls =
+                    StandardLinearSolid::new(modulus.static_modulus(), e1, tau).map_err(model)?;
                 Some(sls.to_prony())
             }
             MaterialKind::Prony => {
@@ -369,7 +372,7 @@ impl MaterialSection {
                 };
                 let h = self.h.as_deref().map(reals).unwrap_or_default();
                 let e1 = self.e1.map_or(f64::NAN, |r| r.0);
-                Some(Prony::new(e1, h, tau).map_err(|e| anyhow!("{e}"))?)
+                Some(Prony::new(e1, h, tau).map_err(model)?)
             }
             MaterialKind::Dma => Some(self.dma_master(base_dir)?.master.fit.prony.clone()),
             _ => None,

@@ -1,19 +1,21 @@
-//! The forward problem of `rollfit forward`: one scene per `[sweep]`
-//! temperature, and the rung of the model ladder that gives μ.
+//! The forward problem of `rollfit forward` (and `rollfit bench`) from a
+//! scene file (docs/ARCHITECTURE.md, "Contract", "Scene file"): one scene
+//! per `[sweep]` temperature, and the rung of the model ladder that gives
+//! μ.
 
 use std::path::Path;
 use std::sync::Arc;
 
-use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::RollingSetup;
 use rollfit_model::exact::{ExactSettings, RollingCylinder};
 use rollfit_model::{Prony, Scene, Shifted, ViscoelasticModulus};
 
 use super::material::MaterialSection;
-use super::setup::{ContactName, DEFAULT_ACCURACY, ShapeName, section_of};
+use super::setup::{ContactName, DEFAULT_ACCURACY, ShapeName};
 use super::sweep::temperature_without_shift;
 use super::values::Real;
-use super::{DynScene, SceneFile};
+use super::{DynScene, InSection, SceneFile};
+use crate::error::{IoError, SceneError};
 
 /// How `rollfit forward` computes μ for a block.
 pub enum ForwardRung {
@@ -62,39 +64,58 @@ pub struct ForwardSetup {
 }
 
 impl SceneFile {
-    /// Builds the forward problem. `scene_path` locates files the scene refers to.
-    pub fn forward_setup(&self, scene_path: &Path) -> Result<ForwardSetup> {
-        let material_section = self
-            .material
-            .as_ref()
-            .context("forward needs a [material] section (the modulus to predict μ(v) from)")?;
-        let sweep = self
-            .sweep
-            .as_ref()
-            .context("forward needs a [sweep] section (v_min, v_max, count or v = [..])")?;
-        let speeds = sweep.speeds().context("[sweep]")?;
+    /// Builds the forward problem. `scene_path` locates files the scene
+    /// refers to; `note` receives what a modulus table's reader says about
+    /// the file, each time the table is read.
+    pub fn forward_setup(
+        &self,
+        scene_path: &Path,
+        note: &dyn Fn(&str),
+    ) -> Result<ForwardSetup, IoError> {
+        Ok(self.forward_blocks(scene_path, note)?)
+    }
+
+    /// [`Self::forward_setup`], with the scene's own error.
+    fn forward_blocks(
+        &self,
+        scene_path: &Path,
+        note: &dyn Fn(&str),
+    ) -> Result<ForwardSetup, SceneError> {
+        let material_section = self.material.as_ref().ok_or(SceneError::NeedsMaterial)?;
+        let sweep = self.sweep.as_ref().ok_or(SceneError::NeedsSweep)?;
+        let speeds = sweep.check_speeds().section("[sweep]")?;
 
         let base_dir = scene_path.parent().unwrap_or(Path::new(""));
-        let material = material_section.build(base_dir).context("[material]")?;
+        let material = material_section
+            .build(base_dir, note)
+            .section("[material]")?;
         let materials: Vec<(Box<dyn ViscoelasticModulus>, Option<ShiftApplied>)> =
             match &sweep.temperature {
                 None => vec![(material, None)],
                 Some(temperatures) => {
-                    temperatures.check().context("[sweep]")?;
+                    temperatures.check().section("[sweep]")?;
                     let rule = material_section
                         .shift_rule(base_dir)
-                        .context("[material]")?
-                        .with_context(|| temperature_without_shift(temperatures))?;
+                        .section("[material]")?
+                        .ok_or_else(|| temperature_without_shift(temperatures))?;
                     // One reference modulus (a table is read once), shifted
                     // to each temperature.
                     let reference: Arc<dyn ViscoelasticModulus> = Arc::from(material);
                     let mut materials = Vec::new();
                     for (i, &temperature) in temperatures.values().iter().enumerate() {
-                        let log10_a_t = rule.log10_shift(temperature).with_context(|| {
-                            format!("[material.shift] at [sweep] {} °C", temperatures.entry(i))
-                        })?;
-                        let shifted = Shifted::new(Arc::clone(&reference), log10_a_t)
-                            .map_err(|e| anyhow!("[material.shift]: {e}"))?;
+                        let log10_a_t =
+                            rule.log10_shift(temperature)
+                                .map_err(|e| SceneError::ShiftAt {
+                                    entry: temperatures.entry(i),
+                                    source: Box::new(e),
+                                })?;
+                        let shifted =
+                            Shifted::new(Arc::clone(&reference), log10_a_t).map_err(|error| {
+                                SceneError::SectionModel {
+                                    section: "[material.shift]",
+                                    error,
+                                }
+                            })?;
                         let applied = ShiftApplied {
                             temperature,
                             log10_a_t,
@@ -116,11 +137,15 @@ impl SceneFile {
         let mut blocks = Vec::with_capacity(materials.len());
         for (material, shift) in materials {
             let mut scene = Scene::new(geometry, substrate, contact, material)
-                .map_err(|e| anyhow!("{}{e}", section_of(&e)))?;
+                .map_err(|error| SceneError::SetUp { error })?;
             if let Some(Real(tolerance)) = sweep.tolerance {
-                scene = scene
-                    .with_tolerance(tolerance)
-                    .map_err(|e| anyhow!("[sweep]: {e}"))?;
+                scene =
+                    scene
+                        .with_tolerance(tolerance)
+                        .map_err(|error| SceneError::SectionModel {
+                            section: "[sweep]",
+                            error,
+                        })?;
             }
             let log10_a_t = shift.map(|s| s.log10_a_t);
             let rung = match self.contact.size {
@@ -128,6 +153,7 @@ impl SceneFile {
                     material_section,
                     base_dir,
                     log10_a_t,
+                    note,
                 )?),
                 Some(ContactName::LowSpeed) => ForwardRung::LowSpeed,
                 Some(ContactName::Auto) => ForwardRung::Auto {
@@ -135,11 +161,9 @@ impl SceneFile {
                     // auto may use the exact cylinder where a film is
                     // negligible, so the film does not rule it out here.
                     exact: self
-                        .exact_material_for(material_section, base_dir, log10_a_t, false)
-                        .and_then(|prony| {
-                            self.exact_cylinder_with(&prony, ExactSettings::default())
-                        })
-                        .map_err(|e| format!("{e:#}")),
+                        .exact_material_for(material_section, base_dir, log10_a_t, false, note)
+                        .and_then(|prony| self.exact_with(&prony, ExactSettings::default()))
+                        .map_err(|e| crate::chain(&e)),
                 },
                 None | Some(ContactName::Dynamic) | Some(ContactName::Static) => ForwardRung::Paper,
             };
@@ -158,20 +182,23 @@ impl SceneFile {
         material: &MaterialSection,
         base_dir: &Path,
         log10_a_t: Option<f64>,
-    ) -> Result<RollingCylinder> {
-        let prony = self.exact_material(material, base_dir, log10_a_t)?;
-        self.exact_cylinder_with(&prony, ExactSettings::default())
+        note: &dyn Fn(&str),
+    ) -> Result<RollingCylinder, SceneError> {
+        let prony = self.exact_material_for(material, base_dir, log10_a_t, true, note)?;
+        self.exact_with(&prony, ExactSettings::default())
     }
 
     /// The Prony series the exact solution of this scene uses, after
-    /// checking that it applies (cylinder, half-space, "sls" or "prony").
-    pub(crate) fn exact_material(
+    /// checking that it applies (cylinder, half-space, "sls" or "prony");
+    /// `note` as for [`Self::forward_setup`].
+    pub fn exact_material(
         &self,
         material: &MaterialSection,
         base_dir: &Path,
         log10_a_t: Option<f64>,
-    ) -> Result<Prony> {
-        self.exact_material_for(material, base_dir, log10_a_t, true)
+        note: &dyn Fn(&str),
+    ) -> Result<Prony, IoError> {
+        Ok(self.exact_material_for(material, base_dir, log10_a_t, true, note)?)
     }
 
     /// As [`Self::exact_material`]; `refuse_film`: a film rules the exact
@@ -182,40 +209,42 @@ impl SceneFile {
         base_dir: &Path,
         log10_a_t: Option<f64>,
         refuse_film: bool,
-    ) -> Result<Prony> {
+        note: &dyn Fn(&str),
+    ) -> Result<Prony, SceneError> {
         if self.geometry.shape != ShapeName::Cylinder {
-            bail!(
-                "[contact]: size = \"exact\" needs shape = \"cylinder\": the exact solution is the \
-                 plane-strain rolling cylinder (there is no three-dimensional one for a sphere)"
-            );
+            return Err(SceneError::ExactNeedsCylinder);
         }
         if refuse_film && self.substrate.thickness.is_some() {
-            bail!(
-                "[contact]: size = \"exact\" is for a half-space; remove [substrate] thickness \
-                 (films use size = \"dynamic\" or \"static\")"
-            );
+            return Err(SceneError::ExactNeedsHalfSpace);
         }
-        let Some(prony) = material.prony(base_dir).context("[material]")? else {
-            bail!(
-                "[contact]: size = \"exact\" needs [material] model = \"sls\" or \"prony\" \
-                 (the exact solution works with the creep compliance of a Prony series)"
-            );
+        let Some(prony) = material.prony(base_dir, note).section("[material]")? else {
+            return Err(SceneError::ExactNeedsProny);
         };
         Ok(match log10_a_t {
-            Some(l) => prony
-                .shifted(l)
-                .map_err(|e| anyhow!("[material.shift]: {e}"))?,
+            Some(l) => prony.shifted(l).map_err(|error| SceneError::SectionModel {
+                section: "[material.shift]",
+                error,
+            })?,
             None => prony,
         })
     }
 
     /// The exact rolling cylinder of this scene's geometry and substrate
     /// for `prony` with explicit discretisation settings.
-    pub(crate) fn exact_cylinder_with(
+    pub fn exact_cylinder_with(
         &self,
         prony: &Prony,
         settings: ExactSettings,
-    ) -> Result<RollingCylinder> {
+    ) -> Result<RollingCylinder, IoError> {
+        Ok(self.exact_with(prony, settings)?)
+    }
+
+    /// [`Self::exact_cylinder_with`], with the scene's own error.
+    fn exact_with(
+        &self,
+        prony: &Prony,
+        settings: ExactSettings,
+    ) -> Result<RollingCylinder, SceneError> {
         let setup = self.rolling_setup();
         RollingCylinder::with_settings(
             prony,
@@ -224,6 +253,9 @@ impl SceneFile {
             setup.geometry.load,
             settings,
         )
-        .map_err(|e| anyhow!("[contact] exact: {e}"))
+        .map_err(|error| SceneError::SectionModel {
+            section: "[contact] exact",
+            error,
+        })
     }
 }

@@ -4,22 +4,23 @@
 //! The anchors (`E0`, `E_at`, `contact_radius`) are measurements of this
 //! rolling experiment and are read here; every other key is a fit setting,
 //! read by [`FitSettings::set`] through [`super::fit_settings`] like the
-//! settings of a batch manifest and the flags of `rollfit fit`.
+//! settings of a batch manifest and the flags of `rollfit fit`
+//! (docs/ARCHITECTURE.md, "Contract", "Scene file").
 
 use std::fmt;
 
-use anyhow::{Context, Result, anyhow, bail, ensure};
 use rollfit_fit::{FitParams, FitSettings, RollingSetup, ScaleAnchor};
 use rollfit_model::{Scene, StandardLinearSolid};
 use serde::Deserialize;
 use serde::de::{Deserializer, MapAccess, Visitor};
 
-use super::SceneFile;
 use super::fit_settings::{Key, TableSettings};
 use super::material::MaterialSection;
-use super::setup::{ContactName, section_of};
+use super::setup::ContactName;
 use super::shift::ShiftKind;
 use super::values::{Real, require_positive};
+use super::{InSection, SceneFile};
+use crate::error::{IoError, SceneError};
 
 /// The keys of `[fit]`: the scale anchors, then the fit settings
 /// ([`rollfit_fit::settings::SETTING_KEYS`], in the order messages have
@@ -108,7 +109,7 @@ pub struct ContactAnchor {
 impl FitSection {
     /// Checks the scale anchors: each positive, at most one, and below
     /// `E1_max`. The settings were checked as they were read.
-    pub(super) fn check(&self) -> Result<()> {
+    pub(super) fn check(&self) -> Result<(), SceneError> {
         if let Some(Real(e0)) = self.e0 {
             require_positive("E0", e0)?;
         }
@@ -120,13 +121,12 @@ impl FitSection {
             require_positive("contact_radius.v", anchor.v.0)?;
             require_positive("contact_radius.r", anchor.r.0)?;
         }
-        if let (Some(e1_max), Some(Real(e0))) = (self.settings.e1_max, self.e0) {
-            ensure!(
-                e1_max > e0,
-                "E1_max = {e1_max} must exceed the known static modulus E0 = {e0}"
-            );
+        if let (Some(e1_max), Some(Real(e0))) = (self.settings.e1_max, self.e0)
+            && e1_max <= e0
+        {
+            return Err(SceneError::GlassyBelowStatic { e1_max, e0 });
         }
-        let anchors: Vec<&str> = [
+        let anchors: Vec<&'static str> = [
             ("`E0`", self.e0.is_some()),
             ("`E_at`", self.e_at.is_some()),
             ("`contact_radius`", self.contact_radius.is_some()),
@@ -134,17 +134,20 @@ impl FitSection {
         .into_iter()
         .filter_map(|(key, present)| present.then_some(key))
         .collect();
-        ensure!(
-            anchors.len() <= 1,
-            "more than one scale anchor ({}): give at most one of E0, E_at and contact_radius",
-            anchors.join(", ")
-        );
+        if anchors.len() > 1 {
+            return Err(SceneError::SeveralAnchors { anchors });
+        }
         Ok(())
     }
 
     /// The fit parameters the section asks for: its anchor and settings
     /// over the defaults of [`FitParams`].
-    pub fn params(&self) -> Result<FitParams> {
+    pub fn params(&self) -> Result<FitParams, IoError> {
+        Ok(self.fit_params()?)
+    }
+
+    /// [`Self::params`], with the scene's own error.
+    fn fit_params(&self) -> Result<FitParams, SceneError> {
         let anchor = match (self.e0, self.e_at, self.contact_radius) {
             (Some(Real(e0)), None, None) => Some(ScaleAnchor::StaticModulus(e0)),
             (None, Some(a), None) => Some(ScaleAnchor::ModulusAt {
@@ -156,7 +159,7 @@ impl FitSection {
                 radius: a.r.0,
             }),
             (None, None, None) => None,
-            _ => bail!("give at most one scale anchor (E0, E_at or contact_radius)"),
+            _ => return Err(SceneError::AnchorConflict),
         };
         let mut params = FitParams {
             anchor,
@@ -174,40 +177,45 @@ impl SceneFile {
     /// `[material]`, its E0 and E1 as the starting point. `[sweep]` is not
     /// used. The fit checks the whole against the set-up with
     /// [`FitParams::check`].
-    pub fn fit_setup(&self) -> Result<(RollingSetup, FitParams)> {
+    pub fn fit_setup(&self) -> Result<(RollingSetup, FitParams), IoError> {
+        Ok(self.inverse_setup()?)
+    }
+
+    /// [`Self::fit_setup`], with the scene's own error.
+    fn inverse_setup(&self) -> Result<(RollingSetup, FitParams), SceneError> {
         match self.contact.size {
-            Some(ContactName::Exact) => bail!(
-                "[contact]: size = \"exact\" is a forward-only reference (its μ has no fast \
-                 gradient); fit with size = \"dynamic\" (the paper's) or \"static\""
-            ),
-            Some(name @ (ContactName::LowSpeed | ContactName::Auto)) => bail!(
-                "[contact]: size = \"{}\" is for rollfit forward only (a fit needs one model \
-                 with a gradient at every speed); fit with size = \"dynamic\" (the paper's) \
-                 or \"static\"",
-                if name == ContactName::Auto {
-                    "auto"
-                } else {
-                    "low-speed"
-                }
-            ),
+            Some(ContactName::Exact) => return Err(SceneError::ExactNotForFit),
+            Some(name @ (ContactName::LowSpeed | ContactName::Auto)) => {
+                return Err(SceneError::ForwardOnly {
+                    size: if name == ContactName::Auto {
+                        "auto"
+                    } else {
+                        "low-speed"
+                    },
+                });
+            }
             _ => {}
         }
         let setup = self.rolling_setup();
         // The model owns the ranges of the set-up; a placeholder material
         // lets it check them before any fitting starts.
-        let placeholder = StandardLinearSolid::new(1.0, 2.0, 1.0).map_err(|e| anyhow!("{e}"))?;
+        let placeholder =
+            StandardLinearSolid::new(1.0, 2.0, 1.0).map_err(|error| SceneError::Model { error })?;
         let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, placeholder)
-            .map_err(|e| anyhow!("{}{e}", section_of(&e)))?;
+            .map_err(|error| SceneError::SetUp { error })?;
         let fit = self.fit.clone().unwrap_or_default();
-        let mut params = fit.params().context("[fit]")?;
+        let mut params = fit.fit_params().section("[fit]")?;
         scene
             .with_tolerance(params.model_tolerance)
-            .map_err(|e| anyhow!("[fit]: {e}"))?;
+            .map_err(|error| SceneError::SectionModel {
+                section: "[fit]",
+                error,
+            })?;
         params.start = self.material.as_ref().and_then(MaterialSection::start);
         // A scene's shift gives a temperature set its reference temperature
         // and, for WLF, starting constants; [fit] shift and T_ref override.
         if let Some(shift) = self.material.as_ref().and_then(|m| m.shift.as_ref()) {
-            shift.check().context("[material.shift]")?;
+            shift.check().section("[material.shift]")?;
             if params.shift.t_ref.is_none() {
                 params.shift.t_ref = Some(shift.t_ref.0);
             }

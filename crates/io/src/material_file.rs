@@ -1,17 +1,17 @@
 //! material.toml, written by `rollfit master`: the `[material]` table of a
-//! scene file (docs/ARCHITECTURE.md, "Contract") holding the master
+//! scene file (docs/ARCHITECTURE.md, "Contract", "Scene file") holding the master
 //! curve's Prony series at T_ref and, for several isotherms, its
 //! `[material.shift]`, for a scene to copy (or to use the DMA file itself,
 //! `model = "dma"`); numbers are written with the shortest digits that read
 //! back to the same f64, so a scene using the file predicts exactly what
 //! the master curve does.
 
-use anyhow::{Context, Result};
 use rollfit_fit::master::ShiftLaw;
 use rollfit_model::ViscoelasticModulus;
 use serde::Serialize;
 
 use crate::dma_master::DmaMaster;
+use crate::error::{Fault, IoError};
 
 #[derive(Serialize)]
 struct MaterialFile {
@@ -55,7 +55,7 @@ struct ShiftPoint {
 }
 
 /// The file's text, with a comment header saying where it came from.
-pub fn encode(built: &DmaMaster) -> Result<Vec<u8>> {
+pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
     let m = &built.master;
     let prony = &m.fit.prony;
     let t_ref = built.settings.t_ref();
@@ -102,7 +102,10 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>> {
             shift,
         },
     };
-    let body = toml::to_string(&file).context("cannot format material.toml")?;
+    let body = toml::to_string(&file).map_err(|source| Fault::TomlEncode {
+        file: "material.toml",
+        source,
+    })?;
     let mut text = format!(
         "# Written by rollfit master from {} ({} isotherms, {} points).\n\
          # Young's modulus at T_ref = {t_ref} °C: a Prony series E*(ω) = E0 + Σ H_k iωτ_k/(1 + iωτ_k),\n\

@@ -1,9 +1,10 @@
 //! `[geometry]`, `[substrate]` and `[contact]`: the rolling set-up.
 
-use anyhow::{Result, bail};
 use rollfit_fit::RollingSetup;
-use rollfit_model::{ContactSize, Geometry, ModelError, Shape, Substrate};
+use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
 use serde::Deserialize;
+
+use crate::error::SceneError;
 
 use super::SceneFile;
 use super::values::Real;
@@ -79,16 +80,13 @@ pub struct ContactSection {
 
 impl ContactSection {
     /// `accuracy` belongs to `size = "auto"`.
-    pub(super) fn check(&self) -> Result<()> {
+    pub(super) fn check(&self) -> Result<(), SceneError> {
         if let Some(Real(accuracy)) = self.accuracy {
             if self.size != Some(ContactName::Auto) {
-                bail!(
-                    "[contact]: accuracy = {accuracy} is the target of size = \"auto\"; \
-                     add size = \"auto\" or remove accuracy"
-                );
+                return Err(SceneError::AccuracyWithoutAuto { accuracy });
             }
             if !(1e-8..=0.5).contains(&accuracy) {
-                bail!("[contact]: accuracy = {accuracy} must lie between 1e-8 and 0.5 (relative)");
+                return Err(SceneError::AccuracyOutOfRange { accuracy });
             }
         }
         Ok(())
@@ -96,8 +94,8 @@ impl ContactSection {
 }
 
 impl SceneFile {
-    /// The body, substrate and contact rule of [geometry], [substrate] and
-    /// [contact] (values unchecked: `Scene::new` checks them).
+    /// The body, substrate and contact rule of `[geometry]`, `[substrate]` and
+    /// `[contact]` (values unchecked: `Scene::new` checks them).
     pub fn rolling_setup(&self) -> RollingSetup {
         RollingSetup {
             geometry: Geometry {
@@ -124,21 +122,5 @@ impl SceneFile {
                 Some(ContactName::Static) => ContactSize::Static,
             },
         }
-    }
-}
-
-/// The section a parameter checked by `Scene::new` lives in, as a message
-/// prefix, so that "radius = -1" reads "[geometry]: radius = -1". The
-/// model checks the geometry, the substrate and the material together (the
-/// load's check needs the material's E(0)) and owns their ranges, so the
-/// sections cannot check themselves without copying them.
-pub(super) fn section_of(error: &ModelError) -> &'static str {
-    match error {
-        ModelError::InvalidParameter { name, .. } => match name.as_str() {
-            "radius" | "load" => "[geometry]: ",
-            "poisson" | "thickness" => "[substrate]: ",
-            _ => "[material]: ",
-        },
-        _ => "",
     }
 }

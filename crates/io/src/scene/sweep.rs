@@ -1,13 +1,14 @@
-//! `[sweep]`: the speeds and temperatures `rollfit forward` evaluates μ at.
+//! `[sweep]`: the speeds and temperatures `rollfit forward` evaluates μ at
+//! (docs/ARCHITECTURE.md, "Contract", "Scene file").
 
 use std::fmt;
 
-use anyhow::{Context, Result, bail, ensure};
 use rollfit_model::modulus::FreeShift;
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
 use super::values::{Real, finite, reals, require_positive};
+use crate::error::{IoError, SceneError};
 
 /// Default number of log-spaced speeds of a `[sweep]` given by its range.
 pub const DEFAULT_SWEEP_COUNT: i64 = 61;
@@ -17,12 +18,10 @@ pub const DEFAULT_SWEEP_COUNT: i64 = 61;
 pub const MAX_SWEEP_COUNT: i64 = 1_000_000;
 
 /// The error of a `[sweep] temperature` without `[material.shift]`.
-pub(crate) fn temperature_without_shift(temperature: &SweepTemperature) -> String {
-    format!(
-        "[sweep] {} is set but [material] has no [material.shift]: without a \
-         time-temperature shift the material is known only at its reference temperature",
-        temperature.describe()
-    )
+pub(crate) fn temperature_without_shift(temperature: &SweepTemperature) -> SceneError {
+    SceneError::TemperatureWithoutShift {
+        temperature: temperature.describe(),
+    }
 }
 
 /// `[sweep] temperature`, °C: one temperature, or a list of them (a
@@ -68,24 +67,24 @@ impl SweepTemperature {
     /// Checks what serde cannot see: a list names at least one temperature
     /// and none twice (within the model's [`FreeShift::TEMPERATURE_TOLERANCE`],
     /// the rule the fit uses to tell the temperatures of a set apart).
-    pub(super) fn check(&self) -> Result<()> {
+    pub(super) fn check(&self) -> Result<(), SceneError> {
         let SweepTemperature::List(list) = self else {
             return Ok(());
         };
-        ensure!(
-            !list.is_empty(),
-            "`temperature = []` lists no temperatures: give at least one (°C), e.g. \
-             temperature = [0.0, 20.0, 40.0], or leave the key out"
-        );
+        if list.is_empty() {
+            return Err(SceneError::NoTemperatures);
+        }
         for (j, &t) in list.iter().enumerate() {
             if let Some(i) = list[..j]
                 .iter()
                 .position(|&s| (s - t).abs() <= FreeShift::TEMPERATURE_TOLERANCE)
             {
-                bail!(
-                    "temperature[{j}] = {t} repeats temperature[{i}] = {}: list each temperature once",
-                    list[i]
-                );
+                return Err(SceneError::RepeatedTemperature {
+                    index: j,
+                    temperature: t,
+                    first: i,
+                    first_temperature: list[i],
+                });
             }
         }
         Ok(())
@@ -149,68 +148,78 @@ pub struct SweepSection {
 
 /// The speeds `rollfit fit` accepts ([`rollfit_fit::data::SPEED_RANGE`]),
 /// so that a synthetic measurement can be fitted back.
-fn in_speed_range(key: &str, v: f64) -> Result<()> {
+fn in_speed_range(key: impl FnOnce() -> String, v: f64) -> Result<(), SceneError> {
     let (low, high) = rollfit_fit::data::SPEED_RANGE;
-    ensure!(
-        (low..=high).contains(&v),
-        "{key} = {v:e}: speeds must lie between {low:e} and {high:e} m/s (the range of a rolling \
-         measurement that `rollfit fit` accepts)"
-    );
-    Ok(())
+    if (low..=high).contains(&v) {
+        return Ok(());
+    }
+    Err(SceneError::SpeedOutOfRange {
+        key: key(),
+        value: v,
+        low,
+        high,
+    })
 }
 
 impl SweepSection {
     /// The speeds (m/s), strictly increasing: log-spaced from the range or
     /// the explicit list.
-    pub fn speeds(&self) -> Result<Vec<f64>> {
+    pub fn speeds(&self) -> Result<Vec<f64>, IoError> {
+        Ok(self.check_speeds()?)
+    }
+
+    /// [`Self::speeds`], with the scene's own error.
+    pub(super) fn check_speeds(&self) -> Result<Vec<f64>, SceneError> {
         if let Some(list) = &self.v {
-            ensure!(
-                self.v_min.is_none() && self.v_max.is_none() && self.count.is_none(),
-                "give either `v = [..]` or `v_min`, `v_max` (and `count`), not both"
-            );
-            ensure!(!list.is_empty(), "`v` is empty: list at least one speed");
+            if self.v_min.is_some() || self.v_max.is_some() || self.count.is_some() {
+                return Err(SceneError::SpeedsTwice);
+            }
+            if list.is_empty() {
+                return Err(SceneError::NoSpeedListed);
+            }
             let speeds = reals(list);
             for (i, &v) in speeds.iter().enumerate() {
-                ensure!(v > 0.0, "v[{i}] = {v}: speeds must be greater than zero");
-                in_speed_range(&format!("v[{i}]"), v)?;
+                if v <= 0.0 {
+                    return Err(SceneError::SpeedNotPositive { index: i, value: v });
+                }
+                in_speed_range(|| format!("v[{i}]"), v)?;
             }
             if let Some(i) = speeds.windows(2).position(|w| w[1] <= w[0]) {
-                bail!(
-                    "v[{}] = {} does not exceed v[{i}] = {}: list the speeds in increasing order",
-                    i + 1,
-                    speeds[i + 1],
-                    speeds[i]
-                );
+                return Err(SceneError::SpeedsNotIncreasing {
+                    index: i + 1,
+                    value: speeds[i + 1],
+                    previous: speeds[i],
+                });
             }
             return Ok(speeds);
         }
-        let v_min = self
-            .v_min
-            .context("needs `v_min` and `v_max` (m/s), or a list `v = [..]`")?
-            .0;
-        let v_max = self
-            .v_max
-            .context("needs `v_min` and `v_max` (m/s), or a list `v = [..]`")?
-            .0;
+        let v_min = self.v_min.ok_or(SceneError::NoSpeeds)?.0;
+        let v_max = self.v_max.ok_or(SceneError::NoSpeeds)?.0;
         require_positive("v_min", v_min)?;
         require_positive("v_max", v_max)?;
-        in_speed_range("v_min", v_min)?;
-        in_speed_range("v_max", v_max)?;
-        ensure!(
-            v_min < v_max,
-            "v_min = {v_min} must be less than v_max = {v_max}"
-        );
+        in_speed_range(|| "v_min".into(), v_min)?;
+        in_speed_range(|| "v_max".into(), v_max)?;
+        if v_min >= v_max {
+            return Err(SceneError::RangeNotIncreasing { v_min, v_max });
+        }
         let count = self.count.unwrap_or(DEFAULT_SWEEP_COUNT);
-        ensure!(count >= 1, "count = {count}: must be at least 1");
-        ensure!(
-            count <= MAX_SWEEP_COUNT,
-            "count = {count}: at most {MAX_SWEEP_COUNT} speeds"
-        );
+        if count < 1 {
+            return Err(SceneError::CountBelowOne { count });
+        }
+        if count > MAX_SWEEP_COUNT {
+            return Err(SceneError::CountTooLarge {
+                count,
+                max: MAX_SWEEP_COUNT,
+            });
+        }
         let speeds = log_spaced(v_min, v_max, count as usize);
-        ensure!(
-            speeds.windows(2).all(|w| w[0] < w[1]),
-            "count = {count} is too many distinct speeds between v_min = {v_min} and v_max = {v_max}"
-        );
+        if !speeds.windows(2).all(|w| w[0] < w[1]) {
+            return Err(SceneError::CountTooDense {
+                count,
+                v_min,
+                v_max,
+            });
+        }
         Ok(speeds)
     }
 }

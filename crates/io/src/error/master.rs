@@ -1,0 +1,99 @@
+//! The errors of building a master curve from a DMA file
+//! ([`DmaMasterError`], reached as [`super::IoError::Master`]; built by
+//! [`crate::dma_master`] for `rollfit master` and a scene's
+//! `[material] model = "dma"`, docs/ARCHITECTURE.md, "Contract", "DMA
+//! files"). What the fit library refuses is wrapped by a variant naming
+//! the file ([`DmaMasterError::InFile`], [`DmaMasterError::MasterCurve`]),
+//! whose source `{:#}` prints after it.
+
+use std::fmt;
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+use super::IoError;
+
+/// A point of an isotherm where its sweep turns, as a message names it:
+/// `line 13: ω = 5.2e0 rad/s`, or `point 7: …` where the file has no line
+/// for it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TurnPoint {
+    /// The point's file line, if known.
+    pub line: Option<usize>,
+    /// Its index among the file's points, from 0.
+    pub index: usize,
+    /// Its frequency, rad/s.
+    pub omega: f64,
+}
+
+impl fmt::Display for TurnPoint {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(l) => write!(f, "line {l}: ω = {:e} rad/s", self.omega),
+            None => write!(f, "point {}: ω = {:e} rad/s", self.index + 1, self.omega),
+        }
+    }
+}
+
+/// Why no master curve could be built from a DMA file.
+#[derive(Debug, Error)]
+pub enum DmaMasterError {
+    /// The DMA reader refused the file: its message, which names the file
+    /// and line (shown, not a source, as the message always had it).
+    #[error("{error}")]
+    Read { error: Box<IoError> },
+    /// Some points have a temperature and some do not.
+    #[error(
+        "DMA file {}: {missing} of {total} points have no temperature: cannot tell which \
+         isotherm they belong to",
+        path.display()
+    )]
+    TemperatureMissing {
+        path: PathBuf,
+        /// Points without a temperature.
+        missing: usize,
+        /// Points in all.
+        total: usize,
+    },
+    /// What is wrong with the isotherms or the settings (the source).
+    #[error("DMA file {}", path.display())]
+    InFile {
+        path: PathBuf,
+        source: Box<DmaMasterError>,
+    },
+    /// The master-curve fit failed (the source says why).
+    #[error("DMA file {}: master curve", path.display())]
+    MasterCurve {
+        path: PathBuf,
+        source: Box<DmaMasterError>,
+    },
+    /// An isotherm whose frequencies neither rise nor fall throughout.
+    #[error(
+        "the isotherm at {temperature:.2} °C has frequencies that are not monotone ({}): a sweep \
+         runs up or down once; split a repeated sweep into its own temperature or remove the \
+         repeated points",
+        list(turn)
+    )]
+    NotMonotone {
+        /// °C.
+        temperature: f64,
+        /// The points about the turn, in file order.
+        turn: Vec<TurnPoint>,
+    },
+    /// The fit library refused the isotherms, the settings or the fit (its
+    /// message, shown, not a source).
+    #[error("{error}")]
+    Fit { error: rollfit_fit::FitError },
+}
+
+impl From<DmaMasterError> for IoError {
+    fn from(e: DmaMasterError) -> Self {
+        IoError::Master(Box::new(e))
+    }
+}
+
+/// `line 12: ω = …, line 13: ω = …`.
+fn list(turn: &[TurnPoint]) -> String {
+    let listed: Vec<String> = turn.iter().map(TurnPoint::to_string).collect();
+    listed.join(", ")
+}
