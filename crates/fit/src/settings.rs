@@ -245,13 +245,13 @@ impl FitSettings {
             }
             "terms_per_decade" => {
                 let density = number(key, &value)?;
-                let rule = TermRule::from_str(&format!("{density}/decade")).map_err(|_| {
-                    FitError::setting(
+                if !(density.is_finite() && density > 0.0) {
+                    return Err(FitError::setting(
                         key,
                         format!("terms_per_decade = {density}: must be greater than zero"),
-                    )
-                })?;
-                self.set_terms("terms_per_decade", rule)?;
+                    ));
+                }
+                self.set_terms("terms_per_decade", TermRule::PerDecade(density))?;
             }
             "tau" => match value {
                 SettingValue::Numbers(tau) => {
