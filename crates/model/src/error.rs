@@ -75,6 +75,12 @@ pub enum ModelError {
         /// Static half-width of the scene, m.
         scene: f64,
     },
+    /// No exact rolling solution exists for this body or substrate.
+    #[error("no exact rolling solution: {why}")]
+    ExactNotAvailable {
+        /// Why not.
+        why: &'static str,
+    },
     /// The exact cylinder's settings leave too few terms or quadrature nodes.
     #[error("exact rolling cylinder: need at least 2 terms and 4 quadrature nodes")]
     ExactTooCoarse,

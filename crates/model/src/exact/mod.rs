@@ -72,10 +72,12 @@
 //!   equations", Q. Appl. Math. 29 (1972) 525–534.
 //! - B.N.J. Persson, Eur. Phys. J. E 33 (2010) 327–333, Eq. (11).
 
+mod body;
 mod creep;
 mod kernel;
 mod solver;
 
+pub use body::{ExactFriction, ExactRolling, exact_body};
 pub use creep::CreepCompliance;
 
 use std::f64::consts::PI;
