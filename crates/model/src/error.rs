@@ -81,6 +81,13 @@ pub enum ModelError {
         /// Why not.
         why: &'static str,
     },
+    /// The active-set iteration or the linear solves of the exact sphere did
+    /// not converge.
+    #[error("exact rolling sphere: the contact did not converge at v = {speed} m/s")]
+    ExactSphereNotConverged {
+        /// Rolling speed, m/s.
+        speed: f64,
+    },
     /// The exact cylinder's settings leave too few terms or quadrature nodes.
     #[error("exact rolling cylinder: need at least 2 terms and 4 quadrature nodes")]
     ExactTooCoarse,

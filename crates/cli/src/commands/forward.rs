@@ -369,7 +369,11 @@ fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
         ForwardRung::Auto { accuracy, exact } => {
             let auto = block
                 .scene
-                .friction_auto(speeds, *accuracy, exact.as_ref().map_err(Clone::clone))
+                .friction_auto_with(
+                    speeds,
+                    *accuracy,
+                    exact.as_ref().map(|b| b.as_ref()).map_err(Clone::clone),
+                )
                 .map_err(anyhow::Error::msg)?;
             Ok(Solved {
                 mu: auto.mu.clone(),
@@ -378,12 +382,13 @@ fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
                 auto: Some(auto),
             })
         }
-        ForwardRung::Exact(cylinder) => {
-            // One speed takes milliseconds: in parallel.
+        ForwardRung::Exact(body) => {
+            // Milliseconds (cylinder) to a second (sphere) a speed: in
+            // parallel.
             use rayon::prelude::*;
             let solutions = speeds
                 .par_iter()
-                .map(|&v| cylinder.solve_with_error_estimate(v))
+                .map(|&v| body.exact_friction(v))
                 .collect::<Result<Vec<_>, _>>()
                 .map_err(anyhow::Error::msg)?;
             Ok(Solved {
@@ -463,6 +468,10 @@ fn rows<'a>(
 /// same at every temperature: a shift leaves the static modulus alone), the
 /// temperatures and, where the sweep brackets one, the friction maximum at
 /// each.
+///
+/// The exact sphere's estimated error above which `forward` warns.
+const SPHERE_NOTE_ERROR: f64 = 1e-3;
+
 fn summary(setup: &ForwardSetup, solved: &[Solved], mu: &[Vec<f64>]) -> String {
     let mut line = summary_line(setup, mu);
     let shape = setup.blocks[0].scene.geometry().shape;
@@ -474,7 +483,21 @@ fn summary(setup: &ForwardSetup, solved: &[Solved], mu: &[Vec<f64>]) -> String {
         if let Some(auto) = &solved.auto {
             line += &format!("\n{at}{}", auto.description(&setup.speeds, shape));
         }
-        if let (ForwardRung::Exact(_), Some(error)) = (&block.rung, &solved.error) {
+        if let (ForwardRung::Exact(_), Some(error), rollfit_model::Shape::Sphere) =
+            (&block.rung, &solved.error, shape)
+        {
+            let worst = error.iter().copied().fold(0.0, f64::max);
+            let above = error.iter().filter(|&&e| e > SPHERE_NOTE_ERROR).count();
+            if above > 0 {
+                line += &format!(
+                    "\nwarning: {at}the exact sphere's estimated error (the size of its \
+                     grid-extrapolation step) exceeds {SPHERE_NOTE_ERROR:.0e} at {above} of {} \
+                     speeds, up to {worst:.1e} (column error_estimate): at low speed the \
+                     material's memory is shorter than a boundary-element cell",
+                    error.len()
+                );
+            }
+        } else if let (ForwardRung::Exact(_), Some(error)) = (&block.rung, &solved.error) {
             let unresolved: Vec<usize> = (0..error.len())
                 .filter(|&i| error[i] > rollfit_model::exact::RESOLVED_ERROR)
                 .collect();

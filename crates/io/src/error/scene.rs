@@ -316,10 +316,11 @@ pub enum SceneError {
     /// `forward` without `[sweep]`.
     #[error("forward needs a [sweep] section (v_min, v_max, count or v = [..])")]
     NeedsSweep,
-    /// The exact solution for a sphere.
+    /// The exact cylinder asked of a sphere scene (the benchmark's
+    /// reference is the cylinder's).
     #[error(
-        "[contact]: size = \"exact\" needs shape = \"cylinder\": the exact solution is the \
-         plane-strain rolling cylinder (there is no three-dimensional one for a sphere)"
+        "[contact]: this needs shape = \"cylinder\": the reference is the plane-strain exact \
+         rolling cylinder"
     )]
     ExactNeedsCylinder,
     /// The exact solution on a film.

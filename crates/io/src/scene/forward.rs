@@ -7,7 +7,8 @@ use std::path::Path;
 use std::sync::Arc;
 
 use rollfit_fit::RollingSetup;
-use rollfit_model::exact::{ExactSettings, RollingCylinder};
+use rollfit_model::exact::{ExactRolling, ExactSettings, RollingCylinder, RollingSphere};
+use rollfit_model::Shape;
 use rollfit_model::{Prony, Scene, Shifted, ViscoelasticModulus};
 
 use super::material::MaterialSection;
@@ -23,15 +24,15 @@ pub enum ForwardRung {
     Paper,
     /// The low-speed asymptote at every speed.
     LowSpeed,
-    /// The exact rolling cylinder of the (shifted) material.
-    Exact(RollingCylinder),
+    /// The exact rolling cylinder or sphere of the (shifted) material.
+    Exact(Box<dyn ExactRolling>),
     /// `auto` with its accuracy and, where the scene has one, the exact
-    /// cylinder (else why not).
+    /// rolling body (else why not).
     Auto {
         /// Requested relative accuracy.
         accuracy: f64,
-        /// The exact rolling cylinder, or why there is none.
-        exact: std::result::Result<RollingCylinder, String>,
+        /// The exact rolling cylinder or sphere, or why there is none.
+        exact: std::result::Result<Box<dyn ExactRolling>, String>,
     },
 }
 
@@ -149,7 +150,7 @@ impl SceneFile {
             }
             let log10_a_t = shift.map(|s| s.log10_a_t);
             let rung = match self.contact.size {
-                Some(ContactName::Exact) => ForwardRung::Exact(self.exact_cylinder(
+                Some(ContactName::Exact) => ForwardRung::Exact(self.exact_body(
                     material_section,
                     base_dir,
                     log10_a_t,
@@ -162,7 +163,7 @@ impl SceneFile {
                     // negligible, so the film does not rule it out here.
                     exact: self
                         .exact_material_for(material_section, base_dir, log10_a_t, false, note)
-                        .and_then(|prony| self.exact_with(&prony, ExactSettings::default()))
+                        .and_then(|prony| self.exact_body_with(&prony))
                         .map_err(|e| crate::chain(&e)),
                 },
                 None | Some(ContactName::Dynamic) | Some(ContactName::Static) => ForwardRung::Paper,
@@ -174,18 +175,41 @@ impl SceneFile {
 }
 
 impl SceneFile {
-    /// The exact rolling cylinder of `[contact] size = "exact"`: a cylinder
-    /// on a half-space, the material a standard linear solid or a Prony
-    /// series (shifted by log10 a_T: τ_k → τ_k a_T).
-    fn exact_cylinder(
+    /// The exact rolling body of `[contact] size = "exact"`: a cylinder or
+    /// sphere on a half-space, the material a standard linear solid or a
+    /// Prony series (shifted by log10 a_T: τ_k → τ_k a_T).
+    fn exact_body(
         &self,
         material: &MaterialSection,
         base_dir: &Path,
         log10_a_t: Option<f64>,
         note: &dyn Fn(&str),
-    ) -> Result<RollingCylinder, SceneError> {
+    ) -> Result<Box<dyn ExactRolling>, SceneError> {
         let prony = self.exact_material_for(material, base_dir, log10_a_t, true, note)?;
-        self.exact_with(&prony, ExactSettings::default())
+        self.exact_body_with(&prony)
+    }
+
+    /// The exact rolling cylinder or sphere of this scene for `prony`, with
+    /// the default discretisation.
+    fn exact_body_with(&self, prony: &Prony) -> Result<Box<dyn ExactRolling>, SceneError> {
+        Ok(match self.rolling_setup().geometry.shape {
+            Shape::Cylinder => Box::new(self.exact_with(prony, ExactSettings::default())?),
+            Shape::Sphere => {
+                let setup = self.rolling_setup();
+                Box::new(
+                    RollingSphere::new(
+                        prony,
+                        setup.substrate.poisson,
+                        setup.geometry.radius,
+                        setup.geometry.load,
+                    )
+                    .map_err(|error| SceneError::SectionModel {
+                        section: "[contact] exact",
+                        error,
+                    })?,
+                )
+            }
+        })
     }
 
     /// The Prony series the exact solution of this scene uses, after
@@ -198,6 +222,10 @@ impl SceneFile {
         log10_a_t: Option<f64>,
         note: &dyn Fn(&str),
     ) -> Result<Prony, IoError> {
+        // The callers build the exact cylinder from it.
+        if self.geometry.shape != ShapeName::Cylinder {
+            return Err(SceneError::ExactNeedsCylinder.into());
+        }
         Ok(self.exact_material_for(material, base_dir, log10_a_t, true, note)?)
     }
 
@@ -211,9 +239,6 @@ impl SceneFile {
         refuse_film: bool,
         note: &dyn Fn(&str),
     ) -> Result<Prony, SceneError> {
-        if self.geometry.shape != ShapeName::Cylinder {
-            return Err(SceneError::ExactNeedsCylinder);
-        }
         if refuse_film && self.substrate.thickness.is_some() {
             return Err(SceneError::ExactNeedsHalfSpace);
         }

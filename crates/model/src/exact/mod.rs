@@ -76,9 +76,11 @@ mod body;
 mod creep;
 mod kernel;
 mod solver;
+mod sphere;
 
 pub use body::{ExactFriction, ExactRolling, exact_body};
 pub use creep::CreepCompliance;
+pub use sphere::{RollingSphere, SphereSettings, SphereSolution};
 
 use std::f64::consts::PI;
 

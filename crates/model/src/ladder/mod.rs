@@ -59,7 +59,7 @@ pub use model_error::{MODEL_ERROR_FACTOR, dynamic_contact_size, model_error_esti
 
 use crate::contact::{ContactSize, Shape};
 use crate::error::ModelError;
-use crate::exact::{ExactSettings, RollingCylinder};
+use crate::exact::{ExactRolling, RollingCylinder};
 use crate::modulus::ViscoelasticModulus;
 use crate::scene::{Scene, Substrate};
 use film_bound::FilmBound;
@@ -104,7 +104,8 @@ impl Rung {
             (Rung::Dynamic, Shape::Sphere) => "Eq. (17), dynamic contact size",
             (Rung::DynamicFilm, Shape::Cylinder) => "Eq. (11) with the film",
             (Rung::DynamicFilm, Shape::Sphere) => "Eq. (17) with the film",
-            (Rung::Exact, _) => "the exact rolling cylinder",
+            (Rung::Exact, Shape::Cylinder) => "the exact rolling cylinder",
+            (Rung::Exact, Shape::Sphere) => "the exact rolling sphere",
         }
     }
 }
@@ -169,7 +170,10 @@ impl AutoSweep {
             }
         }
         let reference = match &self.exact_unavailable {
-            None => "the exact rolling cylinder".to_string(),
+            None => match shape {
+                Shape::Cylinder => "the exact rolling cylinder".to_string(),
+                Shape::Sphere => "the exact rolling sphere".to_string(),
+            },
             Some(why) => format!(
                 "{} with the dynamic contact size (no exact rung: {why})",
                 match shape {
@@ -228,6 +232,17 @@ impl<M: ViscoelasticModulus> Scene<M> {
         accuracy: f64,
         exact: Result<&RollingCylinder, String>,
     ) -> Result<AutoSweep, ModelError> {
+        self.friction_auto_with(speeds, accuracy, exact.map(|c| c as &dyn ExactRolling))
+    }
+
+    /// As [`Self::friction_auto`] with any exact rolling body (the cylinder
+    /// or the sphere, [`crate::exact::exact_body`]).
+    pub fn friction_auto_with(
+        &self,
+        speeds: &[f64],
+        accuracy: f64,
+        exact: Result<&dyn ExactRolling, String>,
+    ) -> Result<AutoSweep, ModelError> {
         check_auto_request(speeds, accuracy)?;
         let exact = self.matching_exact(exact)?;
         let tolerance = (QUADRATURE_SHARE * accuracy).clamp(1e-12, 1e-2);
@@ -256,8 +271,8 @@ impl<M: ViscoelasticModulus> Scene<M> {
             tolerance,
         };
         let (mut sweep, neglected_bound) = rungs.asymptote_and_dynamic()?;
-        if let Ok(cylinder) = &exact {
-            rungs.exact_where_needed(cylinder, &mut sweep)?;
+        if let Ok(body) = &exact {
+            rungs.exact_where_needed(*body, &mut sweep)?;
         } else {
             rungs.add_model_error(&mut sweep);
         }
@@ -272,25 +287,25 @@ impl<M: ViscoelasticModulus> Scene<M> {
         })
     }
 
-    /// The caller's exact cylinder, checked to be this scene's; `Err` with
+    /// The caller's exact body, checked to be this scene's; `Err` with
     /// the reason when there is none.
     fn matching_exact<'c>(
         &self,
-        exact: Result<&'c RollingCylinder, String>,
-    ) -> Result<Result<&'c RollingCylinder, String>, ModelError> {
-        Ok(match (exact, self.geometry().shape) {
-            (Ok(cylinder), Shape::Cylinder) => {
-                let a0 = self.static_contact_size();
-                if (cylinder.static_half_width() / a0 - 1.0).abs() > 1e-8 {
+        exact: Result<&'c dyn ExactRolling, String>,
+    ) -> Result<Result<&'c dyn ExactRolling, String>, ModelError> {
+        Ok(match exact {
+            Ok(body) if body.shape() == self.geometry().shape => {
+                let size = self.static_contact_size();
+                if (body.static_contact_size() / size - 1.0).abs() > 1e-8 {
                     return Err(ModelError::ExactCylinderMismatch {
-                        exact: cylinder.static_half_width(),
-                        scene: a0,
+                        exact: body.static_contact_size(),
+                        scene: size,
                     });
                 }
-                Ok(cylinder)
+                Ok(body)
             }
-            (Ok(_), Shape::Sphere) => Err("there is no exact solution for a sphere".to_string()),
-            (Err(why), _) => Err(why),
+            Ok(_) => Err("the exact solution is for another body".to_string()),
+            Err(why) => Err(why),
         })
     }
 }
@@ -408,7 +423,7 @@ impl<M: ViscoelasticModulus> LadderRuns<'_, M> {
     /// is too large and applies (no film computed there).
     fn exact_where_needed(
         &self,
-        cylinder: &RollingCylinder,
+        body: &dyn ExactRolling,
         sweep: &mut PartialSweep,
     ) -> Result<(), ModelError> {
         // The exact cylinder is a half-space: with a film it may replace
@@ -426,17 +441,14 @@ impl<M: ViscoelasticModulus> LadderRuns<'_, M> {
         if exact_speeds.is_empty() {
             return Ok(());
         }
-        // As many Chebyshev terms as the model-error share needs, and no
-        // more (unless the caller asked for explicit terms).
-        let cylinder = if cylinder.settings().terms.is_none() {
-            cylinder.with_layer_resolution(ExactSettings::resolution_for(self.budget))
-        } else {
-            cylinder.clone()
-        };
-        // Milliseconds a speed: worth the threads.
+        // As fine a discretisation as the model-error share needs, and no
+        // finer (unless the caller chose it explicitly).
+        let body = body.with_accuracy(self.budget);
+        // Milliseconds (cylinder) to a second (sphere) a speed: worth the
+        // threads.
         let solved = exact_speeds
             .par_iter()
-            .map(|&i| cylinder.solve_with_error_estimate(self.speeds[i]))
+            .map(|&i| body.exact_friction(self.speeds[i]))
             .collect::<Result<Vec<_>, ModelError>>()?;
         for (&i, solution) in exact_speeds.iter().zip(solved) {
             // What the film adds where it was neglected stays.
