@@ -1,86 +1,195 @@
-//! The exact steady rolling sphere (crates/model/src/exact/sphere).
+//! The exact steady rolling sphere (crates/model/src/exact/sphere): its
+//! elastic limits at both speed ends (Hertz), the low-speed limit of
+//! Eq. (18), grid convergence against a finer grid, and the error map of
+//! Persson's Eq. (17) against it (an ignored study).
 
 use std::f64::consts::PI;
-use std::time::Instant;
 
 use rollfit_model::exact::{RollingSphere, SphereSettings};
-use rollfit_model::{Prony, StandardLinearSolid};
+use rollfit_model::{ContactSize, Geometry, Prony, Scene, Shape, StandardLinearSolid, Substrate};
 
 const RADIUS: f64 = 0.01;
 const LOAD: f64 = 0.15;
 
-fn sls(ratio: f64) -> Prony {
-    StandardLinearSolid::new(1e6, ratio * 1e6, 1.0).unwrap().to_prony()
+/// Persson's Fig. 2 material family: E0 = 1 MPa, τ = 1 s (ν = 0).
+fn sls(ratio: f64) -> StandardLinearSolid {
+    StandardLinearSolid::new(1e6, ratio * 1e6, 1.0).unwrap()
 }
 
 fn sphere(material: &Prony, cells: usize) -> RollingSphere {
-    let settings = SphereSettings { cells, ..SphereSettings::default() };
+    let settings = SphereSettings {
+        cells,
+        ..SphereSettings::default()
+    };
     RollingSphere::with_settings(material, 0.0, RADIUS, LOAD, settings).unwrap()
 }
 
+/// Hertz approach r²/R and peak pressure 3F/(2πr²) for compliance `j`.
+fn hertz(j: f64) -> (f64, f64) {
+    let r = (0.75 * LOAD * RADIUS * j).cbrt();
+    (r * r / RADIUS, 1.5 * LOAD / (PI * r * r))
+}
+
+/// An elastic solid (E1 = E0) gives μ = 0 and Hertz; a standard linear
+/// solid far below and far above its relaxation gives Hertz with E0 and
+/// E1. The grid is 48 cells, so the limits hold to the grid's accuracy:
+/// the approach to 1e-3 (measured 1.4e-4 at 40 cells for the elastic
+/// solid), the peak pressure (the centre cell's) to 3e-3.
 #[test]
-#[ignore]
-fn convergence_study() {
-    let m = sls(10.0);
-    let r0 = sphere(&m, 20).static_contact_radius();
-    for vt in [0.01, 0.1] {
-        for cells in [16, 20, 24, 28, 32, 40, 48, 56, 64, 80, 96, 112, 128] {
-            let sol = sphere(&m, cells).solve(vt * r0).unwrap();
-            println!("vt {vt} cells {cells} mu {:.7e} it {} area {:.5e}", sol.mu * RADIUS / r0 / vt, sol.iterations, sol.area / (PI * r0 * r0));
-        }
-    }
-    let s8 = sphere(&m, 48);
-    let s16 = RollingSphere::with_settings(&m, 0.0, RADIUS, LOAD, SphereSettings { cells: 48, quadrature_order: 16 }).unwrap();
-    for vt in [0.01, 1.0] {
-        println!("order 8 vs 16 at vt {vt}: {:.9e} {:.9e}", s8.solve(vt * r0).unwrap().mu, s16.solve(vt * r0).unwrap().mu);
+fn elastic_limits_are_hertz() {
+    let elastic = Prony::new(1e6, vec![], vec![]).unwrap();
+    let sol = sphere(&elastic, 48).solve_single(1e-3, 48).unwrap();
+    let (delta, p0) = hertz(1e-6);
+    println!(
+        "elastic: μ {:.1e}, δ {:.2e}, p {:.2e}",
+        sol.mu,
+        sol.approach / delta - 1.0,
+        sol.max_pressure / p0 - 1.0
+    );
+    assert!(sol.mu.abs() < 1e-12, "μ = {}", sol.mu);
+    assert!((sol.approach / delta - 1.0).abs() < 1e-3);
+    assert!((sol.max_pressure / p0 - 1.0).abs() < 3e-3);
+    let material = sls(10.0).to_prony();
+    for (v, j) in [(1e-12, 1e-6), (1e6, 1e-7)] {
+        let sol = sphere(&material, 48).solve_single(v, 48).unwrap();
+        let (delta, p0) = hertz(j);
+        println!(
+            "v {v:e}: μ {:.1e}, δ {:.2e}, p {:.2e}",
+            sol.mu,
+            sol.approach / delta - 1.0,
+            sol.max_pressure / p0 - 1.0
+        );
+        assert!(sol.mu.abs() < 1e-6, "v = {v}: μ = {}", sol.mu);
+        assert!((sol.approach / delta - 1.0).abs() < 1e-3, "v = {v}");
+        assert!((sol.max_pressure / p0 - 1.0).abs() < 3e-3, "v = {v}");
     }
 }
 
+/// At low speed μ approaches Eq. (18)'s linear term (3π/4) p_a L′(0) v/r0,
+/// which is exact at first order in tan δ: μR/r0 → (1 − E0/E1) vτ/r0 for
+/// the standard linear solid. At vτ/r0 = 0.02 the curve has begun to bend
+/// below it (by about 1.5 %, the slope between vτ/r0 = 0.02 and 0.04
+/// extrapolated to v = 0 lands on it): checked to the solver's own error
+/// estimate plus the bend. E1/E0 = 100 is not checked: at vτ/r0 ≲ 0.04
+/// its active-set iteration oscillates and the solve fails (issue 17
+/// note: the glassy edge layer, width vτE0/E1, is far below a cell).
 #[test]
-#[ignore]
-fn study() {
-    let elastic = Prony::new(1e6, vec![], vec![]).unwrap();
-    for cells in [20, 40, 80] {
-        let s = sphere(&elastic, cells);
-        let r0 = s.static_contact_radius();
-        let t = Instant::now();
-        let sol = s.solve(1.0).unwrap();
-        let hertz_delta = r0 * r0 / RADIUS;
-        let hertz_p0 = 3.0 * LOAD / (2.0 * PI * r0 * r0);
+fn low_speed_limit_is_eq18() {
+    for ratio in [10.0] {
+        let material = sls(ratio).to_prony();
+        let body = sphere(&material, 96);
+        let r0 = body.static_contact_radius();
+        let linear = |x: f64| (1.0 - 1.0 / ratio) * x * r0 / RADIUS;
+        let (a, b) = (0.02, 0.04);
+        let sa = body
+            .solve(a * r0)
+            .map_err(|e| format!("E1/E0 {ratio}: {e}"))
+            .unwrap();
+        let sb = body.solve(b * r0).unwrap();
+        let (ra, rb) = (sa.mu / linear(a), sb.mu / linear(b));
+        let at_zero = ra - (rb - ra) * a / (b - a);
         println!(
-            "elastic cells {cells}: mu {:.2e} delta {:.3e} area {:.3e} pmax {:.3e} iters {} {:.2?}",
-            sol.mu,
-            sol.approach / hertz_delta - 1.0,
-            sol.area / (PI * r0 * r0) - 1.0,
-            sol.max_pressure / hertz_p0 - 1.0,
-            sol.iterations,
-            t.elapsed()
+            "E1/E0 {ratio}: μ/μ_lin {ra:.5} (±{:.1e}) at {a}, {rb:.5} at {b}; extrapolated to 0: {at_zero:.5}",
+            sa.error_estimate
+        );
+        assert!(ra < 1.0 + sa.error_estimate, "{ra}");
+        assert!((ra - 1.0).abs() < 0.03 + sa.error_estimate, "{ra}");
+        assert!(
+            (at_zero - 1.0).abs() < 2.0 * (sa.error_estimate + sb.error_estimate) + 2e-3,
+            "{at_zero}"
         );
     }
-    for ratio in [10.0, 100.0] {
-        let m = sls(ratio);
-        let r0 = sphere(&m, 20).static_contact_radius();
-        for vt in [0.01, 1.0, 100.0] {
-            let v = vt * r0 / 1.0;
-            let mut line = format!("E1/E0 {ratio} vτ/r0 {vt}:");
-            for cells in [16, 24, 32, 48, 64, 96] {
-                let t = Instant::now();
-                let sol = sphere(&m, cells).solve(v).unwrap();
-                line += &format!(" [{cells}: {:.6e} {:.0?} it{}]", sol.mu * RADIUS / r0, t.elapsed(), sol.iterations);
-            }
-            println!("{line}");
-        }
+}
+
+/// The extrapolated μ of 96 cells against that of 144 cells: within the
+/// 96-cell solution's own error estimate, which is not more than 30 times
+/// pessimistic (the estimate is the size of the extrapolation step, at
+/// least the jitter floor 1e-4).
+#[test]
+fn grid_convergence() {
+    let material = sls(10.0).to_prony();
+    let r0 = sphere(&material, 48).static_contact_radius();
+    for x in [0.3, 3.0, 30.0] {
+        let coarse = sphere(&material, 96).solve(x * r0).unwrap();
+        let fine = sphere(&material, 144).solve(x * r0).unwrap();
+        let difference = (coarse.mu / fine.mu - 1.0).abs();
+        println!(
+            "vτ/r0 {x}: μ {:.7e} vs {:.7e}: {difference:.1e}, estimates {:.1e} / {:.1e}",
+            coarse.mu, fine.mu, coarse.error_estimate, fine.error_estimate
+        );
+        assert!(
+            difference <= coarse.error_estimate + fine.error_estimate,
+            "vτ/r0 = {x}"
+        );
+        assert!(
+            coarse.error_estimate < 30.0 * difference.max(1e-5),
+            "vτ/r0 = {x}"
+        );
     }
 }
 
+/// The error map of Eq. (17) against the exact sphere (README, "Where the
+/// methods fail"): standard linear solids E1/E0 = 2, 10, 100, 1000
+/// (ν = 0, Fig. 2's sphere), 13 speeds over six decades centred on the
+/// friction maximum of Eq. (17), dynamic and static contact size. Prints a
+/// table; asserts nothing beyond the solves succeeding.
+///
+/// `cargo test --release -p rollfit-model --test exact_sphere -- --ignored --nocapture eq17_error_map`
 #[test]
 #[ignore]
-fn cost_study() {
-    let m = sls(10.0);
-    let r0 = sphere(&m, 20).static_contact_radius();
-    for vt in [0.01, 1.0] {
-        let t = Instant::now();
-        let sol = sphere(&m, 96).solve(vt * r0).unwrap();
-        println!("vt {vt}: {:.6e} ± {:.1e} in {:.2?}", sol.mu * RADIUS / r0 / vt, sol.error_estimate, t.elapsed());
+fn eq17_error_map() {
+    for ratio in [2.0, 10.0, 100.0, 1000.0] {
+        let truth = sls(ratio);
+        let scene = |size| {
+            Scene::new(
+                Geometry {
+                    shape: Shape::Sphere,
+                    radius: RADIUS,
+                    load: LOAD,
+                },
+                Substrate {
+                    poisson: 0.0,
+                    film_thickness: None,
+                },
+                size,
+                truth.clone(),
+            )
+            .unwrap()
+            .with_tolerance(1e-8)
+            .unwrap()
+        };
+        let (dynamic, fixed) = (scene(ContactSize::Dynamic), scene(ContactSize::Static));
+        let body = sphere(&truth.to_prony(), 96);
+        let r0 = body.static_contact_radius();
+        let probe: Vec<f64> = (0..=80)
+            .map(|k| r0 * 10f64.powf(-4.0 + 0.1 * k as f64))
+            .collect();
+        let mu = dynamic.friction_sweep(&probe).unwrap();
+        let peak = probe[(0..mu.len())
+            .max_by(|&a, &b| mu[a].total_cmp(&mu[b]))
+            .unwrap()];
+        let speeds: Vec<f64> = (-6..=6)
+            .map(|k| peak * 10f64.powf(0.5 * k as f64))
+            .collect();
+        let (d, s) = (
+            dynamic.friction_sweep(&speeds).unwrap(),
+            fixed.friction_sweep(&speeds).unwrap(),
+        );
+        println!(
+            "E1/E0 = {ratio}: Eq. (17) maximum at vτ/r0 = {:.3}",
+            peak / r0
+        );
+        println!("| vτ/r0 | μR/r0 exact | error estimate | Eq. (17) dynamic | Eq. (17) static |");
+        for (i, &v) in speeds.iter().enumerate() {
+            let exact = body.solve(v).unwrap();
+            println!(
+                "| {:.3e} | {:.5e} | {:.1e} | {:+.2} % | {:+.2} % |",
+                v / r0,
+                exact.mu * RADIUS / r0,
+                exact.error_estimate,
+                100.0 * (d[i] / exact.mu - 1.0),
+                100.0 * (s[i] / exact.mu - 1.0)
+            );
+        }
     }
 }

@@ -7,8 +7,8 @@ use std::path::Path;
 use std::sync::Arc;
 
 use rollfit_fit::RollingSetup;
-use rollfit_model::exact::{ExactRolling, ExactSettings, RollingCylinder, RollingSphere};
 use rollfit_model::Shape;
+use rollfit_model::exact::{ExactRolling, ExactSettings, RollingCylinder, RollingSphere};
 use rollfit_model::{Prony, Scene, Shifted, ViscoelasticModulus};
 
 use super::material::MaterialSection;

@@ -109,7 +109,9 @@ pub fn exact_body(
     accuracy: f64,
 ) -> Result<Box<dyn ExactRolling>, ModelError> {
     Ok(match shape {
-        Shape::Cylinder => RollingCylinder::new(modulus, poisson, radius, load)?.with_accuracy(accuracy),
+        Shape::Cylinder => {
+            RollingCylinder::new(modulus, poisson, radius, load)?.with_accuracy(accuracy)
+        }
         Shape::Sphere => RollingSphere::with_settings(
             modulus,
             poisson,

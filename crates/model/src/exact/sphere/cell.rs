@@ -101,7 +101,11 @@ mod tests {
             let rho = MULTIPOLE_DISTANCE * 0.999;
             let (x, y) = (rho * angle.cos(), rho * angle.sin());
             let exact = unit_cell_potential(x, y);
-            assert!((far_field(rho) / exact - 1.0).abs() < 1e-10, "{angle}: {} vs {exact}", far_field(rho));
+            assert!(
+                (far_field(rho) / exact - 1.0).abs() < 1e-10,
+                "{angle}: {} vs {exact}",
+                far_field(rho)
+            );
         }
     }
 }

@@ -115,7 +115,9 @@ pub(crate) fn solve_contact(
     for iteration in 1..=MAX_SET_ITERATIONS {
         let index: Vec<usize> = (0..cells).filter(|&k| active[k]).collect();
         if index.is_empty() {
-            return Err(GridFailure::Model(ModelError::ExactSphereNotConverged { speed }));
+            return Err(GridFailure::Model(ModelError::ExactSphereNotConverged {
+                speed,
+            }));
         }
         let n = index.len();
         let mut z: Vec<f64> = index.iter().map(|&k| pressure[k].max(0.0)).collect();
@@ -136,7 +138,9 @@ pub(crate) fn solve_contact(
         let outcome = gmres(&mut apply, &rhs, &mut z, 80, tolerance, 20_000);
         applications += outcome.applications;
         if outcome.relative_residual > 1e3 * tolerance {
-            return Err(GridFailure::Model(ModelError::ExactSphereNotConverged { speed }));
+            return Err(GridFailure::Model(ModelError::ExactSphereNotConverged {
+                speed,
+            }));
         }
         pressure.iter_mut().for_each(|v| *v = 0.0);
         for (&k, &p) in index.iter().zip(&z) {
@@ -174,5 +178,7 @@ pub(crate) fn solve_contact(
         }
         active = next;
     }
-    Err(GridFailure::Model(ModelError::ExactSphereNotConverged { speed }))
+    Err(GridFailure::Model(ModelError::ExactSphereNotConverged {
+        speed,
+    }))
 }

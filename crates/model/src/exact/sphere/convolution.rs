@@ -144,7 +144,9 @@ mod tests {
     #[test]
     fn equals_the_direct_sum() {
         let (nx, ny) = (7, 5);
-        let table = |x: isize, y: usize| 1.0 / (1.0 + (x as f64 + 0.3).powi(2) + (y * y) as f64) + 0.1 * x as f64;
+        let table = |x: isize, y: usize| {
+            1.0 / (1.0 + (x as f64 + 0.3).powi(2) + (y * y) as f64) + 0.1 * x as f64
+        };
         let op = Convolution::new(nx, ny, table);
         let p: Vec<f64> = (0..nx * ny).map(|k| ((k * 37 % 11) as f64).sin()).collect();
         let mut u = vec![0.0; nx * ny];

@@ -132,7 +132,8 @@ mod tests {
             if i == j {
                 4.0 + (i as f64).sin()
             } else {
-                1.0 / (1.0 + (i as f64 - j as f64 + 0.5).abs().powf(1.5)) * if j > i { 1.3 } else { 0.4 }
+                1.0 / (1.0 + (i as f64 - j as f64 + 0.5).abs().powf(1.5))
+                    * if j > i { 1.3 } else { 0.4 }
             }
         };
         let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();

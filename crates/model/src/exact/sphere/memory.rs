@@ -123,7 +123,9 @@ fn corner_differences(nx: usize, ny: usize, shift: f64) -> Vec<f64> {
     let width = 2 * nx - 1;
     // Corners s_a = a − (nx − 1) − ½ + shift, t_b = b − ½ (b = 0 … ny), in
     // the frame of the field point: s = corner − field = −(that).
-    let s: Vec<f64> = (0..=width).map(|a| -(a as f64 - (nx - 1) as f64 - 0.5 + shift)).collect();
+    let s: Vec<f64> = (0..=width)
+        .map(|a| -(a as f64 - (nx - 1) as f64 - 0.5 + shift))
+        .collect();
     let t: Vec<f64> = (0..=ny).map(|b| -(b as f64 - 0.5)).collect();
     let mut f = vec![0.0; s.len() * t.len()];
     for (b, tb) in t.iter().enumerate() {
@@ -245,7 +247,10 @@ mod tests {
             let w = product_weights(&nodes, ell);
             let sum: f64 = w.iter().sum();
             let want = -(-1.0 / ell).exp_m1();
-            assert!((sum / want - 1.0).abs() < 1e-12, "ℓ = {ell}: {sum} vs {want}");
+            assert!(
+                (sum / want - 1.0).abs() < 1e-12,
+                "ℓ = {ell}: {sum} vs {want}"
+            );
             // ∫_0^1 ξ² e^{−ξ/ℓ}/ℓ dξ = 2ℓ² − e^{−1/ℓ}(1 + 2ℓ + 2ℓ²), which
             // cancels for large ℓ.
             if ell > 10.0 {
@@ -273,7 +278,10 @@ mod tests {
                 for (q, xi) in table.nodes.iter().enumerate() {
                     let want = unit_cell_potential(x + xi, y as f64);
                     let got = table.samples[k * 6 + q];
-                    assert!((got - want).abs() < 1e-13, "({x} + {xi}, {y}): {got} vs {want}");
+                    assert!(
+                        (got - want).abs() < 1e-13,
+                        "({x} + {xi}, {y}): {got} vs {want}"
+                    );
                 }
             }
         }
@@ -288,7 +296,15 @@ mod tests {
         let rule = gauss_legendre_unit(32);
         for ell in [0.05, 0.8, 3.0, 40.0] {
             let m = table.memory(ell);
-            for (x, y) in [(-5i32, 0usize), (-1, 0), (0, 0), (2, 0), (0, 1), (-3, 2), (5, 3)] {
+            for (x, y) in [
+                (-5i32, 0usize),
+                (-1, 0),
+                (0, 0),
+                (2, 0),
+                (0, 1),
+                (-3, 2),
+                (5, 3),
+            ] {
                 // Panels of width 0.02 between the points where the path
                 // crosses the cell's edges x = ±½ (kinks of C on Y = 0).
                 let mut breaks = vec![0.0, 60.0];
