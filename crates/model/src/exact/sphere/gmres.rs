@@ -138,8 +138,8 @@ mod tests {
         };
         let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();
         let mut apply = |x: &[f64], out: &mut [f64]| {
-            for i in 0..n {
-                out[i] = (0..n).map(|j| a(i, j) * x[j]).sum();
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = (0..n).map(|j| a(i, j) * x[j]).sum();
             }
         };
         let mut x = vec![0.0; n];
