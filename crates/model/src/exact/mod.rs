@@ -269,15 +269,7 @@ impl RollingCylinder {
         load: f64,
         settings: ExactSettings,
     ) -> Result<Self, ModelError> {
-        require_positive("radius", radius)?;
-        require_positive("load", load)?;
-        if !(poisson.is_finite() && (0.0..=0.5).contains(&poisson)) {
-            return Err(ModelError::parameter(
-                "poisson",
-                poisson,
-                "must lie in [0, 0.5]",
-            ));
-        }
+        check_body(poisson, radius, load)?;
         if !(1.5..=ExactSettings::LAYER_RESOLUTION).contains(&settings.layer_resolution) {
             return Err(ModelError::parameter(
                 "layer_resolution",
@@ -452,6 +444,21 @@ impl RollingCylinder {
             error_estimate: f64::NAN,
         })
     }
+}
+
+/// Refuses a radius or load that is not positive and a Poisson ratio
+/// outside [0, 0.5]: the checks every exact rolling body makes.
+fn check_body(poisson: f64, radius: f64, load: f64) -> Result<(), ModelError> {
+    require_positive("radius", radius)?;
+    require_positive("load", load)?;
+    if !(poisson.is_finite() && (0.0..=0.5).contains(&poisson)) {
+        return Err(ModelError::parameter(
+            "poisson",
+            poisson,
+            "must lie in [0, 0.5]",
+        ));
+    }
+    Ok(())
 }
 
 /// The error claimed for μ where the edge layers are resolved at the

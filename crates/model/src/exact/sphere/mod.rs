@@ -157,15 +157,7 @@ impl RollingSphere {
         load: f64,
         settings: SphereSettings,
     ) -> Result<Self, ModelError> {
-        require_positive("radius", radius)?;
-        require_positive("load", load)?;
-        if !(poisson.is_finite() && (0.0..=0.5).contains(&poisson)) {
-            return Err(ModelError::parameter(
-                "poisson",
-                poisson,
-                "must lie in [0, 0.5]",
-            ));
-        }
+        super::check_body(poisson, radius, load)?;
         if settings.cells < 8 || settings.quadrature_order < 4 {
             return Err(ModelError::ExactTooCoarse);
         }
