@@ -19,7 +19,7 @@ pub(crate) struct Collocation {
 /// The LU factors of a dense n × n matrix (row-major; L below the
 /// diagonal with unit diagonal, U on and above) and the row swaps of
 /// partial pivoting.
-struct Factors {
+pub(crate) struct Factors {
     lu: Vec<f64>,
     pivots: Vec<usize>,
     n: usize,
@@ -27,7 +27,7 @@ struct Factors {
 
 impl Factors {
     /// Gaussian elimination with partial pivoting; `None` if singular.
-    fn new(mut a: Vec<f64>, n: usize) -> Option<Self> {
+    pub(crate) fn new(mut a: Vec<f64>, n: usize) -> Option<Self> {
         let mut pivots = Vec::with_capacity(n);
         for col in 0..n {
             let pivot =
@@ -42,13 +42,17 @@ impl Factors {
             }
             pivots.push(pivot);
             let d = a[col * n + col];
-            for row in col + 1..n {
-                let f = a[row * n + col] / d;
-                a[row * n + col] = f;
+            // Rows below the pivot row, as slices (the loop vectorises).
+            let (top, bottom) = a.split_at_mut((col + 1) * n);
+            let pivot_row = &top[col * n + col + 1..(col + 1) * n];
+            for row in bottom.chunks_exact_mut(n) {
+                let f = row[col] / d;
+                row[col] = f;
                 if f != 0.0 {
-                    for k in col + 1..n {
-                        a[row * n + k] -= f * a[col * n + k];
-                    }
+                    row[col + 1..]
+                        .iter_mut()
+                        .zip(pivot_row)
+                        .for_each(|(x, p)| *x -= f * p);
                 }
             }
         }
@@ -56,7 +60,7 @@ impl Factors {
     }
 
     /// The solution x of a x = rhs.
-    fn solve(&self, mut rhs: Vec<f64>) -> Vec<f64> {
+    pub(crate) fn solve(&self, mut rhs: Vec<f64>) -> Vec<f64> {
         let (a, n) = (&self.lu, self.n);
         // The swaps moved whole rows, multipliers included: apply them all
         // before the forward substitution.
