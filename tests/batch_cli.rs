@@ -1011,3 +1011,51 @@ fn malformed_shard_jobs_and_flags() {
     );
     assert_refused(TWO, &["--method", "newton"], &["--method", "newton"]);
 }
+
+/// `physics` in a manifest: `[defaults]` asks for the exact contact, one
+/// entry for the approximate one; the entries run in parallel and each
+/// fit.json says which it got (a cylinder on the bundled rubber, 11 speeds
+/// made by `rollfit forward --noise`).
+#[test]
+fn physics_is_a_setting_of_defaults_and_entries() {
+    let dir = TempDir::new("physics");
+    let scene = dir.write(
+        "cylinder.toml",
+        "[geometry]\nshape = \"cylinder\"\nradius = 0.005\nload = 1000.0\n\n\
+         [material]\nmodel = \"havriliak-negami\"\nE0 = 2.0e6\nE1 = 2.0e9\ntau = 1.0e-3\n\
+         alpha = 0.55\nbeta = 0.4\n\n[fit]\nE0 = 2.0e6\n\n\
+         [sweep]\nv_min = 1e-8\nv_max = 1e-3\ncount = 11\n",
+    );
+    let data = dir.path().join("cylinder.csv");
+    let made = rollfit(&[
+        OsStr::new("forward"),
+        scene.as_os_str(),
+        OsStr::new("--noise"),
+        OsStr::new("0.01"),
+        OsStr::new("-o"),
+        data.as_os_str(),
+    ]);
+    assert!(made.status.success(), "{}", text(&made.stderr));
+    let manifest = dir.write(
+        "physics.toml",
+        "[defaults]\nphysics = \"exact\"\n\n\
+         [[entry]]\nname = \"exact\"\nscene = \"cylinder.toml\"\ndata = \"cylinder.csv\"\n\n\
+         [[entry]]\nname = \"approximate\"\nscene = \"cylinder.toml\"\ndata = \"cylinder.csv\"\n\
+         physics = \"approximate\"\n",
+    );
+    let out = dir.path().join("results");
+    batch_ok(&manifest, &out, &["--jobs", "2"]);
+    let exact = json(&out.join("exact").join("fit.json"));
+    assert_eq!(exact["physics"]["kind"], "exact", "{}", exact["physics"]);
+    assert!(
+        json(&out.join("approximate").join("fit.json"))
+            .get("physics")
+            .is_none()
+    );
+    let header = |name: &str| Table::read(&out.join(name).join("mu.csv")).header;
+    assert_eq!(
+        header("exact").last().map(String::as_str),
+        Some("exact_correction")
+    );
+    assert!(!header("approximate").contains(&"exact_correction".to_string()));
+}

@@ -829,3 +829,125 @@ fn the_exact_contact_is_forward_only() {
         );
     }
 }
+
+// ------------------------------------------------------ physics = "exact"
+
+/// A 5 mm cylinder at 1000 N/m on the broad rubber of [`SCENE`], 11
+/// speeds over 5 decades up to its friction maximum, E0 known.
+const CYLINDER: &str = r#"# fit_cli exact-physics scene
+[geometry]
+shape = "cylinder"
+radius = 0.005
+load = 1000.0
+
+[material]
+model = "havriliak-negami"
+E0 = 2.0e6
+E1 = 2.0e9
+tau = 1.0e-3
+alpha = 0.55
+beta = 0.4
+
+[fit]
+E0 = 2.0e6
+
+[sweep]
+v_min = 1e-8
+v_max = 1e-3
+count = 11
+"#;
+
+/// `--physics exact` on a cylinder: fit.json says how the exact contact
+/// was reached, mu.csv gets `exact_correction` after its other columns,
+/// the summary says so, and `rollfit report` draws the folder; without the
+/// flag neither key nor column is written.
+#[test]
+fn physics_exact_writes_its_record_and_correction() {
+    let dir = TempDir::new("exact-physics");
+    let (scene, data) = synthetic(&dir, CYLINDER);
+    let out = dir.path().join("exact");
+    let stderr = fit_ok(&scene, &data, &out, &["--physics", "exact"]);
+    assert!(
+        stderr.contains("physics exact (defect correction)"),
+        "{stderr}"
+    );
+    let report = json(&out.join("fit.json"));
+    let physics = &report["physics"];
+    assert_eq!(physics["kind"], "exact", "{physics}");
+    assert!(physics["exact_solves"].as_u64().unwrap() >= 22, "{physics}");
+    assert!(physics["converged"].as_bool().unwrap(), "{physics}");
+    let mu = Table::read(&out.join("mu.csv"));
+    assert_eq!(
+        mu.header,
+        [
+            "v",
+            "mu_measured",
+            "mu_fit",
+            "sigma",
+            "residual",
+            "exact_correction"
+        ]
+    );
+    for row in &mu.rows {
+        let r = row[5];
+        assert!(r > 0.5 && r < 1.5, "{row:?}");
+    }
+    let drawn = rollfit(&[OsStr::new("report"), out.as_os_str()]);
+    assert!(drawn.status.success(), "{}", text(&drawn.stderr));
+
+    let plain = dir.path().join("approximate");
+    fit_ok(&scene, &data, &plain, &[]);
+    assert!(json(&plain.join("fit.json")).get("physics").is_none());
+    assert_eq!(
+        Table::read(&plain.join("mu.csv")).header,
+        ["v", "mu_measured", "mu_fit", "sigma", "residual"]
+    );
+}
+
+#[test]
+fn physics_exact_is_refused_on_a_film_naming_the_key() {
+    let scene = edit(
+        CYLINDER,
+        "[fit]\n",
+        "[substrate]\nthickness = 1e-3\n\n[fit]\nphysics = \"exact\"\n",
+    );
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &["bad-scene.toml", "`physics`", "film", "\"approximate\""],
+    );
+    assert_refused(
+        &edit(
+            CYLINDER,
+            "[fit]\n",
+            "[substrate]\nthickness = 1e-3\n\n[fit]\n",
+        ),
+        Some(SMALL_DATA),
+        &["--physics", "exact"],
+        &["--physics", "`physics`", "film"],
+    );
+}
+
+#[test]
+fn unknown_physics_is_named_in_the_scene_and_the_flag() {
+    let scene = edit(CYLINDER, "[fit]\n", "[fit]\nphysics = \"exakt\"\n");
+    assert_refused(
+        &scene,
+        Some(SMALL_DATA),
+        &[],
+        &[
+            "bad-scene.toml",
+            "[fit]",
+            "`physics`",
+            "line 16",
+            "\"exakt\"",
+        ],
+    );
+    assert_refused(
+        CYLINDER,
+        Some(SMALL_DATA),
+        &["--physics", "exakt"],
+        &["--physics", "\"exakt\"", "\"approximate\" or \"exact\""],
+    );
+}

@@ -51,6 +51,19 @@ pub enum FitError {
         "internal fault of the fit: {0} (a bug in rollfit; please report it with the scene and data)"
     )]
     Internal(&'static str),
+    /// With `physics = "exact"`: the exact rolling contact of a fitted
+    /// modulus failed, or gave a μ no exact solution can have, at one speed
+    /// on the master curve.
+    #[error(
+        "physics = \"exact\": the exact rolling contact of the fitted modulus at \
+         v = {speed:e} m/s (on the master curve): {problem}"
+    )]
+    ExactPhysics {
+        /// The speed, m/s (v·a_T for a temperature set).
+        speed: f64,
+        /// What went wrong.
+        problem: String,
+    },
     /// The forward model refused a scene or a material.
     #[error(transparent)]
     Model(#[from] ModelError),

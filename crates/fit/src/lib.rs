@@ -20,6 +20,8 @@
 //! - [`sanity`]: warnings for inputs and results outside the theory or any lab.
 //! - `temperature_set`: the start and the cross-check of a temperature set's
 //!   shift.
+//! - [`exact_physics`]: fits against the exact rolling contact by defect
+//!   correction around the approximate model (`physics = "exact"`).
 //! - [`driver`]: the driver tying them together, entered by [`fit()`];
 //!   [`report`]: its result.
 //! - [`master`]: DMA isotherms to a master curve: shift factors, their
@@ -66,6 +68,7 @@ pub mod condense;
 pub mod data;
 pub mod driver;
 pub mod error;
+pub mod exact_physics;
 pub mod fit;
 pub mod master;
 pub mod params;
@@ -87,9 +90,11 @@ pub use data::Measurements;
 pub use driver::fit;
 pub use error::FitError;
 pub use params::{
-    FitParams, Lambda, Method, ModulusAnchor, RollingSetup, ScaleAnchor, ShiftKind, ShiftSettings,
-    StartMaterial, TermRule, ValidFitParams,
+    FitParams, Lambda, Method, ModulusAnchor, Physics, RollingSetup, ScaleAnchor, ShiftKind,
+    ShiftSettings, StartMaterial, TermRule, ValidFitParams,
 };
 pub use quality::FitQuality;
-pub use report::{CrossCheckRow, FitReport, LogShift, ModulusPoint, ShiftCrossCheck, ShiftRecord};
+pub use report::{
+    CrossCheckRow, FitReport, LogShift, ModulusPoint, PhysicsRecord, ShiftCrossCheck, ShiftRecord,
+};
 pub use settings::{FitSettings, SettingValue};

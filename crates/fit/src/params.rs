@@ -5,7 +5,8 @@
 
 use std::f64::consts::PI;
 
-use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
+use rollfit_model::exact::exact_body;
+use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate};
 
 use crate::error::FitError;
 
@@ -44,6 +45,31 @@ impl Method {
                      \"lbfgs\" or \"nelder-mead\")"
                 ),
             )),
+        }
+    }
+}
+
+/// The physics of the model μ(v; E*) the data are fitted with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Physics {
+    /// Persson's Eq. (11) (cylinder) or (17) (sphere), fast and with an
+    /// analytic Jacobian; 4–10 % off the exact μ near the friction maximum
+    /// of a broad rubber, an error the fit absorbs into E*(ω).
+    #[default]
+    Approximate,
+    /// The exact steady rolling contact of the same body, reached by
+    /// defect correction around fits with the approximate model
+    /// ([`crate::exact_physics`]); needs a body with an exact solution
+    /// (`rollfit_model::exact::exact_body`) on a half-space.
+    Exact,
+}
+
+impl Physics {
+    /// The name used in scene files, on the command line and in fit.json.
+    pub fn name(self) -> &'static str {
+        match self {
+            Physics::Approximate => "approximate",
+            Physics::Exact => "exact",
         }
     }
 }
@@ -125,6 +151,8 @@ pub struct FitParams {
     /// How a temperature set (data at several temperatures) is shifted;
     /// ignored for data at one temperature.
     pub shift: ShiftSettings,
+    /// The model's physics: Eq. (11)/(17), or the exact contact.
+    pub physics: Physics,
 }
 
 /// The time–temperature shift fitted to a temperature set.
@@ -188,6 +216,7 @@ impl Default for FitParams {
             model_tolerance: 1e-6,
             start: None,
             shift: ShiftSettings::default(),
+            physics: Physics::Approximate,
         }
     }
 }
@@ -229,6 +258,7 @@ pub struct ValidFitParams {
     pub(crate) model_tolerance: f64,
     pub(crate) start: Option<StartMaterial>,
     pub(crate) shift: ShiftSettings,
+    pub(crate) physics: Physics,
     pub(crate) setup: RollingSetup,
     /// Whether the fit estimates the bands' smoothing bias and cuts the
     /// window to what the data determine (off for the internal refits of a
@@ -252,6 +282,10 @@ impl ValidFitParams {
     pub fn setup(&self) -> &RollingSetup {
         &self.setup
     }
+    /// The model's physics.
+    pub fn physics(&self) -> Physics {
+        self.physics
+    }
 }
 
 fn positive(key: &str, value: f64) -> Result<f64, FitError> {
@@ -269,8 +303,19 @@ impl FitParams {
     /// Validates every setting against the rolling set-up and reduces the
     /// scale anchor to a known |E| at one frequency. The settings are
     /// checked group by group in a fixed order, so that of several invalid
-    /// settings the same one is always reported.
+    /// settings the same one is always reported; `physics = "exact"` last,
+    /// against the set-up's body and substrate.
     pub fn check(self, setup: RollingSetup) -> Result<ValidFitParams, FitError> {
+        let valid = self.check_ranges(setup)?;
+        check_physics(valid.physics, &setup)?;
+        Ok(valid)
+    }
+
+    /// [`Self::check`] without the one check that depends on the body and
+    /// not on a setting's own range: whether an exact solution exists for
+    /// `physics = "exact"`. [`crate::FitSettings::check`] checks the
+    /// settings as they are read, against a neutral set-up.
+    pub(crate) fn check_ranges(self, setup: RollingSetup) -> Result<ValidFitParams, FitError> {
         let e1_max = positive("E1_max", self.e1_max)?;
         let anchor = match self.anchor {
             None => None,
@@ -295,6 +340,7 @@ impl FitParams {
             model_tolerance,
             start: self.start,
             shift: self.shift,
+            physics: self.physics,
             setup,
             bands: true,
             path_top: None,
@@ -466,6 +512,43 @@ fn check_shift(shift: &ShiftSettings) -> Result<(), FitError> {
         positive("C2", c2)?;
     }
     Ok(())
+}
+
+/// `physics = "exact"` needs an exact solution for the set-up: a body
+/// that `exact_body` solves, on a half-space (no film). Its own refusal is
+/// passed on, naming the key.
+fn check_physics(physics: Physics, setup: &RollingSetup) -> Result<(), FitError> {
+    if physics == Physics::Approximate {
+        return Ok(());
+    }
+    if let Some(thickness) = setup.substrate.film_thickness {
+        return Err(FitError::setting(
+            "physics",
+            format!(
+                "\"exact\" needs a half-space: there is no exact rolling solution for a film \
+                 (substrate thickness {thickness} m) on a rigid base; use \"approximate\""
+            ),
+        ));
+    }
+    // Whether a body exists depends on the shape alone; a probe material
+    // (E0 = 1 MPa, E1 = 1 GPa, τ = 1 s) asks without building the fit's.
+    let probe = Prony::new(1e9, vec![1e9 - 1e6], vec![1.0])?;
+    let g = setup.geometry;
+    match exact_body(
+        g.shape,
+        &probe,
+        setup.substrate.poisson,
+        g.radius,
+        g.load,
+        1e-3,
+    ) {
+        Ok(_) => Ok(()),
+        Err(ModelError::ExactNotAvailable { why }) => Err(FitError::setting(
+            "physics",
+            format!("\"exact\": {why}; use \"approximate\""),
+        )),
+        Err(other) => Err(FitError::setting("physics", format!("\"exact\": {other}"))),
+    }
 }
 
 /// The bundled example's set-up (a 5 mm steel ball at 1 N on a thick rubber,

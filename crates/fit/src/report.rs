@@ -139,6 +139,41 @@ pub struct CrossCheckRow {
     pub single_misfit_per_point: f64,
 }
 
+/// How a fit with `physics = "exact"` reached the exact contact
+/// (fit.json's `physics`, written only then; see
+/// [`crate::exact_physics`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PhysicsRecord {
+    /// Always "exact": a fit with Eq. (11)/(17) alone has no record.
+    pub kind: &'static str,
+    /// Refits with the corrected model after the first, approximate fit
+    /// (none when r is within the tolerance of 1 at its modulus).
+    pub iterations: usize,
+    /// Exact solutions computed (one per speed on the master curve and
+    /// iteration).
+    pub exact_solves: usize,
+    /// Whether the correction stopped changing: max_i |Δr_i/r_i| of the
+    /// last iteration at most `tolerance`.
+    pub converged: bool,
+    /// max_i |r_i − 1| of the final correction r_i = μ_exact/μ_approx.
+    pub max_correction: f64,
+    /// The relative accuracy asked of each exact μ: a tenth of the data's
+    /// relative σ, within 1e-5 … 1e-3.
+    pub accuracy: f64,
+    /// The largest relative error the exact solutions estimated for
+    /// themselves (final iteration).
+    pub max_error_estimate: f64,
+    /// The convergence tolerance on max_i |Δr_i/r_i| (= `accuracy`).
+    pub tolerance: f64,
+    /// max_i |Δr_i/r_i| of the last iteration (with no refit: max_i |r_i − 1|
+    /// at the approximate fit, which had r ≡ 1).
+    pub last_change: f64,
+    /// r_i = μ_exact/μ_approx at the fitted modulus per data row (mu.csv's
+    /// `exact_correction`, not fit.json).
+    #[serde(skip)]
+    pub correction: Vec<f64>,
+}
+
 /// Everything a fit produced.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FitReport {
@@ -209,6 +244,10 @@ pub struct FitReport {
     /// Dense data: how the rows were condensed to bins before the fit.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub condensed: Option<crate::condense::CondensedRecord>,
+    /// With `physics = "exact"`: how the exact contact was reached (absent
+    /// with the approximate physics, whose fit.json is unchanged).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub physics: Option<PhysicsRecord>,
     /// θ of the shift at the optimum (for refits that continue from it).
     #[serde(skip)]
     pub(crate) shift_theta: Vec<f64>,
@@ -216,7 +255,8 @@ pub struct FitReport {
     /// modulus.csv, not to fit.json).
     #[serde(skip)]
     pub curve: Vec<ModulusPoint>,
-    /// μ of the fit at the data speeds (mu.csv).
+    /// μ of the fit at the data speeds (mu.csv): of the exact contact at
+    /// the fitted modulus with `physics = "exact"`.
     #[serde(skip)]
     pub mu_fit: Vec<f64>,
 }
@@ -249,6 +289,15 @@ impl FitReport {
         if let Some(a) = &self.anchor {
             scalars.extend([("anchor.omega", a.omega), ("anchor.modulus", a.modulus)]);
         }
+        if let Some(p) = &self.physics {
+            scalars.extend([
+                ("physics.max_correction", p.max_correction),
+                ("physics.accuracy", p.accuracy),
+                ("physics.max_error_estimate", p.max_error_estimate),
+                ("physics.tolerance", p.tolerance),
+                ("physics.last_change", p.last_change),
+            ]);
+        }
         if let Some(ShiftRecord::Wlf {
             t_ref,
             c1,
@@ -269,7 +318,7 @@ impl FitReport {
         if let Some((key, value)) = scalars.iter().find(|(_, x)| bad(x)) {
             return Some(format!("{key} = {value}"));
         }
-        let vectors: [(&str, bool); 9] = [
+        let vectors: [(&str, bool); 10] = [
             ("model.tau", self.model.tau.iter().any(bad)),
             ("model.strengths", self.model.strengths.iter().any(bad)),
             (
@@ -303,6 +352,12 @@ impl FitReport {
                 self.curve.iter().any(|p| p.values().iter().any(bad)),
             ),
             ("mu_fit (mu.csv)", self.mu_fit.iter().any(bad)),
+            (
+                "physics.correction (mu.csv exact_correction)",
+                self.physics
+                    .as_ref()
+                    .is_some_and(|p| p.correction.iter().any(bad)),
+            ),
             (
                 "shift_cross_check",
                 self.shift_cross_check.as_ref().is_some_and(|c| {

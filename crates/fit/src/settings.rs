@@ -24,6 +24,7 @@
 //! | `shift` | `"wlf"` or `"free"` (temperature sets) | |
 //! | `T_ref` | reference temperature of the master curve, °C | |
 //! | `cross_check` | `true` or `false` | |
+//! | `physics` | `"approximate"` (Eq. (11)/(17), the default) or `"exact"` (defect correction, [`crate::exact_physics`]) | |
 //!
 //! Where a file format gives a number, the value arrives as a number
 //! ([`SettingValue::Number`]); text from a command line or a quoted TOML
@@ -54,7 +55,7 @@ use std::str::FromStr;
 use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
 
 use crate::error::FitError;
-use crate::params::{FitParams, Lambda, Method, RollingSetup, ShiftKind, TermRule};
+use crate::params::{FitParams, Lambda, Method, Physics, RollingSetup, ShiftKind, TermRule};
 
 /// What `lambda` takes, for messages.
 const LAMBDA_FORMS: &str =
@@ -149,6 +150,22 @@ impl FromStr for ShiftKind {
     }
 }
 
+impl FromStr for Physics {
+    type Err = FitError;
+
+    /// `"approximate"` or `"exact"`.
+    fn from_str(text: &str) -> Result<Self, FitError> {
+        match text.trim() {
+            "approximate" => Ok(Physics::Approximate),
+            "exact" => Ok(Physics::Exact),
+            other => Err(FitError::setting(
+                "physics",
+                format!("unknown physics {other:?} (use \"approximate\" or \"exact\")"),
+            )),
+        }
+    }
+}
+
 /// A setting's value as a front door found it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SettingValue<'a> {
@@ -189,12 +206,14 @@ pub struct FitSettings {
     pub t_ref: Option<f64>,
     /// `cross_check`.
     pub cross_check: Option<bool>,
+    /// `physics`.
+    pub physics: Option<Physics>,
     /// The key `terms` was set under, to refuse two spellings of it.
     terms_key: Option<&'static str>,
 }
 
 /// The keys [`FitSettings::set`] knows, canonical spellings first.
-pub const SETTING_KEYS: [&str; 13] = [
+pub const SETTING_KEYS: [&str; 14] = [
     "method",
     "lambda",
     "seed",
@@ -206,6 +225,7 @@ pub const SETTING_KEYS: [&str; 13] = [
     "shift",
     "T_ref",
     "cross_check",
+    "physics",
     "terms_per_decade",
     "tau",
 ];
@@ -278,6 +298,10 @@ impl FitSettings {
                 SettingValue::Text(t @ ("true" | "false")) => self.cross_check = Some(t == "true"),
                 other => return Err(wrong_kind(key, &other, "true or false")),
             },
+            "physics" => {
+                let name = text_of(key, &value, "\"approximate\" or \"exact\"")?;
+                self.physics = Some(name.parse()?);
+            }
             other => {
                 return Err(FitError::setting(
                     other,
@@ -319,6 +343,7 @@ impl FitSettings {
             shift: self.shift.or(below.shift),
             t_ref: self.t_ref.or(below.t_ref),
             cross_check: self.cross_check.or(below.cross_check),
+            physics: self.physics.or(below.physics),
             terms_key: if self.terms.is_some() {
                 self.terms_key
             } else {
@@ -332,11 +357,13 @@ impl FitSettings {
     /// setting can fail) with a neutral rolling set-up (no setting's range
     /// depends on it). A front door calls it after each [`FitSettings::set`]
     /// so that a value out of range is refused where it was written; the
-    /// fit checks everything again against the real set-up.
+    /// fit checks everything again against the real set-up, and with it
+    /// what depends on the body rather than on a range: whether
+    /// `physics = "exact"` has an exact solution for it.
     pub fn check(&self) -> Result<(), FitError> {
         let mut params = FitParams::default();
         self.apply(&mut params);
-        params.check(neutral_setup()).map(|_| ())
+        params.check_ranges(neutral_setup()).map(|_| ())
     }
 
     /// Whether these settings give the value that [`FitParams::check`]
@@ -357,6 +384,7 @@ impl FitSettings {
             "shift" => self.shift.is_some(),
             "T_ref" => self.t_ref.is_some(),
             "cross_check" => self.cross_check.is_some(),
+            "physics" => self.physics.is_some(),
             _ => false,
         }
     }
@@ -396,6 +424,9 @@ impl FitSettings {
         }
         if let Some(cross_check) = self.cross_check {
             params.shift.cross_check = cross_check;
+        }
+        if let Some(physics) = self.physics {
+            params.physics = physics;
         }
     }
 }
@@ -553,6 +584,41 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("\"wlf\" or \"free\""), "{e}");
+    }
+
+    /// `physics` takes its two names as text, refuses others naming the
+    /// key, layers like every setting, and is checked as a setting (its
+    /// body, which the neutral set-up does not have, only by the fit).
+    #[test]
+    fn physics_takes_approximate_or_exact() {
+        let exact = set(&[("physics", SettingValue::Text("exact"))]).unwrap();
+        assert_eq!(exact.physics, Some(Physics::Exact));
+        assert!(exact.gives("physics") && exact.check().is_ok());
+        assert_eq!(
+            " approximate".parse::<Physics>().unwrap(),
+            Physics::Approximate
+        );
+        assert_eq!(Physics::default(), Physics::Approximate);
+        let e = set(&[("physics", SettingValue::Text("exakt"))])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`physics`") && e.contains("\"exakt\"") && e.contains("\"exact\""),
+            "{e}"
+        );
+        let e = set(&[("physics", SettingValue::Boolean(true))])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`physics`") && e.contains("expected text"),
+            "{e}"
+        );
+        let mut params = FitParams::default();
+        FitSettings::default().over(&exact).apply(&mut params);
+        assert_eq!(params.physics, Physics::Exact);
+        let mut params = FitParams::default();
+        FitSettings::default().apply(&mut params);
+        assert_eq!(params.physics, Physics::Approximate);
     }
 
     #[test]

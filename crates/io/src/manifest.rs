@@ -2,19 +2,19 @@
 //! "Contract", "Commands", and "Data flow", `batch`): which fits to run.
 //!
 //! ```toml
-//! [defaults]              # optional: method, lambda, seed, starts, terms
+//! [defaults]              # optional: method, lambda, seed, starts, terms, physics
 //! starts = 1
 //! [[entry]]
 //! name = "hn-rubber"      # unique, [A-Za-z0-9._-]+: the result folder
 //! scene = "hn-rubber.toml"
 //! data = "hn-rubber.csv"
 //! # sheet = "Run 1"     # optional: the sheet of a workbook data file
-//! # optional: method, lambda, seed, starts, terms
+//! # optional: method, lambda, seed, starts, terms, physics
 //! ```
 //!
 //! Paths are relative to the manifest's folder. The settings are those of
 //! the `fit` flags (`--method`, `--lambda`, `--seed`, `--starts`,
-//! `--terms`), spelled as in a scene's `[fit]` and read by the same parser,
+//! `--terms`, `--physics`), spelled as in a scene's `[fit]` and read by the same parser,
 //! [`FitSettings::set`] (through the scene reader's `fit_settings`):
 //! names and `"auto"` as strings, numbers as numbers (or as strings, e.g.
 //! `terms = "2/decade"`).
@@ -42,10 +42,10 @@ use crate::error::{EntryProblem, EntryRef, IoError, ManifestError, TomlPlace};
 use crate::scene::fit_settings::{Key, TableSettings, join};
 
 /// The settings a manifest takes: those of the `fit` flags.
-const SETTINGS: [&str; 5] = ["method", "lambda", "seed", "starts", "terms"];
+const SETTINGS: [&str; 6] = ["method", "lambda", "seed", "starts", "terms", "physics"];
 
 /// The keys of an `[[entry]]`: its own, then the settings.
-const ENTRY_KEYS: [&str; 9] = join(["name", "scene", "data", "sheet"], SETTINGS);
+const ENTRY_KEYS: [&str; 10] = join(["name", "scene", "data", "sheet"], SETTINGS);
 
 /// A checked manifest.
 #[derive(Debug, Clone)]
@@ -437,6 +437,11 @@ mod tests {
             ("starts = true", &["`starts`", "whole number"][..]),
             ("lambda = nan", &["`lambda`", "finite"][..]),
             ("method = [1.0]", &["`method`", "expected text"][..]),
+            (
+                "physics = \"exakt\"",
+                &["`physics`", "\"approximate\" or \"exact\""][..],
+            ),
+            ("physics = 1", &["`physics`", "expected text"][..]),
         ] {
             let err = crate::chain(&parse(&format!("{entry}{setting}\n"), &base).unwrap_err());
             assert!(err.contains("entry \"a\" (1 of 1, line 1)"), "{err}");

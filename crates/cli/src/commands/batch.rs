@@ -62,7 +62,7 @@ pub const SUMMARY_COLUMNS: [&str; 11] = [
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Manifest (TOML): optional [defaults] (method, lambda, seed, starts,
-    /// terms) and one [[entry]] per fit with name, scene and data (paths
+    /// terms, physics) and one [[entry]] per fit with name, scene and data (paths
     /// relative to the manifest's folder) and optional settings.
     pub manifest: PathBuf,
     /// Folder for the results: DIR/<entry name>/ per entry and

@@ -15,7 +15,8 @@ use std::str::FromStr;
 
 use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::{
-    FitError, FitReport, FitSettings, Lambda, Method, RollingSetup, ShiftRecord, TermRule,
+    FitError, FitReport, FitSettings, Lambda, Method, Physics, PhysicsRecord, RollingSetup,
+    ShiftRecord, TermRule,
 };
 use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
@@ -79,6 +80,11 @@ pub struct Settings {
     /// terms_per_decade and tau).
     #[arg(long, value_name = "N|auto|X/decade", value_parser = setting::<TermRule>)]
     pub terms: Option<TermRule>,
+    /// The model's physics: approximate (Eq. (11)/(17), the default) or
+    /// exact (the exact rolling contact, by defect correction; slower).
+    /// Overrides [fit] physics.
+    #[arg(long, value_name = "approximate|exact", value_parser = setting::<Physics>)]
+    pub physics: Option<Physics>,
 }
 
 impl Settings {
@@ -90,6 +96,7 @@ impl Settings {
         settings.seed = self.seed;
         settings.starts = self.starts;
         settings.terms = self.terms.clone();
+        settings.physics = self.physics;
         settings
     }
 }
@@ -389,6 +396,29 @@ pub fn summary(report: &FitReport, dir: &Path, written: bool) -> String {
         "E0 = {:.4e} Pa, E1 = {:.4e} Pa; wall time {:.3} s\n",
         report.model.static_modulus, report.model.glassy_modulus, report.wall_time_s
     );
+    text += &shift_lines(report);
+    if let Some(check) = &report.shift_cross_check {
+        text += &format!(
+            "cross-check (each temperature alone, tan δ overlapped): log10 a_T differs from the \
+             joint fit by {:.3} decades RMS, {:.3} at most\n",
+            check.rms_difference, check.max_difference
+        );
+    }
+    if let Some(p) = &report.physics {
+        text += &physics_line(p);
+    }
+    for warning in &report.warnings {
+        text += &format!("warning: {warning}\n");
+    }
+    if written {
+        text += &format!("wrote {} (fit.json, modulus.csv, mu.csv)\n", dir.display());
+    }
+    text
+}
+
+/// The summary's lines about a temperature set's shift (none without one).
+fn shift_lines(report: &FitReport) -> String {
+    let mut out = String::new();
     match &report.shift {
         Some(ShiftRecord::Wlf {
             t_ref,
@@ -398,34 +428,38 @@ pub fn summary(report: &FitReport, dir: &Path, written: bool) -> String {
             c2_sigma,
             ..
         }) => {
-            text += &format!(
+            out += &format!(
                 "shift WLF at T_ref = {t_ref} °C: C1 = {c1:.4} ± {c1_sigma:.2e}, \
                  C2 = {c2:.4} ± {c2_sigma:.2e} K\n"
             )
         }
         Some(ShiftRecord::Free { t_ref, log_shift }) => {
-            text += &format!("shift free, T_ref = {t_ref} °C: log10 a_T =");
+            out += &format!("shift free, T_ref = {t_ref} °C: log10 a_T =");
             for s in log_shift {
-                text += &format!(" {:.3} ({} °C)", s.log_shift, s.temperature);
+                out += &format!(" {:.3} ({} °C)", s.log_shift, s.temperature);
             }
-            text += "\n";
+            out += "\n";
         }
         None => {}
     }
-    if let Some(check) = &report.shift_cross_check {
-        text += &format!(
-            "cross-check (each temperature alone, tan δ overlapped): log10 a_T differs from the \
-             joint fit by {:.3} decades RMS, {:.3} at most\n",
-            check.rms_difference, check.max_difference
-        );
-    }
-    for warning in &report.warnings {
-        text += &format!("warning: {warning}\n");
-    }
-    if written {
-        text += &format!("wrote {} (fit.json, modulus.csv, mu.csv)\n", dir.display());
-    }
-    text
+    out
+}
+
+/// The summary's line about a fit with `physics = "exact"`.
+fn physics_line(p: &PhysicsRecord) -> String {
+    format!(
+        "physics exact (defect correction): {} refit(s), {} exact solves, {}; μ_exact/μ_approx \
+         within {:.2} % of 1, each exact μ to {:.1e}\n",
+        p.iterations,
+        p.exact_solves,
+        if p.converged {
+            "converged"
+        } else {
+            "NOT converged"
+        },
+        100.0 * p.max_correction,
+        p.accuracy
+    )
 }
 
 fn lambda_rule(report: &FitReport) -> String {
@@ -484,10 +518,29 @@ mod tests {
             #[command(flatten)]
             settings: Settings,
         }
-        let cli = Cli::try_parse_from(["rollfit", "--terms", "2/decade", "--starts", "2"]).unwrap();
+        let cli = Cli::try_parse_from([
+            "rollfit",
+            "--terms",
+            "2/decade",
+            "--starts",
+            "2",
+            "--physics",
+            "exact",
+        ])
+        .unwrap();
         let flags = cli.settings.fit_settings();
         assert_eq!(flags.terms, Some(TermRule::PerDecade(2.0)));
         assert_eq!(flags.starts, Some(2));
+        assert_eq!(flags.physics, Some(Physics::Exact));
+        assert!(flags.gives("physics"));
+        let err = Cli::try_parse_from(["rollfit", "--physics", "exakt"])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            err.contains("--physics") && err.contains("\"exakt\"") && err.contains("exact"),
+            "{err}"
+        );
         assert!(flags.gives("terms") && flags.gives("tau") && !flags.gives("lambda"));
         let err = Cli::try_parse_from(["rollfit", "--terms", "0/decade"])
             .err()
@@ -571,6 +624,77 @@ mod tests {
             )
         );
         for fragment in ["entry \"a\"", "`terms`", "line 5", "3/decennium"] {
+            assert!(err.contains(fragment), "{fragment:?} in {err}");
+        }
+    }
+
+    /// `physics` through every front door: the scene's `[fit]`, the flag,
+    /// a manifest's `[defaults]` and `[[entry]]` give the exact physics;
+    /// a bad value names the key (and, in a file, its line) at each door.
+    #[test]
+    fn physics_through_every_front_door() {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Cli {
+            #[command(flatten)]
+            settings: Settings,
+        }
+        let geometry = "[geometry]\nshape = \"cylinder\"\nradius = 0.005\nload = 1000.0\n";
+        let scene = |fit: &str| scene_file::parse(&format!("{geometry}[fit]\n{fit}\n"));
+        let params_of = |fit: &str| scene(fit).unwrap().fit_setup().unwrap().1;
+        let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+        let entry =
+            "[[entry]]\nname = \"a\"\nscene = \"hn-rubber.toml\"\ndata = \"hn-rubber.csv\"\n";
+        let manifest = |text: &str| rollfit_io::manifest::parse(text, &base);
+
+        assert_eq!(params_of("").physics, Physics::Approximate);
+        assert_eq!(params_of("physics = \"exact\"").physics, Physics::Exact);
+        let mut by_flag = params_of("");
+        Cli::try_parse_from(["rollfit", "--physics", "exact"])
+            .unwrap()
+            .settings
+            .fit_settings()
+            .apply(&mut by_flag);
+        assert_eq!(by_flag.physics, Physics::Exact);
+        let read = manifest(&format!("[defaults]\nphysics = \"exact\"\n{entry}")).unwrap();
+        let mut by_defaults = params_of("");
+        read.entries[0]
+            .settings
+            .over(&read.defaults)
+            .apply(&mut by_defaults);
+        assert_eq!(by_defaults.physics, Physics::Exact);
+        let read = manifest(&format!(
+            "[defaults]\nphysics = \"exact\"\n{entry}physics = \"approximate\"\n"
+        ))
+        .unwrap();
+        let mut by_entry = params_of("");
+        read.entries[0]
+            .settings
+            .over(&read.defaults)
+            .apply(&mut by_entry);
+        assert_eq!(by_entry.physics, Physics::Approximate);
+
+        let err = format!(
+            "{:#}",
+            anyhow::Error::from(scene("physics = \"exakt\"").unwrap_err())
+        );
+        for fragment in ["[fit]", "`physics`", "line 6", "\"exakt\""] {
+            assert!(err.contains(fragment), "{fragment:?} in {err}");
+        }
+        let err = format!(
+            "{:#}",
+            anyhow::Error::from(manifest(&format!("{entry}physics = \"exakt\"\n")).unwrap_err())
+        );
+        for fragment in ["entry \"a\"", "`physics`", "line 5", "\"exakt\""] {
+            assert!(err.contains(fragment), "{fragment:?} in {err}");
+        }
+        let err = format!(
+            "{:#}",
+            anyhow::Error::from(
+                manifest(&format!("[defaults]\nphysics = true\n{entry}")).unwrap_err()
+            )
+        );
+        for fragment in ["`physics`", "line 2", "expected text"] {
             assert!(err.contains(fragment), "{fragment:?} in {err}");
         }
     }

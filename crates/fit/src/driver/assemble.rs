@@ -188,6 +188,7 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         scale_profile,
         shift_cross_check,
         condensed,
+        physics: None,
         shift_theta: fit.shift_theta,
         curve: fit.curve,
         mu_fit,
@@ -223,10 +224,13 @@ fn reduced_speeds(data: &Measurements, fit: &Optimum) -> Vec<f64> {
     }
 }
 
-/// The sanity checks of [`crate::sanity`] on the data and the fitted
-/// material, at the reduced speeds (v·a_T) for a temperature set.
+/// The sanity checks of [`crate::sanity`] on the data, their measured μ
+/// `friction` (one per point of `data`: the data's own, or the measured μ
+/// of a defect correction's corrected data) and the fitted material, at the
+/// reduced speeds (v·a_T) for a temperature set.
 pub(super) fn sanity_warnings(
     data: &Measurements,
+    friction: &[f64],
     params: &ValidFitParams,
     fit: &Optimum,
 ) -> Result<Vec<String>, FitError> {
@@ -234,7 +238,7 @@ pub(super) fn sanity_warnings(
     let speeds = reduced_speeds(data, fit);
     let m = &fit.model;
     let prony = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
-    let mut out = sanity::input_warnings(setup, data.speeds(), Some(data.friction()));
+    let mut out = sanity::input_warnings(setup, data.speeds(), Some(friction));
     out.extend(sanity::material_warnings(
         setup,
         &speeds,

@@ -15,6 +15,11 @@
 //! Results are deterministic for a given seed: the solvers are
 //! deterministic and the perturbations come from ChaCha8 seeded with it.
 //!
+//! With `physics = "exact"` the entry [`fit`] hands the whole of this to
+//! [`crate::exact_physics`], which runs it on corrected data (through
+//! `fit_measured`, so that the sanity checks of μ see the measured
+//! rows) until the correction stops changing.
+//!
 //! Where each step lives: the entry [`fit`] and the fits a temperature set
 //! is built from (here); the τ grid and the choice of terms (`terms.rs`);
 //! the starts (`starts.rs`); λ (`lambda.rs`); the solver runs on one grid
@@ -36,8 +41,9 @@ use std::time::Instant;
 use crate::condense::condense;
 use crate::data::Measurements;
 use crate::error::FitError;
+use crate::exact_physics::defect_correction;
 use crate::parametrization::Parametrization;
-use crate::params::{Lambda, TermRule, ValidFitParams};
+use crate::params::{Lambda, Physics, TermRule, ValidFitParams};
 use crate::regularization::path;
 use crate::report::{FitReport, LambdaRecord};
 use crate::temperature_set::cross_check::cross_check;
@@ -48,8 +54,32 @@ use grid::solve_on_grid;
 use profile::profile_scale;
 use terms::{AUTO_DENSITIES, TermChoice, grid, terms_record};
 
-/// Fits `data` under `params`.
+/// Fits `data` under `params`: with the approximate physics (Eq. (11) or
+/// (17)) directly, with the exact physics by defect correction around such
+/// fits ([`crate::exact_physics`]).
 pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
+    match params.physics {
+        Physics::Approximate => fit_measured(rows, None, params),
+        Physics::Exact => defect_correction(rows, params, fit_measured),
+    }
+}
+
+/// The fit with the approximate physics whatever `params` ask: the fits a
+/// temperature set is started from and cross-checked with (inside a defect
+/// correction they fit its corrected data, and must not correct again).
+fn approximate_fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
+    fit_measured(rows, None, params)
+}
+
+/// The fit of `rows` with the approximate physics. `measured`: the rows as
+/// measured when `rows` are a defect correction's corrected ones (μ_i/r_i,
+/// σ_i/r_i); the sanity checks of the measured μ then see them, condensed
+/// like `rows`.
+pub(crate) fn fit_measured(
+    rows: &Measurements,
+    measured: Option<&Measurements>,
+    params: &ValidFitParams,
+) -> Result<FitReport, FitError> {
     let clock = Instant::now();
     let condensed = condense(rows)?;
     let data = condensed.as_ref().map_or(rows, |c| &c.data);
@@ -63,11 +93,16 @@ pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, Fi
             params,
             outcome.fit.shift.as_ref(),
             set,
-            fit,
+            approximate_fit,
         )),
         _ => None,
     };
-    let sanity = sanity_warnings(data, params, &outcome.fit)?;
+    let measured_bins = match measured {
+        Some(m) => Some(condense(m)?.map_or_else(|| m.clone(), |c| c.data)),
+        None => None,
+    };
+    let friction = measured_bins.as_ref().unwrap_or(data).friction();
+    let sanity = sanity_warnings(data, friction, params, &outcome.fit)?;
     let condensed = match &condensed {
         Some(c) => {
             let mu_fit = fitted_friction(rows, params, &outcome.fit)?;
@@ -102,9 +137,9 @@ fn master_curve(
     set: Option<&ShiftStart>,
 ) -> Result<(GridOutcome, Vec<[f64; 2]>), FitError> {
     let range = set.map_or_else(|| data.speed_range(), |s| s.range);
-    let via_wlf = set.and_then(|s| wlf_before_free(data, params, s, fit));
+    let via_wlf = set.and_then(|s| wlf_before_free(data, params, s, approximate_fit));
     let first = match (&via_wlf, set) {
-        (None, Some(s)) => material_first(data, params, s, fit),
+        (None, Some(s)) => material_first(data, params, s, approximate_fit),
         _ => None,
     };
     match (&params.terms, via_wlf, first) {

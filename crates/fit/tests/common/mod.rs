@@ -214,3 +214,100 @@ pub fn band_coverage<M: ViscoelasticModulus>(report: &FitReport, truth: &M, k: f
     let n = n.max(1) as f64;
     (t as f64 / n, e as f64 / n)
 }
+
+/// The broad rubber of issue 14 (`rubber_200` in
+/// crates/model/src/exact/mod.rs): 200 relaxation times log-spaced over
+/// 1e-12 … 1e8 s, E0 = 2 MPa, E1 = 2 GPa (E1/E0 = 1000), the strengths a
+/// log-normal bump around 1e-5 s (3 decades wide) on a floor: a smooth
+/// spectrum.
+pub fn broad_rubber() -> rollfit_model::Prony {
+    let n = 200;
+    let tau: Vec<f64> = (0..n)
+        .map(|k| 10f64.powf(-12.0 + 20.0 * k as f64 / (n - 1) as f64))
+        .collect();
+    let w: Vec<f64> = tau
+        .iter()
+        .map(|t| (-0.5 * ((t.log10() + 5.0) / 3.0).powi(2)).exp() + 1e-3)
+        .collect();
+    let total: f64 = w.iter().sum();
+    let (e0, e1) = (2e6, 2e9);
+    let h = w.iter().map(|x| (e1 - e0) * x / total).collect();
+    rollfit_model::Prony::new(e1, h, tau).unwrap()
+}
+
+/// A 5 mm cylinder at 1000 N/m on a thick rubber, ν = 0.5, dynamic
+/// contact (issue 17).
+pub fn exact_cylinder_setup() -> RollingSetup {
+    RollingSetup {
+        geometry: Geometry {
+            shape: Shape::Cylinder,
+            radius: 0.005,
+            load: 1000.0,
+        },
+        substrate: Substrate {
+            poisson: 0.5,
+            film_thickness: None,
+        },
+        contact: ContactSize::Dynamic,
+    }
+}
+
+/// μ(v) of one material under one set-up by both physics.
+#[derive(Debug, Clone)]
+pub struct BothPhysics {
+    /// m/s.
+    pub speeds: Vec<f64>,
+    /// μ of Eq. (11)/(17).
+    pub approximate: Vec<f64>,
+    /// μ of the exact contact.
+    pub exact: Vec<f64>,
+}
+
+/// μ(v) of `truth` under `setup` at 41 speeds log-spaced over 8 decades
+/// centred (in log v) on the friction maximum of Eq. (11)/(17): the
+/// speeds, μ of the approximate model and μ of the exact contact
+/// (`exact_body` at accuracy 1e-6, speeds in parallel). The exact μ is an
+/// error when `exact_body` has no solution for the set-up's body.
+pub fn exact_and_approximate(
+    setup: RollingSetup,
+    truth: &rollfit_model::Prony,
+) -> Result<BothPhysics, rollfit_model::ModelError> {
+    use rayon::prelude::*;
+    let g = setup.geometry;
+    let scene = Scene::new(g, setup.substrate, setup.contact, truth.clone())?;
+    let peak = scene.friction_maximum(1e-14, 1e3)?.speed;
+    let speeds: Vec<f64> = (0..41)
+        .map(|i| peak * 10f64.powf(-4.0 + 0.2 * i as f64))
+        .collect();
+    let approximate = scene.friction_sweep(&speeds)?;
+    let body = rollfit_model::exact::exact_body(
+        g.shape,
+        truth,
+        setup.substrate.poisson,
+        g.radius,
+        g.load,
+        1e-6,
+    )?;
+    let exact = speeds
+        .par_iter()
+        .map(|&v| body.exact_friction(v).map(|x| x.mu))
+        .collect::<Result<Vec<f64>, _>>()?;
+    Ok(BothPhysics {
+        speeds,
+        approximate,
+        exact,
+    })
+}
+
+/// `mu` at `speeds` with multiplicative Gaussian noise of relative size
+/// `noise` (ChaCha8 with `seed`), and σ = noise·μ.
+pub fn with_noise(speeds: &[f64], mu: &[f64], noise: f64, seed: u64) -> Measurements {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let noisy: Vec<f64> = mu
+        .iter()
+        .map(|m| m * (1.0 + noise * normal.sample(&mut rng)))
+        .collect();
+    let sigma: Vec<f64> = mu.iter().map(|m| noise * m).collect();
+    Measurements::new(speeds.to_vec(), noisy, Some(sigma), None).unwrap()
+}

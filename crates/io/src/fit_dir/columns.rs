@@ -61,3 +61,7 @@ pub const T: &str = "T";
 pub const LOG_AT: &str = "log_aT";
 /// v·a_T, m/s, temperature sets only (mu.csv).
 pub const V_REDUCED: &str = "v_reduced";
+/// μ_exact/μ_approx at the fitted modulus per row, fits with
+/// `physics = "exact"` only (mu.csv; `mu_fit` is then the exact μ,
+/// μ_approx times this).
+pub const EXACT_CORRECTION: &str = "exact_correction";

@@ -33,7 +33,7 @@ pub mod write;
 pub use read::{FrictionRow, ModulusRow};
 pub use summary::{
     AnchorSummary, FitSummary, InputSummary, LambdaSummary, LogShiftSummary, ModelSummary,
-    RunSummary, ShiftSummary, WindowSummary,
+    PhysicsSummary, RunSummary, ShiftSummary, WindowSummary,
 };
 pub use write::{FitFiles, FitInput, Measured};
 

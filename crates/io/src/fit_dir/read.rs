@@ -6,8 +6,8 @@
 use std::path::{Path, PathBuf};
 
 use super::columns::{
-    E_LOSS, E_LOSS_SIGMA, E_STORAGE, E_STORAGE_SIGMA, MU_FIT, MU_MEASURED, OMEGA, SIGMA, T,
-    TAN_DELTA, TAN_DELTA_SIGMA, V, V_REDUCED,
+    E_LOSS, E_LOSS_SIGMA, E_STORAGE, E_STORAGE_SIGMA, EXACT_CORRECTION, MU_FIT, MU_MEASURED, OMEGA,
+    SIGMA, T, TAN_DELTA, TAN_DELTA_SIGMA, V, V_REDUCED,
 };
 use crate::csv_columns::csv_line;
 use crate::error::{ColumnRef, IoError};
@@ -28,6 +28,9 @@ pub struct FrictionRow {
     pub temperature: Option<f64>,
     /// v·a_T, m/s (temperature sets).
     pub reduced_speed: Option<f64>,
+    /// μ_exact/μ_approx at the fitted modulus (fits with
+    /// `physics = "exact"`).
+    pub exact_correction: Option<f64>,
 }
 
 /// One row of modulus.csv: the master curve over the window with bands.
@@ -58,6 +61,7 @@ pub(super) fn read_friction(path: &Path) -> Result<Vec<FrictionRow>, IoError> {
     let sigma = table.find(SIGMA);
     let temperature = table.find(T);
     let reduced = table.find(V_REDUCED);
+    let correction = table.find(EXACT_CORRECTION);
     table
         .rows
         .iter()
@@ -77,6 +81,7 @@ pub(super) fn read_friction(path: &Path) -> Result<Vec<FrictionRow>, IoError> {
                 sigma: sigma.map(|i| row[i]),
                 temperature: temperature.map(|i| row[i]),
                 reduced_speed: reduced.map(|i| row[i]),
+                exact_correction: correction.map(|i| row[i]),
             })
         })
         .collect()

@@ -67,6 +67,32 @@ pub struct FitSummary {
     /// Where the fit's inputs came from.
     #[serde(default)]
     pub input: Option<InputSummary>,
+    /// How a fit with `physics = "exact"` reached the exact contact
+    /// (absent: the approximate physics of Eq. (11)/(17)).
+    #[serde(default)]
+    pub physics: Option<PhysicsSummary>,
+}
+
+/// fit.json's `physics` (fits with `physics = "exact"`).
+#[derive(Debug, Clone, Deserialize)]
+pub struct PhysicsSummary {
+    /// "exact".
+    pub kind: String,
+    /// Refits with the corrected model.
+    #[serde(default)]
+    pub iterations: Option<usize>,
+    /// Exact solutions computed.
+    #[serde(default)]
+    pub exact_solves: Option<usize>,
+    /// Whether the correction stopped changing.
+    #[serde(default)]
+    pub converged: Option<bool>,
+    /// max |μ_exact/μ_approx − 1|.
+    #[serde(default)]
+    pub max_correction: Option<f64>,
+    /// The relative accuracy asked of each exact μ.
+    #[serde(default)]
+    pub accuracy: Option<f64>,
 }
 
 /// The Prony series of fit.json: E*(ω) = E1 − Σ H_k/(1 + iωτ_k).

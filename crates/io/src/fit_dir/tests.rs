@@ -251,3 +251,85 @@ fn invalid_utf8_in_a_fit_folder_is_located_by_line_and_offset() {
 fn modulus_values_follow_the_column_list() {
     assert_eq!(MODULUS_VALUES.map(|(name, _)| name), MODULUS_COLUMNS);
 }
+
+/// Issue 17: a fit with `physics = "exact"` writes fit.json's `physics`
+/// and mu.csv's `exact_correction`, and the reader reads back what the
+/// writer wrote; the approximate fit of the same data writes neither.
+#[test]
+fn exact_physics_round_trips_through_the_fit_folder() {
+    use rollfit_fit::{FitParams, Lambda, Measurements, Physics, RollingSetup, ScaleAnchor};
+    use rollfit_model::{ContactSize, Geometry, Scene, Shape, StandardLinearSolid, Substrate};
+
+    let setup = RollingSetup {
+        geometry: Geometry {
+            shape: Shape::Cylinder,
+            radius: 0.005,
+            load: 1000.0,
+        },
+        substrate: Substrate {
+            poisson: 0.5,
+            film_thickness: None,
+        },
+        contact: ContactSize::Dynamic,
+    };
+    let truth = StandardLinearSolid::new(2e6, 2e7, 1e-2).unwrap();
+    let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, truth).unwrap();
+    let speeds: Vec<f64> = (0..8).map(|k| 1e-6 * 10f64.powf(0.5 * k as f64)).collect();
+    let mu = scene.friction_sweep(&speeds).unwrap();
+    let sigma: Vec<f64> = mu.iter().map(|m| 0.01 * m).collect();
+    let data = Measurements::new(speeds.clone(), mu.clone(), Some(sigma.clone()), None).unwrap();
+    let input = FitInput {
+        scene: "scene.toml".into(),
+        data: "data.csv".into(),
+        temperature: None,
+        rollfit_version: "test",
+    };
+    let measured = Measured {
+        speeds: &speeds,
+        friction: &mu,
+        sigma: Some(&sigma),
+        temperature: None,
+    };
+    for physics in [Physics::Approximate, Physics::Exact] {
+        let params = FitParams {
+            anchor: Some(ScaleAnchor::StaticModulus(2e6)),
+            lambda: Lambda::Fixed(1.0),
+            starts: 1,
+            terms: rollfit_fit::TermRule::PerDecade(1.0),
+            physics,
+            ..FitParams::default()
+        }
+        .check(setup)
+        .unwrap();
+        let report = rollfit_fit::fit(&data, &params).unwrap();
+        let files = FitFiles::encode(&report, &measured, &input).unwrap();
+        let folder = Folder::new(physics.name(), b"{}");
+        for (name, bytes) in files.named() {
+            std::fs::write(folder.0.join(name), bytes).unwrap();
+        }
+        let read = FitDir::read(&folder.0).unwrap();
+        let fitted: Vec<f64> = read.friction.iter().map(|r| r.mu_fit).collect();
+        assert_eq!(fitted, report.mu_fit);
+        let corrections: Vec<Option<f64>> =
+            read.friction.iter().map(|r| r.exact_correction).collect();
+        match (&report.physics, &read.summary.physics) {
+            (None, None) => {
+                assert!(corrections.iter().all(Option::is_none));
+                let json = String::from_utf8(files.named()[2].1.to_vec()).unwrap();
+                assert!(!json.contains("\"physics\""), "{json}");
+            }
+            (Some(written), Some(back)) => {
+                assert_eq!(back.kind, "exact");
+                assert_eq!(back.iterations, Some(written.iterations));
+                assert_eq!(back.exact_solves, Some(written.exact_solves));
+                assert_eq!(back.converged, Some(written.converged));
+                assert_eq!(back.max_correction, Some(written.max_correction));
+                assert_eq!(back.accuracy, Some(written.accuracy));
+                let expected: Vec<Option<f64>> =
+                    written.correction.iter().copied().map(Some).collect();
+                assert_eq!(corrections, expected);
+            }
+            (written, back) => panic!("{physics:?}: wrote {written:?}, read {back:?}"),
+        }
+    }
+}

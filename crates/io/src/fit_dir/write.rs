@@ -7,9 +7,9 @@ use rollfit_fit::{FitReport, ModulusPoint};
 use serde::Serialize;
 
 use super::columns::{
-    ABS_E, ABS_E_SIGMA, E_LOSS, E_LOSS_SIGMA, E_STORAGE, E_STORAGE_SIGMA, FIT_JSON, LOG_AT,
-    MODULUS_COLUMNS, MODULUS_CSV, MU_CSV, MU_FIT, MU_MEASURED, OMEGA, RESIDUAL, SIGMA, T,
-    TAN_DELTA, TAN_DELTA_SIGMA, V, V_REDUCED,
+    ABS_E, ABS_E_SIGMA, E_LOSS, E_LOSS_SIGMA, E_STORAGE, E_STORAGE_SIGMA, EXACT_CORRECTION,
+    FIT_JSON, LOG_AT, MODULUS_COLUMNS, MODULUS_CSV, MU_CSV, MU_FIT, MU_MEASURED, OMEGA, RESIDUAL,
+    SIGMA, T, TAN_DELTA, TAN_DELTA_SIGMA, V, V_REDUCED,
 };
 use crate::csv_text::csv_bytes;
 use crate::error::{Fault, IoError};
@@ -141,17 +141,21 @@ fn modulus_csv(report: &FitReport) -> Result<Vec<u8>, IoError> {
     )
 }
 
-/// mu.csv: v, mu_measured, mu_fit, [sigma], residual = (μ_fit − μ)/μ, and
-/// for a temperature set T, log_aT and v_reduced = v·a_T (the speed on the
-/// master curve at T_ref), in the data's order.
+/// mu.csv: v, mu_measured, mu_fit, [sigma], residual = (μ_fit − μ)/μ, for
+/// a temperature set T, log_aT and v_reduced = v·a_T (the speed on the
+/// master curve at T_ref), and with `physics = "exact"` exact_correction
+/// (μ_exact/μ_approx), in the data's order.
 fn mu_csv(measured: &Measured<'_>, report: &FitReport) -> Result<Vec<u8>, IoError> {
     let points = measured.speeds.len();
-    if report.mu_fit.len() != points {
-        return Err(Fault::FittedCount {
-            fitted: report.mu_fit.len(),
-            points,
+    let correction = report.physics.as_ref().map(|p| &p.correction);
+    for fitted in [Some(&report.mu_fit), correction].into_iter().flatten() {
+        if fitted.len() != points {
+            return Err(Fault::FittedCount {
+                fitted: fitted.len(),
+                points,
+            }
+            .into());
         }
-        .into());
     }
     let mut header = vec![V, MU_MEASURED, MU_FIT];
     if measured.sigma.is_some() {
@@ -161,6 +165,9 @@ fn mu_csv(measured: &Measured<'_>, report: &FitReport) -> Result<Vec<u8>, IoErro
     let shift = report.shift.as_ref();
     if shift.is_some() {
         header.extend([T, LOG_AT, V_REDUCED]);
+    }
+    if correction.is_some() {
+        header.push(EXACT_CORRECTION);
     }
     let mut rows = Vec::with_capacity(points);
     for i in 0..points {
@@ -185,6 +192,9 @@ fn mu_csv(measured: &Measured<'_>, report: &FitReport) -> Result<Vec<u8>, IoErro
                 })
                 .map_or(f64::NAN, |s| s.log_shift);
             row.extend([t, log_a, v * 10f64.powf(log_a)]);
+        }
+        if let Some(correction) = correction {
+            row.push(correction[i]);
         }
         rows.push(row);
     }

@@ -25,7 +25,7 @@ use crate::error::{IoError, SceneError};
 /// The keys of `[fit]`: the scale anchors, then the fit settings
 /// ([`rollfit_fit::settings::SETTING_KEYS`], in the order messages have
 /// always listed them).
-pub const FIT_KEYS: [&str; 16] = [
+pub const FIT_KEYS: [&str; 17] = [
     "E0",
     "E_at",
     "contact_radius",
@@ -42,6 +42,7 @@ pub const FIT_KEYS: [&str; 16] = [
     "shift",
     "T_ref",
     "cross_check",
+    "physics",
 ];
 
 /// `[fit]`: scale anchors and fit settings; forward only validates them.

@@ -407,6 +407,8 @@ fn fit_settings_are_read_by_the_one_parser() {
         ("shift = \"sideways\"", "shift"),
         ("cross_check = \"yes\"", "cross_check"),
         ("terms = 2.5", "terms"),
+        ("physics = \"exakt\"", "physics"),
+        ("physics = 1", "physics"),
     ] {
         let err = settings(fit).unwrap_err();
         for fragment in ["[fit]", &format!("`{key}`"), &format!("line {line}")] {

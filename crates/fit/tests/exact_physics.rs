@@ -1,0 +1,345 @@
+//! `physics = "exact"` (issue 17): fits against the exact rolling contact
+//! by defect correction, measured on synthetic data of a broad rubber
+//! (E1/E0 = 1000, a smooth 200-term spectrum) under a 5 mm cylinder at
+//! 1000 N/m, 41 speeds over 8 decades centred on the friction maximum,
+//! anchored with the known E0.
+//!
+//! Three fits per noise level and seed (the same noise draws on both data
+//! sets):
+//! - data of Eq. (11) fitted with Eq. (11): the reference, where the model
+//!   is right;
+//! - data of the exact contact fitted with Eq. (11): the model error the
+//!   issue measured;
+//! - data of the exact contact fitted with `physics = "exact"`: must come
+//!   within 1.5 times the reference's RMS errors of tan δ and |E| (over the
+//!   determined window shrunk by half a decade at each end, as
+//!   tests/recovery.rs measures).
+//!
+//! The full study (more seeds, a table):
+//! `cargo test --release -p rollfit-fit --test exact_physics -- --ignored --nocapture study`
+
+mod common;
+
+use std::sync::OnceLock;
+
+use common::{
+    BothPhysics, broad_rubber, exact_and_approximate, exact_cylinder_setup, setup, window_errors,
+    with_noise,
+};
+use rollfit_fit::{FitParams, FitReport, Physics, RollingSetup, ScaleAnchor, fit};
+use rollfit_model::Prony;
+
+/// The target: the exact-physics fit's RMS errors within this factor of
+/// the reference's.
+const TARGET_FACTOR: f64 = 1.5;
+
+/// (speeds, μ of Eq. (11), μ exact) of the broad rubber under the
+/// cylinder, computed once per test binary (about 5 s on two cores).
+fn cylinder_data() -> &'static BothPhysics {
+    static DATA: OnceLock<BothPhysics> = OnceLock::new();
+    DATA.get_or_init(|| exact_and_approximate(exact_cylinder_setup(), &broad_rubber()).unwrap())
+}
+
+fn anchored(setup: RollingSetup, physics: Physics) -> rollfit_fit::ValidFitParams {
+    FitParams {
+        anchor: Some(ScaleAnchor::StaticModulus(2e6)),
+        physics,
+        ..FitParams::default()
+    }
+    .check(setup)
+    .unwrap()
+}
+
+/// RMS errors of tan δ and |E| of one fit against the truth.
+#[derive(Debug, Clone, Copy)]
+struct Errors {
+    tan_delta: f64,
+    modulus: f64,
+}
+
+fn errors(report: &FitReport, truth: &Prony) -> Errors {
+    let (tan_delta, modulus, n) = window_errors(report, truth);
+    assert!(n > 20, "window too small: {n} points");
+    Errors { tan_delta, modulus }
+}
+
+/// The three fits of one noise level and seed.
+struct Case {
+    noise: f64,
+    seed: u64,
+    reference: Errors,
+    uncorrected: Errors,
+    corrected: Errors,
+    exact: FitReport,
+}
+
+fn case(setup: RollingSetup, data: &BothPhysics, noise: f64, seed: u64) -> Case {
+    let truth = broad_rubber();
+    let (speeds, approximate, exact) = (&data.speeds, &data.approximate, &data.exact);
+    let approximate_params = anchored(setup, Physics::Approximate);
+    let reference = fit(
+        &with_noise(speeds, approximate, noise, seed),
+        &approximate_params,
+    )
+    .unwrap();
+    let measured = with_noise(speeds, exact, noise, seed);
+    let uncorrected = fit(&measured, &approximate_params).unwrap();
+    let corrected = fit(&measured, &anchored(setup, Physics::Exact)).unwrap();
+    Case {
+        noise,
+        seed,
+        reference: errors(&reference, &truth),
+        uncorrected: errors(&uncorrected, &truth),
+        corrected: errors(&corrected, &truth),
+        exact: corrected,
+    }
+}
+
+fn print_header() {
+    eprintln!(
+        "| σ | seed | Eq.11 data, approximate: tan δ / |E| | exact data, approximate | \
+         exact data, exact | refits | exact solves | max |r−1| | converged | wall s |"
+    );
+    eprintln!("|---|---|---|---|---|---|---|---|---|---|");
+}
+
+fn print_row(c: &Case) {
+    let p = c.exact.physics.as_ref().unwrap();
+    let pct = |e: Errors| format!("{:.2} % / {:.2} %", 100.0 * e.tan_delta, 100.0 * e.modulus);
+    eprintln!(
+        "| {} % | {} | {} | {} | {} | {} | {} | {:.2} % | {} | {:.1} |",
+        100.0 * c.noise,
+        c.seed,
+        pct(c.reference),
+        pct(c.uncorrected),
+        pct(c.corrected),
+        p.iterations,
+        p.exact_solves,
+        100.0 * p.max_correction,
+        p.converged,
+        c.exact.wall_time_s
+    );
+}
+
+/// What a case must show: the corrected fit within the target of the
+/// reference, having converged.
+fn check(c: &Case) -> Vec<String> {
+    let mut failures = Vec::new();
+    let p = c.exact.physics.as_ref().unwrap();
+    let within = |corrected: f64, reference: f64| corrected <= TARGET_FACTOR * reference;
+    if !within(c.corrected.tan_delta, c.reference.tan_delta)
+        || !within(c.corrected.modulus, c.reference.modulus)
+    {
+        failures.push(format!(
+            "σ {} seed {}: corrected {:?} not within {TARGET_FACTOR} × reference {:?}",
+            c.noise, c.seed, c.corrected, c.reference
+        ));
+    }
+    if !p.converged || !c.exact.converged {
+        failures.push(format!(
+            "σ {} seed {}: not converged ({p:?}, {})",
+            c.noise, c.seed, c.exact.stop_reason
+        ));
+    }
+    failures
+}
+
+/// Whether the case can tell a correction from none: the approximate fit
+/// of the exact data is outside the target. (At 1 % noise some seeds'
+/// reference errors are as large as the model error, 6 % and more, and
+/// then it is not; the fast test uses a seed where it is.)
+fn discriminates(c: &Case) -> Option<String> {
+    (c.uncorrected.tan_delta <= TARGET_FACTOR * c.reference.tan_delta).then(|| {
+        format!(
+            "σ {} seed {}: the approximate fit of exact data is already within the target \
+             ({:?} against {:?}): the test cannot tell a correction from none",
+            c.noise, c.seed, c.uncorrected, c.reference
+        )
+    })
+}
+
+/// The fast comparison: σ = 0.1 % and 1 %, one seed each.
+#[test]
+fn exact_physics_removes_the_model_error_of_eq_11() {
+    let data = cylinder_data();
+    print_header();
+    let mut failures = Vec::new();
+    for (noise, seed) in [(0.001, 1), (0.01, 1)] {
+        let c = case(exact_cylinder_setup(), data, noise, seed);
+        print_row(&c);
+        let p = c.exact.physics.as_ref().unwrap();
+        assert_eq!(p.correction.len(), c.exact.mu_fit.len());
+        // The first sweep at every other speed, then all 41 per refit.
+        assert_eq!(p.exact_solves, 21 + 41 * p.iterations, "{p:?}");
+        failures.extend(check(&c));
+        failures.extend(discriminates(&c));
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// The study behind the issue's table: σ = 0.1 % (3 seeds) and 1 %
+/// (5 seeds).
+#[test]
+#[ignore = "study, about 3 minutes: --ignored --nocapture study"]
+fn study() {
+    let data = cylinder_data();
+    print_header();
+    let mut failures = Vec::new();
+    let mut cases = Vec::new();
+    for (noise, seeds) in [(0.001, 0..3), (0.01, 0..5)] {
+        for seed in seeds {
+            let c = case(exact_cylinder_setup(), data, noise, seed);
+            print_row(&c);
+            failures.extend(check(&c));
+            cases.push(c);
+        }
+    }
+    for noise in [0.001, 0.01] {
+        let of: Vec<&Case> = cases.iter().filter(|c| c.noise == noise).collect();
+        let rms = |f: &dyn Fn(&Case) -> f64| {
+            (of.iter().map(|c| f(c).powi(2)).sum::<f64>() / of.len() as f64).sqrt()
+        };
+        eprintln!(
+            "σ = {} %, RMS over {} seeds: Eq.11 data/approximate {:.2} % / {:.2} %; exact \
+             data/approximate {:.2} % / {:.2} %; exact data/exact {:.2} % / {:.2} %",
+            100.0 * noise,
+            of.len(),
+            100.0 * rms(&|c| c.reference.tan_delta),
+            100.0 * rms(&|c| c.reference.modulus),
+            100.0 * rms(&|c| c.uncorrected.tan_delta),
+            100.0 * rms(&|c| c.uncorrected.modulus),
+            100.0 * rms(&|c| c.corrected.tan_delta),
+            100.0 * rms(&|c| c.corrected.modulus),
+        );
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// The same comparison for a 5 mm ball at 1 N. It fails (it does not
+/// skip) while `exact_body` has no exact sphere: the data cannot be made.
+#[test]
+#[ignore = "enable when exact_body supports spheres"]
+fn exact_physics_for_a_sphere() {
+    let data = exact_and_approximate(setup(), &broad_rubber()).unwrap_or_else(|e| {
+        panic!("no exact sphere yet ({e}): enable this test when exact_body supports spheres")
+    });
+    print_header();
+    let mut failures = Vec::new();
+    for (noise, seed) in [(0.001, 1), (0.01, 1)] {
+        let c = case(setup(), &data, noise, seed);
+        print_row(&c);
+        failures.extend(check(&c));
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// A temperature set (three temperatures, 15 speeds each, WLF truth) with
+/// `physics = "exact"`: the correction of each row is the exact contact of
+/// the master curve shifted to the row's temperature (`Prony::shifted`
+/// with the fitted log10 a_T) at the row's own speed, over Eq. (11) there;
+/// mu_fit is the approximate μ times it. (The data come from Eq. (11) to
+/// keep the test short: what is checked is where r is taken.)
+#[test]
+fn a_temperature_set_is_corrected_at_each_rows_shifted_modulus() {
+    use rollfit_fit::{Measurements, ShiftSettings};
+    use rollfit_model::Scene;
+    use rollfit_model::exact::exact_body;
+
+    let s = exact_cylinder_setup();
+    let truth = broad_rubber();
+    let scene = Scene::new(s.geometry, s.substrate, s.contact, truth.clone()).unwrap();
+    let (mut v, mut mu, mut temps) = (vec![], vec![], vec![]);
+    for t in [0.0, 20.0, 40.0] {
+        for i in 0..15 {
+            let speed = 1e-9 * 10f64.powf(5.0 * i as f64 / 14.0);
+            let a = 10f64.powf(common::wlf_truth(t));
+            v.push(speed);
+            mu.push(scene.friction(speed * a).unwrap());
+            temps.push(t);
+        }
+    }
+    let sigma = mu.iter().map(|m| 0.003 * m).collect();
+    let data = Measurements::new(v.clone(), mu, Some(sigma), Some(temps.clone())).unwrap();
+    let params = FitParams {
+        anchor: Some(ScaleAnchor::StaticModulus(2e6)),
+        physics: Physics::Exact,
+        shift: ShiftSettings {
+            t_ref: Some(20.0),
+            cross_check: false,
+            ..ShiftSettings::default()
+        },
+        ..FitParams::default()
+    }
+    .check(s)
+    .unwrap();
+    let report = fit(&data, &params).unwrap();
+    let p = report.physics.as_ref().unwrap();
+    eprintln!("{p:?} in {:.1} s", report.wall_time_s);
+    assert!(p.converged, "{p:?}");
+    assert_eq!(p.correction.len(), v.len());
+    let m = &report.model;
+    let master = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone()).unwrap();
+    let shift = report.shift.as_ref().unwrap();
+    for i in [0, 7, 14, 22, 30, 44] {
+        let log_a = shift.log_shift_at(temps[i]).unwrap();
+        let at_t = master.shifted(log_a).unwrap();
+        let g = s.geometry;
+        let body = exact_body(
+            g.shape,
+            &at_t,
+            s.substrate.poisson,
+            g.radius,
+            g.load,
+            p.accuracy,
+        )
+        .unwrap();
+        let exact = body.exact_friction(v[i]).unwrap().mu;
+        let approximate = Scene::new(g, s.substrate, s.contact, at_t)
+            .unwrap()
+            .friction(v[i])
+            .unwrap();
+        let r = exact / approximate;
+        let (corrected, fitted) = (p.correction[i], report.mu_fit[i]);
+        assert!(
+            (corrected / r - 1.0).abs() < 1e-6,
+            "row {i}: r = {corrected} against {r} at the shifted modulus"
+        );
+        assert!(
+            (fitted / exact - 1.0).abs() < 1e-5,
+            "row {i}: mu_fit {fitted} against the exact {exact}"
+        );
+    }
+}
+
+/// Where Eq. (11) is the exact μ to the accuracy asked (a cylinder four
+/// decades and more below the friction maximum of a standard linear solid:
+/// r − 1 about 1e-9 against the 1e-3 asked at 1 % noise), the approximate
+/// fit is the answer: no refit, one exact sweep, converged.
+#[test]
+fn no_refit_where_eq_11_is_already_exact() {
+    use rollfit_fit::{Lambda, Measurements};
+    use rollfit_model::{Scene, StandardLinearSolid};
+
+    let s = exact_cylinder_setup();
+    let truth = StandardLinearSolid::new(2e6, 2e7, 1e-2).unwrap();
+    let scene = Scene::new(s.geometry, s.substrate, s.contact, truth).unwrap();
+    let speeds: Vec<f64> = (0..9).map(|k| 1e-7 * 10f64.powf(0.25 * k as f64)).collect();
+    let mu = scene.friction_sweep(&speeds).unwrap();
+    let sigma = mu.iter().map(|m| 0.01 * m).collect();
+    let data = Measurements::new(speeds, mu, Some(sigma), None).unwrap();
+    let params = FitParams {
+        anchor: Some(ScaleAnchor::StaticModulus(2e6)),
+        physics: Physics::Exact,
+        lambda: Lambda::Fixed(1.0),
+        starts: 1,
+        ..FitParams::default()
+    }
+    .check(s)
+    .unwrap();
+    let report = fit(&data, &params).unwrap();
+    let p = report.physics.as_ref().unwrap();
+    eprintln!("{p:?}");
+    assert_eq!((p.iterations, p.exact_solves), (0, 9), "{p:?}");
+    assert!(p.converged && p.max_correction <= p.accuracy, "{p:?}");
+    assert_eq!(p.last_change, p.max_correction);
+}
