@@ -37,7 +37,9 @@ const TARGET_FACTOR: f64 = 1.5;
 /// cylinder, computed once per test binary (about 5 s on two cores).
 fn cylinder_data() -> &'static BothPhysics {
     static DATA: OnceLock<BothPhysics> = OnceLock::new();
-    DATA.get_or_init(|| exact_and_approximate(exact_cylinder_setup(), &broad_rubber()).unwrap())
+    DATA.get_or_init(|| {
+        exact_and_approximate(exact_cylinder_setup(), &broad_rubber(), 1e-6).unwrap()
+    })
 }
 
 fn anchored(setup: RollingSetup, physics: Physics) -> rollfit_fit::ValidFitParams {
@@ -215,14 +217,18 @@ fn study() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
-/// The same comparison for a 5 mm ball at 1 N. It fails (it does not
-/// skip) while `exact_body` has no exact sphere: the data cannot be made.
+/// The same comparison for a 5 mm ball at 1 N, σ = 0.1 % and 1 %. The
+/// truth is the exact sphere at accuracy 1e-4 (a tenth of the smaller
+/// noise; 1e-6 would need grids five times finer). For this rubber
+/// Eq. (17) is within about 2 % of the exact sphere, so the uncorrected
+/// fit may already be within the target at 1 %: only the target and the
+/// convergence are checked, not that the case discriminates. About ten
+/// minutes on two cores:
+/// `cargo test --release -p rollfit-fit --test exact_physics -- --ignored --nocapture sphere`
 #[test]
-#[ignore = "enable when exact_body supports spheres"]
+#[ignore = "study, about ten minutes: --ignored --nocapture sphere"]
 fn exact_physics_for_a_sphere() {
-    let data = exact_and_approximate(setup(), &broad_rubber()).unwrap_or_else(|e| {
-        panic!("no exact sphere yet ({e}): enable this test when exact_body supports spheres")
-    });
+    let data = exact_and_approximate(setup(), &broad_rubber(), 1e-4).unwrap();
     print_header();
     let mut failures = Vec::new();
     for (noise, seed) in [(0.001, 1), (0.01, 1)] {

@@ -266,11 +266,11 @@ pub struct BothPhysics {
 /// μ(v) of `truth` under `setup` at 41 speeds log-spaced over 8 decades
 /// centred (in log v) on the friction maximum of Eq. (11)/(17): the
 /// speeds, μ of the approximate model and μ of the exact contact
-/// (`exact_body` at accuracy 1e-6, speeds in parallel). The exact μ is an
-/// error when `exact_body` has no solution for the set-up's body.
+/// (`exact_body` at relative accuracy `accuracy`, speeds in parallel).
 pub fn exact_and_approximate(
     setup: RollingSetup,
     truth: &rollfit_model::Prony,
+    accuracy: f64,
 ) -> Result<BothPhysics, rollfit_model::ModelError> {
     use rayon::prelude::*;
     let g = setup.geometry;
@@ -286,7 +286,7 @@ pub fn exact_and_approximate(
         setup.substrate.poisson,
         g.radius,
         g.load,
-        1e-6,
+        accuracy,
     )?;
     let exact = speeds
         .par_iter()
