@@ -20,6 +20,8 @@
 //!   moduli grouped into isotherms;
 //! - [`columns`]: column names shared by a writer and its readers beyond
 //!   the fit folder's;
+//! - [`pressure_map`]: the pressure maps of the exact rolling contact that
+//!   `rollfit forward` writes beside its CSV, their file and column names;
 //! - [`csv_text`], [`csv_columns`], [`text_file`]: CSV text as rollfit
 //!   writes it, what the CSV readers share, UTF-8 text with the place of a
 //!   bad byte;
@@ -46,6 +48,7 @@ pub mod fit_dir;
 pub mod manifest;
 pub mod material_file;
 pub mod output;
+pub mod pressure_map;
 pub mod scene;
 pub mod table;
 pub mod text_file;

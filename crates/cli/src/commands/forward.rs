@@ -18,6 +18,9 @@
 //! versions pinned in Cargo.lock. The first block of a set therefore has the
 //! noise of the single-temperature file with the same seed.
 
+mod pressure_maps;
+mod summary;
+
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
@@ -94,6 +97,20 @@ pub struct Args {
     /// file on every machine. Default 0. Needs --noise.
     #[arg(long, value_name = "N", requires = "noise")]
     pub seed: Option<u64>,
+    /// Also write the exact contact's pressure map at this speed (m/s;
+    /// repeatable), beside OUT.csv: OUT-pressure-map-v<V>.csv (x, y,
+    /// pressure; a cylinder x, pressure), …-outline.csv (y, x_trailing,
+    /// x_leading) and a picture. Needs -o and [contact] size = "exact" or
+    /// "auto"; without it the map is written at the speed of the largest
+    /// exact μ only.
+    #[arg(
+        long,
+        value_name = "V",
+        value_parser = pressure_maps::parse_speed,
+        allow_hyphen_values = true,
+        requires = "output"
+    )]
+    pub pressure_map: Vec<f64>,
 }
 
 /// `--noise`: a finite relative standard deviation greater than zero. Zero
@@ -138,6 +155,7 @@ pub fn run(args: &Args) -> Result<()> {
     let setup = file
         .forward_setup(path, &|note| eprintln!("note: {note}"))
         .with_context(|| format!("scene file {}", path.display()))?;
+    pressure_maps::check_request(&setup, &args.pressure_map, path)?;
     // μ of each block, in row order.
     let solved = setup
         .blocks
@@ -198,18 +216,24 @@ pub fn run(args: &Args) -> Result<()> {
             csv_text::csv_text_bytes(&header(&NOISY_COLUMNS, extra), rows).map_err(refuse)?
         }
     };
+    let mut map_lines = Vec::new();
     match &args.output {
         Some(out) => {
-            // Drawn before anything is written, so that a failure leaves
-            // no CSV without its picture.
+            // Drawn, and the maps solved, before anything is written, so
+            // that a failure leaves no CSV without its pictures and maps.
             let picture = picture(&setup, &mu, path)?;
+            let maps = pressure_maps::solve(&setup, &solved, &args.pressure_map, out, path)?;
             output::write_atomically(out, &bytes)?;
             output::write_atomically(&out.with_extension("png"), &picture.png)?;
             output::write_atomically(&out.with_extension("svg"), picture.svg.as_bytes())?;
+            map_lines = pressure_maps::write(&maps)?;
         }
         None => stdout::write_stdout(&bytes)?,
     }
-    eprintln!("{}", summary(&setup, &solved, &mu));
+    eprintln!("{}", summary::summary(&setup, &solved, &mu));
+    for line in map_lines {
+        eprintln!("{line}");
+    }
     for line in sanity_warnings(&setup, &mu) {
         eprintln!("warning: {line}");
     }
@@ -464,159 +488,6 @@ fn rows<'a>(
         })
 }
 
-/// One line for a person at a terminal: the scene's static contact (the
-/// same at every temperature: a shift leaves the static modulus alone), the
-/// temperatures and, where the sweep brackets one, the friction maximum at
-/// each.
-///
-/// The exact sphere's estimated error above which `forward` warns.
-const SPHERE_NOTE_ERROR: f64 = 1e-3;
-
-fn summary(setup: &ForwardSetup, solved: &[Solved], mu: &[Vec<f64>]) -> String {
-    let mut line = summary_line(setup, mu);
-    let shape = setup.blocks[0].scene.geometry().shape;
-    for (block, solved) in setup.blocks.iter().zip(solved) {
-        let at = block
-            .shift
-            .map(|s| format!("at {} °C: ", s.temperature))
-            .unwrap_or_default();
-        if let Some(auto) = &solved.auto {
-            line += &format!("\n{at}{}", auto.description(&setup.speeds, shape));
-        }
-        if let (ForwardRung::Exact(_), Some(error), rollfit_model::Shape::Sphere) =
-            (&block.rung, &solved.error, shape)
-        {
-            let worst = error.iter().copied().fold(0.0, f64::max);
-            let above = error.iter().filter(|&&e| e > SPHERE_NOTE_ERROR).count();
-            if above > 0 {
-                line += &format!(
-                    "\nwarning: {at}the exact sphere's estimated error (the size of its \
-                     grid-extrapolation step) exceeds {SPHERE_NOTE_ERROR:.0e} at {above} of {} \
-                     speeds, up to {worst:.1e} (column error_estimate): at low speed the \
-                     material's memory is shorter than a boundary-element cell",
-                    error.len()
-                );
-            }
-        } else if let (ForwardRung::Exact(_), Some(error)) = (&block.rung, &solved.error) {
-            let unresolved: Vec<usize> = (0..error.len())
-                .filter(|&i| error[i] > rollfit_model::exact::RESOLVED_ERROR)
-                .collect();
-            if let (Some(&first), Some(&last)) = (unresolved.first(), unresolved.last()) {
-                let worst = unresolved.iter().map(|&i| error[i]).fold(0.0, f64::max);
-                line += &format!(
-                    "\nwarning: {at}the exact solution does not resolve the pressure's edge \
-                     layers at {} of {} speeds (v = {:.3e} … {:.3e} m/s: low speed, or large \
-                     E1/E0 below the friction maximum); estimated error there up to {worst:.1e} \
-                     (column error_estimate)",
-                    unresolved.len(),
-                    error.len(),
-                    setup.speeds[first],
-                    setup.speeds[last]
-                );
-            }
-        }
-        if matches!(block.rung, ForwardRung::LowSpeed) {
-            line += &format!(
-                "\n{at}μ is the low-speed asymptote (Eqs. 18/19) at every speed: exact as v → 0 \
-                 only (use size = \"auto\" to use it only where it is accurate)"
-            );
-            break;
-        }
-    }
-    line
-}
-
-/// The first line of the summary.
-fn summary_line(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
-    let first = &setup.blocks[0].scene;
-    let g = first.geometry();
-    let (shape, load_unit, size_name) = match g.shape {
-        Shape::Sphere => ("sphere", "N", "r0"),
-        Shape::Cylinder => ("cylinder", "N/m", "a0"),
-    };
-    let speeds = &setup.speeds;
-    let mut line = format!("{shape} R = {} m, load {} {load_unit}", g.radius, g.load);
-    let shifts: Vec<_> = setup.blocks.iter().filter_map(|b| b.shift).collect();
-    match shifts.as_slice() {
-        [] => {}
-        [shift] => {
-            line += &format!(
-                ", T = {} °C (log10 a_T = {:.4})",
-                shift.temperature,
-                // + 0.0: WLF gives −0 at T_ref, which would print as "-0.0000".
-                shift.log10_a_t + 0.0
-            );
-        }
-        many => {
-            let list = |f: &dyn Fn(&scene_file::ShiftApplied) -> String| {
-                many.iter().map(f).collect::<Vec<_>>().join(", ")
-            };
-            line += &format!(
-                ", temperature set of {} temperatures T = {} °C (log10 a_T = {}), {} speeds \
-                 each, {} rows",
-                many.len(),
-                list(&|s| s.temperature.to_string()),
-                list(&|s| format!("{:.4}", s.log10_a_t + 0.0)),
-                speeds.len(),
-                many.len() * speeds.len()
-            );
-        }
-    }
-    line += &format!(
-        ": static contact {size_name} = {:.4e} m, mean pressure p_a = {:.4e} Pa; ",
-        first.static_contact_size(),
-        first.static_mean_pressure()
-    );
-    if setup
-        .blocks
-        .iter()
-        .any(|b| !matches!(b.rung, ForwardRung::Paper))
-    {
-        // The exact solution, auto and the asymptote are not refined
-        // between samples (a contact solve a μ, a mix of rungs, no
-        // maximum); the summary gives the largest sampled value.
-        let peaks: Vec<String> = setup
-            .blocks
-            .iter()
-            .zip(mu)
-            .map(|(block, mu)| {
-                let at = block
-                    .shift
-                    .map(|s| format!("at {} °C ", s.temperature))
-                    .unwrap_or_default();
-                let i = (0..mu.len())
-                    .max_by(|&a, &b| mu[a].total_cmp(&mu[b]))
-                    .unwrap_or(0);
-                let rung = match block.rung {
-                    ForwardRung::Exact(_) => "exact solution: ",
-                    ForwardRung::Auto { .. } => "auto: ",
-                    ForwardRung::LowSpeed => "low-speed asymptote: ",
-                    ForwardRung::Paper => "",
-                };
-                format!(
-                    "{at}{rung}largest sampled μ = {:.4e} at v = {:.4e} m/s",
-                    mu[i], speeds[i]
-                )
-            })
-            .collect();
-        line += &peaks.join("; ");
-    } else if let [block] = setup.blocks.as_slice() {
-        line += &peak_description(&block.scene, speeds, &mu[0]);
-    } else {
-        let peaks: Vec<String> = setup
-            .blocks
-            .iter()
-            .zip(mu)
-            .map(|(block, mu)| {
-                let t = block.shift.map_or(f64::NAN, |s| s.temperature);
-                format!("at {t} °C {}", peak_description(&block.scene, speeds, mu))
-            })
-            .collect();
-        line += &peaks.join("; ");
-    }
-    line
-}
-
 /// The picture of the sweep written beside the CSV: μ(v) per temperature
 /// with its low-speed asymptote and friction maximum.
 fn picture(setup: &ForwardSetup, mu: &[Vec<f64>], scene_path: &Path) -> Result<Picture> {
@@ -669,34 +540,6 @@ fn friction_maximum(scene: &DynScene, speeds: &[f64], mu: &[f64]) -> Option<(f64
         Ok(peak) => (peak.speed, peak.mu, true),
         Err(_) => (speeds[i], mu[i], false),
     })
-}
-
-/// The friction maximum, refined between the sampled speeds around the
-/// largest sampled μ. A largest μ at either end of the sweep means the
-/// maximum (if any) lies outside it, which is said instead of a number.
-fn peak_description(scene: &DynScene, speeds: &[f64], mu: &[f64]) -> String {
-    let n = mu.len();
-    let Some(i) = (0..n).max_by(|&a, &b| mu[a].total_cmp(&mu[b])) else {
-        return "no speeds".into();
-    };
-    if n < 3 || i == 0 || i == n - 1 {
-        let end = if i == 0 { "lowest" } else { "highest" };
-        return format!(
-            "no friction maximum inside the sweep (largest μ = {:.4e} at the {end} speed, v = {:.4e} m/s)",
-            mu[i], speeds[i]
-        );
-    }
-    match scene.friction_maximum(speeds[i - 1], speeds[i + 1]) {
-        Ok(peak) => format!(
-            "friction maximum μ = {:.4e} at v = {:.4e} m/s",
-            peak.mu, peak.speed
-        ),
-        // The CSV is complete without it; the summary is a convenience.
-        Err(e) => format!(
-            "friction maximum near v = {:.4e} m/s (μ = {:.4e}), not refined: {e}",
-            speeds[i], mu[i]
-        ),
-    }
 }
 
 #[cfg(test)]

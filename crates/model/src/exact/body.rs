@@ -10,7 +10,7 @@ use crate::contact::Shape;
 use crate::error::ModelError;
 use crate::modulus::Prony;
 
-use super::{ExactSettings, RollingCylinder, RollingSphere, SphereSettings};
+use super::{ExactSettings, PressureMap, RollingCylinder, RollingSphere, SphereSettings};
 
 /// The exact steady rolling contact at one speed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,6 +39,12 @@ pub trait ExactRolling: Send + Sync {
     /// μ at speed `v` (m/s) with its error estimate and the contact edges.
     fn exact_friction(&self, v: f64) -> Result<ExactFriction, ModelError>;
 
+    /// The contact at speed `v` (m/s): the pressure (Pa) under the body and
+    /// the contact's outline, x (m) from the body's axis, + in the rolling
+    /// direction, from the same solution as [`Self::exact_friction`] (the
+    /// same μ and error estimate). See [`PressureMap`].
+    fn pressure_map(&self, v: f64) -> Result<PressureMap, ModelError>;
+
     /// The same body discretised for a relative accuracy of μ (explicit
     /// discretisations chosen by the caller are kept).
     fn with_accuracy(&self, accuracy: f64) -> Box<dyn ExactRolling>;
@@ -61,6 +67,15 @@ impl ExactRolling for RollingCylinder {
             trailing_edge: solution.trailing_edge,
             leading_edge: solution.leading_edge,
         })
+    }
+
+    fn pressure_map(&self, v: f64) -> Result<PressureMap, ModelError> {
+        let solution = self.solve_with_error_estimate(v)?;
+        Ok(PressureMap::of_cylinder(
+            &solution,
+            self.static_half_width(),
+            self.load,
+        ))
     }
 
     fn with_accuracy(&self, accuracy: f64) -> Box<dyn ExactRolling> {
@@ -90,6 +105,14 @@ impl ExactRolling for RollingSphere {
             trailing_edge,
             leading_edge,
         })
+    }
+
+    fn pressure_map(&self, v: f64) -> Result<PressureMap, ModelError> {
+        let solution = self.solve(v)?;
+        Ok(PressureMap::of_sphere(
+            &solution,
+            self.static_contact_radius(),
+        ))
     }
 
     fn with_accuracy(&self, accuracy: f64) -> Box<dyn ExactRolling> {

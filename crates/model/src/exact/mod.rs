@@ -124,11 +124,13 @@ mod cylinder_graded;
 mod cylinder_mesh;
 mod cylinder_pressure;
 mod kernel;
+mod pressure_map;
 mod solver;
 mod sphere;
 
 pub use body::{ExactFriction, ExactRolling, exact_body};
 pub use creep::CreepCompliance;
+pub use pressure_map::{CYLINDER_PROFILE_POINTS, ContactPressure, PressureMap};
 pub use sphere::{RollingSphere, SphereSettings, SphereSolution};
 
 use std::f64::consts::PI;

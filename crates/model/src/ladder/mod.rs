@@ -132,6 +132,14 @@ pub struct AutoSweep {
 }
 
 impl AutoSweep {
+    /// The relative accuracy of μ the exact rung's body was discretised for
+    /// ([`ExactRolling::with_accuracy`]): its share of the requested
+    /// accuracy. A pressure map drawn beside the sweep uses the same body,
+    /// so that its μ is the sweep's.
+    pub fn exact_accuracy(&self) -> f64 {
+        RUNG_SHARE * self.accuracy
+    }
+
     /// Number of speeds whose error estimate exceeds the accuracy.
     pub fn unmet(&self) -> usize {
         self.error_estimate

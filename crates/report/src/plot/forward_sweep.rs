@@ -60,7 +60,7 @@ pub struct ForwardSweepFigure<'a> {
 }
 
 /// `x` to `digits` significant digits in fixed notation (0.0213, 1.50).
-fn significant(x: f64, digits: i32) -> String {
+pub(crate) fn significant(x: f64, digits: i32) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }

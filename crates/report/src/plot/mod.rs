@@ -16,6 +16,7 @@ pub mod forward_sweep;
 pub mod friction;
 pub mod master_curve;
 mod parts;
+pub mod pressure_map;
 pub mod spectrum;
 pub mod speed_accuracy;
 pub mod style;

@@ -67,10 +67,40 @@ pub fn cold_to_warm(fraction: f64) -> RGBColor {
     } else {
         fraction.clamp(0.0, 1.0)
     };
-    let scaled = f * (COLD_TO_WARM.len() - 1) as f64;
-    let i = (scaled.floor() as usize).min(COLD_TO_WARM.len() - 2);
+    ramp(&COLD_TO_WARM, f)
+}
+
+/// Stops of [`pressure_ramp`], from no pressure to the peak: light yellow
+/// through orange to dark red (ColorBrewer YlOrRd). Low pressures are
+/// pale, so that the black contact outline, where the pressure falls to
+/// zero, stands out, and the blue of the static Hertz comparison stays
+/// apart from every stop.
+const PRESSURE_RAMP: [RGBColor; 5] = [
+    RGBColor(255, 255, 204),
+    RGBColor(254, 217, 118),
+    RGBColor(253, 141, 60),
+    RGBColor(227, 26, 28),
+    RGBColor(128, 0, 38),
+];
+
+/// The colour of a contact pressure: `fraction` of the colour scale's top,
+/// 0 pale yellow, 1 dark red, linear in RGB between the stops; clamped to
+/// [0, 1], NaN gives 0.
+pub fn pressure_ramp(fraction: f64) -> RGBColor {
+    let f = if fraction.is_nan() {
+        0.0
+    } else {
+        fraction.clamp(0.0, 1.0)
+    };
+    ramp(&PRESSURE_RAMP, f)
+}
+
+/// Linear interpolation in RGB between evenly spaced `stops`, `f` in [0, 1].
+fn ramp(stops: &[RGBColor], f: f64) -> RGBColor {
+    let scaled = f * (stops.len() - 1) as f64;
+    let i = (scaled.floor() as usize).min(stops.len() - 2);
     let t = scaled - i as f64;
-    let (a, b) = (COLD_TO_WARM[i], COLD_TO_WARM[i + 1]);
+    let (a, b) = (stops[i], stops[i + 1]);
     let mix = |x: u8, y: u8| (f64::from(x) + t * (f64::from(y) - f64::from(x))).round() as u8;
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
@@ -93,5 +123,18 @@ mod tests {
         // Halfway between two stops is their mean.
         let between = cold_to_warm(0.125);
         assert_eq!(between, RGBColor(41, 99, 175));
+    }
+
+    #[test]
+    fn the_pressure_ramp_runs_from_pale_to_dark() {
+        assert_eq!(pressure_ramp(0.0), PRESSURE_RAMP[0]);
+        assert_eq!(pressure_ramp(1.0), PRESSURE_RAMP[4]);
+        assert_eq!(pressure_ramp(f64::NAN), PRESSURE_RAMP[0]);
+        assert_eq!(pressure_ramp(2.0), PRESSURE_RAMP[4]);
+        let brightness = |c: RGBColor| u32::from(c.0) + u32::from(c.1) + u32::from(c.2);
+        assert!((1..=10).all(|k| {
+            brightness(pressure_ramp(f64::from(k) / 10.0))
+                < brightness(pressure_ramp(f64::from(k - 1) / 10.0))
+        }));
     }
 }
