@@ -26,7 +26,7 @@ const Y_LABELS: u32 = 60;
 const X_LABELS: u32 = 45;
 /// Width of the sphere map's colour bar area at the right, px (labels
 /// included).
-const BAR_AREA: u32 = 120;
+const BAR_AREA: u32 = 140;
 /// Colour levels of the sphere's map. Neighbouring cells of a row on one
 /// level are drawn as one rectangle, which keeps the SVG small (at the
 /// default 96 cells across a contact holds about 7000 cells); 64 levels are
@@ -411,7 +411,7 @@ where
         .margin(12)
         .margin_left(0)
         .x_label_area_size(X_LABELS)
-        .y_label_area_size(60)
+        .y_label_area_size(80)
         .build_cartesian_2d(0.0..1.0, 0.0..top)?;
     let tick = |v: &f64| format_tick(*v);
     chart
