@@ -67,63 +67,98 @@ fn elastic_limits_are_hertz() {
 
 /// At low speed μ approaches Eq. (18)'s linear term (3π/4) p_a L′(0) v/r0,
 /// which is exact at first order in tan δ: μR/r0 → (1 − E0/E1) vτ/r0 for
-/// the standard linear solid. At vτ/r0 = 0.02 the curve has begun to bend
-/// below it (by about 1.5 %, the slope between vτ/r0 = 0.02 and 0.04
-/// extrapolated to v = 0 lands on it): checked to the solver's own error
-/// estimate plus the bend. E1/E0 = 100 is not checked: at vτ/r0 ≲ 0.04
-/// its active-set iteration oscillates and the solve fails (issue 17
-/// note: the glassy edge layer, width vτE0/E1, is far below a cell).
+/// the standard linear solid (τ its retardation time, as in [`sls`]). At
+/// vτ/r0 = 0.02 the curve has begun to bend below it (by about 1.5 % for
+/// E1/E0 = 10, the slope between vτ/r0 = 0.02 and 0.04 extrapolated to
+/// v = 0 lands on it): checked to the solver's own error estimate plus the
+/// bend. E1/E0 = 100 is checked as well (before issue 17 its active-set
+/// iteration cycled there: the glassy edge layer, width vτE0/E1, is far
+/// below a cell).
 #[test]
 fn low_speed_limit_is_eq18() {
-    let ratio = 10.0;
-    let material = sls(ratio).to_prony();
-    let body = sphere(&material, 96);
-    let r0 = body.static_contact_radius();
-    let linear = |x: f64| (1.0 - 1.0 / ratio) * x * r0 / RADIUS;
-    let (a, b) = (0.02, 0.04);
-    let sa = body
-        .solve(a * r0)
-        .map_err(|e| format!("E1/E0 {ratio}: {e}"))
-        .unwrap();
-    let sb = body.solve(b * r0).unwrap();
-    let (ra, rb) = (sa.mu / linear(a), sb.mu / linear(b));
-    let at_zero = ra - (rb - ra) * a / (b - a);
-    println!(
-        "E1/E0 {ratio}: μ/μ_lin {ra:.5} (±{:.1e}) at {a}, {rb:.5} at {b}; extrapolated to 0: {at_zero:.5}",
-        sa.error_estimate
-    );
-    assert!(ra < 1.0 + sa.error_estimate, "{ra}");
-    assert!((ra - 1.0).abs() < 0.03 + sa.error_estimate, "{ra}");
-    assert!(
-        (at_zero - 1.0).abs() < 2.0 * (sa.error_estimate + sb.error_estimate) + 2e-3,
-        "{at_zero}"
-    );
+    for ratio in [10.0, 100.0] {
+        let material = sls(ratio).to_prony();
+        let body = sphere(&material, 96);
+        let r0 = body.static_contact_radius();
+        let linear = |x: f64| (1.0 - 1.0 / ratio) * x * r0 / RADIUS;
+        let (a, b) = (0.02, 0.04);
+        let sa = body
+            .solve(a * r0)
+            .map_err(|e| format!("E1/E0 {ratio}: {e}"))
+            .unwrap();
+        let sb = body.solve(b * r0).unwrap();
+        let (ra, rb) = (sa.mu / linear(a), sb.mu / linear(b));
+        let at_zero = ra - (rb - ra) * a / (b - a);
+        println!(
+            "E1/E0 {ratio}: μ/μ_lin {ra:.5} (±{:.1e}) at {a}, {rb:.5} (±{:.1e}) at {b}; extrapolated to 0: {at_zero:.5}",
+            sa.error_estimate, sb.error_estimate
+        );
+        assert!(ra < 1.0 + sa.error_estimate, "E1/E0 {ratio}: {ra}");
+        assert!(
+            (ra - 1.0).abs() < 0.03 + sa.error_estimate,
+            "E1/E0 {ratio}: {ra}"
+        );
+        assert!(
+            (at_zero - 1.0).abs() < 2.0 * (sa.error_estimate + sb.error_estimate) + 2e-3,
+            "E1/E0 {ratio}: {at_zero}"
+        );
+    }
 }
 
-/// The extrapolated μ of 96 cells against that of 144 cells: within the
-/// 96-cell solution's own error estimate, which is not more than 30 times
-/// pessimistic (the estimate is the size of the extrapolation step, at
-/// least the jitter floor 1e-4).
+/// A standard linear solid E0 = 1 MPa, E1 = ratio · E0 with relaxation
+/// time 1 s (retardation time `ratio` s): the convention of issue 17's
+/// targets, vτ/r0 with τ the relaxation time.
+fn relaxing(ratio: f64) -> Prony {
+    Prony::new(ratio * 1e6, vec![(ratio - 1.0) * 1e6], vec![1.0]).unwrap()
+}
+
+/// The stiff solid E1/E0 = 100 at vτ/r0 = 0.01 (τ the relaxation time),
+/// where the active-set iteration cycled before issue 17 (the glassy layer
+/// at the leading edge, width ≈ vτ, is half a cell): it settles, and the
+/// solutions of 96 and 144 cells agree within their estimates (measured:
+/// 3.7e-5 apart, estimates 5.6e-5 and 1.6e-5).
 #[test]
-fn grid_convergence() {
-    let material = sls(10.0).to_prony();
-    let r0 = sphere(&material, 48).static_contact_radius();
-    for x in [0.3, 3.0, 30.0] {
-        let coarse = sphere(&material, 96).solve(x * r0).unwrap();
-        let fine = sphere(&material, 144).solve(x * r0).unwrap();
-        let difference = (coarse.mu / fine.mu - 1.0).abs();
+fn stiff_solid_at_low_speed() {
+    let material = relaxing(100.0);
+    let r0 = sphere(&material, 96).static_contact_radius();
+    let coarse = sphere(&material, 96).solve(0.01 * r0).unwrap();
+    let fine = sphere(&material, 144).solve(0.01 * r0).unwrap();
+    let difference = (coarse.mu / fine.mu - 1.0).abs();
+    println!(
+        "μR/r0 {:.7} (±{:.1e}, defect {:.1e}) vs {:.7} (±{:.1e}, defect {:.1e}): {difference:.1e}",
+        coarse.mu * RADIUS / r0,
+        coarse.error_estimate,
+        coarse.set_defect,
+        fine.mu * RADIUS / r0,
+        fine.error_estimate,
+        fine.set_defect
+    );
+    assert_eq!(fine.set_defect, 0.0, "the set did not settle");
+    assert!(difference <= coarse.error_estimate + fine.error_estimate);
+    // Near the friction maximum: μR/r0 ≈ 0.48 (Eq. (17) gives about 0.5).
+    assert!((0.4..0.55).contains(&(fine.mu * RADIUS / r0)));
+}
+
+/// The error estimate of the default 96 cells against the true error,
+/// measured against the extrapolation of 144 and 216 cells (the reference
+/// solve of 216 cells returns it), E1/E0 = 10 at vτ/r0 = 0.01 and 0.1 (τ
+/// the relaxation time): within a factor 3 either way (measured 1.1 and
+/// 0.9; the reference's own jitter is about 1e-5, a fifth of the errors
+/// there). The whole table: BENCHMARKS.md, "Exact rolling sphere".
+#[test]
+fn error_estimate_is_within_three_of_the_true_error() {
+    let material = relaxing(10.0);
+    let r0 = sphere(&material, 96).static_contact_radius();
+    for x in [0.01, 0.1] {
+        let solution = sphere(&material, 96).solve(x * r0).unwrap();
+        let reference = sphere(&material, 216).solve(x * r0).unwrap();
+        let error = (solution.mu / reference.mu - 1.0).abs();
+        let ratio = solution.error_estimate / error;
         println!(
-            "vτ/r0 {x}: μ {:.7e} vs {:.7e}: {difference:.1e}, estimates {:.1e} / {:.1e}",
-            coarse.mu, fine.mu, coarse.error_estimate, fine.error_estimate
+            "vτ/r0 {x}: μ {:.7e} vs {:.7e}: error {error:.1e}, estimate {:.1e} ({ratio:.2}×)",
+            solution.mu, reference.mu, solution.error_estimate
         );
-        assert!(
-            difference <= coarse.error_estimate + fine.error_estimate,
-            "vτ/r0 = {x}"
-        );
-        assert!(
-            coarse.error_estimate < 30.0 * difference.max(1e-5),
-            "vτ/r0 = {x}"
-        );
+        assert!((1.0 / 3.0..=3.0).contains(&ratio), "vτ/r0 = {x}: {ratio}");
     }
 }
 

@@ -15,8 +15,21 @@
 //! Each is bracketed and bisected in ln λ to machine precision. The
 //! strengths are the residues, c_j = λ_j/Ẽ′(s_j) > 0, and
 //! 1/E1 + Σ c_j = 1/E0.
+//!
+//! Terms with H_k ≤ ε E1 (ε the f64 machine epsilon, [`NEGLIGIBLE_SHARE`])
+//! are dropped first. Such a term changes Ẽ by less than the rounding of
+//! E1 itself, and its zero lies within about (H_k/E1) τ_k of its pole —
+//! closer than the spacing of f64 numbers near τ_k — so bisection cannot
+//! separate the two, and the residue computed at the rounded λ is
+//! garbage (a term of H ≈ 1e-20 E1 gave a nonsense μ from the exact
+//! cylinder). Dropping it changes J(t) by less than ε J.
 
 use crate::modulus::Prony;
+
+/// Strengths H_k ≤ NEGLIGIBLE_SHARE · E1 are dropped from the conversion:
+/// the machine epsilon, below which a term does not change E1 in f64 and
+/// its retardation time cannot be told from its relaxation time.
+pub const NEGLIGIBLE_SHARE: f64 = f64::EPSILON;
 
 /// The creep compliance J(t) = J0 + Σ_j c_j (1 − e^{−t/λ_j}) of a Prony
 /// series, in 1/Pa and s.
@@ -31,15 +44,16 @@ pub struct CreepCompliance {
 }
 
 impl CreepCompliance {
-    /// The creep compliance of `prony`. Terms with H_k = 0 are dropped and
-    /// equal relaxation times merged.
+    /// The creep compliance of `prony`. Terms with H_k ≤ ε E1
+    /// ([`NEGLIGIBLE_SHARE`]) are dropped and equal relaxation times
+    /// merged.
     pub fn from_prony(prony: &Prony) -> Self {
         let e1 = prony.glassy_modulus();
         let mut terms: Vec<(f64, f64)> = prony
             .relaxation_times()
             .iter()
             .zip(prony.strengths())
-            .filter(|(_, h)| **h > 0.0)
+            .filter(|(_, h)| **h > NEGLIGIBLE_SHARE * e1)
             .map(|(&t, &h)| (t, h))
             .collect();
         terms.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -146,6 +160,33 @@ impl CreepCompliance {
             instantaneous: factor * self.instantaneous,
             strengths: self.strengths.iter().map(|c| factor * c).collect(),
             retardation_times: self.retardation_times.clone(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A term of strength 1e-20 E1 beside a real one gives the compliance
+    /// of the real one alone (before: a garbage residue for the tiny one).
+    #[test]
+    fn negligible_terms_are_harmless() {
+        let clean = Prony::new(10.0, vec![9.0], vec![1.0]).unwrap();
+        let reference = CreepCompliance::from_prony(&clean);
+        for tiny in [1e-20, 1e-30, 1e-17] {
+            for tau in [1e-3, 1.0, 1e3] {
+                let prony = Prony::new(10.0, vec![9.0, tiny * 10.0], vec![1.0, tau]).unwrap();
+                let creep = CreepCompliance::from_prony(&prony);
+                assert!(
+                    creep.strengths.iter().all(|c| c.is_finite() && *c > 0.0),
+                    "{tiny} {tau}: {creep:?}"
+                );
+                for t in [1e-4, 1e-1, 1.0, 10.0, 1e4] {
+                    let (a, b) = (creep.at(t), reference.at(t));
+                    assert!((a / b - 1.0).abs() < 1e-12, "{tiny} {tau} {t}: {a} vs {b}");
+                }
+            }
         }
     }
 }
