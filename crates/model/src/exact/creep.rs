@@ -45,7 +45,7 @@ pub struct CreepCompliance {
 
 impl CreepCompliance {
     /// The creep compliance of `prony`. Terms with H_k ≤ ε E1
-    /// ([`NEGLIGIBLE_SHARE`]) are dropped and equal relaxation times
+    /// (`NEGLIGIBLE_SHARE`) are dropped and equal relaxation times
     /// merged.
     pub fn from_prony(prony: &Prony) -> Self {
         let e1 = prony.glassy_modulus();
