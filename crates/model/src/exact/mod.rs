@@ -570,20 +570,14 @@ impl RollingCylinder {
             iterations,
             nodes,
         } = contact.solve(b, step, self.settings.tolerance, terms)?;
-        let centroid = c + PI * b * b * b * alpha[1] / (4.0 * self.load);
-        Ok(RollingSolution {
-            speed: v,
-            mu: centroid / self.radius,
-            centroid,
-            trailing_edge: c - b,
-            leading_edge: c + b,
-            coefficients: alpha,
+        Ok(self.solution(
+            v,
+            (c, b),
+            alpha,
             iterations,
-            resolved: false,
-            method: ExactMethod::GradedMesh { nodes },
-            profile: Some(Arc::new(profile)),
-            error_estimate: f64::NAN,
-        })
+            ExactMethod::GradedMesh { nodes },
+            Some(Arc::new(profile)),
+        ))
     }
 
     /// The contact at speed `v` as `d` discretises it (Chebyshev), with
@@ -612,9 +606,33 @@ impl RollingCylinder {
             b,
             self.settings.tolerance,
         )?;
-        let alpha = colloc.alpha;
+        Ok(self.solution(
+            v,
+            (c, b),
+            colloc.alpha,
+            iterations,
+            ExactMethod::Chebyshev,
+            None,
+        ))
+    }
+
+    /// The solution with contact centre `c` and half-width `b`
+    /// (`edges` = (c, b), m) and Chebyshev coefficients `alpha` of the
+    /// pressure: the centroid x̄ = c + π b³ α1/(4F) (the α1 term is the
+    /// only odd moment of the series), μ = x̄/R. Resolved where the
+    /// Chebyshev series carries the pressure itself; the estimate is set by
+    /// the caller.
+    fn solution(
+        &self,
+        v: f64,
+        (c, b): (f64, f64),
+        alpha: Vec<f64>,
+        iterations: usize,
+        method: ExactMethod,
+        profile: Option<Arc<PressureProfile>>,
+    ) -> RollingSolution {
         let centroid = c + PI * b * b * b * alpha[1] / (4.0 * self.load);
-        Ok(RollingSolution {
+        RollingSolution {
             speed: v,
             mu: centroid / self.radius,
             centroid,
@@ -622,11 +640,11 @@ impl RollingCylinder {
             leading_edge: c + b,
             coefficients: alpha,
             iterations,
-            resolved: true,
-            method: ExactMethod::Chebyshev,
-            profile: None,
+            resolved: method == ExactMethod::Chebyshev,
+            method,
+            profile,
             error_estimate: f64::NAN,
-        })
+        }
     }
 }
 
