@@ -7,9 +7,9 @@
 //!    power of v, exact as v → 0 only.
 //! 2. Eq. (11)/(17) with the static contact size E_eff(0).
 //! 3. Eq. (11)/(17) with the dynamic contact size |E_eff(ω)| (the paper's).
-//! 4. The exact rolling cylinder ([`crate::exact`]): cylinder on a
-//!    half-space, Prony or standard-linear-solid modulus; milliseconds a
-//!    speed.
+//! 4. The exact rolling body ([`crate::exact`]) on a half-space, Prony or
+//!    standard-linear-solid modulus: the cylinder in milliseconds a speed,
+//!    the sphere in about a second.
 //!
 //! and two dials: the quadrature tolerance of rungs 2–3, and, for a film,
 //! whether it is computed or neglected (a half-space). What each costs and
@@ -18,8 +18,8 @@
 //! # `auto`
 //!
 //! The reference is the most faithful rung the scene has: the exact
-//! cylinder where it applies, else Eq. (11)/(17) with the dynamic contact
-//! size and the film. Given a relative accuracy ε against it, the error
+//! cylinder or sphere where it applies, else Eq. (11)/(17) with the
+//! dynamic contact size and the film. Given a relative accuracy ε against it, the error
 //! budget is shared out as ε/10 to the quadrature (its tolerance), and 0.3 ε
 //! each to neglecting the film, to the low-speed asymptote and to the model
 //! error of Eq. (11), so that their sum stays below ε. Per speed of an
@@ -30,18 +30,18 @@
 //! - elsewhere Eq. (11)/(17) with the dynamic size; a film is neglected
 //!   where the rigorous bound of `film_bound` on its effect is below
 //!   0.3 ε of the half-space μ, and computed elsewhere;
-//! - the exact cylinder replaces either where the model-error estimate of
+//! - the exact body replaces either where the model-error estimate of
 //!   `model_error`, K μR/b, exceeds 0.3 ε and it applies (no film
 //!   computed at that speed).
 //!
 //! Each speed gets an error estimate against the exact physics: the
 //! quadrature tolerance, the film bound, the asymptote's probed deviation,
-//! the model-error estimate K μR/b (for a sphere by analogy with the
-//! cylinder), or the exact solution's own estimate of its grid error
-//! ([`crate::exact::RollingSolution::error_estimate`]; where that is no
-//! better than Eq. (11)'s, Eq. (11) is kept). Where the estimate exceeds ε — a
-//! sphere or film near the friction maximum, where no exact rung exists —
-//! the result says so rather than claiming the accuracy.
+//! the model-error estimate K μR/b (measured against the exact cylinder
+//! and the exact sphere, `model_error`), or the exact solution's own
+//! estimate of its grid error ([`crate::exact::ExactFriction`]; where that
+//! is no better than Eq. (11)/(17)'s, Eq. (11)/(17) is kept). Where the
+//! estimate exceeds ε — a film near the friction maximum, where no exact
+//! rung exists — the result says so rather than claiming the accuracy.
 //!
 //! The static contact size is never chosen: it costs what the dynamic one
 //! costs (one quadrature on the same grid) and is never closer to the
@@ -219,7 +219,7 @@ impl AutoSweep {
             );
             if self.exact_unavailable.is_some() {
                 text += " (the model error of Eq. (11)/(17) near the friction maximum, estimated \
-                         as 0.4 μR/b; only the exact cylinder on a half-space goes further)";
+                         as 0.4 μR/b; only the exact solution on a half-space goes further)";
             }
         }
         text
