@@ -42,7 +42,11 @@
 //! error estimate ([`contact`]).
 //!
 //! Outputs: μ = x̄/R from the pressure centroid (Persson 2010, Section 4),
-//! the approach, the contact outline and the pressure map.
+//! the approach, the contact outline and the pressure map. As a check, μ
+//! from the dissipated power, P/(vF) = (1/F) ∫ d²q/(2π)² (2|q_x|/|q|)
+//! J''(|q_x| v) |p̂(q)|², which uses the cell pressures and the material's
+//! loss compliance but none of the influence coefficients, agrees with
+//! x̄/R to 2e-3 on the 96-cell grid (tests/exact_sphere_dissipation.rs).
 //!
 //! # Plane-strain check
 //!
