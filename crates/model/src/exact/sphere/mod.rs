@@ -59,6 +59,8 @@ mod convolution;
 mod gmres;
 mod memory;
 
+use std::sync::{Arc, Mutex};
+
 use crate::contact::{Shape, hertz_contact_size};
 use crate::error::{ModelError, require_positive};
 use crate::modulus::Prony;
@@ -398,7 +400,7 @@ impl RollingSphere {
             x0: -0.5 * (nx - 1) as f64 * h,
             y0: -0.5 * (ny - 1) as f64 * h,
         };
-        let table = CellTable::new(nx, ny, self.settings.quadrature_order);
+        let table = cell_table(nx, ny, self.settings.quadrature_order);
         let width = table.width();
         let mut influence: Vec<f64> = table
             .elastic
@@ -535,6 +537,42 @@ impl CoarseLookup {
         self.cells.get(&key).copied().unwrap_or(0.0)
     }
 }
+
+/// The tables of the grids solved last, newest first: a table depends on
+/// the grid's shape and the quadrature order only, and the three grids of
+/// every speed at one accuracy have the same few shapes, so a sweep of
+/// speeds (and the sweeps of a fit) build each once instead of once per
+/// solve (about a tenth of a solve's cost, in logarithms and arc tangents
+/// of the corner function).
+fn cell_table(nx: usize, ny: usize, order: usize) -> Arc<CellTable> {
+    static CACHE: Mutex<Vec<Arc<CellTable>>> = Mutex::new(Vec::new());
+    let find = |cache: &mut Vec<Arc<CellTable>>| {
+        let at = cache
+            .iter()
+            .position(|t| (t.nx, t.ny, t.order()) == (nx, ny, order))?;
+        let table = cache.remove(at);
+        cache.insert(0, table.clone());
+        Some(table)
+    };
+    // A poisoned lock only means another solve panicked mid-update of a
+    // list of complete tables: the list is still valid.
+    let lock = || CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(table) = find(&mut lock()) {
+        return table;
+    }
+    // Built outside the lock: parallel solves may build the same table
+    // twice at first, but never wait on each other's build.
+    let table = Arc::new(CellTable::new(nx, ny, order));
+    let mut cache = lock();
+    cache.insert(0, table.clone());
+    cache.truncate(CACHED_TABLES);
+    table
+}
+
+/// Tables kept by [`cell_table`]: the three grids of one accuracy, grown
+/// grids and a second accuracy (a fit's first sweep is coarser) fit; a
+/// 144-cell grid's table is about 9 MB.
+const CACHED_TABLES: usize = 12;
 
 /// Active-set corrections allowed on one grid: from a good start the
 /// iteration settles in a handful (measured: 4–10), so a solve that has
