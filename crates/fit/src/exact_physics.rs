@@ -90,19 +90,25 @@
 //!   order less and more). A sweep after one at the same accuracy and
 //!   nodes with no gap interpolates not ln r but its change ln(r/r'),
 //!   which is smooth and small (5e-4 … 1e-5 on the broad rubber), so its
-//!   interpolation error is a small fraction of itself.
-//! - The exact sphere's cost per solve itself fell 2.6 times
-//!   (`rollfit_model::exact::RollingSphere`: FFT lengths without large
-//!   primes, real-data transforms, the grids' influence tables built once
-//!   per shape).
+//!   interpolation error is a small fraction of itself; where r' was
+//!   itself interpolated, its error (estimated within half the accuracy)
+//!   carries over.
+//! - The exact sphere's cost per solve itself fell (`rollfit_model::exact::
+//!   RollingSphere`: FFT lengths without large prime factors, real-data
+//!   transforms, the grids' influence tables built once per grid shape
+//!   rather than once per solve; BENCHMARKS.md).
 //!
 //! `exact_solves` counts the solves made; the error estimates reported
 //! are those of the solutions behind the final r (of an earlier sweep at
 //! the same accuracy where a node was interpolated against it). On the
 //! broad rubber's 41 speeds at σ = 0.1 % (accuracy 1e-4): 11 solves at
 //! 1e-3, then 19 and 11 at 1e-4 over two refits (41 solves, against 103
-//! at 1e-4 before), the reported r within 2e-5 of r solved at all 41
-//! speeds; see BENCHMARKS.md for times.
+//! at 1e-4 before). Against r solved at all 41 speeds at the reported
+//! modulus, the reported ln r is off by at most 5.5e-5 where those solves
+//! estimate their own error below the accuracy, and by up to 1.1e-4 at
+//! the lowest speeds, where they estimate 1.4e-4 … 2.5e-4 and r jitters
+//! from speed to speed by that much (the fit warns of it); see
+//! BENCHMARKS.md for times.
 //!
 //! # References
 //!
@@ -403,8 +409,8 @@ enum Sweep<'a> {
     First,
     /// Every speed of [`solve_nodes`].
     Full,
-    /// Every other speed of [`solve_nodes`] (see [`thinned`]), then those
-    /// of the others where the interpolation's error estimate exceeds
+    /// Every fourth speed of [`solve_nodes`] and the last, then, halving
+    /// the stride, those where the interpolation's error estimate exceeds
     /// [`INTERPOLATION_SHARE`] of the accuracy (see [`adaptive_fill`]).
     /// What is interpolated is ln r, or ln(r/r') against an earlier
     /// correction r' when that one covers the same speeds at the same

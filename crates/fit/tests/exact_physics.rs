@@ -225,11 +225,15 @@ fn study() {
 /// convergence are checked, not that the case discriminates. The sphere's
 /// sweeps solve at some speeds only and interpolate r to the others
 /// (`exact_physics`, "Accuracy and cost"): the reported correction is
-/// also checked against r solved at every speed at the reported modulus.
-/// About five minutes on two cores:
+/// also checked against r solved at every speed at the reported modulus,
+/// to within the accuracy asked plus that reference solve's own error
+/// estimate (at the lowest speeds the sphere estimates 1e-4 … 2.5e-4 at
+/// 144 cells, and its r jitters from speed to speed by that much, which
+/// a correction interpolated there smooths out). About six minutes on
+/// two cores:
 /// `cargo test --release -p rollfit-fit --test exact_physics -- --ignored --nocapture sphere`
 #[test]
-#[ignore = "study, about five minutes: --ignored --nocapture sphere"]
+#[ignore = "study, about six minutes: --ignored --nocapture sphere"]
 fn exact_physics_for_a_sphere() {
     let data = exact_and_approximate(setup(), &broad_rubber(), 1e-4).unwrap();
     print_header();
@@ -240,18 +244,25 @@ fn exact_physics_for_a_sphere() {
         failures.extend(check(&c));
         let p = c.exact.physics.as_ref().unwrap();
         let off = correction_error(&c.exact, &data.speeds);
+        let worst = off.iter().max_by(|a, b| a.0.total_cmp(&b.0)).unwrap();
+        let beyond = off
+            .iter()
+            .filter(|(d, estimate)| *d > p.accuracy + estimate)
+            .count();
         eprintln!(
-            "σ = {} %: the reported r against r solved at all {} speeds: max |Δ ln r| = {off:.1e} \
-             (accuracy {:.1e}, {} exact solves in the fit)",
+            "σ = {} %: the reported r against r solved at all {} speeds: max |Δ ln r| = {:.1e} \
+             (that solve's estimate {:.1e}; accuracy {:.1e}, {} exact solves in the fit)",
             100.0 * noise,
             data.speeds.len(),
+            worst.0,
+            worst.1,
             p.accuracy,
             p.exact_solves
         );
-        if off > p.accuracy {
+        if beyond > 0 {
             failures.push(format!(
-                "σ {noise}: the reported correction is off by {off:.1e} from a full sweep, \
-                 above the accuracy {:.1e}",
+                "σ {noise}: the reported correction is off from a full sweep by more than the \
+                 accuracy {:.1e} plus the full sweep's own error estimate at {beyond} speeds",
                 p.accuracy
             ));
         }
@@ -259,11 +270,12 @@ fn exact_physics_for_a_sphere() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
-/// max_i |ln(r_i/r̂_i)| of the reported correction r̂ against r solved at
-/// every speed at the reported modulus (the exact sphere at the accuracy
-/// the fit asked, over Eq. (17)), with the fit's rule for the exact
-/// material: strengths below 1e-12 E1 left out, the largest kept, E0 kept.
-fn correction_error(report: &FitReport, speeds: &[f64]) -> f64 {
+/// Per speed, |ln(r_i/r̂_i)| of the reported correction r̂ against r solved
+/// at every speed at the reported modulus (the exact sphere at the
+/// accuracy the fit asked, over Eq. (17)), and that solve's own error
+/// estimate; with the fit's rule for the exact material: strengths below
+/// 1e-12 E1 left out, the largest kept, E0 kept.
+fn correction_error(report: &FitReport, speeds: &[f64]) -> Vec<(f64, f64)> {
     use rayon::prelude::*;
     use rollfit_model::Scene;
     use rollfit_model::exact::exact_body;
@@ -292,9 +304,12 @@ fn correction_error(report: &FitReport, speeds: &[f64]) -> f64 {
         p.accuracy,
     )
     .unwrap();
-    let exact: Vec<f64> = speeds
+    let exact: Vec<(f64, f64)> = speeds
         .par_iter()
-        .map(|&v| body.exact_friction(v).unwrap().mu)
+        .map(|&v| {
+            let x = body.exact_friction(v).unwrap();
+            (x.mu, x.error_estimate)
+        })
         .collect();
     let approximate = Scene::new(g, s.substrate, s.contact, prony)
         .unwrap()
@@ -304,8 +319,8 @@ fn correction_error(report: &FitReport, speeds: &[f64]) -> f64 {
         .iter()
         .zip(&approximate)
         .zip(&p.correction)
-        .map(|((x, a), r)| (x / a / r).ln().abs())
-        .fold(0.0, f64::max)
+        .map(|((x, a), r)| ((x.0 / a / r).ln().abs(), x.1))
+        .collect()
 }
 
 /// A temperature set (three temperatures, 15 speeds each, WLF truth) with

@@ -56,6 +56,12 @@ pub(super) fn thinned<T: Copy>(nodes: Vec<T>) -> Vec<T> {
         .collect()
 }
 
+/// ln r at one node and the error estimate of the exact solution behind it.
+pub(super) type NodeSolve = (f64, f64);
+
+/// The exact solves at a batch of nodes (indices), in the batch's order.
+pub(super) type SolveBatch<'a> = dyn Fn(&[usize]) -> Result<Vec<NodeSolve>, FitError> + 'a;
+
 /// The solved (node index, (ln r, error estimate)) pairs of an adaptive
 /// sweep, in increasing index. `solve` first at every fourth node and the
 /// last (every other one with fewer than 2 [`THIN_FROM`] nodes, all with
@@ -79,8 +85,8 @@ pub(super) fn adaptive_fill(
     nodes: &[f64],
     base: impl Fn(usize) -> f64,
     tolerance: f64,
-    solve: &dyn Fn(&[usize]) -> Result<Vec<(f64, f64)>, FitError>,
-) -> Result<(Vec<usize>, Vec<(f64, f64)>), FitError> {
+    solve: &SolveBatch,
+) -> Result<(Vec<usize>, Vec<NodeSolve>), FitError> {
     let n = nodes.len();
     let mut stride = match n {
         n if n < THIN_FROM => 1,

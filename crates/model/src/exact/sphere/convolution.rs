@@ -162,7 +162,7 @@ impl Convolution {
 fn smooth_from(n: usize) -> usize {
     let smooth = |mut m: usize| {
         for f in [2, 3, 5] {
-            while m % f == 0 {
+            while m.is_multiple_of(f) {
                 m /= f;
             }
         }

@@ -79,8 +79,7 @@ mod element;
 mod gmres;
 mod memory;
 mod strip;
-
-use std::sync::{Arc, Mutex};
+mod table_cache;
 
 use crate::contact::hertz_contact_size;
 use crate::error::{ModelError, require_positive};
@@ -90,7 +89,7 @@ use super::CreepCompliance;
 use contact::{Grid, GridFailure, solve_contact};
 use convolution::Convolution;
 use element::Element;
-use memory::CellTable;
+use table_cache::cell_table;
 
 /// Discretisation settings of the exact sphere.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -610,42 +609,6 @@ impl CoarseLookup {
         self.cells.get(&key).copied().unwrap_or(0.0)
     }
 }
-
-/// The tables of the grids solved last, newest first: a table depends on
-/// the grid's shape, the element and the quadrature order only, and the three grids of
-/// every speed at one accuracy have the same few shapes, so a sweep of
-/// speeds (and the sweeps of a fit) build each once instead of once per
-/// solve (about a tenth of a solve's cost, in logarithms and arc tangents
-/// of the corner function).
-fn cell_table(nx: usize, ny: usize, order: usize, element: Element) -> Arc<CellTable> {
-    static CACHE: Mutex<Vec<Arc<CellTable>>> = Mutex::new(Vec::new());
-    let find = |cache: &mut Vec<Arc<CellTable>>| {
-        let at = cache
-            .iter()
-            .position(|t| (t.nx, t.ny, t.order(), t.element()) == (nx, ny, order, element))?;
-        let table = cache.remove(at);
-        cache.insert(0, table.clone());
-        Some(table)
-    };
-    // A poisoned lock only means another solve panicked mid-update of a
-    // list of complete tables: the list is still valid.
-    let lock = || CACHE.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(table) = find(&mut lock()) {
-        return table;
-    }
-    // Built outside the lock: parallel solves may build the same table
-    // twice at first, but never wait on each other's build.
-    let table = Arc::new(CellTable::new(nx, ny, order, element));
-    let mut cache = lock();
-    cache.insert(0, table.clone());
-    cache.truncate(CACHED_TABLES);
-    table
-}
-
-/// Tables kept by [`cell_table`]: the three grids of one accuracy, grown
-/// grids and a second accuracy (a fit's first sweep is coarser) fit; a
-/// 144-cell grid's table is about 9 MB.
-const CACHED_TABLES: usize = 12;
 
 /// Active-set corrections allowed on one grid: from a good start the
 /// iteration settles in a handful (measured: 4–10), so a solve that has
