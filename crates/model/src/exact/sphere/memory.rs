@@ -122,6 +122,16 @@ impl CellTable {
         }
     }
 
+    /// Gauss–Legendre nodes per half cell.
+    pub fn order(&self) -> usize {
+        self.nodes.len() / 2
+    }
+
+    /// The element the table was built for.
+    pub fn element(&self) -> Element {
+        self.element
+    }
+
     /// Row length 2nx − 1 of the offset tables.
     pub fn width(&self) -> usize {
         2 * self.nx - 1
@@ -134,8 +144,9 @@ impl CellTable {
         let decay = (-1.0 / ell).exp();
         let (width, n) = (self.width(), self.nodes.len());
         let mut out = vec![0.0; self.elastic.len()];
+        let rule = gauss_legendre_unit(16);
         for y in 0..self.ny {
-            let mut next = tail(self.element, self.nx as f64, y as f64, ell);
+            let mut next = tail(self.element, self.nx as f64, y as f64, ell, &rule);
             for i in (0..width).rev() {
                 let k = y * width + i;
                 let local: f64 = self.samples[k * n..(k + 1) * n]
@@ -252,8 +263,8 @@ fn lagrange(nodes: &[f64], k: usize, xi: f64) -> f64 {
 /// far away), by 16-point Gauss–Legendre on panels that double
 /// from the scale on which C changes (ρ0/ℓ) up to width 4, to s = 46 (the
 /// log kernel grows only like ln s there, e^{−46} ln(ℓ s) is negligible).
-fn tail(element: Element, x0: f64, y: f64, ell: f64) -> f64 {
-    let rule = gauss_legendre_unit(16);
+/// (`rule`: the 16-point rule on [0, 1], nodes and weights.)
+fn tail(element: Element, x0: f64, y: f64, ell: f64, rule: &(Vec<f64>, Vec<f64>)) -> f64 {
     let rho0 = x0.hypot(y);
     let mut step = (rho0 / ell).min(1.0) * 0.5;
     let (mut p, mut sum) = (0.0, 0.0);

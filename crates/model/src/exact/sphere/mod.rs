@@ -83,6 +83,7 @@ mod element;
 mod gmres;
 mod memory;
 mod strip;
+mod table_cache;
 
 use crate::contact::hertz_contact_size;
 use crate::error::{ModelError, require_positive};
@@ -92,7 +93,7 @@ use super::CreepCompliance;
 use contact::{Grid, GridFailure, solve_contact};
 use convolution::Convolution;
 use element::Element;
-use memory::CellTable;
+use table_cache::cell_table;
 
 /// Discretisation settings of the exact sphere.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -474,7 +475,7 @@ impl RollingSphere {
             y0: -0.5 * (ny - 1) as f64 * h,
             element: self.element,
         };
-        let table = CellTable::new(nx, ny, self.settings.quadrature_order, self.element);
+        let table = cell_table(nx, ny, self.settings.quadrature_order, self.element);
         let width = table.width();
         let mut influence: Vec<f64> = table
             .elastic
