@@ -16,7 +16,10 @@
 //! penetrate (g < 0) join — and the system solved again from the previous
 //! pressures, until the set stops changing (a primal–dual active-set
 //! iteration, which for contact problems converges in a few steps from a
-//! good start). The gap that decides the joins is that of the pressures
+//! good start). The plane-strain strip ([`super::element`]) is the same
+//! problem on one row (y = 0): h Σ p_i = W per unit length, pressures in
+//! units of a/(R J), a the reference half-width. The gap that decides the
+//! joins is that of the pressures
 //! with their negative part removed, g⁺ = A max(p, 0) − δ + profile: with
 //! a long memory a cell pulled (p < 0) lifts the whole strip of surface
 //! behind it, which would otherwise pull in the next cell behind, and so
@@ -43,6 +46,7 @@
 //!   symmetric operator).
 
 use super::convolution::Convolution;
+use super::element::Element;
 use super::gmres::gmres;
 
 /// The grid, in units of the reference contact radius.
@@ -56,6 +60,8 @@ pub(crate) struct Grid {
     pub x0: f64,
     /// y of the first cell centre.
     pub y0: f64,
+    /// The boundary element (square cell, or strip with ny = 1).
+    pub element: Element,
 }
 
 impl Grid {
@@ -65,10 +71,12 @@ impl Grid {
         (self.x0 + i as f64 * self.h, self.y0 + j as f64 * self.h)
     }
 
-    /// Whether cell k lies on the grid's border.
+    /// Whether cell k lies on the grid's border (a strip grid's one row
+    /// has its border at its ends only).
     fn on_border(&self, k: usize) -> bool {
         let (i, j) = (k % self.nx, k / self.nx);
-        i == 0 || j == 0 || i + 1 == self.nx || j + 1 == self.ny
+        let row_end = self.element != Element::Strip && (j == 0 || j + 1 == self.ny);
+        i == 0 || i + 1 == self.nx || row_end
     }
 }
 
@@ -217,7 +225,7 @@ fn solve_on_set(
     tolerance: f64,
 ) -> Result<(usize, bool), GridFailure> {
     let cells = active.len();
-    let h2 = grid.h * grid.h;
+    let measure = grid.element.measure(grid.h);
     let index: Vec<usize> = (0..cells).filter(|&k| active[k]).collect();
     if index.is_empty() {
         return Err(GridFailure::NotConverged);
@@ -238,7 +246,7 @@ fn solve_on_set(
         for (o, &k) in out.iter_mut().zip(&index) {
             *o = u[k] - z[n];
         }
-        out[n] = h2 * z[..n].iter().sum::<f64>();
+        out[n] = measure * z[..n].iter().sum::<f64>();
     };
     let outcome = gmres(&mut apply, &rhs, &mut z, 80, tolerance, 20_000);
     pressure.iter_mut().for_each(|v| *v = 0.0);
