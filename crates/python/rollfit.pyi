@@ -8,12 +8,27 @@ those of the `rollfit` command line, bit for bit.
 """
 
 from os import PathLike
-from typing import Any, Literal, Sequence
+from typing import Any, Literal, Self, final
 
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
+__all__ = [
+    "__version__",
+    "Material",
+    "SLS",
+    "Prony",
+    "HavriliakNegami",
+    "Table",
+    "Scene",
+    "FitResult",
+    "DMA",
+    "fit",
+    "read_dma",
+    "compare",
+    "read_data",
+]
 
 _Floats = npt.ArrayLike
 _Path = str | PathLike[str]
@@ -29,22 +44,25 @@ class Material:
     def static_modulus(self) -> float:
         """E(0), Pa."""
 
+@final
 class SLS(Material):
     """Standard linear solid (Eq. 12): E0, E1 (Pa), tau (s)."""
 
     E0: float
     E1: float
     tau: float
-    def __init__(self, E0: float, E1: float, tau: float) -> None: ...
+    def __new__(cls, E0: float, E1: float, tau: float) -> Self: ...
 
+@final
 class Prony(Material):
     """Prony series (Eq. B2): E*(ω) = E1 − Σ H_k/(1 + iωτ_k); E1, H_k (Pa), tau_k (s)."""
 
     E1: float
     H: list[float]
     tau: list[float]
-    def __init__(self, E1: float, H: _Floats, tau: _Floats) -> None: ...
+    def __new__(cls, E1: float, H: _Floats, tau: _Floats) -> Self: ...
 
+@final
 class HavriliakNegami(Material):
     """E*(ω) = E1 + (E0 − E1)/(1 + (iωτ)^α)^β; 0 < E0 < E1 (Pa), tau (s), 0 < alpha, beta ≤ 1."""
 
@@ -53,21 +71,23 @@ class HavriliakNegami(Material):
     tau: float
     alpha: float
     beta: float
-    def __init__(self, E0: float, E1: float, tau: float, alpha: float, beta: float) -> None: ...
+    def __new__(cls, E0: float, E1: float, tau: float, alpha: float, beta: float) -> Self: ...
 
+@final
 class Table(Material):
     """Tabulated master curve: omega (rad/s), E_storage, E_loss (Young's, Pa)."""
 
     omega: list[float]
     E_storage: list[float]
     E_loss: list[float]
-    def __init__(self, omega: _Floats, E_storage: _Floats, E_loss: _Floats) -> None: ...
+    def __new__(cls, omega: _Floats, E_storage: _Floats, E_loss: _Floats) -> Self: ...
 
+@final
 class Scene:
     """A rolling scene: body, load, substrate, contact-size rule, material."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         *,
         shape: Literal["sphere", "cylinder"],
         radius: float,
@@ -77,7 +97,7 @@ class Scene:
         contact: Literal["dynamic", "static"] = "dynamic",
         material: Material | None = None,
         tolerance: float | None = None,
-    ) -> None:
+    ) -> Self:
         """radius R (m); load (N for a sphere, N/m for a cylinder); Poisson's
         ratio 0 … 0.5; thickness d (m) of a film on a rigid base (None: a
         half-space); tolerance: relative accuracy of μ (default 1e-6)."""
@@ -116,6 +136,7 @@ class Scene:
     @property
     def notes(self) -> list[str]: ...
 
+@final
 class FitResult:
     """The recovered master curve E*(ω) and the fit folder `rollfit fit` writes."""
 
@@ -149,6 +170,7 @@ class FitResult:
     def save(self, dir: _Path) -> None:
         """Writes dir/fit.json, modulus.csv and mu.csv (the folder replaced as a whole)."""
 
+@final
 class DMA:
     """DMA data: omega (rad/s), Young's E_storage, E_loss (Pa), T (°C)."""
 

@@ -137,21 +137,6 @@ fn anchor(key: &str, value: &Bound<'_, PyAny>) -> PyResult<ScaleAnchor> {
     })
 }
 
-/// The one temperature of a `T` column (None without one or for a
-/// temperature set), as `rollfit fit` records it in fit.json.
-fn single_temperature(temperature: Option<&[f64]>) -> Option<f64> {
-    let mut distinct: Vec<f64> = Vec::new();
-    for &t in temperature.into_iter().flatten() {
-        if !distinct.contains(&t) {
-            distinct.push(t);
-        }
-    }
-    match distinct.as_slice() {
-        [t] => Some(*t),
-        _ => None,
-    }
-}
-
 /// Fits the master curve E*(ω) to measured μ(v): speeds v (m/s), friction
 /// coefficients mu, optional standard deviations sigma of μ and
 /// temperatures T (°C; several make a temperature set). Settings as in a
@@ -261,7 +246,7 @@ pub fn fit(
     let input = FitInput {
         scene: scene.source.clone().unwrap_or_else(|| FROM_PYTHON.into()),
         data: data_file.unwrap_or_else(|| FROM_PYTHON.into()),
-        temperature: single_temperature(temperature.as_deref()),
+        temperature: measured.single_temperature(),
         rollfit_version: env!("CARGO_PKG_VERSION"),
     };
     let files = FitFiles::encode(&report, &measured, &input).map_err(|e| io_error(&e))?;
@@ -451,7 +436,12 @@ impl FitResult {
             self.report.terms.count,
             self.report.window.omega_min,
             self.report.window.omega_max,
-            self.report.converged
+            // Python's spelling of a bool.
+            if self.report.converged {
+                "True"
+            } else {
+                "False"
+            }
         )
     }
 }
