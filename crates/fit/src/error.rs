@@ -64,6 +64,10 @@ pub enum FitError {
         /// What went wrong.
         problem: String,
     },
+    /// The fit was cancelled through its [`crate::Cancel`] flag (Ctrl-C
+    /// in a Python session).
+    #[error("the fit was cancelled")]
+    Cancelled,
     /// The forward model refused a scene or a material.
     #[error(transparent)]
     Model(#[from] ModelError),

@@ -64,6 +64,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod cancel;
 pub mod condense;
 pub mod data;
 pub mod driver;
@@ -86,6 +87,7 @@ pub mod quality;
 mod shift;
 mod temperature_set;
 
+pub use cancel::Cancel;
 pub use data::Measurements;
 pub use driver::fit;
 pub use error::FitError;

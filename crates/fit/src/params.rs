@@ -8,6 +8,7 @@ use std::f64::consts::PI;
 use rollfit_model::exact::exact_body;
 use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate};
 
+use crate::cancel::Cancel;
 use crate::error::FitError;
 
 /// The optimiser.
@@ -267,6 +268,8 @@ pub struct ValidFitParams {
     /// The largest λ of the λ path (None: the path's own top): a temperature
     /// set's joint fit starts where its shifts are determined.
     pub(crate) path_top: Option<f64>,
+    /// Read before every solver run: set, it ends the fit.
+    pub(crate) cancel: Cancel,
 }
 
 impl ValidFitParams {
@@ -285,6 +288,13 @@ impl ValidFitParams {
     /// The model's physics.
     pub fn physics(&self) -> Physics {
         self.physics
+    }
+    /// The same settings, cancelled when `flag` is set (from any thread):
+    /// the fit then ends at its next solver run with
+    /// [`FitError::Cancelled`]. Never set, it changes nothing.
+    pub fn with_cancel(mut self, flag: Cancel) -> ValidFitParams {
+        self.cancel = flag;
+        self
     }
 }
 
@@ -344,6 +354,7 @@ impl FitParams {
             setup,
             bands: true,
             path_top: None,
+            cancel: Cancel::default(),
         })
     }
 

@@ -262,6 +262,40 @@ pub struct FitReport {
 }
 
 impl FitReport {
+    /// The master curve and its 1σ bands at `omega` (rad/s): [`Self::curve`]
+    /// (modulus.csv's rows, 10 per decade over the determined window)
+    /// interpolated linearly in ln ω, every column alike, so that at a
+    /// row's ω it is that row exactly. None outside the curve's ω range
+    /// (or for a NaN ω): the bands are not known there.
+    pub fn band_at(&self, omega: f64) -> Option<ModulusPoint> {
+        let curve = &self.curve;
+        let (first, last) = (curve.first()?, curve.last()?);
+        if !(omega >= first.omega && omega <= last.omega) {
+            return None;
+        }
+        // The first row at or above ω; ω lies in [rows k − 1, k].
+        let k = curve.partition_point(|p| p.omega < omega);
+        let upper = &curve[k];
+        if upper.omega == omega || k == 0 {
+            return Some(*upper);
+        }
+        let lower = &curve[k - 1];
+        let t = (omega / lower.omega).ln() / (upper.omega / lower.omega).ln();
+        let (a, b) = (lower.values(), upper.values());
+        let at = |i: usize| a[i] + t * (b[i] - a[i]);
+        Some(ModulusPoint {
+            omega,
+            storage: at(1),
+            loss: at(2),
+            tan_delta: at(3),
+            magnitude: at(4),
+            storage_sigma: at(5),
+            loss_sigma: at(6),
+            tan_delta_sigma: at(7),
+            magnitude_sigma: at(8),
+        })
+    }
+
     /// The first number of the report that is not finite, by its key in
     /// fit.json (`curve` and `mu_fit` name modulus.csv's and mu.csv's
     /// columns): JSON has no NaN or ∞, and a reader of the result files must

@@ -59,8 +59,9 @@ pub use fit_dir::FitDir;
 pub use table::ModulusTable;
 
 /// An error as the command line prints it (`{:#}` of anyhow): the message,
-/// then each source after a colon.
-pub(crate) fn chain(error: &dyn std::error::Error) -> String {
+/// then each source after a colon. Also the text of the Python module's
+/// exceptions (crates/python), so that both front doors say the same.
+pub fn chain(error: &dyn std::error::Error) -> String {
     let mut text = error.to_string();
     let mut source = error.source();
     while let Some(s) = source {

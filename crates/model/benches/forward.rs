@@ -1,5 +1,6 @@
 //! Speed of the forward model: one μ(v) for sphere and cylinder, μ with its
-//! 16 partial derivatives, and a 41-point sweep with its full Jacobian —
+//! 16 partial derivatives, a 41-point sweep with its full Jacobian, and
+//! sweeps of 41 and 4001 speeds —
 //! 15-term Prony series, dynamic contact, default tolerance 1e-6, one core.
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -66,6 +67,14 @@ fn benches(c: &mut Criterion) {
     });
     c.bench_function("sweep41_sphere", |b| {
         b.iter(|| sphere.friction_sweep(black_box(&speeds)).unwrap())
+    });
+    // The sweep the Python module's `scene.mu(v)` is timed against
+    // (crates/python/bench/bench.py, BENCHMARKS.md "Python").
+    let dense: Vec<f64> = (0..4001)
+        .map(|i| 1e-6 * 10f64.powf(i as f64 * 6.0 / 4000.0))
+        .collect();
+    c.bench_function("sweep4001_sphere", |b| {
+        b.iter(|| sphere.friction_sweep(black_box(&dense)).unwrap())
     });
 }
 

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use rollfit_io::FitDir;
-use rollfit_io::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind};
+use rollfit_io::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind, WLF_USAGE};
 use rollfit_io::output;
 use rollfit_report::compare::{Comparison, compare};
 
@@ -71,7 +71,7 @@ impl DmaFlags {
 
 /// Parses `T_REF,C1,C2`.
 fn parse_wlf(text: &str) -> Result<DmaWlf, String> {
-    let usage = "expected T_REF,C1,C2: reference temperature (°C), C1, C2 (K), e.g. 20,8.86,101.6";
+    let usage = WLF_USAGE;
     let values: Vec<f64> = text
         .split(',')
         .map(|v| v.trim().parse::<f64>())
@@ -80,15 +80,7 @@ fn parse_wlf(text: &str) -> Result<DmaWlf, String> {
     let [t_ref, c1, c2] = values[..] else {
         return Err(format!("\"{text}\" has {} numbers: {usage}", values.len()));
     };
-    if !(t_ref.is_finite() && c1.is_finite() && c2.is_finite()) {
-        return Err(format!("\"{text}\": the numbers must be finite; {usage}"));
-    }
-    if c2 <= 0.0 {
-        return Err(format!(
-            "\"{text}\": C2 = {c2} K must be positive (WLF diverges at T = T_REF − C2)"
-        ));
-    }
-    Ok(DmaWlf { t_ref, c1, c2 })
+    DmaWlf::new(t_ref, c1, c2).map_err(|problem| format!("\"{text}\": {problem}"))
 }
 
 /// Reads the fit and the DMA file and compares them (no output written).

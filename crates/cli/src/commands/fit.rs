@@ -22,7 +22,7 @@ use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
 use rollfit_model::Shape;
 
-use rollfit_io::data::{DataTable, read_sheet};
+use rollfit_io::data::read_sheet;
 use rollfit_io::scene as scene_file;
 
 /// Arguments of `rollfit fit`.
@@ -244,8 +244,6 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
             data_path.display()
         ));
     }
-    let temperature =
-        single_temperature(&table).with_context(|| format!("data file {}", data_path.display()))?;
     let data = table
         .measurements()
         .with_context(|| format!("data file {}", data_path.display()))?;
@@ -279,6 +277,7 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         sigma: table.sigma.as_deref(),
         temperature: table.temperature.as_deref(),
     };
+    let temperature = measured.single_temperature();
     let input = FitInput {
         scene: job.scene.display().to_string(),
         data: job.data.display().to_string(),
@@ -290,16 +289,6 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         report,
         temperature,
         files,
-    })
-}
-
-/// The one temperature of a `T` column (None without one, or for a
-/// temperature set, whose temperatures the report lists).
-fn single_temperature(table: &DataTable) -> Result<Option<f64>> {
-    let temperatures = table.temperatures();
-    Ok(match temperatures.as_slice() {
-        [t] => Some(*t),
-        _ => None,
     })
 }
 

@@ -180,6 +180,7 @@ impl<'a> GridSolver<'a> {
             Tolerance::Path => self.params.model_tolerance.max(PATH_MODEL_TOLERANCE),
             Tolerance::Final => self.params.model_tolerance,
         };
+        self.params.cancel.check()?;
         let counted = Counted::new(objective, leg.budget).abandoning(leg.abandon);
         let r = run(self.params.method, counted, from, self.tolerance);
         self.runs.push(record(leg.stage, lambda, &r));

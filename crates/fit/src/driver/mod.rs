@@ -58,10 +58,14 @@ use terms::{AUTO_DENSITIES, TermChoice, grid, terms_record};
 /// (17)) directly, with the exact physics by defect correction around such
 /// fits ([`crate::exact_physics`]).
 pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
-    match params.physics {
+    let report = match params.physics {
         Physics::Approximate => fit_measured(rows, None, params),
         Physics::Exact => defect_correction(rows, params, fit_measured),
-    }
+    };
+    // A stage that tolerates a failed run may have gone on after the
+    // cancellation; what it made is not the fit asked for.
+    params.cancel.check()?;
+    report
 }
 
 /// The fit with the approximate physics whatever `params` ask: the fits a

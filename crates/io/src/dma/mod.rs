@@ -57,7 +57,7 @@ pub mod trios;
 
 use form::FormRead;
 pub use isotherm::{ISOTHERM_TOLERANCE, Isotherm, isotherms};
-pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind};
+pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind, WLF_USAGE};
 
 /// A DMA file read, its moduli as Young's moduli in Pa.
 #[derive(Debug, Clone)]

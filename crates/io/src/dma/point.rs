@@ -49,6 +49,10 @@ impl ModulusKind {
     }
 }
 
+/// What a DMA's WLF shift is given as, for messages.
+pub const WLF_USAGE: &str =
+    "expected T_REF,C1,C2: reference temperature (°C), C1, C2 (K), e.g. 20,8.86,101.6";
+
 /// The DMA's own WLF shift: log10 a_T = −C1 (T − T_ref)/(C2 + T − T_ref),
 /// temperatures in °C, C2 in K.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -62,6 +66,21 @@ pub struct DmaWlf {
 }
 
 impl DmaWlf {
+    /// The DMA's WLF shift from T_ref (°C), C1 and C2 (K): finite numbers
+    /// with C2 > 0. The error says what is wrong (the command line puts
+    /// the text it was given before it, the Python module the argument).
+    pub fn new(t_ref: f64, c1: f64, c2: f64) -> Result<DmaWlf, String> {
+        if !(t_ref.is_finite() && c1.is_finite() && c2.is_finite()) {
+            return Err(format!("the numbers must be finite; {WLF_USAGE}"));
+        }
+        if c2 <= 0.0 {
+            return Err(format!(
+                "C2 = {c2} K must be positive (WLF diverges at T = T_REF − C2)"
+            ));
+        }
+        Ok(DmaWlf { t_ref, c1, c2 })
+    }
+
     /// log10 a_T at `t` (°C), or `None` at and below the divergence
     /// T = T_ref − C2, where the WLF form means nothing.
     pub fn log_shift_at(&self, t: f64) -> Option<f64> {

@@ -45,6 +45,24 @@ pub struct Measured<'a> {
     pub temperature: Option<&'a [f64]>,
 }
 
+impl Measured<'_> {
+    /// The one temperature of the `T` column, °C, which fit.json's
+    /// `input.T` records: None without a `T` column or for a temperature
+    /// set (several temperatures, which the report's shift lists).
+    pub fn single_temperature(&self) -> Option<f64> {
+        let mut distinct: Vec<f64> = Vec::new();
+        for &t in self.temperature.into_iter().flatten() {
+            if !distinct.contains(&t) {
+                distinct.push(t);
+            }
+        }
+        match distinct.as_slice() {
+            [t] => Some(*t),
+            _ => None,
+        }
+    }
+}
+
 /// Where a fit came from, for fit.json's `input` and `rollfit_version`.
 #[derive(Debug, Clone)]
 pub struct FitInput {

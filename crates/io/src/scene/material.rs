@@ -346,7 +346,12 @@ impl MaterialSection {
     }
 
     /// An "sls" (one term), "prony" or "dma" material as a Prony series;
-    /// None for other models.
+    /// None for other models (the Python module's μ with its Jacobian).
+    pub fn as_prony(&self, base_dir: &Path, note: &dyn Fn(&str)) -> Result<Option<Prony>, IoError> {
+        Ok(self.prony(base_dir, note)?)
+    }
+
+    /// [`Self::as_prony`], with the scene's own error.
     pub(super) fn prony(
         &self,
         base_dir: &Path,

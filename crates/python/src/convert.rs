@@ -1,0 +1,71 @@
+//! The boundary between Rust and Python: errors become `ValueError` with
+//! the text the command line prints after "error: " (the error and its
+//! causes, joined by ": "), and arrays cross as NumPy arrays.
+
+use num_complex::Complex64;
+use numpy::{PyArray1, PyArrayLike1};
+use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::prelude::*;
+
+/// A 1-D float64 array argument (a list or any array-like of float64).
+pub type Floats<'py> = PyArrayLike1<'py, f64, numpy::AllowTypeChange>;
+
+/// `ValueError` with an error's whole chain of causes.
+pub fn value_error(error: &dyn std::error::Error) -> PyErr {
+    PyValueError::new_err(rollfit_io::chain(error))
+}
+
+/// `ValueError` with a message.
+pub fn value_error_text(text: impl Into<String>) -> PyErr {
+    PyValueError::new_err(text.into())
+}
+
+/// An I/O error of rollfit_io: a file that cannot be read or written is
+/// `OSError`, a file whose content is wrong `ValueError`; both with the
+/// CLI's text.
+pub fn io_error(error: &rollfit_io::IoError) -> PyErr {
+    let text = rollfit_io::chain(error);
+    if is_os_failure(error) {
+        PyOSError::new_err(text)
+    } else {
+        PyValueError::new_err(text)
+    }
+}
+
+/// Whether the error's chain holds an operating-system failure.
+fn is_os_failure(error: &(dyn std::error::Error + 'static)) -> bool {
+    let mut source: Option<&(dyn std::error::Error + 'static)> = Some(error);
+    while let Some(e) = source {
+        if e.is::<std::io::Error>() {
+            return true;
+        }
+        source = e.source();
+    }
+    false
+}
+
+/// The values of a 1-D array argument, copied (the array may change while
+/// the GIL is released).
+pub fn floats(array: &Floats<'_>) -> PyResult<Vec<f64>> {
+    Ok(array.as_array().iter().copied().collect())
+}
+
+/// A float64 NumPy array.
+pub fn array<'py>(py: Python<'py>, values: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+    PyArray1::from_vec(py, values)
+}
+
+/// A complex128 NumPy array.
+pub fn complex_array<'py>(
+    py: Python<'py>,
+    values: Vec<Complex64>,
+) -> Bound<'py, PyArray1<Complex64>> {
+    PyArray1::from_vec(py, values)
+}
+
+/// JSON bytes as Python objects (`json.loads`): dicts, lists, floats that
+/// are the written f64 exactly (the text is the shortest round-trip form).
+pub fn json_to_python<'py>(py: Python<'py>, bytes: &[u8]) -> PyResult<Bound<'py, PyAny>> {
+    let text = std::str::from_utf8(bytes).map_err(|e| value_error(&e))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
