@@ -69,3 +69,34 @@ pub fn json_to_python<'py>(py: Python<'py>, bytes: &[u8]) -> PyResult<Bound<'py,
     let text = std::str::from_utf8(bytes).map_err(|e| value_error(&e))?;
     py.import("json")?.call_method1("loads", (text,))
 }
+
+/// E*(ω) of `modulus` at each ω of `omega` (rad/s), as a complex array (Pa):
+/// what every `.modulus(omega)` of the module returns.
+pub fn modulus_at<'py>(
+    py: Python<'py>,
+    omega: &Floats<'py>,
+    modulus: impl Fn(f64) -> Complex64,
+) -> PyResult<Bound<'py, PyArray1<Complex64>>> {
+    let omega = floats(omega)?;
+    Ok(complex_array(
+        py,
+        omega.iter().map(|&w| modulus(w)).collect(),
+    ))
+}
+
+/// tan δ = E″/E′ of `modulus` at each ω of `omega` (rad/s): what every
+/// `.tan_delta(omega)` of the module returns.
+pub fn tan_delta_at<'py>(
+    py: Python<'py>,
+    omega: &Floats<'py>,
+    modulus: impl Fn(f64) -> Complex64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let omega = floats(omega)?;
+    Ok(array(
+        py,
+        omega
+            .iter()
+            .map(|&w| rollfit_model::modulus::tan_delta(modulus(w)))
+            .collect(),
+    ))
+}

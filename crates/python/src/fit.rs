@@ -42,7 +42,8 @@ use rollfit_io::output;
 use rollfit_model::{Prony, ViscoelasticModulus};
 
 use crate::convert::{
-    Floats, array, complex_array, floats, io_error, json_to_python, value_error, value_error_text,
+    Floats, array, floats, io_error, json_to_python, modulus_at, tan_delta_at, value_error,
+    value_error_text,
 };
 use crate::scene::PyScene;
 
@@ -307,11 +308,7 @@ impl FitResult {
         py: Python<'py>,
         omega: Floats<'py>,
     ) -> PyResult<Bound<'py, PyArray1<Complex64>>> {
-        let omega = floats(&omega)?;
-        Ok(complex_array(
-            py,
-            omega.iter().map(|&w| self.master.modulus(w)).collect(),
-        ))
+        modulus_at(py, &omega, |w| self.master.modulus(w))
     }
 
     /// The recovered tan δ = E″/E′ at each ω (rad/s).
@@ -320,14 +317,7 @@ impl FitResult {
         py: Python<'py>,
         omega: Floats<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let omega = floats(&omega)?;
-        Ok(array(
-            py,
-            omega
-                .iter()
-                .map(|&w| rollfit_model::modulus::tan_delta(self.master.modulus(w)))
-                .collect(),
-        ))
+        tan_delta_at(py, &omega, |w| self.master.modulus(w))
     }
 
     /// The 1σ bands at each ω (rad/s): a dict of arrays "E_storage",

@@ -27,7 +27,7 @@ use rollfit_model::{
     HavriliakNegami, Prony, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus,
 };
 
-use crate::convert::{Floats, array, complex_array, floats, value_error};
+use crate::convert::{Floats, floats, modulus_at, tan_delta_at, value_error};
 
 /// A viscoelastic solid: its complex Young's modulus E*(ω), Pa.
 #[pyclass(subclass, module = "rollfit")]
@@ -69,11 +69,7 @@ impl Material {
         py: Python<'py>,
         omega: Floats<'py>,
     ) -> PyResult<Bound<'py, PyArray1<Complex64>>> {
-        let omega = floats(&omega)?;
-        Ok(complex_array(
-            py,
-            omega.iter().map(|&w| self.modulus.modulus(w)).collect(),
-        ))
+        modulus_at(py, &omega, |w| self.modulus.modulus(w))
     }
 
     /// tan δ = E″/E′ at each ω (rad/s).
@@ -82,14 +78,7 @@ impl Material {
         py: Python<'py>,
         omega: Floats<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let omega = floats(&omega)?;
-        Ok(array(
-            py,
-            omega
-                .iter()
-                .map(|&w| rollfit_model::modulus::tan_delta(self.modulus.modulus(w)))
-                .collect(),
-        ))
+        tan_delta_at(py, &omega, |w| self.modulus.modulus(w))
     }
 
     /// The static (rubbery) modulus E(0), Pa.
