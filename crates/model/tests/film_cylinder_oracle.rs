@@ -22,13 +22,14 @@
 //! Its own accuracy is checked by refinement (panel widths halved, Y
 //! doubled) and against a 25-digit mpmath quadrature at one point.
 
+mod common;
+
 use std::num::NonZeroUsize;
 
+use common::scene;
 use gauss_quad::legendre::GaussLegendre;
 use rollfit_model::film::film_factor;
-use rollfit_model::{
-    ContactSize, Geometry, Prony, Scene, Shape, StandardLinearSolid, Substrate, ViscoelasticModulus,
-};
+use rollfit_model::{ContactSize, Prony, Scene, Shape, StandardLinearSolid, ViscoelasticModulus};
 
 const RADIUS: f64 = 0.01;
 const LOAD: f64 = 100.0;
@@ -179,20 +180,15 @@ fn cylinder_scene<M: ViscoelasticModulus>(
     contact: ContactSize,
     tolerance: f64,
 ) -> Scene<M> {
-    Scene::new(
-        Geometry {
-            shape: Shape::Cylinder,
-            radius: RADIUS,
-            load: LOAD,
-        },
-        Substrate {
-            poisson: nu,
-            film_thickness: Some(d),
-        },
+    scene(
+        Shape::Cylinder,
+        RADIUS,
+        LOAD,
+        nu,
+        Some(d),
         contact,
         material,
     )
-    .unwrap()
     .with_tolerance(tolerance)
     .unwrap()
 }
