@@ -76,6 +76,27 @@ fn benches(c: &mut Criterion) {
     c.bench_function("sweep4001_sphere", |b| {
         b.iter(|| sphere.friction_sweep(black_box(&dense)).unwrap())
     });
+    // Films under the ball (issue 19): the same 41-speed sweep on films
+    // d/r0 = 1e-3 … 10 thick, against `sweep41_sphere`. The film kernel's
+    // rows are built by the warm-up (once per process), as the half-space
+    // tables are above.
+    let r0 = sphere.static_contact_size();
+    for ratio in [1e-3, 1e-2, 0.1, 1.0, 10.0] {
+        let film = Scene::new(
+            *sphere.geometry(),
+            Substrate {
+                poisson: 0.5,
+                film_thickness: Some(ratio * r0),
+            },
+            ContactSize::Dynamic,
+            prony15(),
+        )
+        .unwrap();
+        let _ = film.friction_sweep(&speeds).unwrap();
+        c.bench_function(&format!("sweep41_sphere_film_{ratio:e}"), |b| {
+            b.iter(|| film.friction_sweep(black_box(&speeds)).unwrap())
+        });
+    }
 }
 
 criterion_group!(forward, benches);

@@ -3,7 +3,6 @@
 pub(crate) mod chebyshev;
 pub mod cylinder;
 pub mod film_sphere;
-pub(crate) mod gauss_kronrod;
 pub(crate) mod quadrature;
 pub mod sphere;
 pub mod weights;

@@ -94,7 +94,7 @@ pub struct KernelTable {
 
 /// Cardinal function B(u) of P-point local Lagrange interpolation on the
 /// integers, and its derivative.
-fn cardinal(u: f64) -> (f64, f64) {
+pub(crate) fn cardinal(u: f64) -> (f64, f64) {
     let half = (STENCIL / 2) as i64;
     let cell = u.floor() as i64;
     let first = cell - half + 1;

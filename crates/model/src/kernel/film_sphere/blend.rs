@@ -1,0 +1,275 @@
+//! The universal product-integration weights of the film sphere kernel:
+//! those of the blend 1 − χ between the full kernel and its split, and of
+//! the windowed oscillation E = χ (1 − χ_w) e^{2ix} (see [`super`]).
+//!
+//! With B the cardinal function of the P-point local Lagrange interpolant
+//! on the σ grid (as in [`crate::kernel::weights`]),
+//!
+//!   W_lo(τ) = h ∫ B(u) [1 − χ(τ + hu)] du,   W_osc(τ) = h ∫ B(u) E(τ + hu) du,
+//!
+//! and their τ-derivatives W′ = −∫ B′(u) F(τ + hu) du. Both are tabulated on
+//! a fine uniform grid (h/32) where they are not constant: W_lo = h below
+//! and 0 above its range, W_osc = 0 outside its. E oscillates up to
+//! x ≈ 20 e^{1.5}, i.e. a phase change of 2x·h per cell: each cell of B is
+//! cut into sub-panels of at most 2 radians, each integrated by 16-point
+//! Gauss–Legendre.
+
+use std::sync::OnceLock;
+
+use num_complex::Complex64;
+
+use crate::kernel::quadrature::gauss_legendre_unit;
+use crate::kernel::weights::{STENCIL, STEPS, cardinal};
+use crate::kernel::{sphere, window};
+
+/// Centre of the blend χ in τ = ln x: the kernel is split into its smooth
+/// part and its oscillation above x ≈ 1.
+pub const BLEND_CENTRE: f64 = 0.0;
+/// Width of the blend in ln x (χ = ½ erfc((τ_b − τ)/w)).
+pub const BLEND_WIDTH: f64 = 0.25;
+/// χ is 0 or 1 to rounding beyond this many widths from its centre.
+const SATURATION: f64 = 6.0;
+/// Table points per grid step.
+const SUBDIVISION: usize = 32;
+
+/// χ(τ): 0 for x ≪ 1, 1 for x ≫ 1.
+pub fn blend(tau: f64) -> f64 {
+    0.5 * libm::erfc((BLEND_CENTRE - tau) / BLEND_WIDTH)
+}
+
+/// τ below which χ = 0 and above which χ = 1 (to rounding).
+pub fn blend_range() -> (f64, f64) {
+    (
+        BLEND_CENTRE - SATURATION * BLEND_WIDTH,
+        BLEND_CENTRE + SATURATION * BLEND_WIDTH,
+    )
+}
+
+/// E(τ) = χ(τ)(1 − χ_w(τ)) e^{2i e^τ}.
+fn windowed_oscillation(tau: f64) -> Complex64 {
+    let x = tau.exp();
+    Complex64::from_polar(blend(tau) * window::keep_oscillation(tau), 2.0 * x)
+}
+
+/// A weight and its τ-derivative, tabulated.
+#[derive(Debug)]
+struct Tabulated<T> {
+    /// Index of the first value on the global grid τ = m·spacing.
+    offset: i64,
+    values: Vec<(T, T)>,
+}
+
+/// W_lo, W_K, W_osc and their derivatives for one grid step.
+#[derive(Debug)]
+pub struct BlendWeights {
+    step: f64,
+    spacing: f64,
+    low: Tabulated<f64>,
+    full: Tabulated<f64>,
+    oscillation: Tabulated<Complex64>,
+}
+
+/// Six-point Lagrange weights at fractional position f ∈ [0, 1) for nodes
+/// −2..3.
+#[inline]
+pub(crate) fn lagrange6(f: f64) -> [f64; 6] {
+    let (fm2, fm1, f0, f1, f2, f3) = (f + 2.0, f + 1.0, f, f - 1.0, f - 2.0, f - 3.0);
+    [
+        -(fm1 * f0 * f1 * f2 * f3) / 120.0,
+        (fm2 * f0 * f1 * f2 * f3) / 24.0,
+        -(fm2 * fm1 * f1 * f2 * f3) / 12.0,
+        (fm2 * fm1 * f0 * f2 * f3) / 12.0,
+        -(fm2 * fm1 * f0 * f1 * f3) / 24.0,
+        (fm2 * fm1 * f0 * f1 * f2) / 120.0,
+    ]
+}
+
+/// Interpolation state for τ₀ + kh, k integer: every such point has the same
+/// fractional position on a table of spacing h/`SUBDIVISION`.
+#[derive(Debug, Clone, Copy)]
+pub struct BlendCursor {
+    tau0: f64,
+    index0: i64,
+    weights: [f64; 6],
+}
+
+impl BlendWeights {
+    /// The weights for grid step `STEPS[index]`, built on first use.
+    pub fn get(index: usize) -> &'static BlendWeights {
+        static CELLS: [OnceLock<BlendWeights>; STEPS.len()] =
+            [const { OnceLock::new() }; STEPS.len()];
+        CELLS[index].get_or_init(|| BlendWeights::build(STEPS[index]))
+    }
+
+    fn build(step: f64) -> BlendWeights {
+        let spacing = step / SUBDIVISION as f64;
+        let reach = (STENCIL / 2) as f64 * step;
+        let (blend_lo, blend_hi) = blend_range();
+        let margin = 4.0 * spacing;
+        let rule = gauss_legendre_unit(16);
+        let half = (STENCIL / 2) as i64;
+        // h ∫ B F and −∫ B′ F over the stencil, each cell cut so that F's
+        // phase moves at most 2 radians per sub-panel.
+        let integrate = |tau: f64, f: &dyn Fn(f64) -> Complex64| -> (Complex64, Complex64) {
+            let mut w = Complex64::new(0.0, 0.0);
+            let mut dw = Complex64::new(0.0, 0.0);
+            for cell in -half..half {
+                let x_top = (tau + step * (cell + 1) as f64).exp();
+                let pieces = ((2.0 * x_top * step / 2.0).ceil() as usize).max(1);
+                let width = 1.0 / pieces as f64;
+                for piece in 0..pieces {
+                    for (t, wt) in rule.0.iter().zip(&rule.1) {
+                        let u = cell as f64 + (piece as f64 + t) * width;
+                        let (b, db) = cardinal(u);
+                        let value = f(tau + step * u);
+                        w += wt * width * b * value;
+                        dw += wt * width * db * value;
+                    }
+                }
+            }
+            (step * w, -dw)
+        };
+        // Tables on the grid τ = m·spacing, so that one cursor serves all.
+        let low_offset = ((blend_lo - reach - margin) / spacing).floor() as i64;
+        let count = ((blend_hi + reach + margin) / spacing).ceil() as i64 - low_offset + 1;
+        let low = Tabulated {
+            offset: low_offset,
+            values: (0..count)
+                .map(|m| {
+                    let (w, dw) = integrate((low_offset + m) as f64 * spacing, &|s| {
+                        Complex64::new(1.0 - blend(s), 0.0)
+                    });
+                    (w.re, dw.re)
+                })
+                .collect(),
+        };
+        // W_K: the weights of (1 − χ) k_half, k_half = x² G(x) the
+        // half-space kernel, which multiplies the smooth ratio
+        // R = K/k_half at the nodes (see [`super`]).
+        let full = Tabulated {
+            offset: low_offset,
+            values: (0..count)
+                .map(|m| {
+                    let (w, dw) = integrate((low_offset + m) as f64 * spacing, &|s| {
+                        let x = s.exp();
+                        Complex64::new((1.0 - blend(s)) * x * x * sphere::g(x), 0.0)
+                    });
+                    (w.re, dw.re)
+                })
+                .collect(),
+        };
+        let osc_offset = low_offset;
+        let count =
+            ((window::smooth_above() + reach + margin) / spacing).ceil() as i64 - osc_offset + 1;
+        let oscillation = Tabulated {
+            offset: osc_offset,
+            values: (0..count)
+                .map(|m| integrate((osc_offset + m) as f64 * spacing, &windowed_oscillation))
+                .collect(),
+        };
+        BlendWeights {
+            step,
+            spacing,
+            low,
+            full,
+            oscillation,
+        }
+    }
+
+    /// Grid step h.
+    pub fn step(&self) -> f64 {
+        self.step
+    }
+
+    /// Prepares evaluations at τ₀ + kh.
+    #[inline]
+    pub fn cursor(&self, tau0: f64) -> BlendCursor {
+        let q = tau0 / self.spacing;
+        let i = q.floor();
+        BlendCursor {
+            tau0,
+            index0: i as i64,
+            weights: lagrange6(q - i),
+        }
+    }
+
+    /// (W_lo, W_lo′) at τ₀ + kh.
+    #[inline]
+    pub fn low(&self, cursor: &BlendCursor, k: i64) -> (f64, f64) {
+        let table = &self.low;
+        match Self::position(cursor, k, table.offset, table.values.len()) {
+            Position::Below => (self.step, 0.0),
+            Position::Above => (0.0, 0.0),
+            Position::At(i) => {
+                let (mut w, mut dw) = (0.0, 0.0);
+                for (c, v) in cursor.weights.iter().zip(&table.values[i..i + 6]) {
+                    w += c * v.0;
+                    dw += c * v.1;
+                }
+                (w, dw)
+            }
+        }
+    }
+
+    /// (W_K, W_K′) at τ₀ + kh, or `None` below the table (where W_K is the
+    /// half-space's product weight).
+    #[inline]
+    pub fn full(&self, cursor: &BlendCursor, k: i64) -> Option<(f64, f64)> {
+        let table = &self.full;
+        match Self::position(cursor, k, table.offset, table.values.len()) {
+            Position::Below => None,
+            Position::Above => Some((0.0, 0.0)),
+            Position::At(i) => {
+                let (mut w, mut dw) = (0.0, 0.0);
+                for (c, v) in cursor.weights.iter().zip(&table.values[i..i + 6]) {
+                    w += c * v.0;
+                    dw += c * v.1;
+                }
+                Some((w, dw))
+            }
+        }
+    }
+
+    /// (W_osc, W_osc′) at τ₀ + kh.
+    #[inline]
+    pub fn oscillation(&self, cursor: &BlendCursor, k: i64) -> Option<(Complex64, Complex64)> {
+        let table = &self.oscillation;
+        match Self::position(cursor, k, table.offset, table.values.len()) {
+            Position::Below | Position::Above => None,
+            Position::At(i) => {
+                let mut w = Complex64::new(0.0, 0.0);
+                let mut dw = Complex64::new(0.0, 0.0);
+                for (c, v) in cursor.weights.iter().zip(&table.values[i..i + 6]) {
+                    w += *c * v.0;
+                    dw += *c * v.1;
+                }
+                Some((w, dw))
+            }
+        }
+    }
+
+    /// Where τ₀ + kh lies in a table of `len` values from grid index `offset`:
+    /// the first of its six interpolation nodes, or outside.
+    #[inline]
+    fn position(cursor: &BlendCursor, k: i64, offset: i64, len: usize) -> Position {
+        let i = cursor.index0 + k * SUBDIVISION as i64 - offset;
+        if i < 2 {
+            Position::Below
+        } else if i + 4 > len as i64 {
+            Position::Above
+        } else {
+            Position::At((i - 2) as usize)
+        }
+    }
+
+    /// τ₀ of a cursor (for callers that need τ itself).
+    pub fn tau(&self, cursor: &BlendCursor, k: i64) -> f64 {
+        cursor.tau0 + k as f64 * self.step
+    }
+}
+
+enum Position {
+    Below,
+    At(usize),
+    Above,
+}
