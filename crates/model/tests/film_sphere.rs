@@ -431,3 +431,37 @@ fn sampled_loss_bound_agrees_with_brute_force() {
         );
     }
 }
+
+/// A film 1e8 contact radii thick is the half-space to far below any
+/// tolerance, so the film's quadrature must give the half-space's μ to its
+/// tolerance at every speed and step (measured: 2e-4 at 1e-3, 2e-8 at 1e-6,
+/// 8e-10 at 1e-9, all at vτ/r0 = 1): a check of the split of the film
+/// kernel where the friction comes from x ≪ 1 (high speed, vτ/r0 = 1000),
+/// around the split (vτ/r0 = 1) and from x ≫ 1 (low speed).
+#[test]
+fn thick_film_is_the_half_space_at_every_step() {
+    let half = |tol: f64| {
+        sphere_scene(sls(), 0.01, 0.15, 0.5, None, ContactSize::Dynamic)
+            .with_tolerance(tol)
+            .unwrap()
+    };
+    let r0 = half(1e-6).static_contact_size();
+    for tol in [1e-3, 1e-6, 1e-9] {
+        let film = sphere_scene(sls(), 0.01, 0.15, 0.5, Some(1e8 * r0), ContactSize::Dynamic)
+            .with_tolerance(tol)
+            .unwrap();
+        let speeds: Vec<f64> = [1e-2, 1.0, 1e3].iter().map(|vt| vt * r0).collect();
+        let want = half(1e-10).friction_sweep(&speeds).unwrap();
+        let half_space = half(tol).friction_sweep(&speeds).unwrap();
+        let got = film.friction_sweep(&speeds).unwrap();
+        for (((v, g), w), hs) in speeds.iter().zip(&got).zip(&want).zip(&half_space) {
+            let rel = g / w - 1.0;
+            eprintln!(
+                "tol {tol:e} vτ/r0 {:e}: {rel:.2e} (half-space {:.2e})",
+                v / r0,
+                hs / w - 1.0
+            );
+            assert!(rel.abs() < tol, "tol {tol:e} v {v:e}: {rel:e}");
+        }
+    }
+}

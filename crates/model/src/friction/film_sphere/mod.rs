@@ -58,7 +58,7 @@ use super::grid::{Grid, Node};
 use super::setup::Setup;
 use crate::contact::Shape;
 use crate::error::ModelError;
-use crate::kernel::film_sphere::blend::{BlendCursor, BlendWeights};
+use crate::kernel::film_sphere::blend::{BlendCursor, BlendWeights, half_space_smooth};
 use crate::kernel::film_sphere::moments::SmoothMoments;
 use crate::kernel::film_sphere::rows::{FilmRows, RowCursor, RowStencil};
 use crate::kernel::weights::{KernelCursor, KernelTable, STENCIL, STEPS};
@@ -178,7 +178,6 @@ impl FilmSphere {
         (lambda, stencil): (f64, RowStencil),
         slopes: bool,
     ) -> (f64, f64) {
-        let h = self.step;
         let (w_low, dw_low) = self.blend.low(blend_cursor, k);
         let mut w = 0.0;
         let mut dw = 0.0;
@@ -193,22 +192,30 @@ impl FilmSphere {
             w += ratio.value * w_full;
             dw += ratio.value * dw_full + (ratio.d_tau - ratio.d_lambda) * w_full;
         }
-        let w_high = h - w_low;
-        if w_high != 0.0 || dw_low != 0.0 {
-            let [m4, m6] = self.moments.at(tau + lambda);
-            let x2 = (2.0 * tau).exp();
-            let x4 = x2 * x2;
-            let n = 0.5 * m6 / x4 + 0.5 * m4 / x2;
-            // ∂N/∂ln x at fixed z.
-            let dn = -2.0 * m6 / x4 - m4 / x2;
-            w += n * w_high;
-            dw += -n * dw_low + dn * w_high;
-        }
-        if let Some((w_osc, dw_osc)) = self.blend.oscillation(blend_cursor, k) {
-            let a = self.rows.amplitude(row_cursor, k, &stencil, slopes);
-            w += (a.value * w_osc).re;
-            if slopes {
-                dw += ((a.d_tau - a.d_lambda) * w_osc + a.value * dw_osc).re;
+        let (w_smooth, dw_smooth) = self.blend.smooth(blend_cursor, k);
+        let oscillation = self.blend.oscillation(blend_cursor, k);
+        if w_smooth != 0.0 || dw_smooth != 0.0 || oscillation.is_some() {
+            // The nodes carry N/N_h and A/N_h (see [`BlendWeights`]).
+            let (n_half, dn_half) = half_space_smooth(tau);
+            if w_smooth != 0.0 || dw_smooth != 0.0 {
+                let [m4, m6] = self.moments.at(tau + lambda);
+                let (c4, c6) = (2.0 / 3.0, 8.0 / 15.0);
+                let x2 = (2.0 * tau).exp();
+                let den = c6 + c4 * x2;
+                let ratio = (m6 + m4 * x2) / den;
+                // D(N/N_h): the moments are constant at fixed z.
+                let d_ratio = 2.0 * x2 * (m4 * c6 - c4 * m6) / (den * den);
+                w += ratio * w_smooth;
+                dw += ratio * dw_smooth + d_ratio * w_smooth;
+            }
+            if let Some((w_osc, dw_osc)) = oscillation {
+                let a = self.rows.amplitude(row_cursor, k, &stencil, slopes);
+                let ratio = a.value / n_half;
+                w += (ratio * w_osc).re;
+                if slopes {
+                    let d_ratio = (a.d_tau - a.d_lambda - ratio * dn_half) / n_half;
+                    dw += (d_ratio * w_osc + ratio * dw_osc).re;
+                }
             }
         }
         (w, dw)

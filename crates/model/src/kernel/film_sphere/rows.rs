@@ -440,6 +440,8 @@ mod tests {
                                 scale = scale.max(kernel.smooth(x) * (h - w_low));
                             }
                             if let Some((w_osc, _)) = blend.oscillation(&blend_cursor, k) {
+                                // W_osc carries N_h (`BlendWeights`).
+                                let w_osc = w_osc / super::super::blend::half_space_smooth(tau).0;
                                 let got = rows.amplitude(&cursor, k, &node, false).value;
                                 let want = kernel.amplitude(x);
                                 if ((got - want) * w_osc).re.abs() > 1e-12 {
