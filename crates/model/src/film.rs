@@ -147,7 +147,7 @@ pub fn film_compliance_complex(zeta: Complex64, poisson: f64) -> Complex64 {
     }
     let nu = poisson;
     let c = 3.0 - 4.0 * nu;
-    if y.norm() >= SERIES_LIMIT {
+    if y.norm_sqr() >= SERIES_LIMIT * SERIES_LIMIT {
         let t = (-y).exp();
         let k2 = 2.0 * (5.0 - 4.0 * nu * (3.0 - 2.0 * nu));
         let num = c * (1.0 + t * t) + (y * y + k2) * t;

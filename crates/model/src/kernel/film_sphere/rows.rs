@@ -44,6 +44,8 @@ struct Row {
 /// Where a row's values lie, the same for all rows of one grid step.
 #[derive(Debug, Clone, Copy)]
 struct Layout {
+    /// Index into [`STEPS`] of the grid step.
+    step_index: usize,
     /// Values per grid step h.
     per_step: i64,
     /// Δτ = h/per_step.
@@ -68,6 +70,7 @@ impl Layout {
         let amplitude_offset = ((blend_lo - reach - margin) / spacing).floor() as i64;
         let amplitude_end = ((window::smooth_above() + reach + margin) / spacing).ceil() as i64;
         Layout {
+            step_index,
             per_step,
             spacing,
             full_offset,
@@ -77,13 +80,8 @@ impl Layout {
         }
     }
 
-    /// One row: K and A by quadrature at the nodes of piecewise Chebyshev
-    /// interpolants in τ (panels of 1 below τ = −2, where K is smooth and
-    /// ∝ x² at the bottom; ¼ above, where it carries e^{2ix} up to x ≈ 10;
-    /// ½ for the non-oscillating A; 16 points each: measured below 1e-12 of
-    /// the kernel's scale), sampled on the row's τ grid.
-    fn build_row(&self, poisson: f64, lambda: f64) -> Row {
-        let kernel = FilmKernel::new(poisson, lambda.exp());
+    /// Panel breaks of the K rows in τ: 1 wide below τ = −2, ¼ above.
+    fn full_breaks(&self) -> Vec<f64> {
         let full_lo = self.full_offset as f64 * self.spacing;
         let full_hi = (self.full_offset + self.full_len as i64 - 1) as f64 * self.spacing;
         let mut breaks = vec![full_lo];
@@ -96,9 +94,35 @@ impl Layout {
             b = (b + 0.25).min(full_hi);
             breaks.push(b);
         }
+        breaks
+    }
+
+    /// The half-space kernel k_half = x² G(x) on the K rows' panels, shared
+    /// by all rows of one step: G costs more than the film's integrals, and
+    /// at a panel's own Chebyshev points the interpolant returns the values
+    /// it was built from.
+    fn half_space_kernel(&self) -> &'static PiecewiseChebyshev {
+        static CELLS: [OnceLock<PiecewiseChebyshev>; STEPS.len()] =
+            [const { OnceLock::new() }; STEPS.len()];
+        CELLS[self.step_index].get_or_init(|| {
+            PiecewiseChebyshev::new(self.full_breaks(), POINTS, |tau| {
+                let x = tau.exp();
+                x * x * sphere::g(x)
+            })
+        })
+    }
+
+    /// One row: K and A by quadrature at the nodes of piecewise Chebyshev
+    /// interpolants in τ (panels of 1 below τ = −2, where K is smooth and
+    /// ∝ x² at the bottom; ¼ above, where it carries e^{2ix} up to x ≈ 10;
+    /// ½ for the non-oscillating A; 16 points each: measured below 1e-12 of
+    /// the kernel's scale), sampled on the row's τ grid.
+    fn build_row(&self, poisson: f64, lambda: f64) -> Row {
+        let kernel = FilmKernel::new(poisson, lambda.exp());
+        let breaks = self.full_breaks();
+        let half_space = self.half_space_kernel();
         let full = PiecewiseChebyshev::new(breaks, POINTS, |tau| {
-            let x = tau.exp();
-            kernel.full(x) / (x * x * sphere::g(x))
+            kernel.full(tau.exp()) / half_space.eval(tau)
         });
         let amplitude_lo = self.amplitude_offset as f64 * self.spacing;
         let amplitude_hi =
