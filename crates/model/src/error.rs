@@ -138,33 +138,6 @@ pub enum ModelError {
         /// The listed temperatures as shown, T_ref marked.
         listed: String,
     },
-    /// A film under a sphere: the low-frequency tail of the film correction
-    /// could not be bounded.
-    #[error(
-        "film under a sphere: the low-frequency tail of the film correction could not be bounded"
-    )]
-    FilmTailUnbounded,
-    /// A film under a sphere: the frequencies the film correction needs
-    /// leave the floating-point range.
-    #[error(
-        "film under a sphere: the frequencies v/d and below that the film correction needs at \
-         v = {speed:e} m/s, d = {thickness:e} m lie outside the floating-point range"
-    )]
-    FilmFrequenciesOutOfRange {
-        /// Rolling speed, m/s.
-        speed: f64,
-        /// Film thickness, m.
-        thickness: f64,
-    },
-    /// A film under a sphere: an adaptive integral failed for a reason other
-    /// than its budget (an internal fault).
-    #[error("film under a sphere: the {which} integral failed ({detail})")]
-    FilmIntegralFailed {
-        /// Which integral: "inner film" or "film correction".
-        which: &'static str,
-        /// The integrator's own account of the failure.
-        detail: String,
-    },
     /// A film under a sphere: μ or its derivatives came out non-finite (an
     /// internal fault).
     #[error("film under a sphere: {what} not finite at v = {speed:e} m/s")]
@@ -265,15 +238,6 @@ mod tests {
             "WLF shift at T = -90 °C: C2 + T - T_ref = -8.4 K is not positive (C2 = 101.6 K, \
              T_ref = 20 °C); the WLF form diverges at T = T_ref - C2 = -81.6 °C and does not \
              apply at or below it"
-        );
-        let frequencies = ModelError::FilmFrequenciesOutOfRange {
-            speed: 1e-300,
-            thickness: 2e-6,
-        };
-        assert_eq!(
-            frequencies.to_string(),
-            "film under a sphere: the frequencies v/d and below that the film correction needs \
-             at v = 1e-300 m/s, d = 2e-6 m lie outside the floating-point range"
         );
         let free = ModelError::OutsideFreeShift {
             temperature: 90.0,

@@ -80,7 +80,7 @@ use std::num::NonZeroUsize;
 use gauss_quad::legendre::GaussLegendre;
 use rollfit_model::ViscoelasticModulus;
 use rollfit_model::film::film_factor;
-use rollfit_model::{ContactSize, ModelError, Prony, Scene, Shape, StandardLinearSolid};
+use rollfit_model::{ContactSize, Prony, Scene, Shape, StandardLinearSolid};
 
 /// The accuracy the library's half-space sphere μ is documented to (its
 /// `HALF_SPACE_ACCURACY`, measured floor ~4e-9 at low speed).

@@ -58,7 +58,7 @@ use super::grid::{Grid, Node};
 use super::setup::Setup;
 use crate::contact::Shape;
 use crate::error::ModelError;
-use crate::kernel::film_sphere::blend::{BlendCursor, BlendWeights, half_space_smooth};
+use crate::kernel::film_sphere::blend::{BlendCursor, BlendWeights, half_space_smooth_at};
 use crate::kernel::film_sphere::moments::SmoothMoments;
 use crate::kernel::film_sphere::rows::{FilmRows, RowCursor, RowStencil};
 use crate::kernel::weights::{KernelCursor, KernelTable, STENCIL, STEPS};
@@ -115,19 +115,20 @@ impl FilmSphere {
         }
     }
 
-    /// (λ, row stencil) of node j, extending the rows if λ is new.
+    /// Makes sure node j has its (λ, row stencil), extending the rows if λ
+    /// is new.
     fn node_stencil<F: Fn(f64) -> (Complex64, Complex64)>(
         &mut self,
         grid: &mut Grid<'_, F>,
         j: i64,
-    ) -> Result<(f64, RowStencil), ModelError> {
+    ) -> Result<(), ModelError> {
         let (list, index) = if j >= 0 {
             (&self.up, j as usize)
         } else {
             (&self.down, (-j - 1) as usize)
         };
-        if let Some(&entry) = list.get(index) {
-            return Ok(entry);
+        if index < list.len() {
+            return Ok(());
         }
         loop {
             let (next, len) = if j >= 0 {
@@ -160,8 +161,18 @@ impl FilmSphere {
                 self.down.push(entry);
             }
             if len == index {
-                return Ok(entry);
+                return Ok(());
             }
+        }
+    }
+
+    /// (λ, row stencil) of node j, after [`Self::node_stencil`].
+    #[inline]
+    fn stencil_of(&self, j: i64) -> &(f64, RowStencil) {
+        if j >= 0 {
+            &self.up[j as usize]
+        } else {
+            &self.down[(-j - 1) as usize]
         }
     }
 
@@ -170,12 +181,14 @@ impl FilmSphere {
     #[inline]
     fn weight(
         &self,
-        blend_cursor: &BlendCursor,
-        half_cursor: &KernelCursor,
-        row_cursor: &RowCursor,
+        Cursors {
+            blend: blend_cursor,
+            half_space: half_cursor,
+            rows: row_cursor,
+        }: &Cursors,
         k: i64,
-        tau: f64,
-        (lambda, stencil): (f64, RowStencil),
+        (tau, inverse_x2): (f64, f64),
+        (lambda, stencil): &(f64, RowStencil),
         slopes: bool,
     ) -> (f64, f64) {
         let (w_low, dw_low) = self.blend.low(blend_cursor, k);
@@ -188,28 +201,29 @@ impl FilmSphere {
                 .blend
                 .full(blend_cursor, k)
                 .unwrap_or_else(|| self.half_space.evaluate_at(half_cursor, k));
-            let ratio = self.rows.full(row_cursor, k, &stencil, slopes);
+            let ratio = self.rows.full(row_cursor, k, stencil, slopes);
             w += ratio.value * w_full;
             dw += ratio.value * dw_full + (ratio.d_tau - ratio.d_lambda) * w_full;
         }
-        let (w_smooth, dw_smooth) = self.blend.smooth(blend_cursor, k);
+        let (w_smooth, dw_smooth) = self.blend.smooth(blend_cursor, k, inverse_x2);
         let oscillation = self.blend.oscillation(blend_cursor, k);
         if w_smooth != 0.0 || dw_smooth != 0.0 || oscillation.is_some() {
             // The nodes carry N/N_h and A/N_h (see [`BlendWeights`]).
-            let (n_half, dn_half) = half_space_smooth(tau);
+            let (n_half, dn_half) = half_space_smooth_at(inverse_x2);
             if w_smooth != 0.0 || dw_smooth != 0.0 {
-                let [m4, m6] = self.moments.at(tau + lambda);
+                let [m4, m6] = self.moments.at(tau + *lambda);
                 let (c4, c6) = (2.0 / 3.0, 8.0 / 15.0);
-                let x2 = (2.0 * tau).exp();
-                let den = c6 + c4 * x2;
-                let ratio = (m6 + m4 * x2) / den;
+                // N/N_h = (m₆ + m₄x²)/(c₆ + c₄x²), written in u = 1/x².
+                let u = inverse_x2;
+                let den = c6 * u + c4;
+                let ratio = (m6 * u + m4) / den;
                 // D(N/N_h): the moments are constant at fixed z.
-                let d_ratio = 2.0 * x2 * (m4 * c6 - c4 * m6) / (den * den);
+                let d_ratio = 2.0 * u * (m4 * c6 - c4 * m6) / (den * den);
                 w += ratio * w_smooth;
                 dw += ratio * dw_smooth + d_ratio * w_smooth;
             }
             if let Some((w_osc, dw_osc)) = oscillation {
-                let a = self.rows.amplitude(row_cursor, k, &stencil, slopes);
+                let a = self.rows.amplitude(row_cursor, k, stencil, slopes);
                 let ratio = a.value / n_half;
                 w += (ratio * w_osc).re;
                 if slopes {
@@ -220,6 +234,14 @@ impl FilmSphere {
         }
         (w, dw)
     }
+}
+
+/// The fractional positions of one speed's nodes on the tables: all its
+/// nodes τ₀ + kh share them.
+struct Cursors {
+    blend: BlendCursor,
+    half_space: KernelCursor,
+    rows: RowCursor,
 }
 
 /// Sums μ for one speed over the shared grid, extending it as needed (the
@@ -237,37 +259,35 @@ pub(super) fn one_speed<F: Fn(f64) -> (Complex64, Complex64)>(
     let j0 = ((t - grid.origin()) / h).round() as i64;
     let eps = 0.02 * tolerance;
     let tau0 = grid.origin() + j0 as f64 * h - t;
-    let blend_cursor = film.blend.cursor(tau0);
-    let row_cursor = film.rows.cursor(tau0);
-    let half_cursor = film.half_space.cursor(tau0);
+    let cursors = Cursors {
+        blend: film.blend.cursor(tau0),
+        half_space: film.half_space.cursor(tau0),
+        rows: film.rows.cursor(tau0),
+    };
     let slopes = record.is_some();
     // Above this τ the weight is h N: the window and blend are done.
     let up_start = window::smooth_above() + (STENCIL / 2) as f64 * h + 0.2;
     let mut sum = 0.0;
     for direction in [1i64, -1] {
         let mut j = if direction > 0 { j0 } else { j0 - 1 };
+        // 1/x² = e^{−2τ}, updated by a factor per node.
+        let factor = (-2.0 * direction as f64 * h).exp();
+        let mut inverse_x2 = (-2.0 * (tau0 + (j - j0) as f64 * h)).exp();
         loop {
             let node = grid.node(j)?;
-            let stencil = film.node_stencil(grid, j)?;
+            film.node_stencil(grid, j)?;
+            let stencil = film.stencil_of(j);
             let k = j - j0;
             let tau = tau0 + k as f64 * h;
-            let (w, dw) = film.weight(
-                &blend_cursor,
-                &half_cursor,
-                &row_cursor,
-                k,
-                tau,
-                stencil,
-                slopes,
-            );
+            let (w, dw) = film.weight(&cursors, k, (tau, inverse_x2), stencil, slopes);
             sum += node.phi * w;
             if let Some(r) = record.as_deref_mut() {
                 r.push((j, w, dw));
             }
             let stop = if direction > 0 {
                 tau > up_start && {
-                    let x2 = (2.0 * tau).exp();
-                    let bound_weight = h * (1.0 / (3.0 * x2) + 4.0 / (15.0 * x2 * x2));
+                    let u = inverse_x2;
+                    let bound_weight = h * (u / 3.0 + 4.0 * u * u / 15.0);
                     node.up_bound * bound_weight <= eps * sum.abs()
                 }
             } else {
@@ -277,6 +297,7 @@ pub(super) fn one_speed<F: Fn(f64) -> (Complex64, Complex64)>(
                 break;
             }
             j += direction;
+            inverse_x2 *= factor;
         }
     }
     if !sum.is_finite() {

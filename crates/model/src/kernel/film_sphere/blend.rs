@@ -51,8 +51,15 @@ pub fn blend_range() -> (f64, f64) {
 /// against (see [`BlendWeights`]).
 #[inline]
 pub fn half_space_smooth(tau: f64) -> (f64, f64) {
+    half_space_smooth_at((-2.0 * tau).exp())
+}
+
+/// [`half_space_smooth`] from u = 1/x² = e^{−2τ} (which the sums update by
+/// a factor per node instead of an exponential).
+#[inline]
+pub fn half_space_smooth_at(inverse_x2: f64) -> (f64, f64) {
     let (a, b) = (HALF_SPACE_SMOOTH[0].1, HALF_SPACE_SMOOTH[1].1);
-    let (e2, e4) = ((-2.0 * tau).exp(), (-4.0 * tau).exp());
+    let (e2, e4) = (inverse_x2, inverse_x2 * inverse_x2);
     (a * e2 + b * e4, -2.0 * a * e2 - 4.0 * b * e4)
 }
 
@@ -278,21 +285,18 @@ impl BlendWeights {
         }
     }
 
-    /// (W_N, W_N′) at τ₀ + kh.
+    /// (W_N, W_N′) at τ₀ + kh, where 1/x² = `inverse_x2`.
     #[inline]
-    pub fn smooth(&self, cursor: &BlendCursor, k: i64) -> (f64, f64) {
+    pub fn smooth(&self, cursor: &BlendCursor, k: i64, inverse_x2: f64) -> (f64, f64) {
         let table = &self.smooth;
         match Self::position(cursor, k, table.offset, table.values.len()) {
             Position::Below => (0.0, 0.0),
             Position::Above => {
-                let tau = self.tau(cursor, k);
-                let (mut w, mut dw) = (0.0, 0.0);
-                for ((c, a), m) in HALF_SPACE_SMOOTH.iter().zip(&self.smooth_far) {
-                    let term = a * (c * tau).exp() * m;
-                    w += term;
-                    dw += c * term;
-                }
-                (w, dw)
+                // Σ a e^{cτ} m_c with c = −2, −4.
+                let (c2, c4) = (HALF_SPACE_SMOOTH[0].0, HALF_SPACE_SMOOTH[1].0);
+                let t2 = HALF_SPACE_SMOOTH[0].1 * inverse_x2 * self.smooth_far[0];
+                let t4 = HALF_SPACE_SMOOTH[1].1 * inverse_x2 * inverse_x2 * self.smooth_far[1];
+                (t2 + t4, c2 * t2 + c4 * t4)
             }
             Position::At(i) => {
                 let (mut w, mut dw) = (0.0, 0.0);

@@ -21,7 +21,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use num_complex::Complex64;
 use rayon::prelude::*;
 
-use super::blend::{blend_range, lagrange6};
+use super::blend::blend_range;
 use super::integrals::FilmKernel;
 use crate::kernel::chebyshev::PiecewiseChebyshev;
 use crate::kernel::weights::{STENCIL, STEPS};
@@ -160,34 +160,39 @@ fn cache() -> &'static Mutex<HashMap<RowKey, Arc<Row>>> {
 }
 
 /// Six-point Lagrange weights at fractional position f (nodes −2..3) and
-/// their derivatives d/df.
-#[allow(clippy::needless_range_loop)] // index sets of the product formula
+/// their derivatives d/df: L_k = c_k Π_{m≠k} d_m with d_m = f − n_m, so
+/// L_k′ = c_k Σ_{m≠k} Π_{l≠k,m} d_l, from prefix and suffix products
+/// (no division, so f on a node is fine).
 pub(crate) fn lagrange6_with_slope(f: f64) -> ([f64; 6], [f64; 6]) {
-    let nodes = [-2.0, -1.0, 0.0, 1.0, 2.0, 3.0];
-    let mut slope = [0.0; 6];
-    for k in 0..6 {
-        let mut denom = 1.0;
-        for m in 0..6 {
-            if m != k {
-                denom *= nodes[k] - nodes[m];
-            }
-        }
-        let mut sum = 0.0;
-        for m in 0..6 {
-            if m == k {
-                continue;
-            }
-            let mut prod = 1.0;
-            for l in 0..6 {
-                if l != k && l != m {
-                    prod *= f - nodes[l];
-                }
-            }
-            sum += prod;
-        }
-        slope[k] = sum / denom;
+    // 1/Π_{m≠k}(n_k − n_m) for the nodes −2..3.
+    const C: [f64; 6] = [
+        -1.0 / 120.0,
+        1.0 / 24.0,
+        -1.0 / 12.0,
+        1.0 / 12.0,
+        -1.0 / 24.0,
+        1.0 / 120.0,
+    ];
+    let d = [f + 2.0, f + 1.0, f, f - 1.0, f - 2.0, f - 3.0];
+    // prefix[k] = Π_{m<k} d_m, suffix[k] = Π_{m>k} d_m, and their
+    // derivatives (sums of the products with one factor left out).
+    let (mut prefix, mut prefix_slope) = ([1.0; 6], [0.0; 6]);
+    for k in 1..6 {
+        prefix[k] = prefix[k - 1] * d[k - 1];
+        prefix_slope[k] = prefix_slope[k - 1] * d[k - 1] + prefix[k - 1];
     }
-    (lagrange6(f), slope)
+    let (mut suffix, mut suffix_slope) = ([1.0; 6], [0.0; 6]);
+    for k in (0..5).rev() {
+        suffix[k] = suffix[k + 1] * d[k + 1];
+        suffix_slope[k] = suffix_slope[k + 1] * d[k + 1] + suffix[k + 1];
+    }
+    let mut weights = [0.0; 6];
+    let mut slopes = [0.0; 6];
+    for k in 0..6 {
+        weights[k] = C[k] * prefix[k] * suffix[k];
+        slopes[k] = C[k] * (prefix_slope[k] * suffix[k] + prefix[k] * suffix_slope[k]);
+    }
+    (weights, slopes)
 }
 
 /// Σ w_b v_b over six values.
@@ -415,6 +420,38 @@ impl FilmRows {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The prefix-product weights and slopes against the Lagrange basis
+    /// written out term by term, and the weights against `lagrange6`.
+    #[test]
+    fn lagrange_slopes_match_the_basis_written_out() {
+        let nodes = [-2.0, -1.0, 0.0, 1.0, 2.0, 3.0];
+        for f in [0.0, 0.13, 0.5, 0.999, 1.0, -2.0, 3.0] {
+            let (w, dw) = lagrange6_with_slope(f);
+            let plain = super::super::blend::lagrange6(f);
+            for k in 0..6 {
+                let others = || (0..6).filter(move |&m| m != k);
+                let denom: f64 = others().map(|m| nodes[k] - nodes[m]).product();
+                let value: f64 = others().map(|m| f - nodes[m]).product::<f64>() / denom;
+                let slope: f64 = others()
+                    .map(|m| {
+                        others()
+                            .filter(|&l| l != m)
+                            .map(|l| f - nodes[l])
+                            .product::<f64>()
+                    })
+                    .sum::<f64>()
+                    / denom;
+                assert!((w[k] - value).abs() < 1e-14, "f={f} k={k}");
+                assert!((w[k] - plain[k]).abs() < 1e-14, "f={f} k={k}");
+                assert!(
+                    (dw[k] - slope).abs() < 1e-13,
+                    "f={f} k={k}: {} {slope}",
+                    dw[k]
+                );
+            }
+        }
+    }
 
     /// Interpolated K and A against direct evaluation between rows and
     /// between points. What matters is the error of what a node contributes,
