@@ -2,10 +2,14 @@
 //! 16 partial derivatives, a 41-point sweep with its full Jacobian, and
 //! sweeps of 41 and 4001 speeds —
 //! 15-term Prony series, dynamic contact, default tolerance 1e-6, one core.
+//! Then the same series as a table of 10 rows a decade (the knot-splitting
+//! quadrature of `friction/knots.rs`): one μ and a 41-point sweep.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rollfit_model::kernel::{KernelTable, step_for_tolerance};
-use rollfit_model::{ContactSize, Geometry, Prony, Scene, Shape, Substrate};
+use rollfit_model::{
+    ContactSize, Geometry, Prony, Scene, Shape, Substrate, TabulatedModulus, ViscoelasticModulus,
+};
 use std::hint::black_box;
 
 fn prony15() -> Prony {
@@ -18,7 +22,27 @@ fn prony15() -> Prony {
     Prony::new(e1, h, tau).unwrap()
 }
 
+/// [`prony15`] sampled at 10 rows a decade from 1e-8 to 1e12 rad/s (four
+/// decades beyond its relaxation rates on either side).
+fn table15() -> TabulatedModulus {
+    let p = prony15();
+    let omega: Vec<f64> = (0..=200)
+        .map(|i| 10f64.powf(-8.0 + i as f64 / 10.0))
+        .collect();
+    let e: Vec<_> = omega.iter().map(|&w| p.modulus(w)).collect();
+    TabulatedModulus::new(
+        omega,
+        e.iter().map(|z| z.re).collect(),
+        e.iter().map(|z| z.im).collect(),
+    )
+    .unwrap()
+}
+
 fn scene(shape: Shape) -> Scene<Prony> {
+    scene_of(shape, prony15())
+}
+
+fn scene_of<M: ViscoelasticModulus>(shape: Shape, material: M) -> Scene<M> {
     let load = if shape == Shape::Sphere { 1.0 } else { 200.0 };
     Scene::new(
         Geometry {
@@ -31,7 +55,7 @@ fn scene(shape: Shape) -> Scene<Prony> {
             film_thickness: None,
         },
         ContactSize::Dynamic,
-        prony15(),
+        material,
     )
     .unwrap()
 }
@@ -75,6 +99,20 @@ fn benches(c: &mut Criterion) {
         .collect();
     c.bench_function("sweep4001_sphere", |b| {
         b.iter(|| sphere.friction_sweep(black_box(&dense)).unwrap())
+    });
+    let table_sphere = scene_of(Shape::Sphere, table15());
+    let table_cylinder = scene_of(Shape::Cylinder, table15());
+    // The kernels' tables outside the timed loops.
+    let _ = table_sphere.friction(v).unwrap();
+    let _ = table_cylinder.friction(v).unwrap();
+    c.bench_function("mu_table_sphere", |b| {
+        b.iter(|| table_sphere.friction(black_box(v)).unwrap())
+    });
+    c.bench_function("mu_table_cylinder", |b| {
+        b.iter(|| table_cylinder.friction(black_box(v)).unwrap())
+    });
+    c.bench_function("sweep41_table_sphere", |b| {
+        b.iter(|| table_sphere.friction_sweep(black_box(&speeds)).unwrap())
     });
 }
 
