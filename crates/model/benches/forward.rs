@@ -2,6 +2,9 @@
 //! 16 partial derivatives, a 41-point sweep with its full Jacobian, and
 //! sweeps of 41 and 4001 speeds —
 //! 15-term Prony series, dynamic contact, default tolerance 1e-6, one core.
+//! The cylinder's 41-point sweep also runs on a film 0.1 mm thick (ν = ½,
+//! about 0.15 static contact half-widths), to time the film's own grid
+//! step (issue 19, BENCHMARKS.md "Cylinder films").
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rollfit_model::kernel::{KernelTable, step_for_tolerance};
@@ -19,6 +22,10 @@ fn prony15() -> Prony {
 }
 
 fn scene(shape: Shape) -> Scene<Prony> {
+    scene_on(shape, None)
+}
+
+fn scene_on(shape: Shape, film_thickness: Option<f64>) -> Scene<Prony> {
     let load = if shape == Shape::Sphere { 1.0 } else { 200.0 };
     Scene::new(
         Geometry {
@@ -28,7 +35,7 @@ fn scene(shape: Shape) -> Scene<Prony> {
         },
         Substrate {
             poisson: 0.5,
-            film_thickness: None,
+            film_thickness,
         },
         ContactSize::Dynamic,
         prony15(),
@@ -67,6 +74,22 @@ fn benches(c: &mut Criterion) {
     });
     c.bench_function("sweep41_sphere", |b| {
         b.iter(|| sphere.friction_sweep(black_box(&speeds)).unwrap())
+    });
+    c.bench_function("sweep41_cylinder", |b| {
+        b.iter(|| cylinder.friction_sweep(black_box(&speeds)).unwrap())
+    });
+    let film_cylinder = scene_on(Shape::Cylinder, Some(1e-4));
+    // Builds the kernel table of the film's grid step outside the timing.
+    film_cylinder.friction(v).unwrap();
+    c.bench_function("sweep41_film_cylinder", |b| {
+        b.iter(|| film_cylinder.friction_sweep(black_box(&speeds)).unwrap())
+    });
+    c.bench_function("sweep41_jacobian_film_cylinder", |b| {
+        b.iter(|| {
+            film_cylinder
+                .friction_with_gradient(black_box(&speeds))
+                .unwrap()
+        })
     });
     // The sweep the Python module's `scene.mu(v)` is timed against
     // (crates/python/bench/bench.py, BENCHMARKS.md "Python").
