@@ -2,6 +2,9 @@
 //! 16 partial derivatives, a 41-point sweep with its full Jacobian, and
 //! sweeps of 41 and 4001 speeds —
 //! 15-term Prony series, dynamic contact, default tolerance 1e-6, one core.
+//! The cylinder's 41-point sweep also runs on a film 0.1 mm thick (ν = ½,
+//! about 0.15 static contact half-widths), to time the film's own grid
+//! step (issue 19, BENCHMARKS.md "Cylinder films").
 //! Then the same series as a table of 10 rows a decade (the knot-splitting
 //! quadrature of `friction/knots.rs`): one μ and a 41-point sweep.
 
@@ -39,10 +42,14 @@ fn table15() -> TabulatedModulus {
 }
 
 fn scene(shape: Shape) -> Scene<Prony> {
-    scene_of(shape, prony15())
+    scene_of(shape, None, prony15())
 }
 
-fn scene_of<M: ViscoelasticModulus>(shape: Shape, material: M) -> Scene<M> {
+fn scene_of<M: ViscoelasticModulus>(
+    shape: Shape,
+    film_thickness: Option<f64>,
+    material: M,
+) -> Scene<M> {
     let load = if shape == Shape::Sphere { 1.0 } else { 200.0 };
     Scene::new(
         Geometry {
@@ -52,7 +59,7 @@ fn scene_of<M: ViscoelasticModulus>(shape: Shape, material: M) -> Scene<M> {
         },
         Substrate {
             poisson: 0.5,
-            film_thickness: None,
+            film_thickness,
         },
         ContactSize::Dynamic,
         material,
@@ -92,6 +99,22 @@ fn benches(c: &mut Criterion) {
     c.bench_function("sweep41_sphere", |b| {
         b.iter(|| sphere.friction_sweep(black_box(&speeds)).unwrap())
     });
+    c.bench_function("sweep41_cylinder", |b| {
+        b.iter(|| cylinder.friction_sweep(black_box(&speeds)).unwrap())
+    });
+    let film_cylinder = scene_of(Shape::Cylinder, Some(1e-4), prony15());
+    // Builds the kernel table of the film's grid step outside the timing.
+    film_cylinder.friction(v).unwrap();
+    c.bench_function("sweep41_film_cylinder", |b| {
+        b.iter(|| film_cylinder.friction_sweep(black_box(&speeds)).unwrap())
+    });
+    c.bench_function("sweep41_jacobian_film_cylinder", |b| {
+        b.iter(|| {
+            film_cylinder
+                .friction_with_gradient(black_box(&speeds))
+                .unwrap()
+        })
+    });
     // The sweep the Python module's `scene.mu(v)` is timed against
     // (crates/python/bench/bench.py, BENCHMARKS.md "Python").
     let dense: Vec<f64> = (0..4001)
@@ -100,8 +123,8 @@ fn benches(c: &mut Criterion) {
     c.bench_function("sweep4001_sphere", |b| {
         b.iter(|| sphere.friction_sweep(black_box(&dense)).unwrap())
     });
-    let table_sphere = scene_of(Shape::Sphere, table15());
-    let table_cylinder = scene_of(Shape::Cylinder, table15());
+    let table_sphere = scene_of(Shape::Sphere, None, table15());
+    let table_cylinder = scene_of(Shape::Cylinder, None, table15());
     // The kernels' tables outside the timed loops.
     let _ = table_sphere.friction(v).unwrap();
     let _ = table_cylinder.friction(v).unwrap();

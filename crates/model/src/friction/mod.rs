@@ -19,10 +19,11 @@
 //!
 //! which the same grid integrates with W and W′.
 //!
-//! A film of thickness d under the cylinder multiplies L(ω) by 1/S(ωd/v);
-//! under the sphere the film factor depends on the direction of q and is
+//! A film of thickness d under the cylinder multiplies L(ω) by 1/S(ωd/v),
+//! on a finer grid step (`film_cylinder`); under the sphere the film factor depends on the direction of q and is
 //! integrated in `film_sphere`.
 
+mod film_cylinder;
 mod film_sphere;
 mod grid;
 mod knots;
@@ -164,7 +165,14 @@ impl<M: ViscoelasticModulus> Scene<M> {
         Grid<'a, impl Fn(f64) -> (Complex64, Complex64) + 'a>,
         Option<(f64, f64)>,
     ) {
-        let table = KernelTable::get(setup.shape, step_for_tolerance(self.tolerance()));
+        let film = self
+            .substrate()
+            .film_thickness
+            .map(|d| (d, self.substrate().poisson));
+        let table = match film {
+            Some(_) => KernelTable::get_film_cylinder(film_cylinder::step_index(self.tolerance())),
+            None => KernelTable::get(setup.shape, step_for_tolerance(self.tolerance())),
+        };
         let material = self.material();
         let grid = Grid::new(
             setup,
@@ -173,10 +181,6 @@ impl<M: ViscoelasticModulus> Scene<M> {
             table.step(),
             self.tolerance(),
         );
-        let film = self
-            .substrate()
-            .film_thickness
-            .map(|d| (d, self.substrate().poisson));
         (table, grid, film)
     }
 
