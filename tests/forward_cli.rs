@@ -532,9 +532,7 @@ fn table_scene_follows_the_tabulated_solid() {
     // the estimate is stated per row and in the notes and summary.
     let estimate = t.column("table_error_estimate");
     assert!(
-        estimate
-            .iter()
-            .all(|&e| (0.0..1e-4).contains(&e)),
+        estimate.iter().all(|&e| (0.0..1e-4).contains(&e)),
         "{estimate:?}"
     );
     assert!(estimate.iter().any(|&e| e > 0.0), "{estimate:?}");

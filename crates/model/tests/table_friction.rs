@@ -201,13 +201,7 @@ fn log_grid(lo: f64, hi: f64, per_decade: f64, offset: f64) -> Vec<f64> {
 }
 
 fn sampled<M: ViscoelasticModulus>(m: &M, omega: &[f64]) -> TabulatedModulus {
-    let e: Vec<Complex64> = omega.iter().map(|&w| m.modulus(w)).collect();
-    TabulatedModulus::new(
-        omega.to_vec(),
-        e.iter().map(|z| z.re).collect(),
-        e.iter().map(|z| z.im).collect(),
-    )
-    .unwrap()
+    TabulatedModulus::sampled(m, omega).unwrap()
 }
 
 /// The largest relative error of E′ and of E″ of the table against `m`,

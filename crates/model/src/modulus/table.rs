@@ -303,6 +303,21 @@ impl TabulatedModulus {
         })
     }
 
+    /// A table of `modulus` sampled at the angular frequencies `omega`
+    /// (rad/s, increasing): what a DMA master curve of that material would
+    /// hold, for studies of the interpolation error.
+    pub fn sampled<M: ViscoelasticModulus + ?Sized>(
+        modulus: &M,
+        omega: &[f64],
+    ) -> Result<Self, ModelError> {
+        let e: Vec<Complex64> = omega.iter().map(|&w| modulus.modulus(w)).collect();
+        Self::new(
+            omega.to_vec(),
+            e.iter().map(|z| z.re).collect(),
+            e.iter().map(|z| z.im).collect(),
+        )
+    }
+
     /// The same rows interpolated with knot slopes of one order higher
     /// (five-row instead of three-row estimates, then the same
     /// shape-preserving limits). The error of this interpolant is dominated
@@ -600,13 +615,7 @@ mod tests {
     }
 
     fn sampled<M: ViscoelasticModulus>(m: &M, omega: &[f64]) -> TabulatedModulus {
-        let e: Vec<Complex64> = omega.iter().map(|&w| m.modulus(w)).collect();
-        TabulatedModulus::new(
-            omega.to_vec(),
-            e.iter().map(|z| z.re).collect(),
-            e.iter().map(|z| z.im).collect(),
-        )
-        .unwrap()
+        TabulatedModulus::sampled(m, omega).unwrap()
     }
 
     /// A non-smooth, strictly monotone storage modulus with a plateau, a
