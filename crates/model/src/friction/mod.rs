@@ -26,7 +26,9 @@
 mod film_cylinder;
 mod film_sphere;
 mod grid;
+mod knots;
 mod setup;
+mod table_error;
 
 use num_complex::Complex64;
 
@@ -194,6 +196,11 @@ impl<M: ViscoelasticModulus> Scene<M> {
                 .iter()
                 .map(|&v| film_sphere::friction(self, &setup, v, d))
                 .collect();
+        }
+        // A modulus with knots (a table) is integrated piece by piece.
+        let knots = self.material().knots();
+        if !knots.is_empty() {
+            return knots::friction_sweep(self, &setup, speeds, &knots);
         }
         let (table, mut grid, film) = self.shared_grid(&setup, speeds[0]);
         speeds

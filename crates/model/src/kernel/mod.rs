@@ -8,5 +8,6 @@ pub(crate) mod quadrature;
 pub mod sphere;
 pub mod weights;
 pub mod window;
+pub(crate) mod windowed;
 
 pub use weights::{KernelCursor, KernelTable, STEPS, step_for_tolerance};
