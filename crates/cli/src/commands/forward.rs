@@ -177,6 +177,7 @@ pub fn run(args: &Args) -> Result<()> {
         edges: solved.iter().any(|s| s.edges.is_some()),
         error: solved.iter().any(|s| s.error.is_some()),
         auto: solved.iter().any(|s| s.auto.is_some()),
+        table_error: solved.iter().any(|s| s.table_error.is_some()),
         temperature: setup.blocks.iter().any(|b| b.shift.is_some()),
     };
     let rows = setup
@@ -342,6 +343,13 @@ pub const EDGE_COLUMNS: [&str; 2] = ["contact_trailing_edge", "contact_leading_e
 /// auto, against the exact physics, see crates/model/src/ladder).
 pub const ERROR_COLUMN: &str = "error_estimate";
 
+/// Column of a `table` material on the `"dynamic"` and `"static"` rungs:
+/// the estimated relative error of μ that comes from interpolating between
+/// the table's rows (`Scene::table_interpolation_error`: μ of the same rows
+/// interpolated with higher-order slopes, compared). It adds to the
+/// quadrature's tolerance.
+pub const TABLE_ERROR_COLUMN: &str = "table_error_estimate";
+
 /// Column of `[contact] size = "auto"`: the rung that gave μ
 /// ("low-speed", "dynamic", "dynamic-film" or "exact").
 pub const RUNG_COLUMN: &str = "rung";
@@ -358,6 +366,8 @@ struct Solved {
     error: Option<Vec<f64>>,
     /// What `auto` chose.
     auto: Option<AutoSweep>,
+    /// Estimated relative error of each μ from a table's interpolation.
+    table_error: Option<Vec<f64>>,
 }
 
 /// Which optional columns the file has.
@@ -366,6 +376,7 @@ struct Extra {
     edges: bool,
     error: bool,
     auto: bool,
+    table_error: bool,
     temperature: bool,
 }
 
@@ -376,14 +387,23 @@ fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
         edges: None,
         error: None,
         auto: None,
+        table_error: None,
     };
     match &block.rung {
-        ForwardRung::Paper => Ok(mu_only(
-            block
+        ForwardRung::Paper => {
+            let mu = block
                 .scene
                 .friction_sweep(speeds)
-                .map_err(anyhow::Error::msg)?,
-        )),
+                .map_err(anyhow::Error::msg)?;
+            let table_error = block
+                .scene
+                .table_interpolation_error(speeds, &mu)
+                .map_err(anyhow::Error::msg)?;
+            Ok(Solved {
+                table_error,
+                ..mu_only(mu)
+            })
+        }
         ForwardRung::LowSpeed => Ok(mu_only(
             speeds
                 .iter()
@@ -404,6 +424,7 @@ fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
                 edges: None,
                 error: Some(auto.error_estimate.clone()),
                 auto: Some(auto),
+                table_error: None,
             })
         }
         ForwardRung::Exact(body) => {
@@ -425,12 +446,14 @@ fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
                 ),
                 error: Some(solutions.iter().map(|s| s.error_estimate).collect()),
                 auto: None,
+                table_error: None,
             })
         }
     }
 }
 
-/// `columns`, then the edge, auto and temperature columns the file has.
+/// `columns`, then the edge, error, auto, table-error and temperature
+/// columns the file has.
 fn header(columns: &[&'static str], extra: Extra) -> Vec<&'static str> {
     let mut header = columns.to_vec();
     if extra.edges {
@@ -441,6 +464,9 @@ fn header(columns: &[&'static str], extra: Extra) -> Vec<&'static str> {
     }
     if extra.auto {
         header.push(RUNG_COLUMN);
+    }
+    if extra.table_error {
+        header.push(TABLE_ERROR_COLUMN);
     }
     if extra.temperature {
         header.push(TEMPERATURE_COLUMN);
@@ -482,6 +508,9 @@ fn rows<'a>(
             let mut row: Vec<String> = row.into_iter().map(csv_text::number).collect();
             if let Some(auto) = &solved.auto {
                 row.push(auto.rungs[i].name().to_string());
+            }
+            if let Some(error) = &solved.table_error {
+                row.push(csv_text::number(error[i]));
             }
             row.extend(temperature.map(csv_text::number));
             row

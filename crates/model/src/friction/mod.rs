@@ -19,13 +19,17 @@
 //!
 //! which the same grid integrates with W and W′.
 //!
-//! A film of thickness d under the cylinder multiplies L(ω) by 1/S(ωd/v);
-//! under the sphere the film factor depends on the direction of q and is
-//! integrated in `film_sphere`.
+//! A film of thickness d under the cylinder multiplies L(ω) by 1/S(ωd/v),
+//! on a finer grid step (`film_cylinder`); under the sphere the film factor
+//! depends on the direction of q and makes the kernel a function of two
+//! variables, integrated in `film_sphere`.
 
+mod film_cylinder;
 mod film_sphere;
 mod grid;
+mod knots;
 mod setup;
+mod table_error;
 
 use num_complex::Complex64;
 
@@ -162,7 +166,14 @@ impl<M: ViscoelasticModulus> Scene<M> {
         Grid<'a, impl Fn(f64) -> (Complex64, Complex64) + 'a>,
         Option<(f64, f64)>,
     ) {
-        let table = KernelTable::get(setup.shape, step_for_tolerance(self.tolerance()));
+        let film = self
+            .substrate()
+            .film_thickness
+            .map(|d| (d, self.substrate().poisson));
+        let table = match film {
+            Some(_) => KernelTable::get_film_cylinder(film_cylinder::step_index(self.tolerance())),
+            None => KernelTable::get(setup.shape, step_for_tolerance(self.tolerance())),
+        };
         let material = self.material();
         let grid = Grid::new(
             setup,
@@ -171,10 +182,6 @@ impl<M: ViscoelasticModulus> Scene<M> {
             table.step(),
             self.tolerance(),
         );
-        let film = self
-            .substrate()
-            .film_thickness
-            .map(|d| (d, self.substrate().poisson));
         (table, grid, film)
     }
 
@@ -233,6 +240,11 @@ impl<M: ViscoelasticModulus> Scene<M> {
                     film_sphere::one_speed(&mut grid, &setup, &mut film, self.tolerance(), v, None)
                 })
                 .collect();
+        }
+        // A modulus with knots (a table) is integrated piece by piece.
+        let knots = self.material().knots();
+        if !knots.is_empty() {
+            return knots::friction_sweep(self, &setup, speeds, &knots);
         }
         let (table, mut grid, film) = self.shared_grid(&setup, speeds[0]);
         speeds

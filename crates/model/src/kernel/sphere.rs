@@ -120,6 +120,13 @@ pub fn g(x: f64) -> f64 {
 /// G_o = −Re[e^{2ix} ∫₀^∞ e^{−2xw²} (1 − ix(1 + iw²))² · 2i
 ///        / (2x⁶ (1 + iw²)⁶ √(2i − w²)) dw].
 fn oscillatory_part_large(x: f64) -> f64 {
+    -(Complex64::new(0.0, 2.0 * x).exp() * oscillatory_amplitude(x)).re
+}
+
+/// The non-oscillating amplitude I(x) of G_o(x) = −Re[e^{2ix} I(x)] for
+/// x > 2 (the integral in [`oscillatory_part_large`]): smooth in ln x, so a
+/// quadrature that follows the oscillation can tabulate it.
+pub fn oscillatory_amplitude(x: f64) -> Complex64 {
     let r = rules();
     let i = Complex64::new(0.0, 1.0);
     let w_max = (40.0 / (2.0 * x)).sqrt();
@@ -138,7 +145,7 @@ fn oscillatory_part_large(x: f64) -> f64 {
             sum += wt * width * value;
         }
     }
-    -(Complex64::new(0.0, 2.0 * x).exp() * sum).re
+    sum
 }
 
 /// G_o(x) = G(x) − G_n(x), the oscillatory part, for any x > 0 (cancels

@@ -39,8 +39,11 @@ use crate::contact::Shape;
 pub const STENCIL: usize = 10;
 /// Table points per grid step.
 const SUBDIVISION: usize = 32;
-/// Grid steps h available, coarse to fine; [`step_for_tolerance`] picks one.
-pub const STEPS: [f64; 6] = [0.4, 0.28, 0.2, 0.14, 0.1, 0.07];
+/// Grid steps h available, coarse to fine; [`step_for_tolerance`] picks one
+/// of the first six for a half-space. The last two serve only a film under
+/// a cylinder, whose factor 1/S narrows the strip of analyticity of the
+/// integrand (`friction::film_cylinder`).
+pub const STEPS: [f64; 8] = [0.4, 0.28, 0.2, 0.14, 0.1, 0.07, 0.05, 0.035];
 
 /// Index into [`STEPS`] for a requested relative tolerance of μ.
 ///
@@ -54,7 +57,7 @@ pub fn step_for_tolerance(tolerance: f64) -> usize {
     LIMITS
         .iter()
         .position(|&limit| tolerance >= limit)
-        .unwrap_or(STEPS.len() - 1)
+        .unwrap_or(LIMITS.len() - 1)
 }
 
 /// Closed-form W(τ) outside the table: Σ a e^{cτ}(b₀ + b₁ τ) terms.
@@ -142,19 +145,21 @@ fn moments(step: f64, c: f64) -> (f64, f64) {
     (step * m0, step * m1)
 }
 
-fn windowed(shape: Shape, ln_x: f64) -> f64 {
+/// The kernel with its oscillation retired by the window centred at
+/// `centre`.
+fn windowed(shape: Shape, ln_x: f64, centre: f64) -> f64 {
     let x = ln_x.exp();
-    let keep = window::keep_oscillation(ln_x);
+    let keep = window::keep_oscillation_at(ln_x, centre);
     match shape {
         Shape::Sphere => {
-            if ln_x < window::exact_below() {
+            if ln_x < window::exact_below_at(centre) {
                 x * x * sphere::g(x)
             } else {
                 x * x * (sphere::smooth_part(x) + keep * sphere::oscillatory_part(x))
             }
         }
         Shape::Cylinder => {
-            if ln_x < window::exact_below() {
+            if ln_x < window::exact_below_at(centre) {
                 cylinder::kernel(x)
             } else {
                 cylinder::smooth_part(x) + keep * cylinder::oscillatory_part(x)
@@ -174,19 +179,38 @@ impl KernelTable {
             Shape::Sphere => &SPHERE,
             Shape::Cylinder => &CYLINDER,
         };
-        cells[index].get_or_init(|| KernelTable::build(shape, STEPS[index]))
+        cells[index].get_or_init(|| KernelTable::build(shape, STEPS[index], window::WINDOW_CENTRE))
     }
 
-    fn build(shape: Shape, step: f64) -> KernelTable {
+    /// The cylinder's table for grid step `STEPS[index]` for a cylinder on a
+    /// film, built on first use: with the window at
+    /// [`window::FILM_WINDOW_CENTRE`] on steps h ≤ 0.07, which resolve the
+    /// kernel's oscillation that far; on coarser steps the default table,
+    /// whose window costs a film at most about 6e-7 (measured,
+    /// `friction::film_cylinder`), below the tolerances ≥ 1e-5 those steps
+    /// serve a film.
+    pub fn get_film_cylinder(index: usize) -> &'static KernelTable {
+        static CYLINDER: [OnceLock<KernelTable>; STEPS.len()] =
+            [const { OnceLock::new() }; STEPS.len()];
+        if STEPS[index] > 0.07 {
+            return KernelTable::get(Shape::Cylinder, index);
+        }
+        CYLINDER[index].get_or_init(|| {
+            KernelTable::build(Shape::Cylinder, STEPS[index], window::FILM_WINDOW_CENTRE)
+        })
+    }
+
+    fn build(shape: Shape, step: f64, centre: f64) -> KernelTable {
         let reach = (STENCIL / 2) as f64 * step;
         // τ range of the table: below it the small-x expansion of k is exact
         // to rounding, above it the windowed kernel is k_n and k_n's
         // expansion is exact to rounding.
         let (tau_lo, tau_hi) = match shape {
-            Shape::Sphere => (-16.0, window::smooth_above() + reach + 0.5),
+            Shape::Sphere => (-16.0, window::smooth_above_at(centre) + reach + 0.5),
             Shape::Cylinder => (-16.0, 8.0 + reach),
         };
-        let smooth_top = window::smooth_above();
+        let smooth_top = window::smooth_above_at(centre);
+        debug_assert!(smooth_top < tau_hi - reach);
         let lo = tau_lo - reach - 0.1;
         let mut breaks = Vec::new();
         let mut b = lo;
@@ -195,12 +219,20 @@ impl KernelTable {
             b += 0.5;
         }
         b = -1.0;
+        // Panels of 1/16 in ln x hold at most 1.8 periods of k_o (period
+        // π/x) up to the default window's top; beyond it (a film's wider
+        // window) they shrink like 1/x to hold as many.
+        let default_top = window::smooth_above();
         while b < smooth_top {
             breaks.push(b);
-            b += 1.0 / 16.0;
+            b += if b < default_top {
+                1.0 / 16.0
+            } else {
+                (default_top - b).exp() / 16.0
+            };
         }
         breaks.push(smooth_top);
-        let fast = PiecewiseChebyshev::new(breaks, 14, |s| windowed(shape, s));
+        let fast = PiecewiseChebyshev::new(breaks, 14, |s| windowed(shape, s, centre));
         let (cheb_lo, cheb_hi) = fast.range();
         let kernel = |s: f64| -> f64 {
             if s <= cheb_hi && s >= cheb_lo {
@@ -212,7 +244,7 @@ impl KernelTable {
                     Shape::Cylinder => cylinder::smooth_part(x),
                 }
             } else {
-                windowed(shape, s)
+                windowed(shape, s, centre)
             }
         };
 
@@ -376,8 +408,12 @@ mod tests {
 
     #[test]
     fn far_field_joins_table() {
-        for shape in [Shape::Sphere, Shape::Cylinder] {
-            let t = KernelTable::get(shape, 2);
+        for (shape, index) in [
+            (Shape::Sphere, 2),
+            (Shape::Cylinder, 2),
+            (Shape::Cylinder, STEPS.len() - 1),
+        ] {
+            let t = KernelTable::get(shape, index);
             let edge_lo = t.tau_lo + 2.5 * t.delta;
             let (a, da) = t.low.value(edge_lo);
             let (b, db) = t.evaluate(edge_lo);

@@ -15,6 +15,17 @@
 
 /// Centre X0 of the window (in x = ω a/v).
 pub const WINDOW_CENTRE: f64 = 20.0;
+/// Centre X0 of the window under a cylinder on a film, on grids of step
+/// h ≤ 0.07. The film factor 1/S(ωd/v) has poles at x = x*·a/d with
+/// arg x* ≥ 0.94 and |x*| ≈ 3.1 (`friction::film_cylinder`); where such a
+/// pole lies near X0 = 20 the window, which grows like e^{(θ/w)²} a distance
+/// θ off the real ln x axis, no longer makes the dropped part small. At 40
+/// the residue's factor e^{−2 Im x} outweighs that growth for every a/d,
+/// while the kept oscillation (frequency 2x in ln x) still stops short of
+/// the grid's own frequency 2π/h (x ≈ π/h = 45 at h = 0.07), where the
+/// interpolation error of the grid would resonate with it (at X0 = 80 and
+/// h = 0.05: 1.3e-8).
+pub const FILM_WINDOW_CENTRE: f64 = 40.0;
 /// Width w of the window in ln x.
 pub const WINDOW_WIDTH: f64 = 0.25;
 /// Beyond this many widths from the centre the window is 0 or 1 to rounding.
@@ -22,15 +33,30 @@ const SATURATION: f64 = 6.0;
 
 /// The part of the window, 1 − χ, that keeps k_o: 1 below, 0 above.
 pub fn keep_oscillation(ln_x: f64) -> f64 {
-    0.5 * libm::erfc((ln_x - WINDOW_CENTRE.ln()) / WINDOW_WIDTH)
+    keep_oscillation_at(ln_x, WINDOW_CENTRE)
 }
 
 /// ln x below which k̃ = k to rounding.
 pub fn exact_below() -> f64 {
-    WINDOW_CENTRE.ln() - SATURATION * WINDOW_WIDTH
+    exact_below_at(WINDOW_CENTRE)
 }
 
 /// ln x above which k̃ = k_n to rounding.
 pub fn smooth_above() -> f64 {
-    WINDOW_CENTRE.ln() + SATURATION * WINDOW_WIDTH
+    smooth_above_at(WINDOW_CENTRE)
+}
+
+/// [`keep_oscillation`] of a window centred at `centre` (X0).
+pub fn keep_oscillation_at(ln_x: f64, centre: f64) -> f64 {
+    0.5 * libm::erfc((ln_x - centre.ln()) / WINDOW_WIDTH)
+}
+
+/// [`exact_below`] of a window centred at `centre` (X0).
+pub fn exact_below_at(centre: f64) -> f64 {
+    centre.ln() - SATURATION * WINDOW_WIDTH
+}
+
+/// [`smooth_above`] of a window centred at `centre` (X0).
+pub fn smooth_above_at(centre: f64) -> f64 {
+    centre.ln() + SATURATION * WINDOW_WIDTH
 }

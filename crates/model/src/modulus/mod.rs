@@ -101,6 +101,26 @@ pub trait ViscoelasticModulus: Send + Sync {
     fn relaxation_bound(&self) -> Option<f64> {
         None
     }
+
+    /// The angular frequencies (rad/s, increasing) at which E*(ω) stops
+    /// being analytic: the rows of a table, where the pieces of its
+    /// interpolant meet (and, at the first and last, the terminal power
+    /// laws begin). Empty (the default) for the closed-form models. The
+    /// friction quadrature splits its integral there, because a
+    /// polynomial interpolating the integrand across such a point loses
+    /// its order.
+    fn knots(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// For a modulus interpolated from data (a table): the same data
+    /// interpolated by a rule of higher order
+    /// ([`TabulatedModulus::interpolation_comparison`]), whose difference
+    /// from this modulus — and from μ of this modulus — estimates the
+    /// interpolation error. `None` (the default) for the closed-form models.
+    fn comparison_modulus(&self) -> Option<Box<dyn ViscoelasticModulus>> {
+        None
+    }
 }
 
 /// A pointer to a modulus is the modulus: `Box` and `Arc` for owned and
@@ -132,6 +152,12 @@ macro_rules! modulus_through_pointer {
             }
             fn relaxation_bound(&self) -> Option<f64> {
                 (**self).relaxation_bound()
+            }
+            fn knots(&self) -> Vec<f64> {
+                (**self).knots()
+            }
+            fn comparison_modulus(&self) -> Option<Box<dyn ViscoelasticModulus>> {
+                (**self).comparison_modulus()
             }
         }
     )*};

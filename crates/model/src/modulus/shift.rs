@@ -404,6 +404,22 @@ impl<M: ViscoelasticModulus> ViscoelasticModulus for Shifted<M> {
         // = L′(0) ω: both parts of the bound carry over.
         self.inner.relaxation_bound()
     }
+    fn knots(&self) -> Vec<f64> {
+        self.inner
+            .knots()
+            .into_iter()
+            .map(|w| w / self.shift_factor)
+            .collect()
+    }
+    fn comparison_modulus(&self) -> Option<Box<dyn ViscoelasticModulus>> {
+        self.inner.comparison_modulus().map(|inner| {
+            Box::new(Shifted {
+                inner,
+                log10_a_t: self.log10_a_t,
+                shift_factor: self.shift_factor,
+            }) as Box<dyn ViscoelasticModulus>
+        })
+    }
 }
 
 #[cfg(test)]

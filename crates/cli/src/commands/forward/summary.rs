@@ -57,6 +57,15 @@ pub(super) fn summary(setup: &ForwardSetup, solved: &[Solved], mu: &[Vec<f64>]) 
                 );
             }
         }
+        if let Some(error) = &solved.table_error {
+            let worst = error.iter().copied().fold(0.0, f64::max);
+            line += &format!(
+                "\n{at}the table's interpolation between its rows: μ estimated to err by up to \
+                 {worst:.1e} relative (column table_error_estimate), beside the quadrature's \
+                 tolerance {:.0e}",
+                block.scene.tolerance()
+            );
+        }
         if matches!(block.rung, ForwardRung::LowSpeed) {
             line += &format!(
                 "\n{at}μ is the low-speed asymptote (Eqs. 18/19) at every speed: exact as v → 0 \
