@@ -19,7 +19,7 @@ use std::sync::OnceLock;
 use num_complex::Complex64;
 
 use crate::kernel::quadrature::gauss_legendre_unit;
-use crate::kernel::weights::{STENCIL, STEPS, cardinal};
+use crate::kernel::weights::{STENCIL, STEPS, cardinal, lagrange6};
 use crate::kernel::{sphere, window};
 
 /// Centre of the blend χ in τ = ln x: the kernel is split into its smooth
@@ -83,6 +83,40 @@ struct Tabulated<T> {
     values: Vec<(T, T)>,
 }
 
+/// A tabulated weight at one node: below or above its table, or the
+/// interpolated (W, W′).
+enum Lookup<T> {
+    Below,
+    At((T, T)),
+    Above,
+}
+
+impl<T> Tabulated<T>
+where
+    T: Copy + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T>,
+{
+    /// (W, W′) at τ₀ + kh by six-point Lagrange interpolation, or where the
+    /// node lies outside the table.
+    #[inline]
+    fn lookup(&self, cursor: &BlendCursor, k: i64) -> Lookup<T> {
+        let i = cursor.index0 + k * SUBDIVISION as i64 - self.offset;
+        if i < 2 {
+            return Lookup::Below;
+        }
+        if i + 4 > self.values.len() as i64 {
+            return Lookup::Above;
+        }
+        let values = &self.values[(i - 2) as usize..(i + 4) as usize];
+        let c = &cursor.weights;
+        let (mut w, mut dw) = (values[0].0 * c[0], values[0].1 * c[0]);
+        for (v, c) in values[1..].iter().zip(&c[1..]) {
+            w = w + v.0 * *c;
+            dw = dw + v.1 * *c;
+        }
+        Lookup::At((w, dw))
+    }
+}
+
 /// W_lo, W_K, W_N, W_osc and their derivatives for one grid step.
 ///
 /// The smooth factors N and A of the film grow like x⁻⁴ below x ≈ 1, where
@@ -106,21 +140,6 @@ pub struct BlendWeights {
     /// W_N above its table, where χ = 1.
     smooth_far: [f64; 2],
     oscillation: Tabulated<Complex64>,
-}
-
-/// Six-point Lagrange weights at fractional position f ∈ [0, 1) for nodes
-/// −2..3.
-#[inline]
-pub(crate) fn lagrange6(f: f64) -> [f64; 6] {
-    let (fm2, fm1, f0, f1, f2, f3) = (f + 2.0, f + 1.0, f, f - 1.0, f - 2.0, f - 3.0);
-    [
-        -(fm1 * f0 * f1 * f2 * f3) / 120.0,
-        (fm2 * f0 * f1 * f2 * f3) / 24.0,
-        -(fm2 * fm1 * f1 * f2 * f3) / 12.0,
-        (fm2 * fm1 * f0 * f2 * f3) / 12.0,
-        -(fm2 * fm1 * f0 * f1 * f3) / 24.0,
-        (fm2 * fm1 * f0 * f1 * f2) / 120.0,
-    ]
 }
 
 /// Interpolation state for τ₀ + kh, k integer: every such point has the same
@@ -251,18 +270,10 @@ impl BlendWeights {
     /// (W_lo, W_lo′) at τ₀ + kh.
     #[inline]
     pub fn low(&self, cursor: &BlendCursor, k: i64) -> (f64, f64) {
-        let table = &self.low;
-        match Self::position(cursor, k, table.offset, table.values.len()) {
-            Position::Below => (self.step, 0.0),
-            Position::Above => (0.0, 0.0),
-            Position::At(i) => {
-                let (mut w, mut dw) = (0.0, 0.0);
-                for (c, v) in cursor.weights.iter().zip(&table.values[i..i + 6]) {
-                    w += c * v.0;
-                    dw += c * v.1;
-                }
-                (w, dw)
-            }
+        match self.low.lookup(cursor, k) {
+            Lookup::Below => (self.step, 0.0),
+            Lookup::At(w) => w,
+            Lookup::Above => (0.0, 0.0),
         }
     }
 
@@ -270,41 +281,25 @@ impl BlendWeights {
     /// half-space's product weight).
     #[inline]
     pub fn full(&self, cursor: &BlendCursor, k: i64) -> Option<(f64, f64)> {
-        let table = &self.full;
-        match Self::position(cursor, k, table.offset, table.values.len()) {
-            Position::Below => None,
-            Position::Above => Some((0.0, 0.0)),
-            Position::At(i) => {
-                let (mut w, mut dw) = (0.0, 0.0);
-                for (c, v) in cursor.weights.iter().zip(&table.values[i..i + 6]) {
-                    w += c * v.0;
-                    dw += c * v.1;
-                }
-                Some((w, dw))
-            }
+        match self.full.lookup(cursor, k) {
+            Lookup::Below => None,
+            Lookup::At(w) => Some(w),
+            Lookup::Above => Some((0.0, 0.0)),
         }
     }
 
     /// (W_N, W_N′) at τ₀ + kh, where 1/x² = `inverse_x2`.
     #[inline]
     pub fn smooth(&self, cursor: &BlendCursor, k: i64, inverse_x2: f64) -> (f64, f64) {
-        let table = &self.smooth;
-        match Self::position(cursor, k, table.offset, table.values.len()) {
-            Position::Below => (0.0, 0.0),
-            Position::Above => {
+        match self.smooth.lookup(cursor, k) {
+            Lookup::Below => (0.0, 0.0),
+            Lookup::At(w) => w,
+            Lookup::Above => {
                 // Σ a e^{cτ} m_c with c = −2, −4.
                 let (c2, c4) = (HALF_SPACE_SMOOTH[0].0, HALF_SPACE_SMOOTH[1].0);
                 let t2 = HALF_SPACE_SMOOTH[0].1 * inverse_x2 * self.smooth_far[0];
                 let t4 = HALF_SPACE_SMOOTH[1].1 * inverse_x2 * inverse_x2 * self.smooth_far[1];
                 (t2 + t4, c2 * t2 + c4 * t4)
-            }
-            Position::At(i) => {
-                let (mut w, mut dw) = (0.0, 0.0);
-                for (c, v) in cursor.weights.iter().zip(&table.values[i..i + 6]) {
-                    w += c * v.0;
-                    dw += c * v.1;
-                }
-                (w, dw)
             }
         }
     }
@@ -312,32 +307,9 @@ impl BlendWeights {
     /// (W_osc, W_osc′) at τ₀ + kh.
     #[inline]
     pub fn oscillation(&self, cursor: &BlendCursor, k: i64) -> Option<(Complex64, Complex64)> {
-        let table = &self.oscillation;
-        match Self::position(cursor, k, table.offset, table.values.len()) {
-            Position::Below | Position::Above => None,
-            Position::At(i) => {
-                let mut w = Complex64::new(0.0, 0.0);
-                let mut dw = Complex64::new(0.0, 0.0);
-                for (c, v) in cursor.weights.iter().zip(&table.values[i..i + 6]) {
-                    w += *c * v.0;
-                    dw += *c * v.1;
-                }
-                Some((w, dw))
-            }
-        }
-    }
-
-    /// Where τ₀ + kh lies in a table of `len` values from grid index `offset`:
-    /// the first of its six interpolation nodes, or outside.
-    #[inline]
-    fn position(cursor: &BlendCursor, k: i64, offset: i64, len: usize) -> Position {
-        let i = cursor.index0 + k * SUBDIVISION as i64 - offset;
-        if i < 2 {
-            Position::Below
-        } else if i + 4 > len as i64 {
-            Position::Above
-        } else {
-            Position::At((i - 2) as usize)
+        match self.oscillation.lookup(cursor, k) {
+            Lookup::At(w) => Some(w),
+            Lookup::Below | Lookup::Above => None,
         }
     }
 
@@ -345,10 +317,4 @@ impl BlendWeights {
     pub fn tau(&self, cursor: &BlendCursor, k: i64) -> f64 {
         cursor.tau0 + k as f64 * self.step
     }
-}
-
-enum Position {
-    Below,
-    At(usize),
-    Above,
 }

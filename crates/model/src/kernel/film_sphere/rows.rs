@@ -349,31 +349,7 @@ impl FilmRows {
             };
         }
         let i = (i as usize - 2).min(layout.full_len - 6);
-        let rows = &self.rows[node.first..node.first + 6];
-        let mut along = [0.0; 6];
-        let mut along_slope = [0.0; 6];
-        for (a, row) in rows.iter().enumerate() {
-            let values = &row.full[i..i + 6];
-            along[a] = dot(&cursor.weights, values);
-            if slopes {
-                along_slope[a] = dot(&cursor.slopes, values);
-            }
-        }
-        let mut value = 0.0;
-        let mut d_tau = 0.0;
-        let mut d_lambda = 0.0;
-        for a in 0..6 {
-            value += node.weights[a] * along[a];
-            if slopes {
-                d_tau += node.weights[a] * along_slope[a];
-                d_lambda += node.slopes[a] * along[a];
-            }
-        }
-        Interpolated {
-            value,
-            d_tau,
-            d_lambda,
-        }
+        self.interpolate(|row| &row.full[i..i + 6], cursor, node, slopes)
     }
 
     /// A at τ₀ + kh (inside its table), as [`FilmRows::full`].
@@ -388,27 +364,43 @@ impl FilmRows {
         let layout = &self.layout;
         let i = cursor.index0 + k * layout.per_step - layout.amplitude_offset;
         let i = (i.max(2) as usize - 2).min(layout.amplitude_len - 6);
+        self.interpolate(|row| &row.amplitude[i..i + 6], cursor, node, slopes)
+    }
+
+    /// Six-by-six Lagrange interpolation: the six values `along` picks from
+    /// each of the node's six rows, combined in τ with the cursor's weights
+    /// and in λ with the node's, with the partial derivatives if `slopes`.
+    #[inline(always)]
+    fn interpolate<'r, T, F>(
+        &'r self,
+        along: F,
+        cursor: &RowCursor,
+        node: &RowStencil,
+        slopes: bool,
+    ) -> Interpolated<T>
+    where
+        T: Copy + Default + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T> + 'r,
+        F: Fn(&'r Row) -> &'r [T],
+    {
         let rows = &self.rows[node.first..node.first + 6];
-        let zero = Complex64::new(0.0, 0.0);
-        let mut along = [zero; 6];
-        let mut along_slope = [zero; 6];
+        let mut in_tau = [T::default(); 6];
+        let mut in_tau_slope = [T::default(); 6];
         for (a, row) in rows.iter().enumerate() {
-            let values = &row.amplitude[i..i + 6];
-            along[a] = dot(&cursor.weights, values);
+            let values = along(row);
+            in_tau[a] = dot(&cursor.weights, values);
             if slopes {
-                along_slope[a] = dot(&cursor.slopes, values);
+                in_tau_slope[a] = dot(&cursor.slopes, values);
             }
         }
-        let mut value = zero;
-        let mut d_tau = zero;
-        let mut d_lambda = zero;
-        for a in 0..6 {
-            value += node.weights[a] * along[a];
-            if slopes {
-                d_tau += node.weights[a] * along_slope[a];
-                d_lambda += node.slopes[a] * along[a];
-            }
-        }
+        let value = dot(&node.weights, &in_tau);
+        let (d_tau, d_lambda) = if slopes {
+            (
+                dot(&node.weights, &in_tau_slope),
+                dot(&node.slopes, &in_tau),
+            )
+        } else {
+            (T::default(), T::default())
+        };
         Interpolated {
             value,
             d_tau,
@@ -428,7 +420,7 @@ mod tests {
         let nodes = [-2.0, -1.0, 0.0, 1.0, 2.0, 3.0];
         for f in [0.0, 0.13, 0.5, 0.999, 1.0, -2.0, 3.0] {
             let (w, dw) = lagrange6_with_slope(f);
-            let plain = super::super::blend::lagrange6(f);
+            let plain = crate::kernel::weights::lagrange6(f);
             for k in 0..6 {
                 let others = || (0..6).filter(move |&m| m != k);
                 let denom: f64 = others().map(|m| nodes[k] - nodes[m]).product();
