@@ -5,6 +5,8 @@
 //! The cylinder's 41-point sweep also runs on a film 0.1 mm thick (ν = ½,
 //! about 0.15 static contact half-widths), to time the film's own grid
 //! step (issue 19, BENCHMARKS.md "Cylinder films").
+//! The sphere's sweep also runs on films d/r0 = 1e-3 … 10 (issue 19,
+//! BENCHMARKS.md "Films under a ball").
 //! Then the same series as a table of 10 rows a decade (the knot-splitting
 //! quadrature of `friction/knots.rs`): one μ and a 41-point sweep.
 
@@ -123,6 +125,18 @@ fn benches(c: &mut Criterion) {
     c.bench_function("sweep4001_sphere", |b| {
         b.iter(|| sphere.friction_sweep(black_box(&dense)).unwrap())
     });
+    // Films under the ball (issue 19): the same 41-speed sweep on films
+    // d/r0 = 1e-3 … 10 thick, against `sweep41_sphere`. The film kernel's
+    // rows are built by the warm-up (once per process), as the half-space
+    // tables are above.
+    let r0 = sphere.static_contact_size();
+    for ratio in [1e-3, 1e-2, 0.1, 1.0, 10.0] {
+        let film = scene_of(Shape::Sphere, Some(ratio * r0), prony15());
+        let _ = film.friction_sweep(&speeds).unwrap();
+        c.bench_function(&format!("sweep41_sphere_film_{ratio:e}"), |b| {
+            b.iter(|| film.friction_sweep(black_box(&speeds)).unwrap())
+        });
+    }
     let table_sphere = scene_of(Shape::Sphere, None, table15());
     let table_cylinder = scene_of(Shape::Cylinder, None, table15());
     // The kernels' tables outside the timed loops.

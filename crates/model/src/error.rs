@@ -138,110 +138,12 @@ pub enum ModelError {
         /// The listed temperatures as shown, T_ref marked.
         listed: String,
     },
-    /// A film under a sphere: the low-frequency tail of the film correction
-    /// could not be bounded.
-    #[error(
-        "film under a sphere: the low-frequency tail of the film correction could not be bounded"
-    )]
-    FilmTailUnbounded,
-    /// A film under a sphere: the frequencies the film correction needs
-    /// leave the floating-point range.
-    #[error(
-        "film under a sphere: the frequencies v/d and below that the film correction needs at \
-         v = {speed:e} m/s, d = {thickness:e} m lie outside the floating-point range"
-    )]
-    FilmFrequenciesOutOfRange {
-        /// Rolling speed, m/s.
-        speed: f64,
-        /// Film thickness, m.
-        thickness: f64,
-    },
-    /// A film under a sphere: an adaptive integral failed for a reason other
-    /// than its budget (an internal fault).
-    #[error("film under a sphere: the {which} integral failed ({detail})")]
-    FilmIntegralFailed {
-        /// Which integral: "inner film" or "film correction".
-        which: &'static str,
-        /// The integrator's own account of the failure.
-        detail: String,
-    },
-    /// A film under a sphere too thin, compared with the contact, to
-    /// integrate within the work budgets.
-    #[error(
-        "film under a sphere: a film {thickness_in_radii:.3e} static contact radii thick \
-         ({thickness:e} m) needs more work than allowed (more than {max_evaluations} integrand \
-         evaluations or {max_panels} panels; the work grows like (r0/d)²; films thinner than \
-         about r0/50 are not supported)"
-    )]
-    FilmTooThin {
-        /// d/r0.
-        thickness_in_radii: f64,
-        /// d, m.
-        thickness: f64,
-        /// Integrand evaluations allowed.
-        max_evaluations: usize,
-        /// Inner panels allowed.
-        max_panels: usize,
-    },
-    /// A film under a sphere: μ_film is so far below μ_half that the
-    /// half-space error, which μ_film inherits, exceeds the tolerance.
-    #[error(
-        "film under a sphere: the relative tolerance {tolerance:e} cannot be met at \
-         v = {speed:e} m/s: μ_film/μ_half ≈ {ratio:.1e} (film {thickness_in_radii:.3e} static \
-         contact radii thick), and μ_film = μ_half − Δ inherits the half-space error, about \
-         {half_space_accuracy:e} of μ_half; this needs μ_film/μ_half ≥ {ratio_needed:.1e}"
-    )]
-    FilmToleranceUnreachable {
-        /// The scene's relative tolerance.
-        tolerance: f64,
-        /// Rolling speed, m/s.
-        speed: f64,
-        /// Estimated μ_film/μ_half.
-        ratio: f64,
-        /// d/r0.
-        thickness_in_radii: f64,
-        /// Relative accuracy of the half-space μ.
-        half_space_accuracy: f64,
-        /// Smallest μ_film/μ_half at which the tolerance can be met.
-        ratio_needed: f64,
-    },
-    /// A film under a sphere: a tolerance tighter than the half-space μ
-    /// delivers.
-    #[error(
-        "film under a sphere: the relative tolerance {tolerance:e} is tighter than the \
-         half-space μ it is computed from can deliver (about {half_space_accuracy:e}); ask \
-         for {loosest:.1e} or more"
-    )]
-    FilmToleranceTooTight {
-        /// The scene's relative tolerance.
-        tolerance: f64,
-        /// Relative accuracy of the half-space μ.
-        half_space_accuracy: f64,
-        /// The tightest tolerance that can be met.
-        loosest: f64,
-    },
-    /// A film under a sphere: the half-space μ the film correction starts
-    /// from is not a positive finite number (an internal fault).
-    #[error("film under a sphere: the half-space μ is {mu_half} at v = {speed:e} m/s")]
-    FilmHalfSpaceInvalid {
-        /// The half-space μ.
-        mu_half: f64,
-        /// Rolling speed, m/s.
-        speed: f64,
-    },
     /// A film under a sphere: μ or its derivatives came out non-finite (an
     /// internal fault).
     #[error("film under a sphere: {what} not finite at v = {speed:e} m/s")]
     FilmNotFinite {
         /// "μ is" or "the derivatives of μ are".
         what: &'static str,
-        /// Rolling speed, m/s.
-        speed: f64,
-    },
-    /// A film under a sphere: the film correction did not settle within its
-    /// refinement steps.
-    #[error("film under a sphere: the film correction did not settle at v = {speed:e} m/s")]
-    FilmNotSettled {
         /// Rolling speed, m/s.
         speed: f64,
     },
@@ -336,27 +238,6 @@ mod tests {
             "WLF shift at T = -90 °C: C2 + T - T_ref = -8.4 K is not positive (C2 = 101.6 K, \
              T_ref = 20 °C); the WLF form diverges at T = T_ref - C2 = -81.6 °C and does not \
              apply at or below it"
-        );
-        let thin = ModelError::FilmTooThin {
-            thickness_in_radii: 1e-3,
-            thickness: 1.2e-6,
-            max_evaluations: 4_000_000,
-            max_panels: 20_000,
-        };
-        assert_eq!(
-            thin.to_string(),
-            "film under a sphere: a film 1.000e-3 static contact radii thick (1.2e-6 m) needs \
-             more work than allowed (more than 4000000 integrand evaluations or 20000 panels; \
-             the work grows like (r0/d)²; films thinner than about r0/50 are not supported)"
-        );
-        let frequencies = ModelError::FilmFrequenciesOutOfRange {
-            speed: 1e-300,
-            thickness: 2e-6,
-        };
-        assert_eq!(
-            frequencies.to_string(),
-            "film under a sphere: the frequencies v/d and below that the film correction needs \
-             at v = 1e-300 m/s, d = 2e-6 m lie outside the floating-point range"
         );
         let free = ModelError::OutsideFreeShift {
             temperature: 90.0,

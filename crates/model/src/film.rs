@@ -48,6 +48,8 @@
 //! - N.J. Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed.,
 //!   SIAM 2002 (rounding errors of sums of non-negative terms, Horner's rule).
 
+use num_complex::Complex64;
+
 /// 1/(2n+2)!, n = 0..11: cosh y − 1 = z Σ COSH_M1[n] zⁿ with z = y².
 const COSH_M1: [f64; 12] = [
     0.5,
@@ -128,6 +130,46 @@ pub fn film_factor(x: f64, poisson: f64) -> f64 {
     // Divide by y last: for ν = ½ the product y·z·Σ would underflow for
     // x ≲ 1e-103 while num/(c z Σ) is still finite.
     num / (a + c * sinh_m) / y
+}
+
+/// The film compliance factor 1/S(ζ, ν) continued to complex ζ with
+/// Re ζ ≥ 0, for the contour integrals of the film sphere kernel
+/// ([`crate::kernel::film_sphere`]). Same three ranges as [`film_factor`]
+/// (in |2ζ| for the series, in Re 2ζ for the unit limit), written as D/N so
+/// that it is finite at ζ = 0 (1/S(0) = 0) and only the zeros of the
+/// numerator N (poles of 1/S, none with Re ζ ≥ 0 and |Im ζ| < 0.739 for
+/// 0 ≤ ν ≤ ½) are singular. On the real axis it equals 1/[`film_factor`] to
+/// a few ulp (tested).
+pub fn film_compliance_complex(zeta: Complex64, poisson: f64) -> Complex64 {
+    let y = 2.0 * zeta;
+    if y.re >= UNIT_LIMIT {
+        return Complex64::new(1.0, 0.0);
+    }
+    let nu = poisson;
+    let c = 3.0 - 4.0 * nu;
+    if y.norm_sqr() >= SERIES_LIMIT * SERIES_LIMIT {
+        let t = (-y).exp();
+        let k2 = 2.0 * (5.0 - 4.0 * nu * (3.0 - 2.0 * nu));
+        let num = c * (1.0 + t * t) + (y * y + k2) * t;
+        let den = c - t * (c * t + 2.0 * y);
+        return den / num;
+    }
+    let a = 2.0 * (1.0 - 2.0 * nu);
+    let one_minus_nu = 1.0 - nu;
+    let z = y * y;
+    let cosh_m1 = z * horner_complex(&COSH_M1, z);
+    let sinh_m = z * horner_complex(&SINH_M, z);
+    let num = 8.0 * one_minus_nu * one_minus_nu + c * cosh_m1 + 0.5 * z;
+    y * (a + c * sinh_m) / num
+}
+
+/// Σ coeffs[n] zⁿ for complex z.
+#[inline(always)]
+fn horner_complex(coeffs: &[f64; 12], z: Complex64) -> Complex64 {
+    coeffs
+        .iter()
+        .rev()
+        .fold(Complex64::new(0.0, 0.0), |acc, &cn| acc * z + cn)
 }
 
 /// Σ coeffs[n] zⁿ by Horner's rule.
@@ -257,6 +299,41 @@ mod tests {
             let lo = film_factor(below, nu);
             let hi = film_factor(x, nu);
             assert!((lo / hi - 1.0).abs() < 2e-15, "{nu}: {lo} {hi}");
+        }
+    }
+
+    #[test]
+    fn complex_continuation_matches_real_and_direct_formula() {
+        for nu in NUS {
+            for &x in &[1e-9, 1e-4, 0.05, 0.5, 0.99, 1.0, 1.01, 3.0, 24.0, 30.0] {
+                let s = film_compliance_complex(Complex64::new(x, 0.0), nu);
+                let r = 1.0 / film_factor(x, nu);
+                assert!(
+                    (s.re / r - 1.0).abs() < 1e-14 && s.im == 0.0,
+                    "{nu} {x}: {s} {r}"
+                );
+            }
+            // Off the axis, against the formula as written (well conditioned
+            // at |ζ| ~ 1 away from the poles).
+            let c = 3.0 - 4.0 * nu;
+            let k = 5.0 - 4.0 * nu * (3.0 - 2.0 * nu);
+            for &(re, im) in &[
+                (0.3, 0.2),
+                (0.9, 0.5),
+                (1.2, 1.5),
+                (0.1, 0.4),
+                (2.0, 3.0),
+                (0.6, 0.05),
+            ] {
+                let zeta = Complex64::new(re, im);
+                let direct = (c * (2.0 * zeta).sinh() - 2.0 * zeta)
+                    / (c * (2.0 * zeta).cosh() + 2.0 * zeta * zeta + k);
+                let s = film_compliance_complex(zeta, nu);
+                assert!(
+                    (s - direct).norm() < 1e-13 * direct.norm(),
+                    "{nu} {zeta}: {s} {direct}"
+                );
+            }
         }
     }
 }

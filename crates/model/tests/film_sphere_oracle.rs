@@ -80,7 +80,7 @@ use std::num::NonZeroUsize;
 use gauss_quad::legendre::GaussLegendre;
 use rollfit_model::ViscoelasticModulus;
 use rollfit_model::film::film_factor;
-use rollfit_model::{ContactSize, ModelError, Prony, Scene, Shape, StandardLinearSolid};
+use rollfit_model::{ContactSize, Prony, Scene, Shape, StandardLinearSolid};
 
 /// The accuracy the library's half-space sphere μ is documented to (its
 /// `HALF_SPACE_ACCURACY`, measured floor ~4e-9 at low speed).
@@ -385,34 +385,26 @@ fn oracle_matches_half_space() {
     }
 }
 
-/// Today's film code against the oracle where it runs (d/r0 ≥ 0.1 at
-/// these speeds, and 0.02–0.05 where μ_film/μ_half is large enough);
-/// thinner films must be refused, not answered wrongly.
+/// The film code against the oracle at every target case: d/r0 = 1e-3 …
+/// 10, ν = 0.49 and ½, SLS and Prony, two speeds, at the default tolerance
+/// 1e-6.
 #[test]
 fn film_code_matches_oracle() {
+    let mut worst = 0.0f64;
     for ratio in [1e-3, 1e-2, 0.02, 0.05, 0.1, 1.0, 10.0] {
         for (name, scene, v) in cases(Some(ratio)) {
             let nu = scene.substrate().poisson;
-            match scene.friction(v) {
-                Ok(fast) => {
-                    let slow = oracle_mu(&scene, v, STANDARD);
-                    let err = (fast / slow - 1.0).abs();
-                    eprintln!(
-                        "d/r0={ratio} {name} ν={nu} v={v:.3e}: library {fast:.12e} oracle {slow:.12e} rel {err:.2e}"
-                    );
-                    assert!(err < 1e-6, "d/r0={ratio} {name} ν={nu} v={v}");
-                }
-                Err(
-                    e @ (ModelError::FilmTooThin { .. }
-                    | ModelError::FilmToleranceUnreachable { .. }),
-                ) => {
-                    eprintln!("d/r0={ratio} {name} ν={nu} v={v:.3e}: refused ({e})");
-                    assert!(ratio < 0.1, "refused at d/r0={ratio}: {e}");
-                }
-                Err(e) => panic!("d/r0={ratio} {name} ν={nu} v={v}: {e}"),
-            }
+            let fast = scene.friction(v).unwrap();
+            let slow = oracle_mu(&scene, v, STANDARD);
+            let err = (fast / slow - 1.0).abs();
+            eprintln!(
+                "d/r0={ratio} {name} ν={nu} v={v:.3e}: library {fast:.12e} oracle {slow:.12e} rel {err:.2e}"
+            );
+            worst = worst.max(err);
+            assert!(err < 1e-6, "d/r0={ratio} {name} ν={nu} v={v}");
         }
     }
+    eprintln!("worst {worst:.2e}");
 }
 
 /// The oracle's own convergence: standard against fine resolution at every

@@ -20,8 +20,9 @@
 //! which the same grid integrates with W and W′.
 //!
 //! A film of thickness d under the cylinder multiplies L(ω) by 1/S(ωd/v),
-//! on a finer grid step (`film_cylinder`); under the sphere the film factor depends on the direction of q and is
-//! integrated in `film_sphere`.
+//! on a finer grid step (`film_cylinder`); under the sphere the film factor
+//! depends on the direction of q and makes the kernel a function of two
+//! variables, integrated in `film_sphere`.
 
 mod film_cylinder;
 mod film_sphere;
@@ -35,7 +36,7 @@ use num_complex::Complex64;
 use crate::contact::Shape;
 use crate::error::ModelError;
 use crate::film::film_factor;
-use crate::kernel::{KernelTable, step_for_tolerance};
+use crate::kernel::{KernelTable, STEPS, step_for_tolerance};
 use crate::modulus::{Prony, ViscoelasticModulus};
 use crate::scene::Scene;
 use grid::{Grid, Node};
@@ -184,6 +185,46 @@ impl<M: ViscoelasticModulus> Scene<M> {
         (table, grid, film)
     }
 
+    /// The σ grid and the film kernel state of a sphere on a film of
+    /// thickness `thickness` (m); the kernel rows are built for the contact
+    /// radii between the glassy and the static one.
+    fn film_sphere_grid<'a>(
+        &'a self,
+        setup: &'a Setup,
+        first_speed: f64,
+        thickness: f64,
+    ) -> (
+        Grid<'a, impl Fn(f64) -> (Complex64, Complex64) + 'a>,
+        film_sphere::FilmSphere,
+    ) {
+        let step_index = step_for_tolerance(self.tolerance());
+        let material = self.material();
+        let grid = Grid::new(
+            setup,
+            move |omega| material.modulus_and_log_slope(omega),
+            first_speed.ln(),
+            STEPS[step_index],
+            self.tolerance(),
+        );
+        let ln_size = |modulus: f64| (setup.ln_k - (modulus / setup.plane_strain).ln()) / setup.n;
+        let ln_r0 = ln_size(setup.static_modulus);
+        let ln_r_glassy = match setup.static_ln_size {
+            Some(ln_r) => ln_r,
+            None => {
+                let (_, w_hi) = material.structure_range();
+                ln_size(material.modulus(1e3 * w_hi).norm()).min(ln_r0)
+            }
+        };
+        let film = film_sphere::FilmSphere::new(
+            thickness,
+            self.substrate().poisson,
+            step_index,
+            ln_r_glassy,
+            ln_r0,
+        );
+        (grid, film)
+    }
+
     /// μ at each of `speeds` (m/s), sharing the modulus evaluations.
     pub fn friction_sweep(&self, speeds: &[f64]) -> Result<Vec<f64>, ModelError> {
         check_speeds(speeds)?;
@@ -192,9 +233,12 @@ impl<M: ViscoelasticModulus> Scene<M> {
         }
         let setup = Setup::new(self)?;
         if let (Shape::Sphere, Some(d)) = (setup.shape, self.substrate().film_thickness) {
+            let (mut grid, mut film) = self.film_sphere_grid(&setup, speeds[0], d);
             return speeds
                 .iter()
-                .map(|&v| film_sphere::friction(self, &setup, v, d))
+                .map(|&v| {
+                    film_sphere::one_speed(&mut grid, &setup, &mut film, self.tolerance(), v, None)
+                })
                 .collect();
         }
         // A modulus with knots (a table) is integrated piece by piece.
@@ -227,12 +271,25 @@ impl Scene<Prony> {
             });
         }
         let setup = Setup::new(self)?;
-        if let (Shape::Sphere, Some(d)) = (setup.shape, self.substrate().film_thickness) {
-            return film_sphere::friction_with_gradient(self, speeds, d);
-        }
-        let (table, mut grid, film) = self.shared_grid(&setup, speeds[0]);
         let mut stencils = Vec::with_capacity(speeds.len());
         let mut mu = Vec::with_capacity(speeds.len());
+        if let (Shape::Sphere, Some(d)) = (setup.shape, self.substrate().film_thickness) {
+            let (mut grid, mut film) = self.film_sphere_grid(&setup, speeds[0], d);
+            for &v in speeds {
+                let mut stencil = Stencil::new();
+                mu.push(film_sphere::one_speed(
+                    &mut grid,
+                    &setup,
+                    &mut film,
+                    self.tolerance(),
+                    v,
+                    Some(&mut stencil),
+                )?);
+                stencils.push(stencil);
+            }
+            return jacobian(&mut grid, &setup, prony, mu, &stencils);
+        }
+        let (table, mut grid, film) = self.shared_grid(&setup, speeds[0]);
         for &v in speeds {
             let mut stencil = Stencil::new();
             mu.push(one_speed(
@@ -246,69 +303,83 @@ impl Scene<Prony> {
             )?);
             stencils.push(stencil);
         }
-        // Per-node derivative data: (ds/dσ)·∂A/∂p and (ds/dσ)·A·∂σ/∂p.
-        let (j_min, j_max) = stencils
-            .iter()
-            .flatten()
-            .fold((i64::MAX, i64::MIN), |(lo, hi), &(j, _, _)| {
-                (lo.min(j), hi.max(j))
-            });
-        let span = (j_max - j_min + 1) as usize;
-        // Columns: the n + 1 parameters, then the time scale (ln a).
-        let nq = np + 1;
-        let mut d_a = vec![0.0; span * nq];
-        let mut d_sigma = vec![0.0; span * nq];
-        let mut factors = vec![Complex64::new(0.0, 0.0); prony.len()];
-        let e0 = setup.static_modulus;
-        let n = setup.n;
-        let m = setup.m;
-        for (idx, j) in (j_min..=j_max).enumerate() {
-            let node = grid.node(j)?;
-            let omega = node.point.omega;
-            let _ = prony.evaluate_with_factors(omega, &mut factors);
-            let (_, log_slope) = prony.modulus_and_log_slope(omega);
-            let p = node.point;
-            let inv2 = p.inv_e * p.inv_e;
-            let ds_dsigma = 1.0 / p.dsigma_ds;
-            let row_a = &mut d_a[idx * nq..(idx + 1) * nq];
-            let row_s = &mut d_sigma[idx * nq..(idx + 1) * nq];
-            for q in 0..nq {
-                let (g, de0) = column_derivative(q, &factors, log_slope);
-                let d_loss = setup.plane_strain * (g * inv2).im;
-                let d_ln_r = match setup.static_ln_size {
-                    Some(_) => -de0 / (n * e0),
-                    None => -(g * p.inv_e).re / n,
-                };
-                row_a[q] = ds_dsigma * (d_loss / p.size_m - m * p.a * d_ln_r);
-                row_s[q] = ds_dsigma * p.a * d_ln_r;
-            }
-        }
-        let mut wide = vec![0.0; speeds.len() * nq];
-        for (i, stencil) in stencils.iter().enumerate() {
-            let row = &mut wide[i * nq..(i + 1) * nq];
-            for &(j, w, dw) in stencil {
-                let idx = (j - j_min) as usize;
-                let a = &d_a[idx * nq..(idx + 1) * nq];
-                let s = &d_sigma[idx * nq..(idx + 1) * nq];
-                for q in 0..nq {
-                    row[q] += a[q] * w + s[q] * dw;
-                }
-            }
-            for value in row.iter_mut() {
-                *value *= setup.prefactor;
-            }
-        }
-        let mut jacobian = Vec::with_capacity(speeds.len() * np);
-        let mut d_ln_speed = Vec::with_capacity(speeds.len());
-        for row in wide.chunks_exact(nq) {
-            jacobian.extend_from_slice(&row[..np]);
-            d_ln_speed.push(row[np]);
-        }
-        Ok(FrictionJacobian {
-            mu,
-            jacobian,
-            parameter_count: np,
-            d_ln_speed,
-        })
+        jacobian(&mut grid, &setup, prony, mu, &stencils)
     }
+}
+
+/// ∂μ/∂p for every speed from the stencils (node, W, W′) its sum used:
+/// ∂μ/∂p = C Σ_j (ds/dσ)_j [∂A/∂p W + A ∂σ/∂p W′] (see the module docs).
+fn jacobian<F: Fn(f64) -> (Complex64, Complex64)>(
+    grid: &mut Grid<'_, F>,
+    setup: &Setup,
+    prony: &Prony,
+    mu: Vec<f64>,
+    stencils: &[Stencil],
+) -> Result<FrictionJacobian, ModelError> {
+    let np = prony.parameter_count();
+    let speeds = &mu;
+    // Per-node derivative data: (ds/dσ)·∂A/∂p and (ds/dσ)·A·∂σ/∂p.
+    let (j_min, j_max) = stencils
+        .iter()
+        .flatten()
+        .fold((i64::MAX, i64::MIN), |(lo, hi), &(j, _, _)| {
+            (lo.min(j), hi.max(j))
+        });
+    let span = (j_max - j_min + 1) as usize;
+    // Columns: the n + 1 parameters, then the time scale (ln a).
+    let nq = np + 1;
+    let mut d_a = vec![0.0; span * nq];
+    let mut d_sigma = vec![0.0; span * nq];
+    let mut factors = vec![Complex64::new(0.0, 0.0); prony.len()];
+    let e0 = setup.static_modulus;
+    let n = setup.n;
+    let m = setup.m;
+    for (idx, j) in (j_min..=j_max).enumerate() {
+        let node = grid.node(j)?;
+        let omega = node.point.omega;
+        let _ = prony.evaluate_with_factors(omega, &mut factors);
+        let (_, log_slope) = prony.modulus_and_log_slope(omega);
+        let p = node.point;
+        let inv2 = p.inv_e * p.inv_e;
+        let ds_dsigma = 1.0 / p.dsigma_ds;
+        let row_a = &mut d_a[idx * nq..(idx + 1) * nq];
+        let row_s = &mut d_sigma[idx * nq..(idx + 1) * nq];
+        for q in 0..nq {
+            let (g, de0) = column_derivative(q, &factors, log_slope);
+            let d_loss = setup.plane_strain * (g * inv2).im;
+            let d_ln_r = match setup.static_ln_size {
+                Some(_) => -de0 / (n * e0),
+                None => -(g * p.inv_e).re / n,
+            };
+            row_a[q] = ds_dsigma * (d_loss / p.size_m - m * p.a * d_ln_r);
+            row_s[q] = ds_dsigma * p.a * d_ln_r;
+        }
+    }
+    let mut wide = vec![0.0; speeds.len() * nq];
+    for (i, stencil) in stencils.iter().enumerate() {
+        let row = &mut wide[i * nq..(i + 1) * nq];
+        for &(j, w, dw) in stencil {
+            let idx = (j - j_min) as usize;
+            let a = &d_a[idx * nq..(idx + 1) * nq];
+            let s = &d_sigma[idx * nq..(idx + 1) * nq];
+            for q in 0..nq {
+                row[q] += a[q] * w + s[q] * dw;
+            }
+        }
+        for value in row.iter_mut() {
+            *value *= setup.prefactor;
+        }
+    }
+    let mut jacobian = Vec::with_capacity(speeds.len() * np);
+    let mut d_ln_speed = Vec::with_capacity(speeds.len());
+    for row in wide.chunks_exact(nq) {
+        jacobian.extend_from_slice(&row[..np]);
+        d_ln_speed.push(row[np]);
+    }
+    Ok(FrictionJacobian {
+        mu,
+        jacobian,
+        parameter_count: np,
+        d_ln_speed,
+    })
 }

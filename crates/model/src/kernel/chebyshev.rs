@@ -12,36 +12,52 @@ impl PiecewiseChebyshev {
     /// Interpolates `f` at `n` Chebyshev points of each panel between
     /// consecutive `breaks` (increasing).
     pub(crate) fn new<F: Fn(f64) -> f64>(breaks: Vec<f64>, n: usize, f: F) -> Self {
+        let [real] = Self::new_many(breaks, n, |x| [f(x)]);
+        real
+    }
+
+    /// Interpolants of the M components of `f`, which is evaluated once per
+    /// node for all of them (for a complex function: its real and imaginary
+    /// parts).
+    pub(crate) fn new_many<const M: usize, F: Fn(f64) -> [f64; M]>(
+        breaks: Vec<f64>,
+        n: usize,
+        f: F,
+    ) -> [Self; M] {
         let nodes: Vec<f64> = (0..n)
             .map(|j| (std::f64::consts::PI * (j as f64 + 0.5) / n as f64).cos())
             .collect();
-        let coefficients = breaks
-            .windows(2)
-            .map(|ab| {
-                let (a, b) = (ab[0], ab[1]);
-                let values: Vec<f64> = nodes
-                    .iter()
-                    .map(|&t| f(0.5 * (a + b) + 0.5 * (b - a) * t))
-                    .collect();
-                (0..n)
-                    .map(|k| {
-                        let s: f64 = values
-                            .iter()
-                            .enumerate()
-                            .map(|(j, v)| {
-                                v * (std::f64::consts::PI * k as f64 * (j as f64 + 0.5) / n as f64)
-                                    .cos()
-                            })
-                            .sum();
-                        s * 2.0 / n as f64 * if k == 0 { 0.5 } else { 1.0 }
-                    })
-                    .collect()
-            })
-            .collect();
-        PiecewiseChebyshev {
-            breaks,
-            coefficients,
+        let mut coefficients: [Vec<Vec<f64>>; M] = std::array::from_fn(|_| Vec::new());
+        for ab in breaks.windows(2) {
+            let (a, b) = (ab[0], ab[1]);
+            let values: Vec<[f64; M]> = nodes
+                .iter()
+                .map(|&t| f(0.5 * (a + b) + 0.5 * (b - a) * t))
+                .collect();
+            for (component, out) in coefficients.iter_mut().enumerate() {
+                out.push(
+                    (0..n)
+                        .map(|k| {
+                            let s: f64 = values
+                                .iter()
+                                .enumerate()
+                                .map(|(j, v)| {
+                                    v[component]
+                                        * (std::f64::consts::PI * k as f64 * (j as f64 + 0.5)
+                                            / n as f64)
+                                            .cos()
+                                })
+                                .sum();
+                            s * 2.0 / n as f64 * if k == 0 { 0.5 } else { 1.0 }
+                        })
+                        .collect(),
+                );
+            }
         }
+        coefficients.map(|coefficients| PiecewiseChebyshev {
+            breaks: breaks.clone(),
+            coefficients,
+        })
     }
 
     /// Lower and upper end of the interpolated interval.

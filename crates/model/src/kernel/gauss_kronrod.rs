@@ -1,6 +1,6 @@
 //! Globally adaptive Gauss–Kronrod (7, 15) quadrature of vector-valued
-//! integrands, for the nested film integrals of [`super::film_sphere`] and
-//! `friction::film_sphere`.
+//! integrands, for μ of a modulus that is analytic only between knots
+//! (`friction::knots`, a tabulated master curve).
 //!
 //! On each panel [a, b] the 15-point Kronrod rule K and its embedded 7-point
 //! Gauss rule G are evaluated from the same 15 function values. K is the
@@ -126,8 +126,6 @@ pub(crate) struct Integral<const N: usize> {
     /// failure only; the bound is kept for tests and diagnostics.
     #[allow(dead_code)]
     pub error: [f64; N],
-    /// Number of integrand evaluations spent.
-    pub evaluations: usize,
 }
 
 /// Why [`integrate`] gave up.
@@ -207,36 +205,7 @@ pub(crate) fn integrate<const N: usize, F: FnMut(f64) -> [f64; N]>(
     targets: Targets<N>,
     max_panels: usize,
 ) -> Result<Integral<N>, Failure> {
-    adapt(f, breaks, targets, max_panels, None)
-}
-
-/// As [`integrate`], and also returns the final panels [a, b], sorted, so
-/// that further integrands can be summed with the same Kronrod nodes.
-pub(crate) fn integrate_keeping_panels<const N: usize, F: FnMut(f64) -> [f64; N]>(
-    f: F,
-    breaks: &[f64],
-    targets: Targets<N>,
-    max_panels: usize,
-) -> Result<(Integral<N>, Vec<(f64, f64)>), Failure> {
-    let mut kept = Vec::new();
-    let integral = adapt(f, breaks, targets, max_panels, Some(&mut kept))?;
-    kept.sort_by(|x, y| x.0.total_cmp(&y.0));
-    Ok((integral, kept))
-}
-
-/// ∫ Σ_k w_k g(x_k) over `panels` with the 15 Kronrod nodes of each panel:
-/// `visit(x, weight)` is called for every node.
-pub(crate) fn for_each_node<F: FnMut(f64, f64)>(panels: &[(f64, f64)], mut visit: F) {
-    for &(a, b) in panels {
-        let half = 0.5 * (b - a);
-        let xs = nodes(a, b);
-        visit(xs[0], half * WGK[7]);
-        for j in 0..7 {
-            let w = half * WGK[6 - j];
-            visit(xs[1 + 2 * j], w);
-            visit(xs[2 + 2 * j], w);
-        }
-    }
+    adapt(f, breaks, targets, max_panels)
 }
 
 fn adapt<const N: usize, F: FnMut(f64) -> [f64; N]>(
@@ -244,7 +213,6 @@ fn adapt<const N: usize, F: FnMut(f64) -> [f64; N]>(
     breaks: &[f64],
     targets: Targets<N>,
     max_panels: usize,
-    keep: Option<&mut Vec<(f64, f64)>>,
 ) -> Result<Integral<N>, Failure> {
     let mut total = [0.0; N];
     let mut error = [0.0; N];
@@ -264,13 +232,9 @@ fn adapt<const N: usize, F: FnMut(f64) -> [f64; N]>(
         (0..N).all(|k| error[k] <= t[k])
     };
     if done(&total, &error) {
-        if let Some(kept) = keep {
-            kept.extend(panels.iter().map(|p| (p.a, p.b)));
-        }
         return Ok(Integral {
             value: total,
             error,
-            evaluations: 15 * panels.len(),
         });
     }
     let rank = |p: Panel<N>, t: &[f64; N]| {
@@ -325,20 +289,13 @@ fn adapt<const N: usize, F: FnMut(f64) -> [f64; N]>(
     // Re-sum: the running updates accumulate rounding over many splits.
     let mut value = [0.0; N];
     let mut err = [0.0; N];
-    if let Some(kept) = keep {
-        kept.extend(heap.iter().map(|r| (r.panel.a, r.panel.b)));
-    }
     for r in &heap {
         for k in 0..N {
             value[k] += r.panel.value[k];
             err[k] += r.panel.error[k];
         }
     }
-    Ok(Integral {
-        value,
-        error: err,
-        evaluations: 15 * (2 * count - initial),
-    })
+    Ok(Integral { value, error: err })
 }
 
 #[cfg(test)]
@@ -363,26 +320,6 @@ mod tests {
         // Degree 24 is not integrated exactly by K15: the rule is the real one.
         let p = panel(&mut |x: f64| [x.powi(24)], -1.0, 1.0).unwrap();
         assert!((p.value[0] - 2.0 / 25.0).abs() > 1e-10);
-    }
-
-    #[test]
-    fn kept_panels_reproduce_the_integral() {
-        let f = |x: f64| [(3.0 * x).sin().exp()];
-        let (integral, panels) = integrate_keeping_panels(
-            f,
-            &[0.0, 1.0, 7.0],
-            Targets {
-                absolute: [0.0],
-                relative: 1e-13,
-            },
-            1000,
-        )
-        .unwrap();
-        assert!(panels.len() > 2);
-        assert!(panels.windows(2).all(|w| w[0].1 == w[1].0));
-        let mut sum = 0.0;
-        for_each_node(&panels, |x, w| sum += w * f(x)[0]);
-        assert!((sum - integral.value[0]).abs() < 1e-14 * sum.abs());
     }
 
     #[test]

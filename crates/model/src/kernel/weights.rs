@@ -45,6 +45,21 @@ const SUBDIVISION: usize = 32;
 /// integrand (`friction::film_cylinder`).
 pub const STEPS: [f64; 8] = [0.4, 0.28, 0.2, 0.14, 0.1, 0.07, 0.05, 0.035];
 
+/// Six-point Lagrange weights at fractional position f ∈ [0, 1) for nodes
+/// −2..3.
+#[inline]
+pub(crate) fn lagrange6(f: f64) -> [f64; 6] {
+    let (fm2, fm1, f0, f1, f2, f3) = (f + 2.0, f + 1.0, f, f - 1.0, f - 2.0, f - 3.0);
+    [
+        -(fm1 * f0 * f1 * f2 * f3) / 120.0,
+        (fm2 * f0 * f1 * f2 * f3) / 24.0,
+        -(fm2 * fm1 * f1 * f2 * f3) / 12.0,
+        (fm2 * fm1 * f0 * f2 * f3) / 12.0,
+        -(fm2 * fm1 * f0 * f1 * f3) / 24.0,
+        (fm2 * fm1 * f0 * f1 * f2) / 120.0,
+    ]
+}
+
 /// Index into [`STEPS`] for a requested relative tolerance of μ.
 ///
 /// Calibrated against the reference values (tests/reference_values.rs) with
@@ -97,7 +112,7 @@ pub struct KernelTable {
 
 /// Cardinal function B(u) of P-point local Lagrange interpolation on the
 /// integers, and its derivative.
-fn cardinal(u: f64) -> (f64, f64) {
+pub(crate) fn cardinal(u: f64) -> (f64, f64) {
     let half = (STENCIL / 2) as i64;
     let cell = u.floor() as i64;
     let first = cell - half + 1;
@@ -336,20 +351,10 @@ impl KernelTable {
     pub fn cursor(&self, tau0: f64) -> KernelCursor {
         let q = (tau0 - self.tau_lo) / self.delta;
         let i = q.floor();
-        let f = q - i;
-        // Six-point Lagrange weights for nodes −2..3 at fractional offset f.
-        let (fm2, fm1, f0, f1, f2, f3) = (f + 2.0, f + 1.0, f, f - 1.0, f - 2.0, f - 3.0);
         KernelCursor {
             tau0,
             index0: i as i64,
-            weights: [
-                -(fm1 * f0 * f1 * f2 * f3) / 120.0,
-                (fm2 * f0 * f1 * f2 * f3) / 24.0,
-                -(fm2 * fm1 * f1 * f2 * f3) / 12.0,
-                (fm2 * fm1 * f0 * f2 * f3) / 12.0,
-                -(fm2 * fm1 * f0 * f1 * f3) / 24.0,
-                (fm2 * fm1 * f0 * f1 * f2) / 120.0,
-            ],
+            weights: lagrange6(q - i),
         }
     }
 

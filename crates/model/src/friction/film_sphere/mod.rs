@@ -1,470 +1,310 @@
 //! μ(v) of a sphere rolling on a viscoelastic film of thickness d bonded to
-//! a rigid base, and its derivatives with respect to Prony parameters.
+//! a rigid base, and its derivatives with respect to Prony parameters: the
+//! product integration of [`super`] with the film kernel of
+//! [`crate::kernel::film_sphere`].
 //!
 //! # Formula
 //!
-//! The film divides L(ω) by S(qd) in Eq. (17) (S: [`crate::film`]).
-//! Substituting ω = q v cos φ and cosh t = 1/cos φ as for the half-space
-//! ([`crate::kernel::sphere`]):
+//! The film divides L(ω) by S(qd) in Eq. (17). With ω = q v cos φ and
+//! u = 1/cos φ, as for the half-space ([`crate::kernel::sphere`]),
 //!
-//!   μ_film = C/v² ∫₀^∞ dω ω L(ω) G_film(x, z),   C = 18 F_N/π²,
-//!   G_film(x, z) = ∫₀^∞ f(x cosh t)/S(z cosh t) dt,
+//!   μ = C ∫ ds A(s) K(σ(s) − ln v, λ(s)),   C = 18 F_N/π²,
+//!   K(τ, λ) = x² ∫₁^∞ f(xu)/S(xuδ) du/√(u² − 1),   x = e^τ, δ = e^λ,
 //!
-//! with x = ω r(ω)/v and z = ω d/v (dimensionless), r(ω) the Hertz contact
-//! radius (dynamic or static rule, m), L the loss compliance (1/Pa) and f
-//! the Hertz form factor. Writing G_film = G − D
-//! ([`crate::kernel::film_sphere`]):
-//!
-//!   μ_film = μ_half − Δ,   Δ = C ∫ ds (ω/v)² L(ω) D(x, z),   s = ln ω.
+//! with σ = ln(ω r(ω)), λ = ln(d/r(ω)) (r the Hertz contact radius, dynamic
+//! or static rule, m) and A = L/r² as in [`super`]. The kernel depends on the
+//! speed only through τ = σ − ln v, like the half-space kernel; its second
+//! argument λ belongs to the node (constant for the static rule).
 //!
 //! # Method
 //!
-//! μ_half is the half-space μ of the same scene, from the product
-//! integration of [`super`]: it owns the part that is hard to integrate, the
-//! kernel's oscillation that decays only like x^{−9/2} against the
-//! material, which that method retires with its window. Δ is what the film
-//! changes: a double integral with a non-negative integrand over a bounded
-//! domain — D = 0 for z ≥ Z = 24, so s ≤ ln(Zv/d) — whose low-frequency
-//! tail falls like e^{(2+p)s}|s| (L ≤ κω^p). It is computed by nested
-//! adaptive Gauss–Kronrod (7, 15) quadrature ([`crate::kernel::gauss_kronrod`]):
-//! outer in s, inner in t for D at each outer node, so the modulus is
-//! evaluated only at outer nodes. Integrating G_film directly instead would
-//! bring the oscillating tail back into a new quadrature.
+//! K is split (see [`crate::kernel::film_sphere`]) as
 //!
-//! # Error control
+//!   K̃ = (1 − χ(τ)) K + χ(τ) N + Re[A(τ, λ) E(τ)],   E = χ (1 − χ_w) e^{2ix},
 //!
-//! With θ ≤ μ_film/μ_half, the absolute error E = tol·θ·μ_half ≤ tol·μ_film
-//! is shared out ([`SHARES`]):
-//! - 0.8 E to μ_half, computed at relative tolerance 0.8·tol·θ;
-//! - 0.08 E to the inner integrals: each D to relative accuracy 0.08·tol·θ,
-//!   which moves Δ by at most 0.08·tol·θ·Δ ≤ 0.08 E (non-negative
-//!   integrand, Δ ≤ μ_half), and 0.03 E to absolute floors of that accuracy
-//!   where D is negligible;
-//! - 0.08 E to the outer quadrature (summed |K − G| bounds, which overstate
-//!   the error of the Kronrod sums);
-//! - 0.01 E to the truncated low-frequency tail, bounded rigorously by
-//!   ∫_{−∞}^{s_lo} (ω/v)² L D ds ≤ κ/(9v²) e^{(2+p)s_lo}[(A − s_lo)/(2+p) +
-//!   1/(2+p)²] with A = ln(2Zv/d), from f ≤ 1/9, w ≤ 1 and acosh(Z/z) ≤
-//!   ln(2Z/z); κ = L′(0) and p = 1 for a positive relaxation spectrum,
-//!   else sampled as for the half-space tail.
+//! with χ a smooth step at x ≈ 1, N and A smooth (non-oscillating) in both
+//! variables and χ_w the window of [`crate::kernel::window`] (the same
+//! exponentially small change as for the half-space). On the σ grid,
 //!
-//! θ starts at ½. If the result shows μ_film < θ μ_half, θ is set just below
-//! the observed ratio (less the error allowed so far) and μ recomputed. The
-//! subtraction amplifies the half-space error by μ_half/μ_film, and the
-//! half-space μ is relied on only down to [`HALF_SPACE_ACCURACY`] = 1e-8
-//! (its measured floor is ~4e-9 at low speed), so the request must satisfy
-//! 0.8·tol·θ ≥ 1e-8: μ_film/μ_half ≥ 1.25·10⁻⁸/tol (1.25 % at the default
-//! tol = 10⁻⁶), and tol ≥ 1.25·10⁻⁸ for any film. Otherwise an error is
-//! returned, not a number. μ_film/μ_half drops for films thin compared with
-//! the contact: measured 2–8 % at d = r0/10 and 0.4–4 % at r0/20 for speeds
-//! across the loss peak (3- and 15-term Prony series).
+//!   μ ≈ C Σ_j Φ_j [K_j W_lo(τ_j) + N_j (h − W_lo(τ_j)) + Re(A_j W_osc(τ_j))],
 //!
-//! Measured (tests/film_sphere.rs): against a brute-force nested
-//! integration the results agree to better than 6e-8 at the default
-//! tolerance, and against the tightest admissible tolerance the errors stay
-//! below 1 % of the requested tolerance (1e-3 … 1e-6).
+//! where W_lo and W_osc are universal product-integration weights of 1 − χ
+//! and E, and K_j, N_j, A_j are the smooth factors at the node (K and A
+//! interpolated from rows of constant λ, N from the moments M₄, M₆). What is
+//! interpolated across the stencil is Φ·K, Φ·N and Φ·A — smooth functions of
+//! σ even where λ varies with σ — so the product rule keeps its order.
+//! Derivatives with respect to a material parameter p move σ and λ together
+//! (∂σ/∂p = −∂λ/∂p = ∂ ln r/∂p), i.e. they need ∂K/∂ln x at fixed z = x δ:
+//! D = ∂_τ − ∂_λ applied to the same split, with the weights' derivatives for
+//! the factors that move with τ.
 //!
-//! # Supported films and cost
-//!
-//! D's integrand oscillates over y = x cosh t up to Z r/d, so the inner and
-//! outer integrals each need ~2 r/d panels for d ≪ r: the work grows like
-//! (r0/d)². Measured per speed (3- and 15-term Prony series, default
-//! tolerance, one core): d/r0 ≥ 1: 0.1–1 ms; 0.3: 3 ms; 0.1: 9–12 ms;
-//! 0.05: 16–35 ms. Supported at the default tolerance: d/r0 ≳ 0.1 at every
-//! speed (oracle-checked from 0.1 to 1000); thinner films wherever
-//! μ_film/μ_half ≥ 1.25 %, refused elsewhere. More than [`MAX_EVALUATIONS`]
-//! integrand evaluations (d/r0 ≲ 0.02) are refused too.
+//! The sums are truncated like the half-space's: below τ = −2 the film
+//! kernel falls at least like e^{τ} (like x² in fact, for every film), so
+//! the node's own weight bounds the rest; above the window the weight is
+//! h N ≤ h x² G_n (1/S ≤ 1), and the half-space bound applies to that.
 //!
 //! # References
 //! - B.N.J. Persson, "Rolling friction for hard cylinder and sphere on
 //!   viscoelastic solid", Eur. Phys. J. E 33 (2010) 327–333, Eq. (17).
-//! - R. Piessens, E. de Doncker-Kapenga, C.W. Überhuber, D.K. Kahaner,
-//!   *QUADPACK*, Springer 1983 (Gauss–Kronrod rules, globally adaptive
-//!   bisection).
 //! - P.J. Davis, P. Rabinowitz, *Methods of Numerical Integration*, 2nd ed.,
-//!   Academic Press 1984 (product rules and nested quadrature).
+//!   Academic Press 1984, §2.10 (product integration).
 
-use std::f64::consts::PI;
+use std::sync::Arc;
 
 use num_complex::Complex64;
 
-mod deficit;
-
-use super::FrictionJacobian;
+use super::Stencil;
+use super::grid::{Grid, Node};
 use super::setup::Setup;
+use crate::contact::Shape;
 use crate::error::ModelError;
-use crate::kernel::film_sphere::deficit_and_slope;
-use crate::kernel::gauss_kronrod::for_each_node;
-use crate::modulus::{Prony, ViscoelasticModulus};
-use crate::scene::{Scene, Substrate};
-use deficit::{Deficit, DeficitIntegral};
+use crate::kernel::film_sphere::blend::{BlendCursor, BlendWeights, half_space_smooth_at};
+use crate::kernel::film_sphere::moments::SmoothMoments;
+use crate::kernel::film_sphere::rows::{FilmRows, RowCursor, RowStencil};
+use crate::kernel::weights::{KernelCursor, KernelTable, STENCIL, STEPS};
+use crate::kernel::window;
 
-/// The accuracy the half-space μ is relied on for: no tighter tolerance is
-/// requested of it. Measured against a brute-force integration and the
-/// reference values (3- and 15-term Prony series, standard linear solid),
-/// the half-space sphere μ is systematically 3.7–4.9e-9 low at speeds with
-/// vτ/r0 ≲ 0.01 whatever tolerance is asked for (1e-10 included), and
-/// within 3e-10 at higher speeds; this is twice the worst of that.
-pub const HALF_SPACE_ACCURACY: f64 = 1e-8;
-
-/// Panel budget of one inner integral D: about 2 r/d initial panels are
-/// needed, so this is not what limits the film thickness
-/// ([`MAX_EVALUATIONS`] is); it guards against a runaway refinement.
-pub const MAX_INNER_PANELS: usize = 20_000;
-
-/// Panel budget of the outer integral over s = ln ω.
-const MAX_OUTER_PANELS: usize = 4_000;
-
-/// Integrand evaluations (of f·w, ~50 ns each) allowed for one μ: about a
-/// quarter of a second. The work grows like (r0/d)²; films thin enough to
-/// exhaust this are also refused for their small μ_film/μ_half at most
-/// speeds (see the module docs).
-pub const MAX_EVALUATIONS: usize = 5_000_000;
-
-/// Largest initial outer panel width in s.
-const MAX_OUTER_WIDTH: f64 = 1.0;
-
-/// A borrowed modulus, so that the half-space scene can share the film
-/// scene's material without cloning it (M need not be Clone). A trait
-/// object, not `&M`: `Scene<Borrowed>` is then one type whatever M is, which
-/// keeps the generic friction code from instantiating itself without end.
-struct Borrowed<'a>(&'a dyn ViscoelasticModulus);
-
-impl ViscoelasticModulus for Borrowed<'_> {
-    // Every method is forwarded, defaulted ones included: a default here
-    // would silently replace the material's own answer.
-    fn modulus(&self, omega: f64) -> Complex64 {
-        self.0.modulus(omega)
-    }
-    fn modulus_and_log_slope(&self, omega: f64) -> (Complex64, Complex64) {
-        self.0.modulus_and_log_slope(omega)
-    }
-    fn static_modulus(&self) -> f64 {
-        self.0.static_modulus()
-    }
-    fn loss_slope_at_zero(&self) -> f64 {
-        self.0.loss_slope_at_zero()
-    }
-    fn loss_exponent_at_zero(&self) -> f64 {
-        self.0.loss_exponent_at_zero()
-    }
-    fn low_frequency_loss_coefficient(&self) -> f64 {
-        self.0.low_frequency_loss_coefficient()
-    }
-    fn structure_range(&self) -> (f64, f64) {
-        self.0.structure_range()
-    }
-    fn relaxation_bound(&self) -> Option<f64> {
-        self.0.relaxation_bound()
-    }
+/// The film kernel state of one sweep: rows, weights and the nodes' places
+/// between rows.
+pub(super) struct FilmSphere {
+    poisson: f64,
+    step_index: usize,
+    step: f64,
+    ln_thickness: f64,
+    rows: FilmRows,
+    lambda_range: (f64, f64),
+    blend: &'static BlendWeights,
+    half_space: &'static KernelTable,
+    moments: Arc<SmoothMoments>,
+    /// Row stencils of nodes j ≥ 0 and j < 0 (j = −1 first).
+    up: Vec<(f64, RowStencil)>,
+    down: Vec<(f64, RowStencil)>,
 }
 
-/// The half-space scene of `scene` (same geometry, contact rule, material
-/// and Poisson ratio, no film) at relative tolerance `tolerance`.
-fn half_space_scene<M: ViscoelasticModulus>(
-    scene: &Scene<M>,
-    tolerance: f64,
-) -> Result<Scene<Borrowed<'_>>, ModelError> {
-    Scene::new(
-        *scene.geometry(),
-        Substrate {
-            film_thickness: None,
-            ..*scene.substrate()
-        },
-        scene.contact(),
-        Borrowed(scene.material()),
-    )?
-    .with_tolerance(tolerance)
+/// λ = ln(d/r) of a node.
+fn node_lambda(ln_thickness: f64, node: &Node) -> f64 {
+    ln_thickness - (node.point.sigma - node.s)
 }
 
-/// κ and p with L(ω) ≤ κ ω^p for all ω.
-fn loss_bound<M: ViscoelasticModulus>(scene: &Scene<M>) -> Result<(f64, f64), ModelError> {
-    let material = scene.material();
-    let plane_strain = scene.plane_strain_factor();
-    let e0 = material.static_modulus();
-    let p = material.loss_exponent_at_zero();
-    if !(p > 0.0 && p <= 1.0) {
-        return Err(ModelError::LossExponentOutOfRange { exponent: p });
-    }
-    let kappa = match material.relaxation_bound() {
-        // A positive relaxation spectrum makes L(ω)/ω non-increasing, so
-        // L ≤ L′(0) ω exactly.
-        Some(_) if p == 1.0 => plane_strain * material.loss_slope_at_zero() / (e0 * e0),
-        // Otherwise sample L/ω^p across the structure and six decades
-        // beyond, with the same 1.5 margin as the half-space tail bound.
-        _ => {
-            let (w_lo, w_hi) = material.structure_range();
-            if !(w_lo > 0.0 && w_hi >= w_lo && w_hi.is_finite()) {
-                return Err(ModelError::UnusableFrequencyRange {
-                    low: w_lo,
-                    high: w_hi,
-                });
-            }
-            let decades = (w_hi / w_lo).log10() + 6.0;
-            let count = (decades * 20.0).ceil() as usize + 1;
-            let mut sup = 0.0f64;
-            for i in 0..count {
-                let omega = w_lo * 1e-3 * 10f64.powf(i as f64 / 20.0);
-                let l = -plane_strain * (1.0 / material.modulus(omega)).im;
-                sup = sup.max(l / omega.powf(p));
-            }
-            1.5 * sup
+impl FilmSphere {
+    /// For film thickness `thickness` (m), Poisson ratio `poisson`, grid step
+    /// `STEPS[step_index]` and contact radii between exp(`ln_r_lo`) and
+    /// exp(`ln_r_hi`) (the rows for that range are built at once; nodes
+    /// outside it extend it).
+    pub(super) fn new(
+        thickness: f64,
+        poisson: f64,
+        step_index: usize,
+        ln_r_lo: f64,
+        ln_r_hi: f64,
+    ) -> FilmSphere {
+        let ln_thickness = thickness.ln();
+        let lambda_range = (ln_thickness - ln_r_hi, ln_thickness - ln_r_lo);
+        FilmSphere {
+            poisson,
+            step_index,
+            step: STEPS[step_index],
+            ln_thickness,
+            rows: FilmRows::new(poisson, step_index, lambda_range.0, lambda_range.1),
+            lambda_range,
+            blend: BlendWeights::get(step_index),
+            half_space: KernelTable::get(Shape::Sphere, step_index),
+            moments: SmoothMoments::get(poisson),
+            up: Vec::new(),
+            down: Vec::new(),
         }
-    };
-    if !(kappa.is_finite() && kappa >= 0.0) {
-        return Err(ModelError::LossComplianceUnbounded);
     }
-    Ok((kappa, p))
-}
 
-/// Shares of the absolute error allowed in μ_film, see the module docs.
-/// Δ's shares are in the units of [`Deficit::integral`] (Δ/C).
-#[derive(Debug, Clone, Copy)]
-struct Budget {
-    /// Truncated low-frequency tail of Δ.
-    tail: f64,
-    /// Summed |K − G| bounds of the outer quadrature.
-    outer: f64,
-    /// Relative accuracy of each D.
-    inner_relative: f64,
-    /// Effect on Δ of the absolute floors of the D accuracy.
-    inner_floor: f64,
-}
-
-/// Fractions of the absolute error E = tol·θ·μ_half: half-space, outer
-/// quadrature, low-frequency tail, inner relative, inner floors. The
-/// half-space gets the largest share because its accuracy has a floor
-/// ([`HALF_SPACE_ACCURACY`]); Δ converges spectrally and tightening it is
-/// cheap.
-const SHARES: [f64; 5] = [0.8, 0.08, 0.01, 0.08, 0.03];
-
-/// The result for one speed.
-struct Solution {
-    mu: f64,
-    /// Relative tolerance the half-space μ was computed with.
-    half_tolerance: f64,
-    budget: Budget,
-    deficit: DeficitIntegral,
-}
-
-/// μ_film = μ_half − Δ at speed `v` with the θ iteration of the module docs.
-fn solve<M: ViscoelasticModulus>(
-    scene: &Scene<M>,
-    deficit: &Deficit<'_, M>,
-) -> Result<Solution, ModelError> {
-    let v = deficit.v;
-    let tolerance = scene.tolerance();
-    let prefactor = 18.0 * scene.geometry().load / (PI * PI);
-    let (kappa, p) = loss_bound(scene)?;
-    let [
-        half_share,
-        outer_share,
-        tail_share,
-        inner_share,
-        floor_share,
-    ] = SHARES;
-    // θ: assumed lower bound of μ_film/μ_half (see the module docs); the
-    // half-space share of the error, half_share·tol·θ·μ_half, must not be
-    // below what the half-space delivers.
-    let theta_min = HALF_SPACE_ACCURACY / (half_share * tolerance);
-    let refuse = |ratio: f64| ModelError::FilmToleranceUnreachable {
-        tolerance,
-        speed: v,
-        ratio,
-        thickness_in_radii: deficit.d / deficit.r0,
-        half_space_accuracy: HALF_SPACE_ACCURACY,
-        ratio_needed: theta_min,
-    };
-    if theta_min > 1.0 {
-        return Err(ModelError::FilmToleranceTooTight {
-            tolerance,
-            half_space_accuracy: HALF_SPACE_ACCURACY,
-            loosest: HALF_SPACE_ACCURACY / half_share,
-        });
-    }
-    let mut theta = theta_min.max(0.5);
-    for _ in 0..8 {
-        let half_tolerance = half_share * tolerance * theta;
-        let half_tolerance = half_tolerance.min(1e-2);
-        let mu_half = half_space_scene(scene, half_tolerance)?.friction(v)?;
-        if mu_half.is_nan() || mu_half <= 0.0 {
-            // 0 ≤ μ_film ≤ μ_half: nothing to subtract from (e.g. a purely
-            // elastic solid). A negative or NaN μ_half is not a friction
-            // coefficient.
-            return if mu_half == 0.0 {
-                Ok(Solution {
-                    mu: 0.0,
-                    half_tolerance,
-                    budget: Budget {
-                        tail: 0.0,
-                        outer: 0.0,
-                        inner_relative: 0.0,
-                        inner_floor: 0.0,
-                    },
-                    deficit: DeficitIntegral {
-                        value: 0.0,
-                        panels: Vec::new(),
-                        span: 0.0,
-                    },
-                })
-            } else {
-                Err(ModelError::FilmHalfSpaceInvalid { mu_half, speed: v })
-            };
-        }
-        // E/C in the units of the Δ integral.
-        let allowed = tolerance * theta * mu_half / prefactor;
-        let budget = Budget {
-            tail: tail_share * allowed,
-            outer: outer_share * allowed,
-            // Δ ≤ μ_half, so a relative error ρ of every D moves Δ by ≤ ρ μ_half.
-            inner_relative: inner_share * tolerance * theta,
-            inner_floor: floor_share * allowed,
+    /// Makes sure node j has its (λ, row stencil), extending the rows if λ
+    /// is new.
+    fn node_stencil<F: Fn(f64) -> (Complex64, Complex64)>(
+        &mut self,
+        grid: &mut Grid<'_, F>,
+        j: i64,
+    ) -> Result<(), ModelError> {
+        let (list, index) = if j >= 0 {
+            (&self.up, j as usize)
+        } else {
+            (&self.down, (-j - 1) as usize)
         };
-        let integral = deficit.integral(kappa, p, &budget)?;
-        let mu = mu_half - prefactor * integral.value;
-        if !mu.is_finite() {
-            return Err(ModelError::FilmNotFinite {
-                what: "μ is",
-                speed: v,
-            });
+        if index < list.len() {
+            return Ok(());
         }
-        if mu >= theta * mu_half {
-            return Ok(Solution {
-                mu,
-                half_tolerance,
-                budget,
-                deficit: integral,
-            });
-        }
-        // The film removes more than assumed: the true ratio is at least
-        // the estimate less the error just allowed (tol·θ); aim 10 % lower
-        // and repeat, unless that is below what the half-space supports. A
-        // non-positive μ can only come from the error allowed.
-        let ratio = mu / mu_half;
-        theta = 0.9 * (ratio - tolerance * theta);
-        if theta < theta_min {
-            return Err(refuse(ratio));
-        }
-    }
-    Err(ModelError::FilmNotSettled { speed: v })
-}
-
-/// μ of a sphere rolling at speed `v` (m/s) on a film of thickness
-/// `thickness` (m), to the scene's relative tolerance.
-pub(super) fn friction<M: ViscoelasticModulus>(
-    scene: &Scene<M>,
-    _setup: &Setup,
-    v: f64,
-    thickness: f64,
-) -> Result<f64, ModelError> {
-    Ok(solve(scene, &Deficit::new(scene, v, thickness))?.mu)
-}
-
-/// μ at each of `speeds` (m/s) on a film of thickness `thickness` (m), and
-/// ∂μ/∂(E1, H_1..H_n) (1/Pa).
-///
-/// ∂μ_film/∂p = ∂μ_half/∂p − ∂Δ/∂p. The first comes from the half-space
-/// product integration at the tolerance μ_half was computed with; the
-/// second differentiates Δ under the integral sign — only L and, through x,
-/// the contact radius depend on p (z = ωd/v does not):
-///
-///   ∂Δ/∂p = C ∫ ds (ω/v)² [∂L/∂p · D + L · x∂D/∂x · ∂ln r/∂p],
-///
-/// with ∂L/∂p = (1 − ν²) Im(g_p/E²), ∂ln r/∂p = −(1/3) Re(g_p/E) (dynamic)
-/// or −(1/3) ∂E0/∂p / E0 (static), g_p = ∂E*/∂p, and x∂D/∂x = ∫ y f′(y) w dt
-/// ([`crate::kernel::film_sphere`]). It is summed with the Kronrod nodes of
-/// the final outer panels of μ's own quadrature, with D and x∂D/∂x to the
-/// same relative accuracy as D was for μ.
-pub(super) fn friction_with_gradient(
-    scene: &Scene<Prony>,
-    speeds: &[f64],
-    thickness: f64,
-) -> Result<FrictionJacobian, ModelError> {
-    let prony = scene.material();
-    let np = prony.parameter_count();
-    let prefactor = 18.0 * scene.geometry().load / (PI * PI);
-    let e0 = prony.static_modulus();
-    let mut mu = Vec::with_capacity(speeds.len());
-    let mut jacobian = Vec::with_capacity(speeds.len() * np);
-    let mut d_ln_speed = Vec::with_capacity(speeds.len());
-    let mut factors = vec![Complex64::new(0.0, 0.0); prony.len()];
-    let mut scratch = Vec::new();
-    for &v in speeds {
-        let deficit = Deficit::new(scene, v, thickness);
-        let solution = solve(scene, &deficit)?;
-        let half = Scene::new(
-            *scene.geometry(),
-            Substrate {
-                film_thickness: None,
-                ..*scene.substrate()
-            },
-            scene.contact(),
-            prony.clone(),
-        )?
-        .with_tolerance(solution.half_tolerance)?
-        .friction_with_gradient(&[v])?;
-        let mut row = half.jacobian;
-        // The parameters, then the time scale (see FrictionJacobian).
-        row.push(half.d_ln_speed[0]);
-        let mut d_delta = vec![0.0; np + 1];
-        let mut failure = None;
-        let budget = solution.budget;
-        let span = solution.deficit.span;
-        for_each_node(&solution.deficit.panels, |s, weight| {
-            if failure.is_some() {
-                return;
-            }
-            let (e, _) = prony.evaluate_with_factors(s.exp(), &mut factors);
-            let (_, log_slope) = prony.modulus_and_log_slope(s.exp());
-            let (x, z, omega_over_v_sq, loss) = deficit.point(s, e);
-            let floor = budget.inner_floor / (span * omega_over_v_sq * loss);
-            let dd = match deficit_and_slope(
-                x,
-                z,
-                deficit.poisson,
-                budget.inner_relative,
-                floor,
-                MAX_INNER_PANELS,
-                &mut scratch,
-            ) {
-                Ok(dd) => dd.value,
-                Err(e) => {
-                    failure = Some(e);
-                    return;
-                }
+        loop {
+            let (next, len) = if j >= 0 {
+                (self.up.len() as i64, self.up.len())
+            } else {
+                (-(self.down.len() as i64) - 1, self.down.len())
             };
-            let inv_e = 1.0 / e;
-            let inv_e2 = inv_e * inv_e;
-            for (q, out) in d_delta.iter_mut().enumerate() {
-                let (g, de0) = super::column_derivative(q, &factors, log_slope);
-                let d_loss = deficit.plane_strain * (g * inv_e2).im;
-                let d_ln_r = match deficit.static_size {
-                    Some(_) => -de0 / (3.0 * e0),
-                    None => -(g * inv_e).re / 3.0,
-                };
-                *out += weight * omega_over_v_sq * (d_loss * dd[0] + loss * dd[1] * d_ln_r);
+            let node = grid.node(next)?;
+            let lambda = node_lambda(self.ln_thickness, &node);
+            if lambda < self.lambda_range.0 || lambda > self.lambda_range.1 {
+                self.lambda_range = (
+                    self.lambda_range.0.min(lambda),
+                    self.lambda_range.1.max(lambda),
+                );
+                self.rows = FilmRows::new(
+                    self.poisson,
+                    self.step_index,
+                    self.lambda_range.0,
+                    self.lambda_range.1,
+                );
+                // Earlier stencils index the old rows: recompute them.
+                self.up.clear();
+                self.down.clear();
+                return self.node_stencil(grid, j);
             }
-        });
-        if failure.is_some() {
-            return Err(deficit.too_thin());
+            let entry = (lambda, self.rows.stencil(lambda));
+            if j >= 0 {
+                self.up.push(entry);
+            } else {
+                self.down.push(entry);
+            }
+            if len == index {
+                return Ok(());
+            }
         }
-        for (r, dd) in row.iter_mut().zip(&d_delta) {
-            *r -= prefactor * dd;
-        }
-        if row.iter().any(|r| !r.is_finite()) {
-            return Err(ModelError::FilmNotFinite {
-                what: "the derivatives of μ are",
-                speed: v,
-            });
-        }
-        mu.push(solution.mu);
-        jacobian.extend_from_slice(&row[..np]);
-        d_ln_speed.push(row[np]);
     }
-    Ok(FrictionJacobian {
-        mu,
-        jacobian,
-        parameter_count: np,
-        d_ln_speed,
-    })
+
+    /// (λ, row stencil) of node j, after [`Self::node_stencil`].
+    #[inline]
+    fn stencil_of(&self, j: i64) -> &(f64, RowStencil) {
+        if j >= 0 {
+            &self.up[j as usize]
+        } else {
+            &self.down[(-j - 1) as usize]
+        }
+    }
+
+    /// The product-integration weight of node `k` steps from the cursors'
+    /// origin, and (if `slopes`) the weight of D K̃.
+    #[inline]
+    fn weight(
+        &self,
+        Cursors {
+            blend: blend_cursor,
+            half_space: half_cursor,
+            rows: row_cursor,
+        }: &Cursors,
+        k: i64,
+        (tau, inverse_x2): (f64, f64),
+        (lambda, stencil): &(f64, RowStencil),
+        slopes: bool,
+    ) -> (f64, f64) {
+        let (w_low, dw_low) = self.blend.low(blend_cursor, k);
+        let mut w = 0.0;
+        let mut dw = 0.0;
+        if w_low != 0.0 || dw_low != 0.0 {
+            // K = R k_half: the weights carry k_half (the half-space's own
+            // below the blend), the rows the smooth ratio R.
+            let (w_full, dw_full) = self
+                .blend
+                .full(blend_cursor, k)
+                .unwrap_or_else(|| self.half_space.evaluate_at(half_cursor, k));
+            let ratio = self.rows.full(row_cursor, k, stencil, slopes);
+            w += ratio.value * w_full;
+            dw += ratio.value * dw_full + (ratio.d_tau - ratio.d_lambda) * w_full;
+        }
+        let (w_smooth, dw_smooth) = self.blend.smooth(blend_cursor, k, inverse_x2);
+        let oscillation = self.blend.oscillation(blend_cursor, k);
+        if w_smooth != 0.0 || dw_smooth != 0.0 || oscillation.is_some() {
+            // The nodes carry N/N_h and A/N_h (see [`BlendWeights`]).
+            let (n_half, dn_half) = half_space_smooth_at(inverse_x2);
+            if w_smooth != 0.0 || dw_smooth != 0.0 {
+                let [m4, m6] = self.moments.at(tau + *lambda);
+                let (c4, c6) = (2.0 / 3.0, 8.0 / 15.0);
+                // N/N_h = (m₆ + m₄x²)/(c₆ + c₄x²), written in u = 1/x².
+                let u = inverse_x2;
+                let den = c6 * u + c4;
+                let ratio = (m6 * u + m4) / den;
+                // D(N/N_h): the moments are constant at fixed z.
+                let d_ratio = 2.0 * u * (m4 * c6 - c4 * m6) / (den * den);
+                w += ratio * w_smooth;
+                dw += ratio * dw_smooth + d_ratio * w_smooth;
+            }
+            if let Some((w_osc, dw_osc)) = oscillation {
+                let a = self.rows.amplitude(row_cursor, k, stencil, slopes);
+                let ratio = a.value / n_half;
+                w += (ratio * w_osc).re;
+                if slopes {
+                    let d_ratio = (a.d_tau - a.d_lambda - ratio * dn_half) / n_half;
+                    dw += (d_ratio * w_osc + ratio * dw_osc).re;
+                }
+            }
+        }
+        (w, dw)
+    }
+}
+
+/// The fractional positions of one speed's nodes on the tables: all its
+/// nodes τ₀ + kh share them.
+struct Cursors {
+    blend: BlendCursor,
+    half_space: KernelCursor,
+    rows: RowCursor,
+}
+
+/// Sums μ for one speed over the shared grid, extending it as needed (the
+/// film counterpart of [`super::one_speed`]).
+pub(super) fn one_speed<F: Fn(f64) -> (Complex64, Complex64)>(
+    grid: &mut Grid<'_, F>,
+    setup: &Setup,
+    film: &mut FilmSphere,
+    tolerance: f64,
+    v: f64,
+    mut record: Option<&mut Stencil>,
+) -> Result<f64, ModelError> {
+    let h = film.step;
+    let t = v.ln();
+    let j0 = ((t - grid.origin()) / h).round() as i64;
+    let eps = 0.02 * tolerance;
+    let tau0 = grid.origin() + j0 as f64 * h - t;
+    let cursors = Cursors {
+        blend: film.blend.cursor(tau0),
+        half_space: film.half_space.cursor(tau0),
+        rows: film.rows.cursor(tau0),
+    };
+    let slopes = record.is_some();
+    // Above this τ the weight is h N: the window and blend are done.
+    let up_start = window::smooth_above() + (STENCIL / 2) as f64 * h + 0.2;
+    let mut sum = 0.0;
+    for direction in [1i64, -1] {
+        let mut j = if direction > 0 { j0 } else { j0 - 1 };
+        // 1/x² = e^{−2τ}, updated by a factor per node.
+        let factor = (-2.0 * direction as f64 * h).exp();
+        let mut inverse_x2 = (-2.0 * (tau0 + (j - j0) as f64 * h)).exp();
+        loop {
+            let node = grid.node(j)?;
+            film.node_stencil(grid, j)?;
+            let stencil = film.stencil_of(j);
+            let k = j - j0;
+            let tau = tau0 + k as f64 * h;
+            let (w, dw) = film.weight(&cursors, k, (tau, inverse_x2), stencil, slopes);
+            sum += node.phi * w;
+            if let Some(r) = record.as_deref_mut() {
+                r.push((j, w, dw));
+            }
+            let stop = if direction > 0 {
+                tau > up_start && {
+                    let u = inverse_x2;
+                    let bound_weight = h * (u / 3.0 + 4.0 * u * u / 15.0);
+                    node.up_bound * bound_weight <= eps * sum.abs()
+                }
+            } else {
+                tau < -2.0 && node.down_bound * w.abs() <= eps * sum.abs()
+            };
+            if stop {
+                break;
+            }
+            j += direction;
+            inverse_x2 *= factor;
+        }
+    }
+    if !sum.is_finite() {
+        return Err(ModelError::FilmNotFinite {
+            what: "μ is",
+            speed: v,
+        });
+    }
+    Ok(setup.prefactor * sum)
 }
