@@ -147,7 +147,6 @@ pub struct BlendWeights {
 /// fractional position on a table of spacing h/`SUBDIVISION`.
 #[derive(Debug, Clone, Copy)]
 pub struct BlendCursor {
-    tau0: f64,
     index0: i64,
     weights: [f64; 6],
 }
@@ -267,18 +266,12 @@ impl BlendWeights {
         }
     }
 
-    /// Grid step h.
-    pub fn step(&self) -> f64 {
-        self.step
-    }
-
     /// Prepares evaluations at τ₀ + kh.
     #[inline]
     pub fn cursor(&self, tau0: f64) -> BlendCursor {
         let q = tau0 / self.spacing;
         let i = q.floor();
         BlendCursor {
-            tau0,
             index0: i as i64,
             weights: lagrange6(q - i),
         }
@@ -328,10 +321,5 @@ impl BlendWeights {
             Lookup::At(w) => Some(w),
             Lookup::Below | Lookup::Above => None,
         }
-    }
-
-    /// τ₀ of a cursor (for callers that need τ itself).
-    pub fn tau(&self, cursor: &BlendCursor, k: i64) -> f64 {
-        cursor.tau0 + k as f64 * self.step
     }
 }

@@ -280,12 +280,6 @@ impl FilmRows {
         }
     }
 
-    /// τ from which on the oscillation amplitude A is tabulated, and up to
-    /// which K is.
-    pub fn full_top(&self) -> f64 {
-        (self.layout.full_offset + self.layout.full_len as i64 - 4) as f64 * self.layout.spacing
-    }
-
     /// The stencil of a node at λ (inside the range asked for).
     pub fn stencil(&self, lambda: f64) -> RowStencil {
         let q = lambda / LAMBDA_SPACING;
@@ -327,7 +321,6 @@ impl FilmRows {
         if i < 2 {
             // R continued as a constant (its contribution there is below
             // e^{−36} of μ).
-            let scale = 1.0;
             let rows = &self.rows[node.first..node.first + 6];
             let value: f64 = rows
                 .iter()
@@ -343,9 +336,9 @@ impl FilmRows {
                 0.0
             };
             return Interpolated {
-                value: value * scale,
+                value,
                 d_tau: 0.0,
-                d_lambda: d_lambda * scale,
+                d_lambda,
             };
         }
         let i = (i as usize - 2).min(layout.full_len - 6);
