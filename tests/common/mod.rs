@@ -112,7 +112,8 @@ impl Table {
     }
 }
 
-/// Parses CSV text: a header row, then rows of as many numbers.
+/// Parses CSV text: a header row, then rows of as many numbers (an empty
+/// cell, a number not determined, reads as NaN; true/false as 1/0).
 pub fn parse_csv(csv: &str) -> Table {
     let mut lines = csv.lines();
     let header: Vec<String> = lines
@@ -124,9 +125,13 @@ pub fn parse_csv(csv: &str) -> Table {
     let rows: Vec<Vec<f64>> = lines
         .map(|l| {
             l.split(',')
-                .map(|x| {
-                    x.parse::<f64>()
-                        .unwrap_or_else(|_| panic!("bad number {x:?}"))
+                .map(|x| match x {
+                    "" => f64::NAN,
+                    "true" => 1.0,
+                    "false" => 0.0,
+                    _ => x
+                        .parse::<f64>()
+                        .unwrap_or_else(|_| panic!("bad number {x:?}")),
                 })
                 .collect()
         })

@@ -40,6 +40,8 @@ struct Shift {
     c1: Option<f64>,
     #[serde(rename = "C2", skip_serializing_if = "Option::is_none")]
     c2: Option<f64>,
+    #[serde(rename = "T_g", skip_serializing_if = "Option::is_none")]
+    t_junction: Option<f64>,
     #[serde(rename = "E_a", skip_serializing_if = "Option::is_none")]
     activation_energy: Option<f64>,
     #[serde(rename = "log_aT", skip_serializing_if = "Option::is_none")]
@@ -65,6 +67,7 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
             t_ref,
             c1: None,
             c2: None,
+            t_junction: None,
             activation_energy: None,
             log_shift: None,
         };
@@ -78,7 +81,15 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
             ShiftLaw::Arrhenius => {
                 shift.activation_energy = m.shift.arrhenius.map(|a| a.activation_energy);
             }
-            ShiftLaw::Free => {
+            ShiftLaw::WlfArrhenius => {
+                if let Some(w) = m.shift.wlf_arrhenius {
+                    shift.c1 = Some(w.c1);
+                    shift.c2 = Some(w.c2);
+                    shift.t_junction = Some(w.t_junction);
+                    shift.activation_energy = Some(w.activation_energy);
+                }
+            }
+            ShiftLaw::Free | ShiftLaw::Auto => {
                 shift.log_shift = Some(
                     m.shift
                         .shifts

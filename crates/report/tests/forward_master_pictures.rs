@@ -14,7 +14,9 @@ mod common;
 
 use common::{Decoded, count, decode};
 use plotters::style::RGBColor;
-use rollfit_report::plot::dma_master::{DmaMasterFigure, MasterCurveFit, ShiftedPoint};
+use rollfit_report::plot::dma_master::{
+    DmaMasterFigure, MasterCurveFit, ShiftMarker, ShiftedPoint,
+};
 use rollfit_report::plot::forward_sweep::{ForwardSweepFigure, SweepCurve};
 use rollfit_report::plot::{Picture, render, style};
 
@@ -360,7 +362,18 @@ fn eight_isotherms_make_a_master_curve_with_its_shift_and_colour_key() {
     let points = isotherms(&temperatures);
     assert_eq!(points.len(), 120);
     let fit = prony_fit(&points);
-    let shifts: Vec<(f64, f64)> = temperatures.iter().map(|&t| (t, log_shift(t))).collect();
+    // The coldest isotherm undetermined (hollow, at the law's value), the
+    // others measured with an error bar.
+    let shifts: Vec<ShiftMarker> = temperatures
+        .iter()
+        .enumerate()
+        .map(|(k, &t)| ShiftMarker {
+            temperature: t,
+            log_shift: log_shift(t),
+            sigma: 0.05,
+            determined: k > 0,
+        })
+        .collect();
     let shift_curve: Vec<(f64, f64)> = (0..=100)
         .map(|i| -30.0 + f64::from(i))
         .map(|t| (t, log_shift(t)))
@@ -390,7 +403,8 @@ fn eight_isotherms_make_a_master_curve_with_its_shift_and_colour_key() {
         "T (°C)",
         "log₁₀ a_T",
         "fitted shift curve",
-        "per isotherm",
+        "measured, ±1σ",
+        "not determined (value applied)",
         "-30 °C (coldest)",
         "70 °C (warmest)",
         "T_ref = 20 °C",
@@ -426,7 +440,12 @@ fn a_single_isotherm_leaves_the_shift_panel_to_a_note() {
         points: &points,
         fit: &fit,
         t_ref: T_REF,
-        shifts: &[(T_REF, 0.0)],
+        shifts: &[ShiftMarker {
+            temperature: T_REF,
+            log_shift: 0.0,
+            sigma: 0.0,
+            determined: true,
+        }],
         shift_curve: &[],
         modulus_symbol: "G",
     })

@@ -1,5 +1,5 @@
-//! `rollfit master DMA [-o DIR] [--T-ref T] [--shift wlf|free|arrhenius]
-//! [--vertical]`: a master curve from DMA isotherms by time–temperature
+//! `rollfit master DMA [-o DIR] [--T-ref T]
+//! [--shift auto|wlf|free|arrhenius|wlf-arrhenius] [--vertical]`: a master curve from DMA isotherms by time–temperature
 //! superposition, and the material a scene can use.
 //!
 //! Writes, to DIR as a whole (nothing on an error):
@@ -7,20 +7,25 @@
 //!   rad/s), E_storage, E_loss (Young's, Pa, divided by b_T), tan_delta, T
 //!   (the isotherm, °C), omega_measured (rad/s);
 //! - shift.csv: per isotherm T (°C), log_aT (applied), log_aT_measured
-//!   (from the overlap), log_bT, points;
+//!   (from the overlap, anchored at T_ref; empty where the data do not
+//!   determine it), log_bT, points, log_aT_sigma (1σ of the applied value),
+//!   log_aT_measured_sigma (1σ of the measured one; empty where
+//!   undetermined), determined (true/false);
 //! - modulus.csv: the Prony series at T_ref over the data's reduced range,
 //!   the columns of a fit's modulus.csv (omega, E_storage, E_loss,
 //!   tan_delta), so that `table` scenes and plots read it alike;
 //! - material.toml: `[material]` with model = "prony" and, with more than
 //!   one isotherm, `[material.shift]`, for a scene to copy or include;
-//! - master.json: the numbers (law constants with standard errors, λ,
-//!   misfits and the Kramers–Kronig floor, warnings);
+//! - master.json: the numbers (the law chosen and why, every law tried
+//!   with its constants, standard errors and χ² test, the pairwise shifts
+//!   with their errors, λ, misfits and the Kramers–Kronig floor, warnings);
 //! - master.png and master.svg: the shifted isotherms with the series.
 
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use rollfit_fit::master::{MasterSettings, ShiftLaw};
+use rollfit_fit::master::pairwise::PairVerdict;
+use rollfit_fit::master::{LawTest, MasterSettings, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
 use rollfit_io::dma::{DmaPoint, ModulusKind};
 use rollfit_io::dma_master::{self, DmaMaster};
@@ -49,9 +54,11 @@ pub struct Args {
     /// temperatures, else the nearest measured one).
     #[arg(long = "T-ref", value_name = "T")]
     pub t_ref: Option<f64>,
-    /// The law of the shift factor a_T: WLF, the measured shifts
-    /// themselves (linear in T between isotherms), or Arrhenius.
-    #[arg(long, value_enum, default_value = "wlf")]
+    /// The law of the shift factor a_T: chosen by the data (auto: WLF,
+    /// else WLF above T_g with Arrhenius below or Arrhenius, else the
+    /// measured shifts), WLF, the measured shifts themselves (linear in T
+    /// between isotherms), Arrhenius, or WLF–Arrhenius.
+    #[arg(long, value_enum, default_value = "auto")]
     pub shift: ShiftChoice,
     /// Also find vertical shift factors b_T from the data (E′ offsets at
     /// the overlap); off by default, as in most TTS practice.
@@ -69,20 +76,26 @@ pub struct Args {
 /// `--shift`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum ShiftChoice {
+    /// Chosen by the data.
+    Auto,
     /// Williams–Landel–Ferry.
     Wlf,
     /// The measured shifts.
     Free,
     /// Arrhenius.
     Arrhenius,
+    /// WLF above T_g, Arrhenius below.
+    WlfArrhenius,
 }
 
 impl ShiftChoice {
     fn law(self) -> ShiftLaw {
         match self {
+            ShiftChoice::Auto => ShiftLaw::Auto,
             ShiftChoice::Wlf => ShiftLaw::Wlf,
             ShiftChoice::Free => ShiftLaw::Free,
             ShiftChoice::Arrhenius => ShiftLaw::Arrhenius,
+            ShiftChoice::WlfArrhenius => ShiftLaw::WlfArrhenius,
         }
     }
 }
@@ -105,6 +118,10 @@ pub fn run(args: &Args) -> Result<()> {
     let built = dma_master::build(&args.dma, args.poisson, kind, &settings)?;
     for note in &built.data.notes {
         eprintln!("note: {note}");
+    }
+    let shift = &built.master.shift;
+    if shift.shifts.len() > 1 {
+        eprintln!("note: shift law {}: {}", shift.law.name(), shift.reason);
     }
     for warning in built.data.warnings.iter().chain(&built.master.warnings) {
         eprintln!("warning: {warning}");
@@ -161,20 +178,33 @@ fn encode(
             ]
         }),
     )?;
+    // An empty cell where the data determine no number.
+    let cell = |x: Option<f64>| {
+        x.filter(|x| x.is_finite())
+            .map_or(String::new(), csv_text::number)
+    };
     let shift_csv = csv_text::csv_text_bytes(
-        &[T, LOG_AT, "log_aT_measured", "log_bT", "points"],
+        &[
+            T,
+            LOG_AT,
+            "log_aT_measured",
+            "log_bT",
+            "points",
+            "log_aT_sigma",
+            "log_aT_measured_sigma",
+            "determined",
+        ],
         master.shift.shifts.iter().map(|s| {
-            let mut row: Vec<String> = [
-                s.temperature,
-                s.log_shift,
-                s.log_shift_measured,
-                s.log_vertical,
+            vec![
+                csv_text::number(s.temperature),
+                csv_text::number(s.log_shift),
+                cell(s.log_shift_measured),
+                csv_text::number(s.log_vertical),
+                s.points.to_string(),
+                cell(Some(s.log_shift_sigma)),
+                cell(s.log_shift_measured.map(|_| s.log_shift_measured_sigma)),
+                s.determined.to_string(),
             ]
-            .into_iter()
-            .map(csv_text::number)
-            .collect();
-            row.push(s.points.to_string());
-            row
         }),
     )?;
     let curve = prony_curve(built);
@@ -202,11 +232,16 @@ fn encode(
         storage: curve.iter().map(|c| c.1).collect(),
         loss: curve.iter().map(|c| c.2).collect(),
     };
-    let shifts: Vec<(f64, f64)> = master
+    let shifts: Vec<figure::ShiftMarker> = master
         .shift
         .shifts
         .iter()
-        .map(|s| (s.temperature, s.log_shift_measured))
+        .map(|s| figure::ShiftMarker {
+            temperature: s.temperature,
+            log_shift: s.log_shift_measured.unwrap_or(s.log_shift),
+            sigma: s.log_shift_measured_sigma,
+            determined: s.log_shift_measured.is_some(),
+        })
         .collect();
     let shift_curve = law_curve(built);
     let picture = plot::render(&figure::DmaMasterFigure {
@@ -255,7 +290,7 @@ fn prony_curve(built: &DmaMaster) -> Vec<(f64, f64, f64)> {
 /// isotherm).
 fn law_curve(built: &DmaMaster) -> Vec<(f64, f64)> {
     let shift = &built.master.shift;
-    if shift.shifts.len() < 2 || shift.law == ShiftLaw::Free {
+    if shift.shifts.len() < 2 || matches!(shift.law, ShiftLaw::Free | ShiftLaw::Auto) {
         return Vec::new();
     }
     let (lo, hi) = (
@@ -279,14 +314,21 @@ struct Summary {
     poisson: f64,
     #[serde(rename = "T_ref")]
     t_ref: f64,
+    /// The law applied.
     shift_law: &'static str,
+    /// The law asked for ("auto" by default).
+    shift_law_asked: &'static str,
+    /// Why the law applied was chosen, with the tests' numbers.
+    shift_law_reason: String,
     vertical: bool,
     isotherms: usize,
     points: usize,
     omega_range: [f64; 2],
     wlf: Option<WlfSummary>,
     arrhenius: Option<ArrheniusSummary>,
+    wlf_arrhenius: Option<WlfArrheniusSummary>,
     shifts: Vec<ShiftRow>,
+    pairs: Vec<PairRow>,
     prony: PronySummary,
     kramers_kronig: KkSummary,
     warnings: Vec<String>,
@@ -303,7 +345,10 @@ struct WlfSummary {
     c1_sigma: Option<f64>,
     #[serde(rename = "C2_sigma")]
     c2_sigma: Option<f64>,
-    rms: f64,
+    /// RMS of the measured shifts about the law (NaN → null where the law
+    /// was tried but not applied).
+    rms: Option<f64>,
+    test: TestSummary,
 }
 
 #[derive(Serialize)]
@@ -312,7 +357,48 @@ struct ArrheniusSummary {
     activation_energy: f64,
     #[serde(rename = "E_a_sigma")]
     activation_energy_sigma: Option<f64>,
-    rms: f64,
+    rms: Option<f64>,
+    test: TestSummary,
+}
+
+#[derive(Serialize)]
+struct WlfArrheniusSummary {
+    #[serde(rename = "C1")]
+    c1: f64,
+    #[serde(rename = "C2")]
+    c2: f64,
+    #[serde(rename = "T_g")]
+    t_junction: f64,
+    #[serde(rename = "E_a")]
+    activation_energy: f64,
+    #[serde(rename = "C1_sigma")]
+    c1_sigma: Option<f64>,
+    #[serde(rename = "C2_sigma")]
+    c2_sigma: Option<f64>,
+    #[serde(rename = "E_a_sigma")]
+    activation_energy_sigma: Option<f64>,
+    rms: Option<f64>,
+    test: TestSummary,
+}
+
+/// A law's χ² test against the determined pairwise shifts.
+#[derive(Serialize)]
+struct TestSummary {
+    chi2: f64,
+    dof: usize,
+    p_value: Option<f64>,
+    passes: bool,
+}
+
+impl TestSummary {
+    fn of(t: &LawTest) -> TestSummary {
+        TestSummary {
+            chi2: t.chi2,
+            dof: t.dof,
+            p_value: t.p_value,
+            passes: t.passes(),
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -321,11 +407,29 @@ struct ShiftRow {
     temperature: f64,
     #[serde(rename = "log_aT")]
     log_shift: f64,
+    #[serde(rename = "log_aT_sigma")]
+    log_shift_sigma: Option<f64>,
     #[serde(rename = "log_aT_measured")]
-    log_shift_measured: f64,
+    log_shift_measured: Option<f64>,
+    #[serde(rename = "log_aT_measured_sigma")]
+    log_shift_measured_sigma: Option<f64>,
+    determined: bool,
     #[serde(rename = "log_bT")]
     log_vertical: f64,
     points: usize,
+}
+
+/// One pair of isotherms compared.
+#[derive(Serialize)]
+struct PairRow {
+    #[serde(rename = "T_lower")]
+    t_lower: f64,
+    #[serde(rename = "T_upper")]
+    t_upper: f64,
+    /// log10 a_upper − log10 a_lower at the best overlap.
+    shift: f64,
+    sigma: Option<f64>,
+    determined: bool,
 }
 
 #[derive(Serialize)]
@@ -368,6 +472,8 @@ impl Summary {
             poisson,
             t_ref: built.settings.t_ref(),
             shift_law: m.shift.law.name(),
+            shift_law_asked: built.settings.law().name(),
+            shift_law_reason: m.shift.reason.clone(),
             vertical: built.settings.vertical(),
             isotherms: m.shift.shifts.len(),
             points: m.points.len(),
@@ -380,12 +486,25 @@ impl Summary {
                 c2: w.c2,
                 c1_sigma: defined(w.c1_sigma),
                 c2_sigma: defined(w.c2_sigma),
-                rms: w.rms,
+                rms: defined(w.rms),
+                test: TestSummary::of(&w.test),
             }),
             arrhenius: m.shift.arrhenius.map(|a| ArrheniusSummary {
                 activation_energy: a.activation_energy,
                 activation_energy_sigma: defined(a.activation_energy_sigma),
-                rms: a.rms,
+                rms: defined(a.rms),
+                test: TestSummary::of(&a.test),
+            }),
+            wlf_arrhenius: m.shift.wlf_arrhenius.map(|w| WlfArrheniusSummary {
+                c1: w.c1,
+                c2: w.c2,
+                t_junction: w.t_junction,
+                activation_energy: w.activation_energy,
+                c1_sigma: defined(w.sigma[0]),
+                c2_sigma: defined(w.sigma[1]),
+                activation_energy_sigma: defined(w.sigma[2]),
+                rms: defined(w.rms),
+                test: TestSummary::of(&w.test),
             }),
             shifts: m
                 .shift
@@ -394,9 +513,26 @@ impl Summary {
                 .map(|s| ShiftRow {
                     temperature: s.temperature,
                     log_shift: s.log_shift,
+                    log_shift_sigma: defined(s.log_shift_sigma),
                     log_shift_measured: s.log_shift_measured,
+                    log_shift_measured_sigma: s
+                        .log_shift_measured
+                        .and_then(|_| defined(s.log_shift_measured_sigma)),
+                    determined: s.determined,
                     log_vertical: s.log_vertical,
                     points: s.points,
+                })
+                .collect(),
+            pairs: m
+                .shift
+                .pairs
+                .iter()
+                .map(|p| PairRow {
+                    t_lower: m.shift.shifts[p.lower].temperature,
+                    t_upper: m.shift.shifts[p.upper].temperature,
+                    shift: p.shift,
+                    sigma: defined(p.sigma),
+                    determined: p.verdict == PairVerdict::Determined,
                 })
                 .collect(),
             prony: PronySummary {
@@ -429,41 +565,113 @@ impl Summary {
     }
 }
 
+/// "χ² = 12.3 for 9 degrees of freedom, p = 0.21 (passes)".
+fn test_line(t: &LawTest) -> String {
+    match t.p_value {
+        Some(p) => format!(
+            "χ² = {:.2} for {} degrees of freedom, p = {:.2e} ({})",
+            t.chi2,
+            t.dof,
+            p,
+            if t.passes() {
+                "describes the shifts"
+            } else {
+                "does not describe the shifts"
+            }
+        ),
+        None => "no degree of freedom left to test it".into(),
+    }
+}
+
 /// The readable summary of stdout.
 fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
     let m = &built.master;
+    let count = m.shift.shifts.len();
     let mut out = format!(
-        "DMA {} ({}, {} moduli): {} isotherms, {} points, T_ref = {} °C, shift {}{}\n",
+        "DMA {} ({}, {} moduli): {} isotherm{}, {} points, T_ref = {} °C, {}{}\n",
         built.data.path.display(),
         built.data.format,
         built.data.kind.name(),
-        m.shift.shifts.len(),
+        count,
+        if count == 1 { "" } else { "s" },
         m.points.len(),
         built.settings.t_ref(),
-        m.shift.law.name(),
+        if count == 1 {
+            "no shift (one isotherm)".to_string()
+        } else {
+            format!("shift {}", m.shift.law.name())
+        },
         if built.settings.vertical() {
             " with vertical factors"
         } else {
             ""
         }
     );
+    if count > 1 {
+        out += &format!("Shift law: {}\n", m.shift.reason);
+    }
+    let applied = |law: ShiftLaw| {
+        if m.shift.law == law {
+            "applied"
+        } else {
+            "tried"
+        }
+    };
     if let Some(w) = m.shift.wlf {
         out += &format!(
-            "WLF: C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K (shifts scatter {:.3} decades RMS about it)\n",
-            w.c1, w.c1_sigma, w.c2, w.c2_sigma, w.rms
+            "WLF ({}): C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K; {}\n",
+            applied(ShiftLaw::Wlf),
+            w.c1,
+            w.c1_sigma,
+            w.c2,
+            w.c2_sigma,
+            test_line(&w.test)
+        );
+    }
+    if let Some(w) = m.shift.wlf_arrhenius {
+        out += &format!(
+            "WLF–Arrhenius ({}): C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K above T_g = {:.2} °C, \
+             E_a = {:.4e} ± {:.2e} J/mol below; {}\n",
+            applied(ShiftLaw::WlfArrhenius),
+            w.c1,
+            w.sigma[0],
+            w.c2,
+            w.sigma[1],
+            w.t_junction,
+            w.activation_energy,
+            w.sigma[2],
+            test_line(&w.test)
         );
     }
     if let Some(a) = m.shift.arrhenius {
         out += &format!(
-            "Arrhenius: E_a = {:.4e} ± {:.2e} J/mol (shifts scatter {:.3} decades RMS about it)\n",
-            a.activation_energy, a.activation_energy_sigma, a.rms
+            "Arrhenius ({}): E_a = {:.4e} ± {:.2e} J/mol; {}\n",
+            applied(ShiftLaw::Arrhenius),
+            a.activation_energy,
+            a.activation_energy_sigma,
+            test_line(&a.test)
         );
     }
-    out += "    T (°C)   log10 a_T   measured   log10 b_T   points\n";
+    out += "    T (°C)   log10 a_T       ±1σ   measured       ±1σ   log10 b_T   points\n";
+    let number = |x: Option<f64>, width: usize| match x.filter(|x| x.is_finite()) {
+        Some(x) => format!("{x:width$.4}"),
+        None => format!("{:>width$}", "—"),
+    };
     for s in &m.shift.shifts {
         out += &format!(
-            "{:10.2} {:11.4} {:10.4} {:11.4} {:8}\n",
-            s.temperature, s.log_shift, s.log_shift_measured, s.log_vertical, s.points
+            "{:10.2} {:11.4} {} {} {} {:11.4} {:8}{}\n",
+            s.temperature,
+            s.log_shift,
+            number(Some(s.log_shift_sigma), 9),
+            number(s.log_shift_measured, 10),
+            number(s.log_shift_measured.map(|_| s.log_shift_measured_sigma), 9),
+            s.log_vertical,
+            s.points,
+            if s.determined {
+                ""
+            } else {
+                "   not determined by the data"
+            }
         );
     }
     let fit = &m.fit;

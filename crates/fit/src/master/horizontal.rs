@@ -1,6 +1,7 @@
 //! Shift factors of DMA isotherms found from the data alone: the
-//! horizontal shift log a_T of each isotherm, and optionally the vertical
-//! one log b_T, relative to the coldest isotherm.
+//! horizontal shift of every pair of neighbouring isotherms with its
+//! standard error (or the verdict that the data do not determine it), and
+//! optionally the vertical step log b_T between them.
 //!
 //! Each isotherm j holds E*(ω) at one temperature T_j. Superposition says
 //! E*(ω, T) = b_T E*(ω a_T, T_ref): two neighbouring isotherms are the same
@@ -16,9 +17,11 @@
 //! shifts the E′ term is taken about its best constant c, so that only
 //! tan δ, which b_T leaves alone, and the shape of E′ decide s; c is then
 //! the mean log E′ difference at that s. The search scans ±15 decades before
-//! refining (see `shift::overlap`), so it cannot lock onto the wrong flank
-//! of the tan δ peak. Chaining neighbours gives log a_T (and log b_T) up to
-//! a constant, which the driver ([`super`]) fixes at T_ref.
+//! refining, so it cannot lock onto the wrong flank of the tan δ peak; the
+//! standard error and the verdict come from the profile of the same
+//! objective ([`super::pairwise`]). Where a neighbour pair is undetermined,
+//! the next-neighbour pairs around it are tried as bridges. The shifts
+//! themselves are then solved all at once ([`super::network`]).
 //!
 //! # References
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
@@ -28,15 +31,19 @@
 //!   factors from data).
 
 use super::isotherm::Isotherm;
+use super::pairwise::{PairShift, PairVerdict, pair_shift};
 use crate::error::FitError;
-use crate::shift::overlap::{Curve, joint_relative_shift, offset_at};
+use crate::shift::overlap::Curve;
 
-/// log10 a_T and log10 b_T of isotherms at ascending temperatures,
-/// relative to the first (both start at 0).
+/// The pairs of isotherms at ascending temperatures.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Chain {
-    /// log10 a_T relative to the coldest isotherm.
-    pub log_shift: Vec<f64>,
+pub(crate) struct Pairs {
+    /// Every pair compared: neighbours first, then bridges.
+    pub pairs: Vec<PairShift>,
+    /// The neighbours' best-overlap shifts chained from the coldest
+    /// isotherm (0), determined or not: where an undetermined isotherm is
+    /// placed when no law places it.
+    pub chained: Vec<f64>,
     /// log10 b_T relative to the coldest isotherm (zeros without vertical
     /// shifts).
     pub log_vertical: Vec<f64>,
@@ -58,20 +65,19 @@ fn curves(isotherm: &Isotherm) -> [Curve; 2] {
     ]
 }
 
-/// Chains neighbour shifts over `sorted` (ascending, distinct
-/// temperatures); refuses a pair that does not overlap, naming it.
-pub(crate) fn chain(sorted: &[&Isotherm], vertical: bool) -> Result<Chain, FitError> {
+/// The pairs of `sorted` (ascending, distinct temperatures); refuses a
+/// neighbour pair that does not overlap, naming it.
+pub(crate) fn pairs(sorted: &[&Isotherm], vertical: bool) -> Result<Pairs, FitError> {
     let all: Vec<[Curve; 2]> = sorted.iter().map(|i| curves(i)).collect();
-    let mut out = Chain {
-        log_shift: vec![0.0],
+    let mut out = Pairs {
+        pairs: Vec::new(),
+        chained: vec![0.0],
         log_vertical: vec![0.0],
     };
-    for (k, pair) in all.windows(2).enumerate() {
-        let lower = [&pair[0][0], &pair[0][1]];
-        let upper = [&pair[1][0], &pair[1][1]];
+    for k in 0..all.len().saturating_sub(1) {
         // upper(x) = lower(x + s): the warmer isotherm is the colder one
         // seen at frequencies 10^s times higher.
-        let s = joint_relative_shift(&lower, &upper, &[vertical, false]).ok_or_else(|| {
+        let pair = pair_shift(&all[k], &all[k + 1], vertical, (k, k + 1)).ok_or_else(|| {
             FitError::InsufficientData(format!(
                 "the isotherms at {} °C and {} °C do not overlap in frequency once shifted (at \
                  least a fifth of the warmer one's points, and four, must fall inside the \
@@ -81,13 +87,15 @@ pub(crate) fn chain(sorted: &[&Isotherm], vertical: bool) -> Result<Chain, FitEr
                 sorted[k + 1].temperature
             ))
         })?;
-        let c = if vertical {
-            offset_at(&pair[0][0], &pair[1][0], s).unwrap_or(0.0)
-        } else {
-            0.0
-        };
-        out.log_shift.push(out.log_shift[k] + s);
-        out.log_vertical.push(out.log_vertical[k] + c);
+        out.chained.push(out.chained[k] + pair.shift);
+        out.log_vertical.push(out.log_vertical[k] + pair.vertical);
+        out.pairs.push(pair);
     }
+    let undetermined = |k: usize| out.pairs[k].verdict == PairVerdict::Undetermined;
+    let bridges: Vec<PairShift> = (0..all.len().saturating_sub(2))
+        .filter(|&k| undetermined(k) || undetermined(k + 1))
+        .filter_map(|k| pair_shift(&all[k], &all[k + 2], vertical, (k, k + 2)))
+        .collect();
+    out.pairs.extend(bridges);
     Ok(out)
 }

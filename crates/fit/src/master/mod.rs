@@ -12,16 +12,27 @@
 //! b_T.
 //!
 //! Steps, each in its own file:
-//! 1. `horizontal`: neighbouring isotherms overlapped in log E′ and
-//!    log tan δ give log a_T (and log b_T) up to a constant.
-//! 2. [`temperature_law`]: WLF or Arrhenius fitted to those shifts with a
-//!    free offset; the offset fixes log a_{T_ref} = 0. With the law
-//!    "free" the measured shifts themselves are used, interpolated
-//!    linearly in T to fix the constant at T_ref.
-//! 3. The data are shifted with the law's a_T (so that the Prony series at
-//!    T_ref and the law together reproduce every isotherm, as a scene will
-//!    use them) and the measured b_T.
-//! 4. [`prony_fit`]: a causal Prony series on the shifted points.
+//! 1. `horizontal` and [`pairwise`]: neighbouring isotherms overlapped in
+//!    log E′ and log tan δ give each pair's relative shift with its
+//!    standard error, or the verdict that the data do not determine it (a
+//!    plateau, or an optimum on the edge of the allowed overlap), and
+//!    log b_T up to a constant.
+//! 2. `network`: the determined pairs solved all at once for log a_T (up
+//!    to a constant) with its covariance; isotherms outside the largest
+//!    connected part are undetermined.
+//! 3. [`temperature_law`]: WLF, Arrhenius, or WLF above a junction with
+//!    Arrhenius below, fitted to the determined pairs with weights 1/σ²
+//!    and judged by a χ² test; `auto` ([`law_choice`]) takes the first
+//!    that describes the shifts, else the measured shifts themselves
+//!    ("free", interpolated linearly in T). The measured shifts are
+//!    anchored at T_ref: by the law's offset, or for "free" by
+//!    interpolation at T_ref. Undetermined isotherms take the law's value
+//!    (for "free", the place where they overlap their neighbour best),
+//!    marked as such.
+//! 4. The data are shifted with the applied a_T (so that the Prony series
+//!    at T_ref and the law together reproduce every isotherm, as a scene
+//!    will use them) and the measured b_T.
+//! 5. [`prony_fit`]: a causal Prony series on the shifted points.
 //!
 //! Settings are checked before any numerics run
 //! ([`MasterSettings::check`] gives [`ValidMasterSettings`]).
@@ -34,12 +45,17 @@
 
 pub(crate) mod horizontal;
 mod isotherm;
+pub mod law_choice;
+mod network;
+pub mod pairwise;
 pub mod prony_fit;
+mod shifts;
 pub mod temperature_law;
 
 pub use isotherm::Isotherm;
 pub use prony_fit::{PronyFit, TAU_PER_DECADE, fit_prony, tau_grid};
-pub use temperature_law::{ArrheniusFit, WlfFit};
+pub use shifts::{IsothermShift, ShiftFactors, shift_factors};
+pub use temperature_law::{ArrheniusFit, LawTest, WlfArrheniusFit, WlfFit};
 
 use rollfit_model::ViscoelasticModulus;
 
@@ -48,23 +64,30 @@ use crate::error::FitError;
 /// The law of the horizontal shift factor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ShiftLaw {
-    /// Williams–Landel–Ferry (three isotherms or more).
+    /// Chosen by the data ([`law_choice`]): the first of WLF, WLF–Arrhenius
+    /// or Arrhenius that describes the determined shifts, else free.
     #[default]
+    Auto,
+    /// Williams–Landel–Ferry (three isotherms or more).
     Wlf,
     /// The measured shifts, linear in T between isotherms.
     Free,
     /// Arrhenius (two isotherms or more).
     Arrhenius,
+    /// WLF above a junction T_g, Arrhenius below (five isotherms or more).
+    WlfArrhenius,
 }
 
 impl ShiftLaw {
-    /// "wlf", "free" or "arrhenius", as on the command line and in
-    /// `[material.shift] model`.
+    /// "auto", "wlf", "free", "arrhenius" or "wlf-arrhenius", as on the
+    /// command line and in `[material.shift] model`.
     pub fn name(self) -> &'static str {
         match self {
+            ShiftLaw::Auto => "auto",
             ShiftLaw::Wlf => "wlf",
             ShiftLaw::Free => "free",
             ShiftLaw::Arrhenius => "arrhenius",
+            ShiftLaw::WlfArrhenius => "wlf-arrhenius",
         }
     }
 }
@@ -177,6 +200,17 @@ impl MasterSettings {
                         ),
                     ));
                 }
+                ShiftLaw::WlfArrhenius if temps.len() < 5 => {
+                    return Err(FitError::setting(
+                        "shift",
+                        format!(
+                            "WLF above a junction with Arrhenius below has four constants and {} \
+                             isotherms cannot test them: use the shift \"wlf\", \"arrhenius\" or \
+                             \"free\", or measure more temperatures",
+                            temps.len()
+                        ),
+                    ));
+                }
                 ShiftLaw::Free if !(lo..=hi).contains(&t_ref) => {
                     return Err(FitError::setting(
                         "T_ref",
@@ -251,152 +285,6 @@ pub fn sweep_turn(omega: &[f64]) -> Option<usize> {
     (1..omega.len()).find(|&k| {
         omega[k] == omega[k - 1]
             || (k + 1 < omega.len() && (omega[k] - omega[k - 1]) * (omega[k + 1] - omega[k]) < 0.0)
-    })
-}
-
-/// The shift of one isotherm.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct IsothermShift {
-    /// Temperature, °C.
-    pub temperature: f64,
-    /// Points of the isotherm.
-    pub points: usize,
-    /// log10 a_T found from the overlap (about the law's offset).
-    pub log_shift_measured: f64,
-    /// log10 a_T applied: the law's value (the measured one for "free").
-    pub log_shift: f64,
-    /// log10 b_T applied (0 without vertical shifts).
-    pub log_vertical: f64,
-}
-
-/// The shift factors of a set of isotherms and their law.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ShiftFactors {
-    /// Reference temperature, °C.
-    pub t_ref: f64,
-    /// The law applied.
-    pub law: ShiftLaw,
-    /// Per isotherm, ascending in temperature.
-    pub shifts: Vec<IsothermShift>,
-    /// The WLF fit (law "wlf").
-    pub wlf: Option<WlfFit>,
-    /// The Arrhenius fit (law "arrhenius").
-    pub arrhenius: Option<ArrheniusFit>,
-    /// Things the user should know.
-    pub warnings: Vec<String>,
-}
-
-impl ShiftFactors {
-    /// log10 a_T of the law at `t` (°C): WLF, Arrhenius, or the measured
-    /// shifts interpolated linearly in T (None outside them or below the
-    /// WLF divergence).
-    pub fn law_at(&self, t: f64) -> Option<f64> {
-        match self.law {
-            ShiftLaw::Wlf => self.wlf.and_then(|w| w.log_shift(self.t_ref, t)),
-            ShiftLaw::Arrhenius => self.arrhenius.map(|a| a.log_shift(self.t_ref, t)),
-            ShiftLaw::Free => {
-                let temps: Vec<f64> = self.shifts.iter().map(|s| s.temperature).collect();
-                let values: Vec<f64> = self.shifts.iter().map(|s| s.log_shift).collect();
-                let (lo, hi) = (temps[0], temps[temps.len() - 1]);
-                (lo..=hi)
-                    .contains(&t)
-                    .then(|| interpolate(&temps, &values, t))
-            }
-        }
-    }
-}
-
-/// A law's RMS scatter above which the user is told it describes the
-/// shifts poorly, decades: several times what 1–2 % scatter leaves.
-const LAW_RMS_WARNING: f64 = 0.2;
-
-/// Shift factors of `isotherms` under checked `settings`.
-pub fn shift_factors(
-    isotherms: &[Isotherm],
-    settings: &ValidMasterSettings,
-) -> Result<ShiftFactors, FitError> {
-    let mut sorted: Vec<&Isotherm> = isotherms.iter().collect();
-    sorted.sort_by(|a, b| a.temperature.total_cmp(&b.temperature));
-    let temps: Vec<f64> = sorted.iter().map(|i| i.temperature).collect();
-    let t_ref = settings.t_ref;
-    let chain = horizontal::chain(&sorted, settings.vertical)?;
-    let mut warnings = Vec::new();
-    let (mut wlf, mut arrhenius) = (None, None);
-    let single = sorted.len() == 1;
-    let (offset, applied): (f64, Vec<f64>) = match settings.law {
-        _ if single => (0.0, vec![0.0]),
-        ShiftLaw::Free => (interpolate(&temps, &chain.log_shift, t_ref), Vec::new()),
-        ShiftLaw::Wlf => {
-            let (fit, b) = temperature_law::fit_wlf_with_errors(&temps, &chain.log_shift, t_ref)
-                .ok_or_else(|| FitError::InsufficientData("WLF needs three isotherms".into()))?;
-            if fit.rms > LAW_RMS_WARNING {
-                warnings.push(format!(
-                    "WLF describes the measured shifts poorly ({:.2} decades RMS): the isotherms \
-                     span regimes with different laws (below T_g shifts follow Arrhenius); \
-                     consider --shift free",
-                    fit.rms
-                ));
-            }
-            let values = temps
-                .iter()
-                .map(|&t| fit.log_shift(t_ref, t))
-                .collect::<Option<Vec<f64>>>()
-                .ok_or_else(|| {
-                    FitError::InsufficientData(
-                        "the WLF fit diverges inside the measured temperatures".into(),
-                    )
-                })?;
-            wlf = Some(fit);
-            (b, values)
-        }
-        ShiftLaw::Arrhenius => {
-            let (fit, b) = temperature_law::fit_arrhenius(&temps, &chain.log_shift, t_ref)
-                .ok_or_else(|| {
-                    FitError::InsufficientData("Arrhenius needs two isotherms".into())
-                })?;
-            if fit.rms > LAW_RMS_WARNING {
-                warnings.push(format!(
-                    "Arrhenius describes the measured shifts poorly ({:.2} decades RMS); \
-                     consider --shift wlf or free",
-                    fit.rms
-                ));
-            }
-            if fit.activation_energy <= 0.0 {
-                return Err(FitError::InsufficientData(format!(
-                    "the shifts give a non-positive activation energy ({:.3e} J/mol): warmer \
-                     isotherms are not faster; check the temperatures",
-                    fit.activation_energy
-                )));
-            }
-            arrhenius = Some(fit);
-            (b, temps.iter().map(|&t| fit.log_shift(t_ref, t)).collect())
-        }
-    };
-    let measured: Vec<f64> = chain.log_shift.iter().map(|c| c - offset).collect();
-    let applied = if applied.is_empty() {
-        measured.clone()
-    } else {
-        applied
-    };
-    let vertical_offset = interpolate(&temps, &chain.log_vertical, t_ref);
-    let shifts = sorted
-        .iter()
-        .enumerate()
-        .map(|(k, iso)| IsothermShift {
-            temperature: iso.temperature,
-            points: iso.omega.len(),
-            log_shift_measured: measured[k],
-            log_shift: applied[k],
-            log_vertical: chain.log_vertical[k] - vertical_offset,
-        })
-        .collect();
-    Ok(ShiftFactors {
-        t_ref,
-        law: settings.law,
-        shifts,
-        wlf,
-        arrhenius,
-        warnings,
     })
 }
 
@@ -482,17 +370,6 @@ pub fn build_master_curve(
         fit,
         warnings,
     })
-}
-
-/// Linear interpolation (or extrapolation from the nearest pair) of
-/// ascending (x, y) at `at`.
-fn interpolate(x: &[f64], y: &[f64], at: f64) -> f64 {
-    if x.len() == 1 {
-        return y[0];
-    }
-    let k = x.partition_point(|&xi| xi <= at).clamp(1, x.len() - 1);
-    let w = (at - x[k - 1]) / (x[k] - x[k - 1]);
-    y[k - 1] * (1.0 - w) + y[k] * w
 }
 
 #[cfg(test)]

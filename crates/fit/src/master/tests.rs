@@ -20,31 +20,7 @@ fn synthetic(
     noise: f64,
     seed: u64,
 ) -> Vec<Isotherm> {
-    let master = truth();
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let normal = Normal::new(0.0, 1.0).unwrap();
-    temps
-        .iter()
-        .map(|&t| {
-            let (a, b) = (10f64.powf(log_a(t)), 10f64.powf(log_b(t)));
-            let omega: Vec<f64> = (0..count)
-                .map(|i| 0.1 * 10f64.powf(i as f64 / (count - 1) as f64 * 3.0))
-                .collect();
-            let e: Vec<_> = omega.iter().map(|w| master.modulus(w * a) * b).collect();
-            Isotherm {
-                temperature: t,
-                storage: e
-                    .iter()
-                    .map(|e| e.re * (1.0 + noise * normal.sample(&mut rng)))
-                    .collect(),
-                loss: e
-                    .iter()
-                    .map(|e| e.im * (1.0 + noise * normal.sample(&mut rng)))
-                    .collect(),
-                omega,
-            }
-        })
-        .collect()
+    isotherms_of(&truth(), temps, log_a, log_b, count, noise, seed)
 }
 
 fn wlf(c1: f64, c2: f64, t_ref: f64) -> impl Fn(f64) -> f64 {
@@ -79,7 +55,7 @@ fn shifts_of_noisy_isotherms_are_recovered() {
         let shifts = shift_factors(&isotherms, &valid).unwrap();
         for s in &shifts.shifts {
             let truth = law(s.temperature);
-            for value in [s.log_shift_measured, s.log_shift] {
+            for value in [s.log_shift_measured.unwrap(), s.log_shift] {
                 assert!(
                     (value - truth).abs() <= 0.05,
                     "seed {seed}, T = {}: log a_T {value} vs {truth}",
@@ -273,4 +249,234 @@ fn master_curve_follows_the_truth() {
         worst < 0.02,
         "largest log10 error against the truth {worst}"
     );
+}
+
+/// Isotherms of `master` at `temps` under the shift `log_a(T)` and the
+/// vertical factor `log_b(T)`, `count` frequencies over 0.1…100 rad/s
+/// each (a DMA sweep), relative noise `noise` on E′ and E″.
+fn isotherms_of(
+    master: &dyn ViscoelasticModulus,
+    temps: &[f64],
+    log_a: &dyn Fn(f64) -> f64,
+    log_b: &dyn Fn(f64) -> f64,
+    count: usize,
+    noise: f64,
+    seed: u64,
+) -> Vec<Isotherm> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    temps
+        .iter()
+        .map(|&t| {
+            let (a, b) = (10f64.powf(log_a(t)), 10f64.powf(log_b(t)));
+            let omega: Vec<f64> = (0..count)
+                .map(|i| 0.1 * 10f64.powf(i as f64 / (count - 1) as f64 * 3.0))
+                .collect();
+            let e: Vec<_> = omega.iter().map(|w| master.modulus(w * a) * b).collect();
+            Isotherm {
+                temperature: t,
+                storage: e
+                    .iter()
+                    .map(|e| e.re * (1.0 + noise * normal.sample(&mut rng)))
+                    .collect(),
+                loss: e
+                    .iter()
+                    .map(|e| e.im * (1.0 + noise * normal.sample(&mut rng)))
+                    .collect(),
+                omega,
+            }
+        })
+        .collect()
+}
+
+/// A narrow transition whose glassy side is flat: at ωτ ≥ 1e4 E′ is within
+/// 2 % of E1 over three decades and tan δ < 0.03.
+fn glassy_truth() -> HavriliakNegami {
+    HavriliakNegami::new(2e6, 2e9, 1e-3, 0.6, 0.8).unwrap()
+}
+
+/// WLF (C1 = 8.86, C2 = 101.6 K about 20 °C) above T_g = −20 °C,
+/// Arrhenius (E_a = 200 kJ/mol) below, continuous at T_g.
+fn kinked_law(t: f64) -> f64 {
+    let wlf = |t: f64| -8.86 * (t - 20.0) / (101.6 + t - 20.0);
+    let t_g = -20.0;
+    if t >= t_g {
+        wlf(t)
+    } else {
+        let slope = 2.0e5 / (8.314462618 * std::f64::consts::LN_10);
+        wlf(t_g) + slope * (1.0 / (t + 273.15) - 1.0 / (t_g + 273.15))
+    }
+}
+
+/// The cold isotherms of [`glassy_truth`] under [`kinked_law`] sit on the
+/// glassy plateau (checked on the noise-free data): their shifts are
+/// undetermined or carry σ ≥ 1 decade; the `auto` law is within 0.1 decade
+/// of the truth at every isotherm of the transition, and the applied
+/// shifts' 2σ intervals cover the truth at ≥ 90 % of the determined
+/// isotherms over 10 seeds (issue 31).
+#[test]
+fn glassy_plateau_shifts_are_undetermined_and_auto_follows_the_truth() {
+    let temps: Vec<f64> = (0..12).map(|k| -60.0 + 10.0 * k as f64).collect();
+    let master = glassy_truth();
+    // Which isotherms are on the plateau: E′ flat within 2 %, tan δ < 0.03.
+    let exact = isotherms_of(&master, &temps, &kinked_law, &none, 10, 0.0, 0);
+    // max E′ / min E′ of an isotherm.
+    let span = |iso: &Isotherm| {
+        let (lo, hi) = iso
+            .storage
+            .iter()
+            .fold((f64::INFINITY, 0f64), |(l, h), &e| (l.min(e), h.max(e)));
+        hi / lo
+    };
+    let plateau: Vec<f64> = exact
+        .iter()
+        .filter(|iso| {
+            let tan_max = (0..iso.omega.len())
+                .map(|i| iso.loss[i] / iso.storage[i])
+                .fold(0f64, f64::max);
+            span(iso) < 1.02 && tan_max < 0.03
+        })
+        .map(|iso| iso.temperature)
+        .collect();
+    assert!(plateau.len() >= 2, "plateau isotherms {plateau:?}");
+    // The transition: isotherms whose E′ changes by more than 10 %.
+    let transition: Vec<f64> = exact
+        .iter()
+        .filter(|iso| span(iso) > 1.1)
+        .map(|iso| iso.temperature)
+        .collect();
+    let (mut covered, mut determined) = (0, 0);
+    for seed in 0..10 {
+        let isotherms = isotherms_of(&master, &temps, &kinked_law, &none, 10, 0.01, seed);
+        let valid = settings(Some(20.0), ShiftLaw::Auto, false)
+            .check(&isotherms)
+            .unwrap();
+        let shifts = shift_factors(&isotherms, &valid).unwrap();
+        assert_ne!(shifts.law, ShiftLaw::Auto);
+        for s in &shifts.shifts {
+            let truth = kinked_law(s.temperature);
+            if plateau.contains(&s.temperature) {
+                assert!(
+                    !s.determined || s.log_shift_measured_sigma >= 1.0,
+                    "seed {seed}: plateau isotherm {} °C determined with σ = {}",
+                    s.temperature,
+                    s.log_shift_measured_sigma
+                );
+            }
+            if transition.contains(&s.temperature) {
+                assert!(
+                    (s.log_shift - truth).abs() <= 0.1,
+                    "seed {seed}, law {}: T = {} log a_T {} vs truth {truth} ({})",
+                    shifts.law.name(),
+                    s.temperature,
+                    s.log_shift,
+                    shifts.reason
+                );
+            }
+            if s.determined {
+                determined += 1;
+                if (s.log_shift - truth).abs() <= 2.0 * s.log_shift_sigma {
+                    covered += 1;
+                }
+            }
+        }
+    }
+    let share = covered as f64 / determined as f64;
+    eprintln!("applied shifts' 2σ coverage: {covered} of {determined} = {share:.3}");
+    assert!(share >= 0.9, "2σ coverage {covered} of {determined}");
+}
+
+/// (error/σ) of every determined pairwise shift on WLF isotherms of
+/// `count` points with 1 % noise, over `seeds` seeds from `first`.
+fn pairwise_z(count: usize, seeds: u64, first: u64) -> Vec<f64> {
+    let temps: Vec<f64> = (0..9).map(|k| -20.0 + 10.0 * k as f64).collect();
+    let law = wlf(10.5, 120.0, 20.0);
+    let mut z = Vec::new();
+    for seed in first..first + seeds {
+        let isotherms = synthetic(&temps, &law, &none, count, 0.01, seed);
+        let valid = settings(Some(20.0), ShiftLaw::Free, false)
+            .check(&isotherms)
+            .unwrap();
+        let shifts = shift_factors(&isotherms, &valid).unwrap();
+        for p in &shifts.pairs {
+            if p.verdict == pairwise::PairVerdict::Determined {
+                let truth = law(temps[p.upper]) - law(temps[p.lower]);
+                z.push((p.shift - truth) / p.sigma);
+            }
+        }
+    }
+    z
+}
+
+/// The pairwise intervals themselves (before any law): over 10 seeds of
+/// WLF isotherms with 1 % noise, the measured shift of a neighbour pair is
+/// within 2σ of the true difference at ≥ 90 % of the determined pairs.
+#[test]
+fn pairwise_intervals_cover_the_truth() {
+    let z = pairwise_z(10, 10, 100);
+    let covered = z.iter().filter(|z| z.abs() <= 2.0).count();
+    eprintln!("pairwise 2σ coverage: {covered} of {}", z.len());
+    assert!(
+        covered as f64 >= 0.9 * z.len() as f64,
+        "pairwise 2σ coverage {covered} of {}",
+        z.len()
+    );
+}
+
+/// Data made with WLF shifts get WLF from `auto`.
+#[test]
+fn auto_keeps_wlf_for_wlf_data() {
+    let temps: Vec<f64> = (0..9).map(|k| -20.0 + 10.0 * k as f64).collect();
+    let law = wlf(10.5, 120.0, 20.0);
+    let mut wlf_count = 0;
+    for seed in 0..10 {
+        let isotherms = synthetic(&temps, &law, &none, 15, 0.01, 200 + seed);
+        let valid = settings(Some(20.0), ShiftLaw::Auto, false)
+            .check(&isotherms)
+            .unwrap();
+        let shifts = shift_factors(&isotherms, &valid).unwrap();
+        if shifts.law == ShiftLaw::Wlf {
+            wlf_count += 1;
+        }
+    }
+    assert!(wlf_count >= 9, "WLF chosen for {wlf_count} of 10 seeds");
+}
+
+/// Every shift undetermined (identical flat isotherms) is refused naming
+/// the isotherms.
+#[test]
+fn flat_isotherms_are_refused() {
+    let flat: Vec<Isotherm> = [0.0, 10.0, 20.0]
+        .iter()
+        .map(|&t| Isotherm {
+            temperature: t,
+            omega: (0..10).map(|i| 0.1 * 10f64.powf(i as f64 / 3.0)).collect(),
+            storage: vec![1e9; 10],
+            loss: vec![1e7; 10],
+        })
+        .collect();
+    let valid = settings(None, ShiftLaw::Auto, false).check(&flat).unwrap();
+    let m = shift_factors(&flat, &valid).unwrap_err().to_string();
+    assert!(
+        m.contains("0, 10, 20") && m.contains("not determined") || m.contains("is determined"),
+        "{m}"
+    );
+}
+
+/// Calibration study of the pairwise σ: RMS of (error/σ) over 60 seeds
+/// for several isotherm densities (1 for honest errors) and the 2σ
+/// coverage.
+/// `cargo test --release -p rollfit-fit --lib pairwise_calibration -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn pairwise_calibration_study() {
+    for count in [10, 15, 30, 60] {
+        let z = pairwise_z(count, 60, 1000);
+        let n = z.len() as f64;
+        eprintln!(
+            "{count} points: RMS z = {:.3}, 2σ coverage {:.3} over {n} pairs",
+            (z.iter().map(|z| z * z).sum::<f64>() / n).sqrt(),
+            z.iter().filter(|z| z.abs() <= 2.0).count() as f64 / n
+        );
+    }
 }

@@ -73,7 +73,7 @@ fn mismatch(lower: &[&Curve], upper: &[&Curve], free_offset: &[bool], s: f64) ->
 
 /// Σ d, Σ d² and the count of d = upper(x) − lower(x + s) over upper's
 /// points inside lower's range.
-fn differences(lower: &Curve, upper: &Curve, s: f64) -> (f64, f64, usize) {
+pub(crate) fn differences(lower: &Curve, upper: &Curve, s: f64) -> (f64, f64, usize) {
     let (mut sum, mut sum_sq, mut n) = (0.0, 0.0, 0);
     for (&x, &y) in upper.x.iter().zip(&upper.y) {
         if let Some(yl) = lower.at(x + s) {
@@ -90,13 +90,6 @@ fn differences(lower: &Curve, upper: &Curve, s: f64) -> (f64, f64, usize) {
 /// overlap on at least a fifth of `upper`'s points (and four points).
 pub(crate) fn relative_shift(lower: &Curve, upper: &Curve) -> Option<f64> {
     joint_relative_shift(&[lower], &[upper], &[])
-}
-
-/// The mean offset c of upper(x) − lower(x + s) over the overlap (the
-/// vertical shift that goes with s), or None without overlap.
-pub(crate) fn offset_at(lower: &Curve, upper: &Curve, s: f64) -> Option<f64> {
-    let (sum, _, n) = differences(lower, upper, s);
-    (n > 0).then(|| sum / n as f64)
 }
 
 /// The one shift s with upper_k(x) ≈ lower_k(x + s) (+ a constant for the

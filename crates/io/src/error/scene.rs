@@ -183,18 +183,34 @@ pub enum SceneError {
     #[error("model \"wlf\" needs the keys `C1` and `C2` (and `T_ref`)")]
     WlfKeysMissing,
     /// WLF with keys of other laws.
-    #[error("keys `log_aT` and `E_a` do not belong to model \"wlf\" (it takes T_ref, C1, C2)")]
+    #[error(
+        "keys `log_aT`, `E_a` and `T_g` do not belong to model \"wlf\" (it takes T_ref, C1, C2)"
+    )]
     WlfForeignKeys,
+    /// WLF–Arrhenius without its constants.
+    #[error(
+        "model \"wlf-arrhenius\" needs the keys `C1`, `C2` (WLF about T_ref, above T_g), `T_g` \
+         (the junction, °C) and `E_a` (J/mol, below T_g), and `T_ref`"
+    )]
+    WlfArrheniusKeysMissing,
+    /// WLF–Arrhenius with a free shift's list.
+    #[error(
+        "key `log_aT` does not belong to model \"wlf-arrhenius\" (it takes T_ref, C1, C2, T_g, E_a)"
+    )]
+    WlfArrheniusForeignKeys,
     /// Arrhenius with keys of other laws.
     #[error(
-        "keys `C1`, `C2` and `log_aT` do not belong to model \"arrhenius\" (it takes T_ref, E_a)"
+        "keys `C1`, `C2`, `T_g` and `log_aT` do not belong to model \"arrhenius\" (it takes T_ref, \
+         E_a)"
     )]
     ArrheniusForeignKeys,
     /// Arrhenius without its energy.
     #[error("model \"arrhenius\" needs the key `E_a`, the activation energy in J/mol")]
     ArrheniusNeedsEnergy,
     /// A free shift with keys of other laws.
-    #[error("keys `C1`, `C2` and `E_a` do not belong to model \"free\" (it takes T_ref, log_aT)")]
+    #[error(
+        "keys `C1`, `C2`, `T_g` and `E_a` do not belong to model \"free\" (it takes T_ref, log_aT)"
+    )]
     FreeForeignKeys,
     /// A free shift without its list.
     #[error(

@@ -16,7 +16,7 @@ use serde::Deserialize;
 
 use super::InSection;
 use super::setup::DEFAULT_POISSON;
-use super::shift::{ShiftKind, ShiftRule, ShiftSection};
+use super::shift::{ShiftRule, ShiftSection};
 use super::values::{Real, RealOrList, reals};
 use crate::dma_master::{self, DmaMaster};
 use crate::error::{IoError, SceneError};
@@ -99,9 +99,9 @@ pub struct MaterialSection {
     /// What a TRIOS file's moduli are ("dma", "table"): "shear" or
     /// "young" (a CSV says it with its column names).
     pub modulus: Option<ModulusName>,
-    /// The law of the DMA shift factors ("dma"): "wlf" (default), "free"
-    /// or "arrhenius".
-    pub shift_law: Option<ShiftKind>,
+    /// The law of the DMA shift factors ("dma"): "auto" (default), "wlf",
+    /// "free", "arrhenius" or "wlf-arrhenius".
+    pub shift_law: Option<DmaShiftLaw>,
     /// Whether to find vertical shift factors ("dma"; default false).
     pub vertical: Option<bool>,
     /// `[material.shift]`: time–temperature shift.
@@ -109,6 +109,22 @@ pub struct MaterialSection {
     /// The master curve of a "dma" material, built once.
     #[serde(skip)]
     pub(crate) dma: DmaCache,
+}
+
+/// `shift_law` of a "dma" material as written in the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DmaShiftLaw {
+    /// Chosen by the data (`rollfit master --shift auto`).
+    Auto,
+    /// Williams–Landel–Ferry.
+    Wlf,
+    /// The measured shifts.
+    Free,
+    /// Arrhenius.
+    Arrhenius,
+    /// WLF above T_g, Arrhenius below.
+    WlfArrhenius,
 }
 
 /// `modulus` as written in the file.
@@ -326,9 +342,11 @@ impl MaterialSection {
         let settings = rollfit_fit::master::MasterSettings {
             t_ref: self.t_ref.map(|r| r.0),
             law: match self.shift_law {
-                None | Some(ShiftKind::Wlf) => rollfit_fit::master::ShiftLaw::Wlf,
-                Some(ShiftKind::Free) => rollfit_fit::master::ShiftLaw::Free,
-                Some(ShiftKind::Arrhenius) => rollfit_fit::master::ShiftLaw::Arrhenius,
+                None | Some(DmaShiftLaw::Auto) => rollfit_fit::master::ShiftLaw::Auto,
+                Some(DmaShiftLaw::Wlf) => rollfit_fit::master::ShiftLaw::Wlf,
+                Some(DmaShiftLaw::Free) => rollfit_fit::master::ShiftLaw::Free,
+                Some(DmaShiftLaw::Arrhenius) => rollfit_fit::master::ShiftLaw::Arrhenius,
+                Some(DmaShiftLaw::WlfArrhenius) => rollfit_fit::master::ShiftLaw::WlfArrhenius,
             },
             vertical: self.vertical.unwrap_or(false),
         };

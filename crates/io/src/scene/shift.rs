@@ -2,7 +2,7 @@
 //! material (its own, or a DMA master curve's; docs/ARCHITECTURE.md,
 //! "Contract", "Scene file").
 
-use rollfit_model::modulus::{Arrhenius, FreeShift, Wlf};
+use rollfit_model::modulus::{Arrhenius, FreeShift, Wlf, WlfArrhenius};
 use serde::Deserialize;
 
 use super::values::{Real, value_of};
@@ -11,7 +11,7 @@ use crate::error::{Fault, SceneError};
 
 /// Shift model names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "kebab-case")]
 pub enum ShiftKind {
     /// Williams–Landel–Ferry: T_ref, C1, C2.
     Wlf,
@@ -19,6 +19,8 @@ pub enum ShiftKind {
     Free,
     /// Arrhenius: T_ref, E_a (J/mol).
     Arrhenius,
+    /// WLF above T_g, Arrhenius below: T_ref, C1, C2, T_g, E_a.
+    WlfArrhenius,
 }
 
 /// `[material.shift]`.
@@ -39,9 +41,12 @@ pub struct ShiftSection {
     /// Free shift: log10 a_T at each listed temperature.
     #[serde(rename = "log_aT")]
     pub log_at: Option<Vec<ShiftPoint>>,
-    /// Arrhenius activation energy, J/mol.
+    /// Arrhenius activation energy, J/mol (for "wlf-arrhenius", below T_g).
     #[serde(rename = "E_a")]
     pub activation_energy: Option<Real>,
+    /// The junction of "wlf-arrhenius", °C.
+    #[serde(rename = "T_g")]
+    pub t_junction: Option<Real>,
 }
 
 /// One entry of a free shift.
@@ -64,6 +69,7 @@ pub(crate) enum ShiftRule {
     Wlf(Wlf),
     Free(FreeShift),
     Arrhenius(Arrhenius),
+    WlfArrhenius(WlfArrhenius),
 }
 
 impl ShiftRule {
@@ -76,6 +82,7 @@ impl ShiftRule {
         let shift = match self {
             ShiftRule::Wlf(wlf) => wlf.log10_shift(temperature).map_err(model)?,
             ShiftRule::Arrhenius(law) => law.log10_shift(temperature).map_err(model)?,
+            ShiftRule::WlfArrhenius(law) => law.log10_shift(temperature).map_err(model)?,
             // The only refusal for a finite temperature is one outside the
             // list, which the file can fix.
             ShiftRule::Free(free) => free
@@ -108,7 +115,16 @@ impl ShiftRule {
                     .ok_or(Fault::LawMissing { law: "Arrhenius" })?;
                 ShiftRule::Arrhenius(Arrhenius::new(t_ref, a.activation_energy).map_err(model)?)
             }
-            ShiftLaw::Free => ShiftRule::Free(
+            ShiftLaw::WlfArrhenius => {
+                let w = shift.wlf_arrhenius.ok_or(Fault::LawMissing {
+                    law: "WLF–Arrhenius",
+                })?;
+                ShiftRule::WlfArrhenius(
+                    WlfArrhenius::new(t_ref, w.c1, w.c2, w.t_junction, w.activation_energy)
+                        .map_err(model)?,
+                )
+            }
+            ShiftLaw::Free | ShiftLaw::Auto => ShiftRule::Free(
                 FreeShift::new(
                     t_ref,
                     shift
@@ -134,7 +150,10 @@ impl ShiftSection {
                 if self.c1.is_none() || self.c2.is_none() {
                     return Err(SceneError::WlfKeysMissing);
                 }
-                if self.log_at.is_some() || self.activation_energy.is_some() {
+                if self.log_at.is_some()
+                    || self.activation_energy.is_some()
+                    || self.t_junction.is_some()
+                {
                     return Err(SceneError::WlfForeignKeys);
                 }
                 // The model names the offending key (T_ref, C1 or C2).
@@ -143,7 +162,11 @@ impl ShiftSection {
                 Ok(ShiftRule::Wlf(wlf))
             }
             ShiftKind::Arrhenius => {
-                if self.c1.is_some() || self.c2.is_some() || self.log_at.is_some() {
+                if self.c1.is_some()
+                    || self.c2.is_some()
+                    || self.log_at.is_some()
+                    || self.t_junction.is_some()
+                {
                     return Err(SceneError::ArrheniusForeignKeys);
                 }
                 let energy = self
@@ -152,8 +175,25 @@ impl ShiftSection {
                 let law = Arrhenius::new(self.t_ref.0, energy.0).map_err(model)?;
                 Ok(ShiftRule::Arrhenius(law))
             }
+            ShiftKind::WlfArrhenius => {
+                let (Some(c1), Some(c2), Some(t_g), Some(energy)) =
+                    (self.c1, self.c2, self.t_junction, self.activation_energy)
+                else {
+                    return Err(SceneError::WlfArrheniusKeysMissing);
+                };
+                if self.log_at.is_some() {
+                    return Err(SceneError::WlfArrheniusForeignKeys);
+                }
+                let law =
+                    WlfArrhenius::new(self.t_ref.0, c1.0, c2.0, t_g.0, energy.0).map_err(model)?;
+                Ok(ShiftRule::WlfArrhenius(law))
+            }
             ShiftKind::Free => {
-                if self.c1.is_some() || self.c2.is_some() || self.activation_energy.is_some() {
+                if self.c1.is_some()
+                    || self.c2.is_some()
+                    || self.activation_energy.is_some()
+                    || self.t_junction.is_some()
+                {
                     return Err(SceneError::FreeForeignKeys);
                 }
                 let listed = self.log_at.as_deref().ok_or(SceneError::FreeNeedsList)?;

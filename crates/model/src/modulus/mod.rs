@@ -34,12 +34,14 @@ mod prony;
 mod shift;
 mod sls;
 mod table;
+mod wlf_arrhenius;
 
 pub use havriliak_negami::HavriliakNegami;
 pub use prony::Prony;
 pub use shift::{Arrhenius, FreeShift, GAS_CONSTANT, Shifted, Wlf, ZERO_CELSIUS};
 pub use sls::StandardLinearSolid;
 pub use table::TabulatedModulus;
+pub use wlf_arrhenius::WlfArrhenius;
 
 use num_complex::Complex64;
 

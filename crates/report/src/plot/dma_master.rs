@@ -14,6 +14,7 @@
 use std::ops::Range;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -52,6 +53,22 @@ pub struct MasterCurveFit {
     pub loss: Vec<f64>,
 }
 
+/// One isotherm's shift factor as the picture shows it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShiftMarker {
+    /// Temperature, °C.
+    pub temperature: f64,
+    /// log10 a_T: the measured one where `determined`, else the value
+    /// applied (the law's).
+    pub log_shift: f64,
+    /// 1σ of a measured shift, decades (an error bar where finite and
+    /// positive).
+    pub sigma: f64,
+    /// Whether the data determine the shift; an undetermined one is drawn
+    /// hollow at the law's value.
+    pub determined: bool,
+}
+
 /// Shifted DMA isotherms, the Prony fit and the shift factors.
 pub struct DmaMasterFigure<'a> {
     /// The shifted points of every isotherm.
@@ -60,8 +77,8 @@ pub struct DmaMasterFigure<'a> {
     pub fit: &'a MasterCurveFit,
     /// Reference temperature, °C.
     pub t_ref: f64,
-    /// (T °C, log10 a_T) per isotherm, measured.
-    pub shifts: &'a [(f64, f64)],
+    /// The shift factor of each isotherm.
+    pub shifts: &'a [ShiftMarker],
     /// The fitted shift curve (T °C, log10 a_T), densely (WLF/Arrhenius);
     /// empty when none.
     pub shift_curve: &'a [(f64, f64)],
@@ -89,7 +106,7 @@ impl DmaMasterFigure<'_> {
         let measured = self
             .shifts
             .iter()
-            .filter(|s| s.0.is_finite() && s.1.is_finite())
+            .filter(|s| s.temperature.is_finite() && s.log_shift.is_finite())
             .count();
         measured >= 2
             || self
@@ -427,6 +444,49 @@ where
     Ok(())
 }
 
+/// The measured shifts' ±1σ bars (clipped to the axes) and the
+/// undetermined isotherms as hollow markers in their colour.
+fn draw_bars_and_undetermined<'a, DB>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    bars: &[(f64, f64, f64)],
+    undetermined: &[(f64, f64)],
+    colour: &dyn Fn(f64) -> RGBColor,
+) -> DrawResult
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+{
+    let (lo, hi) = (chart.y_range().start, chart.y_range().end);
+    for &(t, l, sigma) in bars {
+        chart.draw_series(std::iter::once(ErrorBar::new_vertical(
+            t,
+            (l - sigma).max(lo),
+            l,
+            (l + sigma).min(hi),
+            BLACK.stroke_width(1),
+            8,
+        )))?;
+    }
+    if !undetermined.is_empty() {
+        chart
+            .draw_series(undetermined.iter().map(|&(t, l)| {
+                EmptyElement::at((t, l))
+                    + Circle::new((0, 0), 5, WHITE.filled())
+                    + Circle::new((0, 0), 5, colour(t).stroke_width(2))
+            }))?
+            .label(UNDETERMINED_LABEL)
+            .legend(|(x, y)| {
+                EmptyElement::at((x + 10, y))
+                    + Circle::new((0, 0), 5, WHITE.filled())
+                    + Circle::new((0, 0), 5, style::MEASURED.stroke_width(2))
+            });
+    }
+    Ok(())
+}
+
+/// The legend of the hollow markers.
+const UNDETERMINED_LABEL: &str = "not determined (value applied)";
+
 impl DmaMasterFigure<'_> {
     /// log10 a_T against T: the measured factors as markers in their
     /// isotherm's colour, the fitted shift curve as a line.
@@ -439,11 +499,28 @@ impl DmaMasterFigure<'_> {
         DB: DrawingBackend,
         DB::ErrorType: 'static,
     {
-        let measured: Vec<(f64, f64)> = self
+        let shown: Vec<ShiftMarker> = self
             .shifts
             .iter()
             .copied()
-            .filter(|s| s.0.is_finite() && s.1.is_finite())
+            .filter(|s| s.temperature.is_finite() && s.log_shift.is_finite())
+            .collect();
+        let measured: Vec<(f64, f64)> = shown
+            .iter()
+            .filter(|s| s.determined)
+            .map(|s| (s.temperature, s.log_shift))
+            .collect();
+        let undetermined: Vec<(f64, f64)> = shown
+            .iter()
+            .filter(|s| !s.determined)
+            .map(|s| (s.temperature, s.log_shift))
+            .collect();
+        // Error bars, drawn only where they fit in the axes: a bar of
+        // decades on a well-measured isotherm would flatten the plot.
+        let bars: Vec<(f64, f64, f64)> = shown
+            .iter()
+            .filter(|s| s.determined && s.sigma.is_finite() && s.sigma > 0.0)
+            .map(|s| (s.temperature, s.log_shift, s.sigma))
             .collect();
         let curve = runs(
             self.shift_curve
@@ -453,6 +530,7 @@ impl DmaMasterFigure<'_> {
         let x_range = linear_range(
             measured
                 .iter()
+                .chain(&undetermined)
                 .chain(curve.iter().flatten())
                 .map(|p| p.0)
                 .chain([self.t_ref]),
@@ -461,6 +539,7 @@ impl DmaMasterFigure<'_> {
         let y_range = linear_range(
             measured
                 .iter()
+                .chain(&undetermined)
                 .chain(curve.iter().flatten())
                 .map(|p| p.1)
                 .chain([0.0]),
@@ -471,12 +550,12 @@ impl DmaMasterFigure<'_> {
             .iter()
             .flatten()
             .map(|&p| (p, 1))
-            .chain(measured.iter().map(|&p| (p, 10)))
+            .chain(measured.iter().chain(&undetermined).map(|&p| (p, 10)))
             .collect();
         let box_size = legend_box(
             plot_size(area.dim_in_pixel(), 60, 45, true),
-            2,
-            "fitted shift curve".len(),
+            2 + usize::from(!undetermined.is_empty()),
+            UNDETERMINED_LABEL.len(),
         );
         let legend = place_legend(&samples, &x_range, &y_range, box_size);
         let mut chart = ChartBuilder::on(area)
@@ -497,6 +576,7 @@ impl DmaMasterFigure<'_> {
                 });
             }
         }
+        draw_bars_and_undetermined(&mut chart, &bars, &undetermined, colour)?;
         if !measured.is_empty() {
             chart
                 .draw_series(measured.iter().map(|&(t, l)| {
@@ -504,7 +584,7 @@ impl DmaMasterFigure<'_> {
                         + Circle::new((0, 0), 5, colour(t).filled())
                         + Circle::new((0, 0), 5, BLACK.stroke_width(1))
                 }))?
-                .label("per isotherm")
+                .label("measured, ±1σ")
                 .legend(|(x, y)| {
                     EmptyElement::at((x + 10, y))
                         + Circle::new((0, 0), 5, style::MEASURED.filled())

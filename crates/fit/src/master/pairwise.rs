@@ -1,0 +1,317 @@
+//! The relative shift of two isotherms with its standard error, or the
+//! verdict that the data do not determine it.
+//!
+//! Two isotherms at T_i < T_j are compared as in [`super::horizontal`]:
+//! the warmer one's curves y_j(x) (log10 E′ and log10 tan δ against
+//! x = log10 ω) against the colder one's y_i(x + s), linearly interpolated,
+//! over the overlap, and the colder one's points against the warmer curve
+//! at x − s; M_k(s) is the mean of the two mean squared differences. The
+//! shift s minimises M(s) = Σ_k M_k(s) (k = E′, tan δ), found by a scan
+//! over ±15 decades and a golden-section refinement. The count n_k below
+//! is the mean of the two overlaps.
+//!
+//! Its uncertainty comes from a profile of the same objective read as a
+//! χ²: the residual scatter of each curve at the optimum is taken as its
+//! noise, σ_k² = n_k M_k(s₀)/(n_k − p_k) (p_k = 1 for the shift, 2 where a
+//! vertical offset is also free), so that
+//!
+//!   χ²(s) = Σ_k (n_k − p_k) M_k(s)/M_k(s₀),
+//!
+//! and the 1σ interval is where χ²(s) − χ²(s₀) ≤ 1 (the profile-likelihood
+//! interval; Bevington & Robinson ch. 11). A curve whose residuals include
+//! the interpolation's own error counts that error as noise, which widens
+//! the interval rather than narrowing it. Why a profile and not the
+//! curvature alone: on a plateau the objective is flat and not quadratic,
+//! and only the profile says how far it stays flat.
+//!
+//! A shift is *undetermined* when the 2σ interval (Δχ² ≤ 4) reaches the
+//! end of the range the overlap rule allows (a fifth of the warmer
+//! isotherm's points, and at least four, inside the colder one's range):
+//! the data then fit about equally well at the boundary, and the optimum
+//! found there is where the rule stopped the search, not a measurement.
+//! This is the glassy (or rubbery) plateau, where E′ and tan δ are flat
+//! and any shift over decades fits.
+//!
+//! The coverage of these intervals on synthetic isotherms is measured in
+//! the tests (`master/tests.rs`).
+//!
+//! # References
+//! - P.R. Bevington, D.K. Robinson, *Data Reduction and Error Analysis for
+//!   the Physical Sciences*, 3rd ed., McGraw-Hill 2003, ch. 11 (confidence
+//!   intervals from Δχ²).
+//! - J. Dealy, D. Plazek, "Time–temperature superposition — a users
+//!   guide", Rheology Bulletin 78(2) (2009) 16–31.
+
+use crate::shift::overlap::{Curve, differences};
+
+/// What the data say about the shift of a pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PairVerdict {
+    /// Determined, with a finite standard error.
+    Determined,
+    /// The 2σ interval reaches the end of the allowed overlap: flat
+    /// curves (a plateau), or an optimum on the boundary.
+    Undetermined,
+}
+
+/// The relative shift of isotherm `upper` against `lower`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PairShift {
+    /// Index of the colder isotherm (ascending temperatures).
+    pub lower: usize,
+    /// Index of the warmer isotherm.
+    pub upper: usize,
+    /// s = log10 a_{T_upper} − log10 a_{T_lower} at the best overlap.
+    pub shift: f64,
+    /// 1σ of `shift`, decades (infinite when undetermined).
+    pub sigma: f64,
+    /// The mean log E′ offset at `shift` (the vertical step; 0 without
+    /// vertical factors).
+    pub vertical: f64,
+    /// Whether the data determine the shift.
+    pub verdict: PairVerdict,
+}
+
+/// Scan step and half-range of the search, decades.
+const STEP: f64 = 0.02;
+const RANGE: f64 = 15.0;
+
+/// The shift of `upper` against `lower` (curves log E′ and log tan δ of
+/// each), or None where the pair never overlaps as the rule asks. With
+/// `vertical` the E′ curves may also differ by a constant.
+pub(crate) fn pair_shift(
+    lower: &[Curve; 2],
+    upper: &[Curve; 2],
+    vertical: bool,
+    indices: (usize, usize),
+) -> Option<PairShift> {
+    let free_offset = [vertical, false];
+    let need = (upper[0].x.len() / 5).max(4);
+    let parts = |s: f64| mismatch(lower, upper, &free_offset, need, s);
+    let cost = |s: f64| parts(s).map_or(f64::INFINITY, |p| p[0].0 + p[1].0);
+
+    let (s0, s_min, s_max) = best_shift(&cost)?;
+    let at_optimum = parts(s0)?;
+    // χ² weights: (n_k − p_k)/M_k(s₀), the residual scatter as the noise.
+    let weights: Vec<f64> = (0..2)
+        .map(|k| {
+            let (m, n) = at_optimum[k];
+            let p = if free_offset[k] { 2.0 } else { 1.0 };
+            let dof = (n as f64 - p).max(1.0);
+            // Curves equal to rounding: the scatter of doubles, not zero.
+            dof / m.max(1e-24)
+        })
+        .collect();
+    let chi2 = |s: f64| -> f64 {
+        parts(s).map_or(f64::INFINITY, |p| weights[0] * p[0].0 + weights[1] * p[1].0)
+    };
+    let chi0 = chi2(s0);
+    // Where Δχ² first exceeds `level` walking from s₀ towards `end`
+    // (bisected between scan points), or None if it never does inside the
+    // allowed run.
+    let crossing = |level: f64, direction: f64| -> Option<f64> {
+        let mut inside = s0;
+        let mut k = 1;
+        loop {
+            let s = s0 + direction * k as f64 * STEP;
+            if s < s_min - 1e-12 || s > s_max + 1e-12 {
+                // The last allowed scan point may still be below the level;
+                // the run ends there.
+                let edge = if direction > 0.0 { s_max } else { s_min };
+                if chi2(edge) - chi0 > level {
+                    return Some(bisect(&chi2, chi0 + level, inside, edge));
+                }
+                return None;
+            }
+            if chi2(s) - chi0 > level {
+                return Some(bisect(&chi2, chi0 + level, inside, s));
+            }
+            inside = s;
+            k += 1;
+        }
+    };
+    let vertical_step = if vertical {
+        let (sum, _, n) = differences(&lower[0], &upper[0], s0);
+        if n > 0 { sum / n as f64 } else { 0.0 }
+    } else {
+        0.0
+    };
+    let wide = [crossing(4.0, -1.0), crossing(4.0, 1.0)];
+    let (sigma, verdict) = if wide.iter().any(Option::is_none) {
+        (f64::INFINITY, PairVerdict::Undetermined)
+    } else {
+        match (crossing(1.0, -1.0), crossing(1.0, 1.0)) {
+            (Some(left), Some(right)) => {
+                let profile = 0.5 * (right - left);
+                let half_width = (5.0 * profile).max(2.0 * STEP);
+                let jackknife = jackknife_sigma(lower, upper, &free_offset, s0, half_width);
+                (profile.max(jackknife), PairVerdict::Determined)
+            }
+            _ => (f64::INFINITY, PairVerdict::Undetermined),
+        }
+    };
+    Some(PairShift {
+        lower: indices.0,
+        upper: indices.1,
+        shift: s0,
+        sigma,
+        vertical: vertical_step,
+        verdict,
+    })
+}
+
+/// Per curve (log E′, log tan δ): the mean squared mismatch of upper(x)
+/// against lower(x + s) (about its mean where the offset is free) and the
+/// overlap count; None where the E′ overlap is shorter than `need` points
+/// or a curve does not overlap.
+fn mismatch(
+    lower: &[Curve; 2],
+    upper: &[Curve; 2],
+    free_offset: &[bool; 2],
+    need: usize,
+    s: f64,
+) -> Option<[(f64, usize); 2]> {
+    let mut out = [(0.0, 0); 2];
+    for k in 0..2 {
+        // Both ways: the upper points against the lower curve at x + s and
+        // the lower points against the upper curve at x − s, so that
+        // neither isotherm's sampling decides alone (on a flat overlap
+        // the two one-way optima can lie decades apart).
+        let one = differences(&lower[k], &upper[k], s);
+        let other = differences(&upper[k], &lower[k], -s);
+        if one.2 == 0 || other.2 == 0 || (k == 0 && one.2 < need) {
+            return None;
+        }
+        let mean_square = |(sum, sum_sq, n): (f64, f64, usize)| {
+            // upper − lower one way, lower − upper the other: the offset
+            // changes sign.
+            let mean = sum / n as f64;
+            if free_offset[k] {
+                (sum_sq / n as f64 - mean * mean).max(0.0)
+            } else {
+                sum_sq / n as f64
+            }
+        };
+        out[k] = (
+            0.5 * (mean_square(one) + mean_square(other)),
+            (one.2 + other.2).div_ceil(2),
+        );
+    }
+    Some(out)
+}
+
+/// The shift of least `cost` by a scan over ±[`RANGE`] and a
+/// golden-section refinement, with the ends of the run of allowed
+/// (finite-cost) shifts around it: (s₀, s_min, s_max).
+fn best_shift(cost: &dyn Fn(f64) -> f64) -> Option<(f64, f64, f64)> {
+    let steps = (RANGE / STEP) as i64;
+    let grid: Vec<f64> = (-steps..=steps).map(|i| i as f64 * STEP).collect();
+    let costs: Vec<f64> = grid.iter().map(|&s| cost(s)).collect();
+    let best = (0..grid.len())
+        .filter(|&i| costs[i].is_finite())
+        .min_by(|&a, &b| costs[a].total_cmp(&costs[b]))?;
+    let mut lo = best;
+    while lo > 0 && costs[lo - 1].is_finite() {
+        lo -= 1;
+    }
+    let mut hi = best;
+    while hi + 1 < grid.len() && costs[hi + 1].is_finite() {
+        hi += 1;
+    }
+    let (s_min, s_max) = (grid[lo], grid[hi]);
+    let (a, b) = (
+        (grid[best] - STEP).max(s_min),
+        (grid[best] + STEP).min(s_max),
+    );
+    let refined = golden_section(cost, a, b);
+    let s0 = if cost(refined) <= costs[best] {
+        refined
+    } else {
+        grid[best]
+    };
+    Some((s0, s_min, s_max))
+}
+
+/// The minimum of a unimodal `f` on [a, b] by golden section.
+fn golden_section(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..60 {
+        let c = b - g * (b - a);
+        let d = a + g * (b - a);
+        if f(c) < f(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// The two-sample delete-one jackknife of the shift: each point of the
+/// upper isotherm, then of the lower one, left out in turn and the shift
+/// found again within `half_width` of `s0`;
+/// σ² = Σ_samples (n−1)/n Σ_i (s_(i) − s̄)².
+fn jackknife_sigma(
+    lower: &[Curve; 2],
+    upper: &[Curve; 2],
+    free_offset: &[bool; 2],
+    s0: f64,
+    half_width: f64,
+) -> f64 {
+    let without = |curves: &[Curve; 2], i: usize| -> [Curve; 2] {
+        let drop = |c: &Curve| {
+            let mut c = c.clone();
+            c.x.remove(i);
+            c.y.remove(i);
+            c
+        };
+        [drop(&curves[0]), drop(&curves[1])]
+    };
+    let need = (upper[0].x.len() / 5).max(4);
+    let minimum = |lower: &[Curve; 2], upper: &[Curve; 2]| -> Option<f64> {
+        let cost = |s: f64| {
+            mismatch(lower, upper, free_offset, need, s).map_or(f64::INFINITY, |p| p[0].0 + p[1].0)
+        };
+        let s = golden_section(&cost, s0 - half_width, s0 + half_width);
+        cost(s).is_finite().then_some(s)
+    };
+    let mut variance = 0.0;
+    for side in 0..2 {
+        let n = if side == 0 {
+            upper[0].x.len()
+        } else {
+            lower[0].x.len()
+        };
+        let values: Vec<f64> = (0..n)
+            .filter_map(|i| {
+                if side == 0 {
+                    minimum(lower, &without(upper, i))
+                } else {
+                    minimum(&without(lower, i), upper)
+                }
+            })
+            .collect();
+        let m = values.len() as f64;
+        if m < 2.0 {
+            return f64::INFINITY;
+        }
+        let mean = values.iter().sum::<f64>() / m;
+        variance += (m - 1.0) / m * values.iter().map(|v| (v - mean).powi(2)).sum::<f64>();
+    }
+    variance.sqrt()
+}
+
+/// The point between `inside` (below `target`) and `outside` (above) where
+/// `f` crosses `target`, by bisection.
+fn bisect(f: &dyn Fn(f64) -> f64, target: f64, inside: f64, outside: f64) -> f64 {
+    let (mut a, mut b) = (inside, outside);
+    for _ in 0..50 {
+        let m = 0.5 * (a + b);
+        if f(m) > target {
+            b = m;
+        } else {
+            a = m;
+        }
+    }
+    0.5 * (a + b)
+}
