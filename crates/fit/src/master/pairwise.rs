@@ -204,8 +204,11 @@ fn mismatch(
 /// golden-section refinement, with the ends of the run of allowed
 /// (finite-cost) shifts around it: (s₀, s_min, s_max).
 fn best_shift(cost: &dyn Fn(f64) -> f64) -> Option<(f64, f64, f64)> {
-    let steps = (RANGE / STEP) as i64;
-    let grid: Vec<f64> = (-steps..=steps).map(|i| i as f64 * STEP).collect();
+    // A coarse scan finds the basin (the curves vary on the scale of a
+    // decade), a fine one around it the best grid point.
+    let coarse = 5.0 * STEP;
+    let steps = (RANGE / coarse) as i64;
+    let grid: Vec<f64> = (-steps..=steps).map(|i| i as f64 * coarse).collect();
     let costs: Vec<f64> = grid.iter().map(|&s| cost(s)).collect();
     let best = (0..grid.len())
         .filter(|&i| costs[i].is_finite())
@@ -218,24 +221,50 @@ fn best_shift(cost: &dyn Fn(f64) -> f64) -> Option<(f64, f64, f64)> {
     while hi + 1 < grid.len() && costs[hi + 1].is_finite() {
         hi += 1;
     }
-    let (s_min, s_max) = (grid[lo], grid[hi]);
-    let (a, b) = (
-        (grid[best] - STEP).max(s_min),
-        (grid[best] + STEP).min(s_max),
-    );
-    let refined = golden_section(cost, a, b);
-    let s0 = if cost(refined) <= costs[best] {
+    // The run's ends to a fine step: bisection on where the overlap rule
+    // starts to refuse.
+    let edge = |inside: f64, outside: f64| {
+        let (mut a, mut b) = (inside, outside);
+        while (b - a).abs() > 1e-3 * STEP {
+            let m = 0.5 * (a + b);
+            if cost(m).is_finite() { a = m } else { b = m }
+        }
+        a
+    };
+    let s_min = if lo > 0 {
+        edge(grid[lo], grid[lo - 1])
+    } else {
+        grid[lo]
+    };
+    let s_max = if hi + 1 < grid.len() {
+        edge(grid[hi], grid[hi + 1])
+    } else {
+        grid[hi]
+    };
+    let (mut best_s, mut best_cost) = (grid[best], costs[best]);
+    for k in -5..=5 {
+        let s = grid[best] + k as f64 * STEP;
+        if (s_min..=s_max).contains(&s) {
+            let c = cost(s);
+            if c < best_cost {
+                (best_s, best_cost) = (s, c);
+            }
+        }
+    }
+    let (a, b) = ((best_s - STEP).max(s_min), (best_s + STEP).min(s_max));
+    let refined = golden_section(cost, a, b, 40);
+    let s0 = if cost(refined) <= best_cost {
         refined
     } else {
-        grid[best]
+        best_s
     };
     Some((s0, s_min, s_max))
 }
 
 /// The minimum of a unimodal `f` on [a, b] by golden section.
-fn golden_section(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+fn golden_section(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, iterations: usize) -> f64 {
     let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..60 {
+    for _ in 0..iterations {
         let c = b - g * (b - a);
         let d = a + g * (b - a);
         if f(c) < f(d) {
@@ -272,7 +301,8 @@ fn jackknife_sigma(
         let cost = |s: f64| {
             mismatch(lower, upper, free_offset, need, s).map_or(f64::INFINITY, |p| p[0].0 + p[1].0)
         };
-        let s = golden_section(&cost, s0 - half_width, s0 + half_width);
+        // 30 steps shrink the bracket 1e6-fold: far below σ.
+        let s = golden_section(&cost, s0 - half_width, s0 + half_width, 30);
         cost(s).is_finite().then_some(s)
     };
     let mut variance = 0.0;
