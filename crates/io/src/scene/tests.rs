@@ -226,6 +226,39 @@ fn arrhenius_shift() {
     assert!(m.contains("E_a"), "{m}");
 }
 
+/// A WLF–Arrhenius `[material.shift]` gives WLF above T_g and Arrhenius's
+/// slope below (against the model's two laws evaluated directly); missing
+/// and foreign keys are named.
+#[test]
+fn wlf_arrhenius_shift() {
+    let text = SLS.replace(
+        "tau = 1\n",
+        "tau = 1\n[material.shift]\nmodel = \"wlf-arrhenius\"\nT_ref = 20.0\nC1 = 8.86\n\
+         C2 = 101.6\nT_g = -20.0\nE_a = 2e5\n",
+    );
+    let at = |t: f64| {
+        setup(&format!("{text}temperature = {t:?}\n"))
+            .unwrap()
+            .blocks[0]
+            .shift
+            .unwrap()
+            .log10_a_t
+    };
+    let wlf = rollfit_model::modulus::Wlf::new(20.0, 8.86, 101.6).unwrap();
+    assert!((at(35.0) - wlf.log10_shift(35.0).unwrap()).abs() < 1e-12);
+    let below = Arrhenius::new(-20.0, 2e5).unwrap();
+    let expected = wlf.log10_shift(-20.0).unwrap() + below.log10_shift(-40.0).unwrap();
+    assert!((at(-40.0) - expected).abs() < 1e-12);
+    let m = crate::chain(&parse(&text.replace("T_g = -20.0\n", "")).unwrap_err());
+    assert!(m.contains("needs the keys") && m.contains("T_g"), "{m}");
+    let m =
+        crate::chain(&parse(&text.replace("E_a = 2e5\n", "E_a = 2e5\nlog_aT = []\n")).unwrap_err());
+    assert!(
+        m.contains("does not belong to model \"wlf-arrhenius\""),
+        "{m}"
+    );
+}
+
 /// The keys of model = "dma" belong to it alone (`modulus` to "table"
 /// as well), and a `[material.shift]` beside it is refused: the shift
 /// comes from the isotherms. A missing file names itself.
@@ -330,7 +363,10 @@ fn free_shift_entries_are_checked_by_the_model_and_named() {
     let msg = err("");
     assert!(msg.contains("needs the key `log_aT`"), "{msg}");
     let msg = err("log_aT = [{ T = 0.0, log_aT = 2.0 }]\nC1 = 8.86\n");
-    assert!(msg.contains("`C1`, `C2` and `E_a` do not belong"), "{msg}");
+    assert!(
+        msg.contains("`C1`, `C2`, `T_g` and `E_a` do not belong"),
+        "{msg}"
+    );
 }
 
 #[test]
