@@ -221,15 +221,49 @@ fn bad_isotherms() {
     let one = tmp.write("one.csv", &one);
     let out = master(&one, &tmp.path().join("one"), &[]);
     let stderr = text(&out.stderr);
-    succeed(out);
+    let stdout = succeed(out);
     assert!(
         stderr.contains("line 15") && stderr.contains("point dropped"),
         "{stderr}"
+    );
+    // One isotherm is named and said to be unshifted, not given a law.
+    assert!(
+        stderr.contains("one isotherm (at 25 °C): no time–temperature shift")
+            && stdout.contains("1 isotherm,")
+            && stdout.contains("no shift (one isotherm)"),
+        "{stdout}{stderr}"
     );
     let toml = fs::read_to_string(tmp.path().join("one/material.toml")).unwrap();
     assert!(!toml.contains("[material.shift]"), "{toml}");
     let out = master(&one, &tmp.path().join("one"), &["--T-ref", "20"]);
     assert_failure(&out, &["one isotherm, at 25 °C"]);
+
+    // Three isotherms on one flat glassy plateau: no shift is determined;
+    // refused naming them, nothing written.
+    let mut flat = String::from("T,omega,E_storage,E_loss\n");
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let normal = Normal::new(0.0, 0.01).unwrap();
+    for t in [-60.0, -50.0, -40.0] {
+        for i in 0..10 {
+            let w = 0.1 * 10f64.powf(i as f64 / 3.0);
+            let (e1, e2) = (
+                2e9 * (1.0 + normal.sample(&mut rng)),
+                2e7 * (1.0 + normal.sample(&mut rng)),
+            );
+            flat += &format!("{t},{w:e},{e1:e},{e2:e}\n");
+        }
+    }
+    let flat = tmp.write("flat.csv", &flat);
+    let out = master(&flat, &tmp.path().join("flat"), &[]);
+    assert_failure(
+        &out,
+        &[
+            "flat.csv",
+            "no shift between the isotherms (-60, -50, -40 °C)",
+            "plateau",
+        ],
+    );
+    assert!(!tmp.path().join("flat").exists());
 }
 
 /// Mismatch of two isotherms (points sorted by ω: [ω, E′, E″]) at the

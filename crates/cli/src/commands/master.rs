@@ -122,6 +122,8 @@ pub fn run(args: &Args) -> Result<()> {
     let shift = &built.master.shift;
     if shift.shifts.len() > 1 {
         eprintln!("note: shift law {}: {}", shift.law.name(), shift.reason);
+    } else {
+        eprintln!("note: {}", shift.reason);
     }
     for warning in built.data.warnings.iter().chain(&built.master.warnings) {
         eprintln!("warning: {warning}");

@@ -143,9 +143,16 @@ pub(crate) fn pair_shift(
         match (crossing(1.0, -1.0), crossing(1.0, 1.0)) {
             (Some(left), Some(right)) => {
                 let profile = 0.5 * (right - left);
-                let half_width = (5.0 * profile).max(2.0 * STEP);
-                let jackknife = jackknife_sigma(lower, upper, &free_offset, s0, half_width);
-                (profile.max(jackknife), PairVerdict::Determined)
+                let jackknife = jackknife_sigma(lower, upper, &free_offset, (s_min, s_max));
+                let sigma = profile.max(jackknife);
+                // On flat noisy curves the profile is as noisy as the data
+                // and can show a sharp minimum; the jackknife's estimates
+                // then scatter over the allowed range.
+                if s0 - 2.0 * sigma <= s_min || s0 + 2.0 * sigma >= s_max {
+                    (f64::INFINITY, PairVerdict::Undetermined)
+                } else {
+                    (sigma, PairVerdict::Determined)
+                }
             }
             _ => (f64::INFINITY, PairVerdict::Undetermined),
         }
@@ -204,8 +211,8 @@ fn mismatch(
 /// golden-section refinement, with the ends of the run of allowed
 /// (finite-cost) shifts around it: (s₀, s_min, s_max).
 fn best_shift(cost: &dyn Fn(f64) -> f64) -> Option<(f64, f64, f64)> {
-    // A coarse scan finds the basin (the curves vary on the scale of a
-    // decade), a fine one around it the best grid point.
+    // A coarse scan finds the allowed run (the curves vary on the scale of
+    // a decade); the best shift is then searched inside it.
     let coarse = 5.0 * STEP;
     let steps = (RANGE / coarse) as i64;
     let grid: Vec<f64> = (-steps..=steps).map(|i| i as f64 * coarse).collect();
@@ -241,9 +248,28 @@ fn best_shift(cost: &dyn Fn(f64) -> f64) -> Option<(f64, f64, f64)> {
     } else {
         grid[hi]
     };
-    let (mut best_s, mut best_cost) = (grid[best], costs[best]);
+    best_shift_in(cost, s_min, s_max)
+}
+
+/// The shift of least `cost` in [s_min, s_max]: a coarse scan, a fine one
+/// around its best point, a golden-section refinement; (s₀, s_min, s_max).
+fn best_shift_in(cost: &dyn Fn(f64) -> f64, s_min: f64, s_max: f64) -> Option<(f64, f64, f64)> {
+    let coarse = 5.0 * STEP;
+    let count = ((s_max - s_min) / coarse).ceil().max(1.0) as usize;
+    let (mut best_s, mut best_cost) = (s_min, f64::INFINITY);
+    for j in 0..=count {
+        let s = s_min + (s_max - s_min) * j as f64 / count as f64;
+        let c = cost(s);
+        if c < best_cost {
+            (best_s, best_cost) = (s, c);
+        }
+    }
+    if !best_cost.is_finite() {
+        return None;
+    }
+    let centre = best_s;
     for k in -5..=5 {
-        let s = grid[best] + k as f64 * STEP;
+        let s = centre + k as f64 * STEP;
         if (s_min..=s_max).contains(&s) {
             let c = cost(s);
             if c < best_cost {
@@ -278,14 +304,13 @@ fn golden_section(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, iterations: us
 
 /// The two-sample delete-one jackknife of the shift: each point of the
 /// upper isotherm, then of the lower one, left out in turn and the shift
-/// found again within `half_width` of `s0`;
+/// found again over the `allowed` run;
 /// σ² = Σ_samples (n−1)/n Σ_i (s_(i) − s̄)².
 fn jackknife_sigma(
     lower: &[Curve; 2],
     upper: &[Curve; 2],
     free_offset: &[bool; 2],
-    s0: f64,
-    half_width: f64,
+    allowed: (f64, f64),
 ) -> f64 {
     let without = |curves: &[Curve; 2], i: usize| -> [Curve; 2] {
         let drop = |c: &Curve| {
@@ -301,8 +326,9 @@ fn jackknife_sigma(
         let cost = |s: f64| {
             mismatch(lower, upper, free_offset, need, s).map_or(f64::INFINITY, |p| p[0].0 + p[1].0)
         };
-        // 30 steps shrink the bracket 1e6-fold: far below σ.
-        let s = golden_section(&cost, s0 - half_width, s0 + half_width, 30);
+        // Searched afresh over the whole allowed run, so that a minimum
+        // that noise made is free to move.
+        let (s, _, _) = best_shift_in(&cost, allowed.0, allowed.1)?;
         cost(s).is_finite().then_some(s)
     };
     let mut variance = 0.0;
