@@ -422,6 +422,18 @@ fn shift_lines(report: &FitReport) -> String {
                  C2 = {c2:.4} ± {c2_sigma:.2e} K\n"
             )
         }
+        Some(ShiftRecord::Arrhenius {
+            t_ref,
+            activation_energy,
+            activation_energy_sigma,
+            ..
+        }) => {
+            out += &format!(
+                "shift Arrhenius at T_ref = {t_ref} °C: E_a = {:.4} ± {:.2} kJ/mol\n",
+                activation_energy / 1e3,
+                activation_energy_sigma / 1e3
+            )
+        }
         Some(ShiftRecord::Free { t_ref, log_shift }) => {
             out += &format!("shift free, T_ref = {t_ref} °C: log10 a_T =");
             for s in log_shift {

@@ -17,11 +17,15 @@
 //!    better than |E| — are overlapped to estimate the shifts again
 //!    ([`cross_check`]).
 //!
+//! 3. With `shift = "auto"`, the choice of the law from the joint fits
+//!    under each ([`law`]).
+//!
 //! The fits these steps need are the driver's; they are passed in as a
 //! function (a [`Fit`]), so that this module does not depend on the driver
 //! that uses it.
 
 pub(crate) mod cross_check;
+pub(crate) mod law;
 
 use crate::data::Measurements;
 use crate::error::FitError;
