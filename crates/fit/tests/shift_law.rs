@@ -217,3 +217,32 @@ fn arrhenius_shifts_are_recovered() {
     assert!(worst <= 0.05, "log a_T off by {worst}");
     assert!(report.shift_choice.is_none());
 }
+
+/// Issue 31: the same kinked shifts fitted with `shift = "wlf"` are judged
+/// poor, and since the cross-check finds single-temperature shifts off the
+/// law, the verdict's reasons (which `rollfit fit` prints when it refuses
+/// the fit) name `shift = "free"`.
+#[test]
+fn a_poor_wlf_fit_of_kinked_shifts_names_free_shifts() {
+    let report = fit(
+        &data(kinked_truth, 1),
+        &params(ShiftKind::Wlf, &kinked_truth),
+    )
+    .unwrap();
+    let check = report.shift_cross_check.as_ref().expect("a cross-check");
+    eprintln!(
+        "χ²/N {:.2}, cross-check max difference {:.3}, reasons {:#?}",
+        report.misfit_per_point, check.max_difference, report.fit_quality.reasons
+    );
+    assert!(report.fit_quality.is_poor(), "{:?}", report.fit_quality);
+    assert!(report.shift_choice.is_none());
+    assert!(
+        report
+            .fit_quality
+            .reasons
+            .iter()
+            .any(|r| r.contains("shift = \"free\"")),
+        "{:?}",
+        report.fit_quality.reasons
+    );
+}

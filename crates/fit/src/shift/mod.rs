@@ -308,18 +308,21 @@ impl ShiftParam {
     }
 }
 
-/// √(g C gᵀ), summed over the entries g touches only, so that an infinite
-/// variance of a parameter `g` does not depend on gives no NaN; NaN where
-/// the variance is not a number, ∞ where it is infinite.
+/// √(g C gᵀ). Where C holds an infinite variance (an undetermined
+/// parameter), summed over the entries g touches only, so that a parameter
+/// `g` does not depend on gives no NaN: ∞ where g touches it. NaN stays NaN
+/// (f64::max would turn it into 0).
 fn standard_deviation(g: &[f64], cov: &nalgebra::DMatrix<f64>) -> f64 {
-    let mut variance = 0.0;
-    for (i, &gi) in g.iter().enumerate().filter(|(_, x)| **x != 0.0) {
-        for (j, &gj) in g.iter().enumerate().filter(|(_, x)| **x != 0.0) {
-            variance += gi * cov[(i, j)] * gj;
-        }
-    }
-    // A rounding-negative variance of a well-determined parameter is 0;
-    // NaN stays NaN (f64::max would turn it into 0).
+    let variance = if cov.iter().all(|c| c.is_finite()) {
+        let g = nalgebra::DVector::from_column_slice(g);
+        (g.transpose() * cov * &g)[(0, 0)]
+    } else {
+        let touched = || g.iter().enumerate().filter(|(_, x)| **x != 0.0);
+        touched()
+            .map(|(i, gi)| touched().map(|(j, gj)| gi * cov[(i, j)] * gj).sum::<f64>())
+            .sum()
+    };
+    // A rounding-negative variance of a well-determined parameter is 0.
     if variance < 0.0 { 0.0 } else { variance.sqrt() }
 }
 
