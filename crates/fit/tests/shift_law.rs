@@ -128,6 +128,13 @@ fn shifts_that_are_not_wlf_are_fitted_by_default() {
             .as_ref()
             .expect("auto records its choice");
         let worst = worst_shift(&report, &kinked_truth);
+        for r in &report.runs {
+            eprintln!("DEBUG {} λ {:.3e} V {:.6e}", r.stage, r.lambda, r.objective);
+        }
+        eprintln!(
+            "DEBUG lambda {:?} {:?}",
+            report.lambda.value, report.lambda.rule
+        );
         let t = tan_delta_rms(&report, &truth_at(&kinked_truth, 5.0));
         eprintln!(
             "seed {seed}: law {} ({}), worst log a_T {worst:.4}, tan δ {t:.4} over {} points \
@@ -245,4 +252,60 @@ fn a_poor_wlf_fit_of_kinked_shifts_names_free_shifts() {
         "{:?}",
         report.fit_quality.reasons
     );
+}
+
+/// The σ of log10 a_T against the truth over `SEEDS` noise seeds (default
+/// 10, seeds 100…), kinked and WLF shifts under `auto`: the fraction of
+/// temperatures (T_ref aside) with |error| ≤ σ and ≤ 2σ, and the mean z =
+/// error/σ per temperature. A study (`cargo test --release -p rollfit-fit
+/// --test shift_law coverage -- --ignored --nocapture`); it asserts only
+/// that every σ but T_ref's is finite and positive.
+///
+/// Measured (10 seeds, 60 temperature-fits each): kinked (free shifts)
+/// within σ at 55 %, within 2σ at 82 %; WLF within σ at 55 %, within 2σ at
+/// 97 %. The σ are about 1.4 times too small for free shifts, and the
+/// errors are not centred: mean z is +0.4…+1.2 below T_ref and −0.2…−0.7
+/// above it (a stretch of the shifts by about 0.2 %), which neither the
+/// curvature nor the smoothing-bias term (the fit at λ/10) sees.
+#[test]
+#[ignore]
+fn coverage_of_the_shift_sigma() {
+    let seeds: u64 = std::env::var("SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10);
+    let truths: [(&str, &dyn Fn(f64) -> f64); 2] = [("kinked", &kinked_truth), ("wlf", &wlf_truth)];
+    for (name, truth) in truths {
+        let (mut one, mut two, mut n) = (0, 0, 0);
+        let mut z_sum = vec![0.0; TEMPERATURES.len()];
+        for seed in 0..seeds {
+            let report = fit(&data(truth, 100 + seed), &params(ShiftKind::Auto, &truth)).unwrap();
+            let shift = report.shift.as_ref().unwrap();
+            let t_ref = shift.t_ref();
+            for (j, s) in shift.log_shifts().iter().enumerate() {
+                if s.temperature == t_ref {
+                    continue;
+                }
+                assert!(
+                    s.log_shift_sigma.is_finite() && s.log_shift_sigma > 0.0,
+                    "{s:?}"
+                );
+                let z = (s.log_shift - (truth(s.temperature) - truth(t_ref))) / s.log_shift_sigma;
+                one += usize::from(z.abs() <= 1.0);
+                two += usize::from(z.abs() <= 2.0);
+                z_sum[j] += z;
+                n += 1;
+            }
+        }
+        let (f1, f2) = (one as f64 / n as f64, two as f64 / n as f64);
+        let mean: Vec<String> = TEMPERATURES
+            .iter()
+            .zip(&z_sum)
+            .map(|(t, z)| format!("{t}: {:.2}", z / seeds as f64))
+            .collect();
+        eprintln!(
+            "{name}: |error| ≤ σ at {f1:.2}, ≤ 2σ at {f2:.2} of {n}; mean z {}",
+            mean.join(", ")
+        );
+    }
 }

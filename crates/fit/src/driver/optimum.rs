@@ -131,7 +131,11 @@ pub(super) fn analyse(
                 block[(k, k)] = f64::INFINITY;
             }
         }
-        s.record(&shift_theta, &block)
+        let mut record = s.record(&shift_theta, &block);
+        if let Some(less) = &chosen.less_smoothed {
+            record.add_bias(&s.record(&less[n_material..], &block));
+        }
+        record
     });
     let material = Material {
         param,

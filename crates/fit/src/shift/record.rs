@@ -92,6 +92,56 @@ impl ShiftRecord {
         }
     }
 
+    /// Widens every σ by the smoothing bias, as the bands of the master
+    /// curve are ([`crate::analysis`]): the change of each value in
+    /// `other`, the same shift fitted with a tenth of the smoothness
+    /// weight, added in quadrature.
+    pub(crate) fn add_bias(&mut self, other: &ShiftRecord) {
+        let add = |sigma: &mut f64, bias: f64| *sigma = sigma.hypot(bias);
+        for (mine, theirs) in self.log_shifts_mut().iter_mut().zip(other.log_shifts()) {
+            add(&mut mine.log_shift_sigma, theirs.log_shift - mine.log_shift);
+        }
+        match (self, other) {
+            (
+                ShiftRecord::Wlf {
+                    c1,
+                    c2,
+                    c1_sigma,
+                    c2_sigma,
+                    ..
+                },
+                ShiftRecord::Wlf {
+                    c1: c1_other,
+                    c2: c2_other,
+                    ..
+                },
+            ) => {
+                add(c1_sigma, c1_other - *c1);
+                add(c2_sigma, c2_other - *c2);
+            }
+            (
+                ShiftRecord::Arrhenius {
+                    activation_energy,
+                    activation_energy_sigma,
+                    ..
+                },
+                ShiftRecord::Arrhenius {
+                    activation_energy: other_energy,
+                    ..
+                },
+            ) => add(activation_energy_sigma, other_energy - *activation_energy),
+            _ => {}
+        }
+    }
+
+    fn log_shifts_mut(&mut self) -> &mut [LogShift] {
+        match self {
+            ShiftRecord::Wlf { log_shift, .. }
+            | ShiftRecord::Arrhenius { log_shift, .. }
+            | ShiftRecord::Free { log_shift, .. } => log_shift,
+        }
+    }
+
     /// The law's name as fit.json writes it under `model`.
     pub fn model_name(&self) -> &'static str {
         match self {
