@@ -142,7 +142,7 @@ type Refit = (GridOutcome, Vec<[f64; 2]>);
 /// principle walked to the bottom of the path, λ = 1e-8, where the fit is
 /// all but unregularised: χ²/N 0.75, and over 10 seeds the free log10 a_T
 /// were within their 1σ at 50 % of the temperatures and within 2σ at 80 %.
-fn own_lambda(
+pub(super) fn own_lambda(
     data: &Measurements,
     params: &ValidFitParams,
     set: &ShiftStart,

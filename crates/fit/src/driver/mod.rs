@@ -165,7 +165,21 @@ fn master_curve(
     match (&params.terms, via_wlf, first) {
         (_, Some((wlf, start)), _) => {
             let candidates = wlf.terms.candidates.clone();
-            Ok((free_from_wlf(data, params, wlf, &start)?, candidates))
+            // A WLF fit that does not describe the data chose its λ for
+            // shifts the data reject: the free shifts then get their own
+            // (as `auto` gives them, `law::own_lambda`).
+            let poor = wlf.fit_quality.is_poor();
+            let free = free_from_wlf(data, params, wlf, &start)?;
+            if !poor {
+                return Ok((free, candidates));
+            }
+            let own = law::own_lambda(data, params, &start, &free)?;
+            Ok(own
+                .map(|(mut own, candidates)| {
+                    own.fit.runs = free.fit.runs.iter().cloned().chain(own.fit.runs).collect();
+                    (own, candidates)
+                })
+                .unwrap_or((free, candidates)))
         }
         (_, None, Some(first)) => {
             let candidates = first.terms.candidates.clone();
