@@ -8,6 +8,9 @@
 //!    against them.
 //! 3. Only when WLF is rejected: Arrhenius at the same λ and grid, from the
 //!    free fit's material and its E_a fitted to the free shifts.
+//! 4. When WLF is rejected, the law chosen (Arrhenius or free) is fitted
+//!    again with a λ of its own ([`own_lambda`]): the WLF fit's λ was
+//!    chosen for shifts the data reject.
 //!
 //! The chosen fit carries the runs of all, in order. With two temperatures
 //! there is one shift, which no law can be tested on: free. When T_ref is

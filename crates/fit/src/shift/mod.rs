@@ -15,9 +15,11 @@
 //!   ∂log10 a_T/∂θ = log10 a_T (the law is linear in E_a).
 //! - Free: θ_j = log10 a_{T_j} for every temperature but T_ref (fixed at 0).
 //!
-//! The 1σ of each log10 a_T is g C gᵀ, g = ∂log10 a_T/∂θ_s and C the
+//! The 1σ of each log10 a_T is √(g C gᵀ), g = ∂log10 a_T/∂θ_s and C the
 //! covariance block of θ_s ([`crate::analysis`]: s² H⁺, with the noise
-//! scaling of the fit's other σ). A shift parameter the data do not move
+//! scaling of the fit's other σ), widened like the bands of the master
+//! curve by the smoothing bias, the change of log10 a_T when the fit is
+//! made again at λ/10, added in quadrature ([`ShiftRecord::add_bias`]). A shift parameter the data do not move
 //! (its column of the data Jacobian vanishes: a temperature whose μ(v) is
 //! flat in ln v) has no finite σ; the pseudo-inverse would report 0 for it,
 //! so its variance is set to ∞ and its σ is written as null.
