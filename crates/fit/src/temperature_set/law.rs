@@ -74,9 +74,11 @@ pub struct LawCandidate {
     pub model: &'static str,
     /// Constants of the law (free shifts: one per temperature but T_ref).
     pub parameters: usize,
-    /// V of the joint fit under this law.
+    /// V of the joint fit under this law at the λ and on the τ grid of the
+    /// WLF fit (the fits the test compares; a law chosen over a rejected
+    /// WLF is reported as fitted again with its own λ).
     pub objective: f64,
-    /// Its weighted misfit.
+    /// Its weighted misfit there.
     pub misfit: f64,
     /// The F statistic against the free shifts (null for the free shifts).
     #[serde(rename = "F")]
