@@ -272,3 +272,19 @@ fn frame_decades(reduced: &[f64]) -> Option<i32> {
     let scale = 10f64.powf(k);
     (lo / scale >= min && hi / scale <= max).then_some(k as i32)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reduced speeds inside the accepted range stay in their frame; above
+    /// or below it they are moved by whole decades just inside; a span
+    /// wider than the range has no frame.
+    #[test]
+    fn the_one_curve_frame_moves_by_whole_decades() {
+        assert_eq!(frame_decades(&[1e-8, 1.0]), Some(0));
+        assert_eq!(frame_decades(&[1e-6, 5e5]), Some(3));
+        assert_eq!(frame_decades(&[3e-18, 1e-3]), Some(-3));
+        assert_eq!(frame_decades(&[1e-9, 5e11]), None);
+    }
+}
