@@ -65,14 +65,26 @@ fn truth_at(log_shift: &impl Fn(f64) -> f64, t_ref: f64) -> Shifted<HavriliakNeg
 /// Default settings with `kind` and the anchor at 10 rad/s at the default
 /// T_ref (the middle temperature, 5 °C) from `log_shift`.
 fn params(kind: ShiftKind, log_shift: &impl Fn(f64) -> f64) -> rollfit_fit::ValidFitParams {
+    params_at(kind, log_shift, None)
+}
+
+/// [`params`] with the reference temperature `t_ref` (None: the default).
+fn params_at(
+    kind: ShiftKind,
+    log_shift: &impl Fn(f64) -> f64,
+    t_ref: Option<f64>,
+) -> rollfit_fit::ValidFitParams {
     let mut p = FitParams {
         anchor: Some(ScaleAnchor::ModulusAt {
             omega: 10.0,
-            modulus: truth_at(log_shift, 5.0).modulus(10.0).norm(),
+            modulus: truth_at(log_shift, t_ref.unwrap_or(5.0))
+                .modulus(10.0)
+                .norm(),
         }),
         ..FitParams::default()
     };
     p.shift.kind = kind;
+    p.shift.t_ref = t_ref;
     p.check(setup()).unwrap()
 }
 
@@ -328,4 +340,41 @@ fn coverage_of_the_shift_sigma() {
             mean.join(", ")
         );
     }
+}
+
+/// Where no law can be tested, `auto` says so: with two temperatures the
+/// one shift is fitted free; with T_ref between the measured temperatures
+/// free shifts (fixed at T_ref) cannot be fitted, and WLF is kept untested.
+#[test]
+fn auto_without_a_test_says_why() {
+    let two = set_with_shifts(
+        hn_rubber(),
+        &[5.0, 20.0],
+        &speeds(),
+        wlf_truth,
+        0.01,
+        4,
+        true,
+    );
+    let report = fit(&two, &params(ShiftKind::Auto, &wlf_truth)).unwrap();
+    let choice = report.shift_choice.as_ref().unwrap();
+    assert_eq!(
+        (choice.model, report.shift.as_ref().unwrap().model_name()),
+        ("free", "free")
+    );
+    assert!(
+        choice.reason.contains("two temperatures"),
+        "{}",
+        choice.reason
+    );
+    let unmeasured = params_at(ShiftKind::Auto, &wlf_truth, Some(12.5));
+    let report = fit(&data(wlf_truth, 4), &unmeasured).unwrap();
+    let choice = report.shift_choice.as_ref().unwrap();
+    assert_eq!(choice.model, "wlf");
+    assert!(
+        choice.reason.contains("not a measured temperature"),
+        "{}",
+        choice.reason
+    );
+    assert_eq!(choice.candidates[0].rejected, None);
 }
