@@ -999,7 +999,8 @@ fn unknown_physics_is_named_in_the_scene_and_the_flag() {
 /// from a free `[material.shift]`, 7 temperatures × 21 speeds, 1 % noise.
 /// The default `shift = "auto"` fits it and says which law it chose and
 /// why (stderr and fit.json's `shift_choice`); `shift = "wlf"` is refused
-/// as poor, naming `shift = "free"`, and writes nothing.
+/// as poor, naming `shift = "free"` and `--shift free`, and writes nothing;
+/// `--shift free` overrides the scene's law.
 #[test]
 fn shifts_that_are_not_wlf_are_chosen_free_and_a_poor_wlf_fit_names_free() {
     let wlf = |t: f64| -8.86 * (t - 20.0) / (101.6 + t - 20.0);
@@ -1059,6 +1060,17 @@ fn shifts_that_are_not_wlf_are_chosen_free_and_a_poor_wlf_fit_names_free() {
     );
     let refused = dir.path().join("wlf");
     let output = fit(&wlf_scene, &data, &refused, &[]);
-    assert_failure(&output, &["does not describe the data", "shift = \"free\""]);
+    assert_failure(
+        &output,
+        &[
+            "does not describe the data",
+            "shift = \"free\"",
+            "--shift free",
+        ],
+    );
     assert!(!refused.exists());
+    // The flag overrides the scene's law.
+    let flagged = dir.path().join("flag");
+    fit_ok(&wlf_scene, &data, &flagged, &["--shift", "free"]);
+    assert_eq!(json(&flagged.join("fit.json"))["shift"]["model"], "free");
 }

@@ -16,7 +16,7 @@ use std::str::FromStr;
 use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::{
     FitError, FitReport, FitSettings, Lambda, Method, Physics, PhysicsRecord, RollingSetup,
-    ShiftRecord, TermRule,
+    ShiftKind, ShiftRecord, TermRule,
 };
 use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
@@ -85,6 +85,11 @@ pub struct Settings {
     /// Overrides [fit] physics.
     #[arg(long, value_name = "approximate|exact", value_parser = setting::<Physics>)]
     pub physics: Option<Physics>,
+    /// The shift law of a temperature set: auto (the default: WLF unless
+    /// the data reject it against free shifts, then Arrhenius, else free),
+    /// wlf, arrhenius or free. Overrides [fit] shift.
+    #[arg(long, value_name = "auto|wlf|arrhenius|free", value_parser = setting::<ShiftKind>)]
+    pub shift: Option<ShiftKind>,
 }
 
 impl Settings {
@@ -97,6 +102,7 @@ impl Settings {
         settings.starts = self.starts;
         settings.terms = self.terms.clone();
         settings.physics = self.physics;
+        settings.shift = self.shift;
         settings
     }
 }

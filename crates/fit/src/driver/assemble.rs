@@ -229,7 +229,8 @@ fn free_shift_hint(
     Some(format!(
         "fitted alone, single temperatures put log10 a_T up to {:.2} decades off the {} law \
          (shift_cross_check): the shifts may not follow it; fit one shift per temperature with \
-         shift = \"free\" in the scene's [fit] (or let the data choose with shift = \"auto\")",
+         shift = \"free\" (the scene's [fit], or --shift free), or let the data choose with \
+         shift = \"auto\"",
         check.max_difference,
         crate::temperature_set::law::law_name(shift.model_name())
     ))
