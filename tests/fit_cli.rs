@@ -993,3 +993,84 @@ fn unknown_physics_is_named_in_the_scene_and_the_flag() {
         &["--physics", "\"exakt\"", "\"approximate\" or \"exact\""],
     );
 }
+
+/// Issue 31: a temperature set whose shifts are not WLF (WLF about 20 °C
+/// above T_g = −10 °C, Arrhenius with 120 kJ/mol below), made by `forward`
+/// from a free `[material.shift]`, 7 temperatures × 21 speeds, 1 % noise.
+/// The default `shift = "auto"` fits it and says which law it chose and
+/// why (stderr and fit.json's `shift_choice`); `shift = "wlf"` is refused
+/// as poor, naming `shift = "free"` and `--shift free`, and writes nothing;
+/// `--shift free` overrides the scene's law.
+#[test]
+fn shifts_that_are_not_wlf_are_chosen_free_and_a_poor_wlf_fit_names_free() {
+    let wlf = |t: f64| -8.86 * (t - 20.0) / (101.6 + t - 20.0);
+    let kinked = |t: f64| {
+        let x = |t: f64| 1.0 / (t + 273.15);
+        if t >= -10.0 {
+            wlf(t)
+        } else {
+            wlf(-10.0) + 1.2e5 / (8.314462618 * 10f64.ln()) * (x(t) - x(-10.0))
+        }
+    };
+    let temperatures = [-40.0, -25.0, -10.0, 5.0, 20.0, 35.0, 50.0];
+    let table: Vec<String> = temperatures
+        .iter()
+        .map(|&t| format!("{{ T = {t:?}, log_aT = {:?} }}", kinked(t)))
+        .collect();
+    let truth = edit(SCENE, "[fit]\nE0 = 2.0e6\n", "")
+        .replace(
+            "beta = 0.4\n",
+            "beta = 0.4\n[material.shift]\nmodel = \"free\"\nT_ref = 20.0\n",
+        )
+        .replace("v_max = 1.0\ncount = 31\n", "v_max = 0.1\ncount = 21\n");
+    let truth = format!(
+        "{}log_aT = [{}]\n{}temperature = {temperatures:?}\n",
+        &truth[..truth.find("[sweep]").unwrap()],
+        table.join(", "),
+        &truth[truth.find("[sweep]").unwrap()..]
+    );
+    let dir = TempDir::new("fit-kinked");
+    let (_, data) = synthetic(&dir, &truth);
+    let geometry = &SCENE[..SCENE.find("[material]").unwrap()];
+    let scene = dir.write(
+        "fit.toml",
+        &format!("{geometry}[fit]\nT_ref = 20.0\nE_at = {{ omega = 10.0, E = 6.26e7 }}\n"),
+    );
+    let out = dir.path().join("auto");
+    let stderr = fit_ok(&scene, &data, &out, &[]);
+    assert!(
+        stderr.contains("shift law free: the data reject WLF"),
+        "{stderr}"
+    );
+    let report = json(&out.join("fit.json"));
+    assert_eq!(report["shift"]["model"], "free");
+    assert_eq!(report["shift_choice"]["chosen_by"], "auto");
+    assert_eq!(report["shift_choice"]["candidates"][0]["rejected"], true);
+    for s in report["shift"]["log_aT"].as_array().unwrap() {
+        let t = s["T"].as_f64().unwrap();
+        let error = s["log_aT"].as_f64().unwrap() - kinked(t);
+        assert!(error.abs() <= 0.05, "T {t}: off by {error}");
+        assert!(s["log_aT_sigma"].as_f64().is_some(), "{s}");
+    }
+    let wlf_scene = dir.write(
+        "wlf.toml",
+        &format!(
+            "{geometry}[fit]\nshift = \"wlf\"\nT_ref = 20.0\nE_at = {{ omega = 10.0, E = 6.26e7 }}\n"
+        ),
+    );
+    let refused = dir.path().join("wlf");
+    let output = fit(&wlf_scene, &data, &refused, &[]);
+    assert_failure(
+        &output,
+        &[
+            "does not describe the data",
+            "shift = \"free\"",
+            "--shift free",
+        ],
+    );
+    assert!(!refused.exists());
+    // The flag overrides the scene's law.
+    let flagged = dir.path().join("flag");
+    fit_ok(&wlf_scene, &data, &flagged, &["--shift", "free"]);
+    assert_eq!(json(&flagged.join("fit.json"))["shift"]["model"], "free");
+}

@@ -157,7 +157,9 @@ class FitResult:
         """The window the speeds probe, rad/s."""
     @property
     def shift(self) -> dict[str, Any] | None:
-        """A temperature set's shift, as in fit.json."""
+        """A temperature set's shift, as in fit.json: "model" "wlf",
+        "arrhenius" or "free", its constants and log10 a_T per temperature
+        with its 1σ (None where the data do not determine it)."""
     @property
     def warnings(self) -> list[str]: ...
     @property
@@ -204,7 +206,8 @@ def fit(
     """Fits E*(ω) to μ(v) (m/s); sigma: 1σ of μ; T: °C. Settings as in a
     scene's [fit] table (method, lambda, seed, starts, terms,
     max_evaluations, tolerance, E1_max, shift, T_ref, cross_check, physics,
-    terms_per_decade, tau; anchors E0, E_at, contact_radius). Raises
+    terms_per_decade, tau; anchors E0, E_at, contact_radius; shift is
+    "auto", the default, "wlf", "arrhenius" or "free"). Raises
     ValueError with the CLI's message for a bad value; Ctrl-C interrupts."""
 
 def read_data(path: _Path, sheet: str | None = None) -> dict[str, Any]:

@@ -97,6 +97,7 @@ pub use params::{
 };
 pub use quality::FitQuality;
 pub use report::{
-    CrossCheckRow, FitReport, LogShift, ModulusPoint, PhysicsRecord, ShiftCrossCheck, ShiftRecord,
+    CrossCheckRow, FitReport, LawCandidate, LogShift, ModulusPoint, PhysicsRecord, ShiftChoice,
+    ShiftCrossCheck, ShiftRecord,
 };
 pub use settings::{FitSettings, SettingValue};

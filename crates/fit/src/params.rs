@@ -161,8 +161,13 @@ pub struct FitParams {
 pub enum ShiftKind {
     /// WLF: log10 a_T = −C1 (T − T_ref)/(C2 + T − T_ref), C1 and C2 fitted.
     Wlf,
+    /// Arrhenius: log10 a_T = E_a/(R ln 10) (1/T − 1/T_ref), E_a fitted.
+    Arrhenius,
     /// One free log10 a_T per temperature, 0 at T_ref.
     Free,
+    /// The law the data support: WLF, else Arrhenius, else free shifts,
+    /// each law tested against the free shifts ([`crate::temperature_set::law`]).
+    Auto,
 }
 
 /// Settings of a temperature-set fit.
@@ -185,7 +190,7 @@ pub struct ShiftSettings {
 impl Default for ShiftSettings {
     fn default() -> Self {
         ShiftSettings {
-            kind: ShiftKind::Wlf,
+            kind: ShiftKind::Auto,
             t_ref: None,
             wlf_start: None,
             cross_check: true,

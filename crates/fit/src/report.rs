@@ -7,6 +7,7 @@ use serde::Serialize;
 pub use crate::analysis::ModulusPoint;
 use crate::regularization::LambdaRule;
 pub use crate::shift::{LogShift, ShiftRecord};
+pub use crate::temperature_set::law::{LawCandidate, ShiftChoice};
 
 /// The recovered Prony series at the reference state.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -191,6 +192,9 @@ pub struct FitReport {
     /// The time–temperature shift of a temperature set.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shift: Option<ShiftRecord>,
+    /// With `shift = "auto"`: which law was chosen and why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shift_choice: Option<ShiftChoice>,
     /// The optimiser.
     pub method: &'static str,
     /// V at the optimum: weighted misfit plus smoothness penalty.
@@ -299,7 +303,8 @@ impl FitReport {
     /// The first number of the report that is not finite, by its key in
     /// fit.json (`curve` and `mu_fit` name modulus.csv's and mu.csv's
     /// columns): JSON has no NaN or ∞, and a reader of the result files must
-    /// be able to trust every number in them.
+    /// be able to trust every number in them. The σ of a shift are exempt:
+    /// an undetermined one is not finite and is written as null.
     pub fn first_non_finite(&self) -> Option<String> {
         let bad = |x: &f64| !x.is_finite();
         let pairs = |v: &[[f64; 2]]| v.iter().flatten().any(bad);
@@ -332,27 +337,17 @@ impl FitReport {
                 ("physics.last_change", p.last_change),
             ]);
         }
-        if let Some(ShiftRecord::Wlf {
-            t_ref,
-            c1,
-            c2,
-            c1_sigma,
-            c2_sigma,
-            ..
-        }) = &self.shift
-        {
-            scalars.extend([
-                ("shift.T_ref", *t_ref),
-                ("shift.C1", *c1),
-                ("shift.C2", *c2),
-                ("shift.C1_sigma", *c1_sigma),
-                ("shift.C2_sigma", *c2_sigma),
-            ]);
+        if let Some(shift) = &self.shift {
+            scalars.extend(shift.constants());
         }
         if let Some((key, value)) = scalars.iter().find(|(_, x)| bad(x)) {
             return Some(format!("{key} = {value}"));
         }
-        let vectors: [(&str, bool); 10] = [
+        let vectors: [(&str, bool); 11] = [
+            (
+                "shift_choice.candidates",
+                self.shift_choice.as_ref().is_some_and(|c| !c.all_finite()),
+            ),
             ("model.tau", self.model.tau.iter().any(bad)),
             ("model.strengths", self.model.strengths.iter().any(bad)),
             (
@@ -361,11 +356,9 @@ impl FitReport {
             ),
             (
                 "shift.log_aT",
-                self.shift.as_ref().is_some_and(|s| {
-                    s.log_shifts()
-                        .iter()
-                        .any(|l| bad(&l.log_shift) || bad(&l.log_shift_sigma))
-                }),
+                self.shift
+                    .as_ref()
+                    .is_some_and(|s| s.log_shifts().iter().any(|l| bad(&l.log_shift))),
             ),
             (
                 "runs (objective, lambda, history)",

@@ -21,7 +21,7 @@
 //! | `max_evaluations` | a whole number | |
 //! | `tolerance` | the forward model's relative quadrature tolerance | |
 //! | `E1_max` | upper bound of the glassy modulus, Pa | |
-//! | `shift` | `"wlf"` or `"free"` (temperature sets) | |
+//! | `shift` | `"auto"` (default), `"wlf"`, `"arrhenius"` or `"free"` (temperature sets) | |
 //! | `T_ref` | reference temperature of the master curve, °C | |
 //! | `cross_check` | `true` or `false` | |
 //! | `physics` | `"approximate"` (Eq. (11)/(17), the default) or `"exact"` (defect correction, [`crate::exact_physics`]) | |
@@ -132,19 +132,18 @@ impl FromStr for TermRule {
 impl FromStr for ShiftKind {
     type Err = FitError;
 
-    /// `"wlf"` or `"free"`.
+    /// `"auto"`, `"wlf"`, `"arrhenius"` or `"free"`.
     fn from_str(text: &str) -> Result<Self, FitError> {
         match text.trim() {
+            "auto" => Ok(ShiftKind::Auto),
             "wlf" => Ok(ShiftKind::Wlf),
+            "arrhenius" => Ok(ShiftKind::Arrhenius),
             "free" => Ok(ShiftKind::Free),
-            "arrhenius" => Err(FitError::setting(
-                "shift",
-                "\"arrhenius\": a temperature set is fitted with \"wlf\" or \"free\" shifts \
-                 (a free shift follows any law)",
-            )),
             other => Err(FitError::setting(
                 "shift",
-                format!("unknown shift {other:?} (use \"wlf\" or \"free\")"),
+                format!(
+                    "unknown shift {other:?} (use \"auto\", \"wlf\", \"arrhenius\" or \"free\")"
+                ),
             )),
         }
     }
@@ -292,7 +291,12 @@ impl FitSettings {
             "tolerance" => self.tolerance = Some(number(key, &value)?),
             "E1_max" => self.e1_max = Some(number(key, &value)?),
             "T_ref" => self.t_ref = Some(number(key, &value)?),
-            "shift" => self.shift = Some(text_of(key, &value, "\"wlf\" or \"free\"")?.parse()?),
+            "shift" => {
+                self.shift = Some(
+                    text_of(key, &value, "\"auto\", \"wlf\", \"arrhenius\" or \"free\"")?
+                        .parse()?,
+                )
+            }
             "cross_check" => match value {
                 SettingValue::Boolean(b) => self.cross_check = Some(b),
                 SettingValue::Text(t @ ("true" | "false")) => self.cross_check = Some(t == "true"),
@@ -580,10 +584,21 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("`seed`") && e.contains("-1"), "{e}");
-        let e = set(&[("shift", SettingValue::Text("arrhenius"))])
+        let e = set(&[("shift", SettingValue::Text("williams"))])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("\"wlf\" or \"free\""), "{e}");
+        assert!(e.contains("`shift`") && e.contains("\"arrhenius\""), "{e}");
+        for (text, kind) in [
+            ("auto", ShiftKind::Auto),
+            ("wlf", ShiftKind::Wlf),
+            ("arrhenius", ShiftKind::Arrhenius),
+            ("free", ShiftKind::Free),
+        ] {
+            assert_eq!(
+                set(&[("shift", SettingValue::Text(text))]).unwrap().shift,
+                Some(kind)
+            );
+        }
     }
 
     /// `physics` takes its two names as text, refuses others naming the

@@ -317,21 +317,46 @@ pub enum IoError {
         /// "C1" or "C2".
         key: &'static str,
     },
-    /// A free shift with a WLF constant.
+    /// A free shift with a constant of a law.
     #[error(
         "{}: shift.{key} does not belong to shift.model = \"free\" (it takes T_ref and log_aT; a \
-         WLF shift is model \"wlf\")",
+         WLF shift is model \"wlf\", an Arrhenius one \"arrhenius\")",
         place(path, *line)
     )]
     FreeShiftWithWlfKey {
         path: PathBuf,
         line: Option<usize>,
+        /// "C1", "C2" or "E_a".
+        key: &'static str,
+    },
+    /// An Arrhenius shift without a positive activation energy.
+    #[error(
+        "{}: shift.model = \"arrhenius\" needs a positive shift.E_a (J/mol){}",
+        place(path, *line),
+        value.map_or_else(String::new, |v| format!(", got {v}"))
+    )]
+    ArrheniusEnergy {
+        path: PathBuf,
+        /// Line of `shift.E_a`, or of `shift.model` when it is missing.
+        line: Option<usize>,
+        value: Option<f64>,
+    },
+    /// An Arrhenius shift with a WLF constant.
+    #[error(
+        "{}: shift.{key} does not belong to shift.model = \"arrhenius\" (it takes T_ref, E_a \
+         and log_aT)",
+        place(path, *line)
+    )]
+    ArrheniusWithWlfKey {
+        path: PathBuf,
+        line: Option<usize>,
         /// "C1" or "C2".
         key: &'static str,
     },
-    /// A shift model other than "wlf" and "free".
+    /// A shift model other than "wlf", "arrhenius" and "free".
     #[error(
-        "{}: shift.model = \"{model}\": unknown shift model; allowed: \"wlf\", \"free\"",
+        "{}: shift.model = \"{model}\": unknown shift model; allowed: \"wlf\", \"arrhenius\", \
+         \"free\"",
         place(path, *line)
     )]
     UnknownShiftModel {

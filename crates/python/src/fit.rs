@@ -144,7 +144,9 @@ fn anchor(key: &str, value: &Bound<'_, PyAny>) -> PyResult<ScaleAnchor> {
 /// scene's [fit] table (method, lambda, seed, starts, terms,
 /// max_evaluations, tolerance, E1_max, shift, T_ref, cross_check, physics,
 /// terms_per_decade, tau; anchors E0 (Pa), E_at = {"omega": rad/s, "E":
-/// Pa}, contact_radius = {"v": m/s, "r": m}) override the scene's.
+/// Pa}, contact_radius = {"v": m/s, "r": m}) override the scene's; shift
+/// is "auto" (the default: the law the data support), "wlf", "arrhenius"
+/// or "free".
 /// data_file names the data in fit.json (default "<python>").
 #[pyfunction]
 #[pyo3(signature = (scene, v, mu, sigma = None, T = None, *, data_file = None, **settings))]
@@ -379,8 +381,9 @@ impl FitResult {
         )
     }
 
-    /// A temperature set's shift as in fit.json ("model", "T_ref", C1, C2
-    /// in K or the free log10 a_T per temperature), None otherwise.
+    /// A temperature set's shift as in fit.json ("model" "wlf", "arrhenius"
+    /// or "free", "T_ref", C1, C2 in K or E_a in J/mol, and log10 a_T with
+    /// its 1σ, None where undetermined, per temperature), None otherwise.
     #[getter]
     fn shift<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let all = json_to_python(py, self.fit_json())?;

@@ -197,8 +197,9 @@ fn fit_shifts(
     }
     if !extrapolated.is_empty() {
         notes.push(format!(
-            "{file}: isotherms at {} °C lie outside the fit's temperatures ({lo} to {hi} °C): the fit's WLF is extrapolated there",
-            extrapolated.join(", ")
+            "{file}: isotherms at {} °C lie outside the fit's temperatures ({lo} to {hi} °C): the fit's {} law is extrapolated there",
+            extrapolated.join(", "),
+            if shift.model == "arrhenius" { "Arrhenius" } else { "WLF" }
         ));
     }
     Ok((log_shifts, notes))

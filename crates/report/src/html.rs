@@ -164,6 +164,33 @@ fn row(out: &mut String, name: &str, value: &str) {
     let _ = writeln!(out, "<tr><th>{}</th><td>{}</td></tr>", escape(name), value);
 }
 
+/// The shift law of a temperature set in words, with its constants.
+fn shift_law(shift: &rollfit_io::fit_dir::ShiftSummary) -> String {
+    let sigma = |v: Option<f64>| num(v.unwrap_or(f64::NAN));
+    match (
+        shift.model.as_str(),
+        shift.c1,
+        shift.c2,
+        shift.activation_energy,
+    ) {
+        ("wlf", Some(c1), Some(c2), _) => format!(
+            "WLF at T_ref = {} °C: C1 = {} ± {}, C2 = {} ± {} K",
+            num(shift.t_ref),
+            num(c1),
+            sigma(shift.c1_sigma),
+            num(c2),
+            sigma(shift.c2_sigma)
+        ),
+        ("arrhenius", _, _, Some(e)) => format!(
+            "Arrhenius at T_ref = {} °C: E_a = {} ± {} J/mol",
+            num(shift.t_ref),
+            num(e),
+            sigma(shift.activation_energy_sigma)
+        ),
+        _ => format!("free, T_ref = {} °C", num(shift.t_ref)),
+    }
+}
+
 fn fit_table(fit: &FitDir) -> String {
     let s = &fit.summary;
     let m = &s.model;
@@ -200,17 +227,7 @@ fn fit_table(fit: &FitDir) -> String {
         ),
     );
     if let Some(shift) = &s.shift {
-        let text = match (shift.c1, shift.c2) {
-            (Some(c1), Some(c2)) => format!(
-                "WLF at T_ref = {} °C: C1 = {} ± {}, C2 = {} ± {} K",
-                num(shift.t_ref),
-                num(c1),
-                num(shift.c1_sigma.unwrap_or(f64::NAN)),
-                num(c2),
-                num(shift.c2_sigma.unwrap_or(f64::NAN))
-            ),
-            _ => format!("free, T_ref = {} °C", num(shift.t_ref)),
-        };
+        let text = shift_law(shift);
         row(&mut t, "shift", &escape(&text));
         let list: Vec<String> = shift
             .log_shift

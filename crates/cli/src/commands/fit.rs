@@ -16,7 +16,7 @@ use std::str::FromStr;
 use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::{
     FitError, FitReport, FitSettings, Lambda, Method, Physics, PhysicsRecord, RollingSetup,
-    ShiftRecord, TermRule,
+    ShiftKind, ShiftRecord, TermRule,
 };
 use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
@@ -85,6 +85,11 @@ pub struct Settings {
     /// Overrides [fit] physics.
     #[arg(long, value_name = "approximate|exact", value_parser = setting::<Physics>)]
     pub physics: Option<Physics>,
+    /// The shift law of a temperature set: auto (the default: WLF unless
+    /// the data reject it against free shifts, then Arrhenius, else free),
+    /// wlf, arrhenius or free. Overrides [fit] shift.
+    #[arg(long, value_name = "auto|wlf|arrhenius|free", value_parser = setting::<ShiftKind>)]
+    pub shift: Option<ShiftKind>,
 }
 
 impl Settings {
@@ -97,6 +102,7 @@ impl Settings {
         settings.starts = self.starts;
         settings.terms = self.terms.clone();
         settings.physics = self.physics;
+        settings.shift = self.shift;
         settings
     }
 }
@@ -420,6 +426,18 @@ fn shift_lines(report: &FitReport) -> String {
             out += &format!(
                 "shift WLF at T_ref = {t_ref} °C: C1 = {c1:.4} ± {c1_sigma:.2e}, \
                  C2 = {c2:.4} ± {c2_sigma:.2e} K\n"
+            )
+        }
+        Some(ShiftRecord::Arrhenius {
+            t_ref,
+            activation_energy,
+            activation_energy_sigma,
+            ..
+        }) => {
+            out += &format!(
+                "shift Arrhenius at T_ref = {t_ref} °C: E_a = {:.4} ± {:.2} kJ/mol\n",
+                activation_energy / 1e3,
+                activation_energy_sigma / 1e3
             )
         }
         Some(ShiftRecord::Free { t_ref, log_shift }) => {

@@ -11,7 +11,10 @@ use crate::condense::Condensed;
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::params::ValidFitParams;
-use crate::report::{AnchorRecord, FitReport, ShiftCrossCheck, TermsRecord, Window};
+use crate::quality::FitQuality;
+use crate::report::{
+    AnchorRecord, FitReport, ShiftChoice, ShiftCrossCheck, ShiftRecord, TermsRecord, Window,
+};
 use crate::sanity;
 
 use super::optimum::Optimum;
@@ -96,6 +99,8 @@ pub(super) struct Whole<'x> {
     pub terms: TermsRecord,
     /// How a temperature set's starting shift was found.
     pub set_notes: Vec<String>,
+    /// With `shift = "auto"`: how the law was chosen.
+    pub shift_choice: Option<ShiftChoice>,
     /// The shift cross-check of a temperature set, or why it was not made.
     pub cross_check: Option<Result<ShiftCrossCheck, String>>,
     /// The sanity warnings on data and result.
@@ -114,6 +119,7 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         grid,
         terms,
         set_notes,
+        shift_choice,
         cross_check,
         sanity,
         condensed,
@@ -145,6 +151,13 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
     };
     warnings.extend(sanity);
     let mut fit_quality = fit.fit_quality;
+    if let Some(c) = &shift_choice {
+        warnings.push(format!("shift law {}: {}", c.model, c.reason));
+    }
+    if let Some(hint) = free_shift_hint(&fit_quality, fit.shift.as_ref(), &shift_cross_check) {
+        warnings.push(format!("fit quality: {hint}"));
+        fit_quality.reasons.push(hint);
+    }
     let (condensed, mu_fit) = match condensed {
         Some((c, mu_fit)) => {
             warnings.push(c.note());
@@ -161,6 +174,7 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         window,
         probed_window: fit.probed_window,
         shift: fit.shift,
+        shift_choice,
         method: fit.method.name(),
         objective: fit.objective,
         misfit: fit.misfit,
@@ -193,6 +207,33 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         curve: fit.curve,
         mu_fit,
     }
+}
+
+/// For a poor fit under a law whose shifts the cross-check finds more than
+/// [`CROSS_CHECK_TOLERANCE`] off: the law may be what the data reject, and
+/// free shifts follow any law.
+fn free_shift_hint(
+    quality: &FitQuality,
+    shift: Option<&ShiftRecord>,
+    check: &Option<ShiftCrossCheck>,
+) -> Option<String> {
+    let (Some(shift), Some(check)) = (shift, check) else {
+        return None;
+    };
+    if !quality.is_poor()
+        || matches!(shift, ShiftRecord::Free { .. })
+        || check.max_difference <= CROSS_CHECK_TOLERANCE
+    {
+        return None;
+    }
+    Some(format!(
+        "fitted alone, single temperatures put log10 a_T up to {:.2} decades off the {} law \
+         (shift_cross_check): the shifts may not follow it; fit one shift per temperature with \
+         shift = \"free\" (the scene's [fit], or --shift free), or let the data choose with \
+         shift = \"auto\"",
+        check.max_difference,
+        crate::temperature_set::law::law_name(shift.model_name())
+    ))
 }
 
 /// The fitted μ at every row of `data` (the rows of condensed data): the

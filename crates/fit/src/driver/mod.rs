@@ -24,13 +24,15 @@
 //! is built from (here); the τ grid and the choice of terms (`terms.rs`);
 //! the starts (`starts.rs`); λ (`lambda.rs`); the solver runs on one grid
 //! (`grid.rs`); the analysis of the optimum (`optimum.rs`); the scale
-//! profile of an unanchored fit (`profile.rs`); the report (`assemble.rs`).
+//! profile of an unanchored fit (`profile.rs`); the fits `shift = "auto"`
+//! compares (`law.rs`); the report (`assemble.rs`).
 //! The objective is the crate's `objective` module's, the solvers are
 //! [`crate::solvers`]'.
 
 mod assemble;
 mod grid;
 mod lambda;
+mod law;
 mod optimum;
 mod profile;
 mod starts;
@@ -43,14 +45,15 @@ use crate::data::Measurements;
 use crate::error::FitError;
 use crate::exact_physics::defect_correction;
 use crate::parametrization::Parametrization;
-use crate::params::{Lambda, Physics, TermRule, ValidFitParams};
+use crate::params::{Lambda, Physics, ShiftKind, TermRule, ValidFitParams};
 use crate::regularization::path;
-use crate::report::{FitReport, LambdaRecord};
+use crate::report::{FitReport, LambdaRecord, ModelRecord};
 use crate::temperature_set::cross_check::cross_check;
 use crate::temperature_set::{ShiftStart, material_first, temperature_set, wlf_before_free};
 
 use assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
 use grid::solve_on_grid;
+use law::choose_law;
 use profile::profile_scale;
 use terms::{AUTO_DENSITIES, TermChoice, grid, terms_record};
 
@@ -87,9 +90,21 @@ pub(crate) fn fit_measured(
     let clock = Instant::now();
     let condensed = condense(rows)?;
     let data = condensed.as_ref().map_or(rows, |c| &c.data);
-    let set = temperature_set(data, params)?;
+    let (outcome, candidates, set, shift_choice) = match params.shift.kind {
+        ShiftKind::Auto => match choose_law(data, params)? {
+            Some(l) => (l.grid, l.candidates, Some(l.set), Some(l.choice)),
+            None => {
+                let (outcome, candidates) = master_curve(data, params, None)?;
+                (outcome, candidates, None, None)
+            }
+        },
+        _ => {
+            let set = temperature_set(data, params)?;
+            let (outcome, candidates) = master_curve(data, params, set.as_ref())?;
+            (outcome, candidates, set, None)
+        }
+    };
     let set = set.as_ref();
-    let (outcome, candidates) = master_curve(data, params, set)?;
     let terms = terms_record(&outcome.fit.model.tau, &params.terms, candidates);
     let cross_check = match set {
         Some(set) if params.shift.cross_check => Some(cross_check(
@@ -118,6 +133,7 @@ pub(crate) fn fit_measured(
         data,
         params,
         set_notes: set.map_or_else(Vec::new, |s| s.notes.clone()),
+        shift_choice,
         grid: outcome,
         terms,
         cross_check,
@@ -149,7 +165,21 @@ fn master_curve(
     match (&params.terms, via_wlf, first) {
         (_, Some((wlf, start)), _) => {
             let candidates = wlf.terms.candidates.clone();
-            Ok((free_from_wlf(data, params, wlf, &start)?, candidates))
+            // A WLF fit that does not describe the data chose its λ for
+            // shifts the data reject: the free shifts then get their own
+            // (as `auto` gives them, `law::own_lambda`).
+            let poor = wlf.fit_quality.is_poor();
+            let free = free_from_wlf(data, params, wlf, &start)?;
+            if !poor {
+                return Ok((free, candidates));
+            }
+            let own = law::own_lambda(data, params, &start, &free)?;
+            Ok(own
+                .map(|(mut own, candidates)| {
+                    own.fit.runs = free.fit.runs.iter().cloned().chain(own.fit.runs).collect();
+                    (own, candidates)
+                })
+                .unwrap_or((free, candidates)))
         }
         (_, None, Some(first)) => {
             let candidates = first.terms.candidates.clone();
@@ -204,19 +234,8 @@ fn free_from_wlf(
     wlf: FitReport,
     start: &ShiftStart,
 ) -> Result<GridOutcome, FitError> {
-    let m = &wlf.model;
-    let tau = m.tau.clone();
-    let param = Parametrization::new(tau.clone(), params.anchor);
-    let warm = param.theta_of(m.static_modulus, &m.strengths);
-    let mut fixed = params.clone();
-    fixed.lambda = Lambda::Fixed(wlf.lambda.value);
-    fixed.terms = TermRule::Explicit(tau.clone());
-    let mut outcome = fit_on_grid(data, &fixed, tau, Some(warm), Some(start))?;
+    let mut outcome = at_lambda_of(data, params, &wlf.model, &wlf.lambda, start)?;
     let fit = &mut outcome.fit;
-    fit.lambda = LambdaRecord {
-        value: fit.lambda.value,
-        ..wlf.lambda
-    };
     fit.runs = wlf.runs.into_iter().chain(fit.runs.drain(..)).collect();
     fit.warnings.push(format!(
         "free shifts: λ = {:.3e} and the τ grid were chosen with WLF shifts, and the free \
@@ -224,6 +243,30 @@ fn free_from_wlf(
          begins, free shifts slide along a power-law curve undetermined)",
         fit.lambda.value
     ));
+    Ok(outcome)
+}
+
+/// The joint fit with the shift of `start` at the λ (`lambda`) and on the
+/// τ grid of another fit of the same set, from its material `model`; the
+/// outcome carries that fit's λ rule and path.
+fn at_lambda_of(
+    data: &Measurements,
+    params: &ValidFitParams,
+    model: &ModelRecord,
+    lambda: &LambdaRecord,
+    start: &ShiftStart,
+) -> Result<GridOutcome, FitError> {
+    let tau = model.tau.clone();
+    let param = Parametrization::new(tau.clone(), params.anchor);
+    let warm = param.theta_of(model.static_modulus, &model.strengths);
+    let mut fixed = params.clone();
+    fixed.lambda = Lambda::Fixed(lambda.value);
+    fixed.terms = TermRule::Explicit(tau.clone());
+    let mut outcome = fit_on_grid(data, &fixed, tau, Some(warm), Some(start))?;
+    outcome.fit.lambda = LambdaRecord {
+        value: outcome.fit.lambda.value,
+        ..lambda.clone()
+    };
     Ok(outcome)
 }
 

@@ -118,11 +118,24 @@ pub(super) fn analyse(
     let n_shift = chosen.trial.theta.len() - n_material;
     let shift_theta = chosen.trial.theta[n_material..].to_vec();
     let shift = objective.shift.as_ref().map(|s| {
-        let block = c
+        let mut block = c
             .covariance
             .view((n_material, n_material), (n_shift, n_shift))
             .into_owned();
-        s.record(&shift_theta, &block)
+        // A shift parameter that moving by one unit (a decade, or a factor
+        // e of a law's constant) changes the misfit by less than one noise
+        // unit is not determined by the data: the pseudo-inverse gives it
+        // no variance, the truth is that it has no bound.
+        for k in 0..n_shift {
+            if c.sensitivity[n_material + k] < c.noise_variance {
+                block[(k, k)] = f64::INFINITY;
+            }
+        }
+        let mut record = s.record(&shift_theta, &block);
+        if let Some(less) = &chosen.less_smoothed {
+            record.add_bias(&s.record(&less[n_material..], &block));
+        }
+        record
     });
     let material = Material {
         param,

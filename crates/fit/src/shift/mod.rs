@@ -10,20 +10,34 @@
 //!   θ = (ln C1, ln(C2 − C2_floor)), C2_floor = max(0, −min ΔT), so that
 //!   C1 > 0 and C2 + ΔT > 0 at every measured temperature:
 //!   ∂ln a/∂C1 = −ln10 ΔT/(C2 + ΔT), ∂ln a/∂C2 = ln10 C1 ΔT/(C2 + ΔT)².
+//! - Arrhenius: log10 a_T = E_a/(R ln 10) (1/T − 1/T_ref), T in K
+//!   (°C + 273.15), with θ = ln E_a so that E_a > 0:
+//!   ∂log10 a_T/∂θ = log10 a_T (the law is linear in E_a).
 //! - Free: θ_j = log10 a_{T_j} for every temperature but T_ref (fixed at 0).
+//!
+//! The 1σ of each log10 a_T is √(g C gᵀ), g = ∂log10 a_T/∂θ_s and C the
+//! covariance block of θ_s ([`crate::analysis`]: s² H⁺, with the noise
+//! scaling of the fit's other σ), widened like the bands of the master
+//! curve by the smoothing bias, the change of log10 a_T when the fit is
+//! made again at λ/10, added in quadrature ([`ShiftRecord::add_bias`]). A shift parameter the data do not move
+//! (its column of the data Jacobian vanishes: a temperature whose μ(v) is
+//! flat in ln v) has no finite σ; the pseudo-inverse would report 0 for it,
+//! so its variance is set to ∞ and its σ is written as null.
 //!
 //! # References
 //! - M.L. Williams, R.F. Landel, J.D. Ferry, "The temperature dependence of
 //!   relaxation mechanisms in amorphous polymers and other glass-forming
 //!   liquids", J. Am. Chem. Soc. 77 (1955) 3701–3707.
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
-//!   1980, ch. 11.
+//!   1980, ch. 11 (WLF, and the Arrhenius law below T_g).
 
 pub(crate) mod overlap;
 mod record;
 mod temperatures;
 
 use std::f64::consts::LN_10;
+
+use rollfit_model::modulus::{GAS_CONSTANT, ZERO_CELSIUS};
 
 use crate::data::Measurements;
 use crate::error::FitError;
@@ -34,7 +48,18 @@ pub(crate) use temperatures::{distinct_temperatures, index_of};
 #[derive(Debug, Clone)]
 enum Kind {
     Wlf { c2_floor: f64 },
+    Arrhenius,
     Free,
+}
+
+/// Smallest activation energy a start takes, J/mol: shifts that do not
+/// fall with temperature have no Arrhenius law, and the fit starts from a
+/// nearly flat one instead of a negative E_a.
+const MIN_START_ENERGY: f64 = 1e3;
+
+/// x(T) = (1/T − 1/T_ref)/(R ln 10), T in K: log10 a_T = E_a x(T).
+fn arrhenius_x(t: f64, t_ref: f64) -> f64 {
+    (1.0 / (t + ZERO_CELSIUS) - 1.0 / (t_ref + ZERO_CELSIUS)) / (GAS_CONSTANT * LN_10)
 }
 
 /// θ_s ↦ ln a_T of every data point.
@@ -77,6 +102,12 @@ impl ShiftParam {
                 }
                 Kind::Free
             }
+            ShiftKind::Arrhenius => Kind::Arrhenius,
+            ShiftKind::Auto => {
+                return Err(FitError::Internal(
+                    "the shift law \"auto\" reached the shift's parametrisation unresolved",
+                ));
+            }
         };
         Ok(ShiftParam {
             kind,
@@ -101,6 +132,7 @@ impl ShiftParam {
     pub(crate) fn count(&self) -> usize {
         match self.kind {
             Kind::Wlf { .. } => 2,
+            Kind::Arrhenius => 1,
             Kind::Free => self.temps.len() - 1,
         }
     }
@@ -111,6 +143,14 @@ impl ShiftParam {
             Kind::Wlf { c2_floor } => {
                 let excess = (c2 - c2_floor).max(0.05 * c2.max(1.0));
                 vec![c1.max(1e-3).ln(), excess.ln()]
+            }
+            Kind::Arrhenius => {
+                let log_shift: Vec<f64> = self
+                    .temps
+                    .iter()
+                    .map(|&t| -c1 * (t - self.t_ref) / (c2 + t - self.t_ref))
+                    .collect();
+                self.theta_of_log_shifts(&log_shift)
             }
             Kind::Free => self
                 .temps
@@ -130,6 +170,22 @@ impl ShiftParam {
             Kind::Wlf { c2_floor } => {
                 let (c1, c2) = overlap::fit_wlf(&self.temps, log_shift, self.t_ref, c2_floor);
                 self.theta_of_wlf(c1, c2)
+            }
+            Kind::Arrhenius => {
+                // Least squares through T_ref: the shifts are relative, so
+                // each is taken about the one nearest T_ref.
+                let r = nearest(&self.temps, self.t_ref);
+                let x0 = arrhenius_x(self.temps[r], self.t_ref);
+                let (sxy, sxx) =
+                    self.temps
+                        .iter()
+                        .zip(log_shift)
+                        .fold((0.0, 0.0), |(sxy, sxx), (&t, &y)| {
+                            let x = arrhenius_x(t, self.t_ref) - x0;
+                            (sxy + x * (y - log_shift[r]), sxx + x * x)
+                        });
+                let energy = if sxx > 0.0 { sxy / sxx } else { 0.0 };
+                vec![energy.max(MIN_START_ENERGY).ln()]
             }
             Kind::Free => {
                 let r = self.ref_index.unwrap_or(0);
@@ -161,6 +217,16 @@ impl ShiftParam {
                         // without bound at a fixed ratio (WLF's linear
                         // limit), where the product form overflows to NaN.
                         (value, vec![value, (c1 / den) * (excess / den) * dt])
+                    })
+                    .unzip()
+            }
+            Kind::Arrhenius => {
+                let energy = theta[0].exp();
+                self.temps
+                    .iter()
+                    .map(|&t| {
+                        let value = energy * arrhenius_x(t, self.t_ref);
+                        (value, vec![value])
                     })
                     .unzip()
             }
@@ -199,13 +265,11 @@ impl ShiftParam {
             .unzip()
     }
 
-    /// The report's record at θ_s with covariance `cov` of θ_s.
+    /// The report's record at θ_s with covariance `cov` of θ_s (an
+    /// infinite diagonal entry: a parameter the data do not determine).
     pub(crate) fn record(&self, theta: &[f64], cov: &nalgebra::DMatrix<f64>) -> ShiftRecord {
         let (values, grads) = self.log_shifts(theta);
-        let sd = |g: &[f64]| {
-            let g = nalgebra::DVector::from_column_slice(g);
-            (g.transpose() * cov * &g)[(0, 0)].max(0.0).sqrt()
-        };
+        let sd = |g: &[f64]| standard_deviation(g, cov);
         let log_shift = self
             .temps
             .iter()
@@ -224,8 +288,17 @@ impl ShiftParam {
                     t_ref: self.t_ref,
                     c1,
                     c2: c2_floor + excess,
-                    c1_sigma: c1 * cov[(0, 0)].max(0.0).sqrt(),
-                    c2_sigma: excess * cov[(1, 1)].max(0.0).sqrt(),
+                    c1_sigma: c1 * standard_deviation(&[1.0, 0.0], cov),
+                    c2_sigma: excess * standard_deviation(&[0.0, 1.0], cov),
+                    log_shift,
+                }
+            }
+            Kind::Arrhenius => {
+                let energy = theta[0].exp();
+                ShiftRecord::Arrhenius {
+                    t_ref: self.t_ref,
+                    activation_energy: energy,
+                    activation_energy_sigma: energy * standard_deviation(&[1.0], cov),
                     log_shift,
                 }
             }
@@ -235,6 +308,31 @@ impl ShiftParam {
             },
         }
     }
+}
+
+/// √(g C gᵀ). Where C holds an infinite variance (an undetermined
+/// parameter), summed over the entries g touches only, so that a parameter
+/// `g` does not depend on gives no NaN: ∞ where g touches it. NaN stays NaN
+/// (f64::max would turn it into 0).
+fn standard_deviation(g: &[f64], cov: &nalgebra::DMatrix<f64>) -> f64 {
+    let variance = if cov.iter().all(|c| c.is_finite()) {
+        let g = nalgebra::DVector::from_column_slice(g);
+        (g.transpose() * cov * &g)[(0, 0)]
+    } else {
+        let touched = || g.iter().enumerate().filter(|(_, x)| **x != 0.0);
+        touched()
+            .map(|(i, gi)| touched().map(|(j, gj)| gi * cov[(i, j)] * gj).sum::<f64>())
+            .sum()
+    };
+    // A rounding-negative variance of a well-determined parameter is 0.
+    if variance < 0.0 { 0.0 } else { variance.sqrt() }
+}
+
+/// The index of the temperature nearest `t`.
+fn nearest(temps: &[f64], t: f64) -> usize {
+    (0..temps.len())
+        .min_by(|&a, &b| (temps[a] - t).abs().total_cmp(&(temps[b] - t).abs()))
+        .unwrap_or(0)
 }
 
 #[cfg(test)]
@@ -263,6 +361,7 @@ mod tests {
         for (kind, theta) in [
             (ShiftKind::Wlf, vec![8.86f64.ln(), (101.6f64 - 40.0).ln()]),
             (ShiftKind::Free, vec![3.1, 1.2, -1.4, -2.2]),
+            (ShiftKind::Arrhenius, vec![2e5f64.ln()]),
         ] {
             let settings = ShiftSettings {
                 kind,
@@ -292,7 +391,11 @@ mod tests {
     #[test]
     fn wlf_record_reproduces_its_constants() {
         let data = set();
-        let shift = ShiftParam::new(&data, &ShiftSettings::default()).unwrap();
+        let settings = ShiftSettings {
+            kind: ShiftKind::Wlf,
+            ..ShiftSettings::default()
+        };
+        let shift = ShiftParam::new(&data, &settings).unwrap();
         assert_eq!(shift.t_ref(), 20.0);
         let theta = shift.theta_of_wlf(8.86, 101.6);
         let cov = nalgebra::DMatrix::zeros(2, 2);
@@ -308,6 +411,48 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
+    }
+
+    /// Arrhenius: the start from shifts that follow the law (given relative
+    /// to another temperature than T_ref) is the law's E_a, the record
+    /// holds it, and a parameter the data do not determine gets no finite
+    /// σ, written as null.
+    #[test]
+    fn arrhenius_start_and_record() {
+        let settings = ShiftSettings {
+            kind: ShiftKind::Arrhenius,
+            t_ref: Some(20.0),
+            ..ShiftSettings::default()
+        };
+        let shift = ShiftParam::new(&set(), &settings).unwrap();
+        let energy = 1.5e5;
+        let log_shift: Vec<f64> = shift
+            .temperatures()
+            .iter()
+            .map(|&t| energy * arrhenius_x(t, 20.0) + 3.0)
+            .collect();
+        let theta = shift.theta_of_log_shifts(&log_shift);
+        assert!((theta[0].exp() / energy - 1.0).abs() < 1e-12, "{theta:?}");
+        let cov = nalgebra::DMatrix::from_element(1, 1, f64::INFINITY);
+        let record = shift.record(&theta, &cov);
+        let ShiftRecord::Arrhenius {
+            activation_energy,
+            activation_energy_sigma,
+            log_shift: rows,
+            ..
+        } = &record
+        else {
+            panic!("{record:?}")
+        };
+        assert!((activation_energy / energy - 1.0).abs() < 1e-12);
+        assert!(activation_energy_sigma.is_infinite());
+        assert!((rows[0].log_shift - (log_shift[0] - 3.0)).abs() < 1e-12);
+        assert_eq!(rows[2].log_shift_sigma, 0.0, "at T_ref");
+        assert!(rows[0].log_shift_sigma.is_infinite());
+        let json = serde_json::to_value(&record).unwrap();
+        assert_eq!(json["model"], "arrhenius");
+        assert!(json["E_a_sigma"].is_null() && json["log_aT"][0]["log_aT_sigma"].is_null());
+        assert_eq!(json["log_aT"][2]["log_aT_sigma"], 0.0);
     }
 
     /// A free shift needs T_ref among the measured temperatures.

@@ -17,15 +17,19 @@
 //!    better than |E| — are overlapped to estimate the shifts again
 //!    ([`cross_check`]).
 //!
+//! 3. With `shift = "auto"`, the choice of the law from the joint fits
+//!    under each ([`law`]).
+//!
 //! The fits these steps need are the driver's; they are passed in as a
 //! function (a [`Fit`]), so that this module does not depend on the driver
 //! that uses it.
 
 pub(crate) mod cross_check;
+pub(crate) mod law;
 
-use crate::data::Measurements;
+use crate::data::{Measurements, SPEED_RANGE};
 use crate::error::FitError;
-use crate::params::{ShiftKind, ValidFitParams};
+use crate::params::{ModulusAnchor, ShiftKind, TermRule, ValidFitParams};
 use crate::report::FitReport;
 use crate::shift::overlap::{Curve, chained_shifts};
 use crate::shift::{ShiftParam, distinct_temperatures, index_of};
@@ -211,8 +215,16 @@ pub(crate) fn material_first(
         .zip(&ln_a)
         .map(|(v, l)| v * l.exp())
         .collect();
+    // Reduced speeds of a cold temperature can lie above the speeds a
+    // measurement may have (1000 m/s); the one curve is then fitted in a
+    // frame whose clock runs 10^k times slower: speeds u = v·a_T/10^k, and
+    // with E_k(ω) = E*(ω 10^k) μ_k(u) = μ_ref(v·a_T) (the time–temperature
+    // argument again), so the anchor's ω is divided and the times τ are
+    // multiplied by 10^k, and divided back after the fit.
+    let k = frame_decades(&reduced)?;
+    let scale = 10f64.powi(k);
     let one_curve = Measurements::new(
-        reduced,
+        reduced.iter().map(|u| u / scale).collect(),
         data.friction().to_vec(),
         data.sigma().map(|s| s.to_vec()),
         None,
@@ -222,5 +234,57 @@ pub(crate) fn material_first(
     // no cross-check, is fitted to them.
     let mut single = params.clone();
     single.bands = false;
-    fit_curve(&one_curve, &single).ok()
+    if k != 0 {
+        single.anchor = params.anchor.map(|a| ModulusAnchor {
+            omega: a.omega / scale,
+            ..a
+        });
+        if let TermRule::Explicit(tau) = &params.terms {
+            single.terms = TermRule::Explicit(tau.iter().map(|t| t * scale).collect());
+        }
+    }
+    let mut report = fit_curve(&one_curve, &single).ok()?;
+    if k != 0 {
+        for tau in &mut report.model.tau {
+            *tau /= scale;
+        }
+    }
+    Some(report)
+}
+
+/// The whole number k of decades by which speeds `reduced` are divided to
+/// lie within the speeds a measurement may have ([`SPEED_RANGE`]): 0 when
+/// they do, `None` when they span more than that range.
+fn frame_decades(reduced: &[f64]) -> Option<i32> {
+    let (lo, hi) = reduced
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &u| {
+            (lo.min(u), hi.max(u))
+        });
+    let (min, max) = SPEED_RANGE;
+    let k = if hi > max {
+        (hi / max).log10().ceil()
+    } else if lo < min {
+        (lo / min).log10().floor()
+    } else {
+        0.0
+    };
+    let scale = 10f64.powf(k);
+    (lo / scale >= min && hi / scale <= max).then_some(k as i32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reduced speeds inside the accepted range stay in their frame; above
+    /// or below it they are moved by whole decades just inside; a span
+    /// wider than the range has no frame.
+    #[test]
+    fn the_one_curve_frame_moves_by_whole_decades() {
+        assert_eq!(frame_decades(&[1e-8, 1.0]), Some(0));
+        assert_eq!(frame_decades(&[1e-6, 5e5]), Some(3));
+        assert_eq!(frame_decades(&[3e-18, 1e-3]), Some(-3));
+        assert_eq!(frame_decades(&[1e-9, 5e11]), None);
+    }
 }

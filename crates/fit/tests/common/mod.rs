@@ -102,13 +102,38 @@ fn shifted_set<M: ViscoelasticModulus>(
     seed: u64,
     with_sigma: bool,
 ) -> Measurements {
+    set_with_shifts(
+        truth,
+        temperatures,
+        speeds,
+        wlf_truth,
+        noise,
+        seed,
+        with_sigma,
+    )
+}
+
+/// μ of `truth` (the master curve at 20 °C) at `speeds` at each of
+/// `temperatures`, shifted by `log_shift` (log10 a_T of T in °C, 0 at
+/// 20 °C), with multiplicative Gaussian noise of relative size `noise`
+/// (ChaCha8 with `seed`, drawn in row order), and σ = noise·μ when
+/// `with_sigma`.
+pub fn set_with_shifts<M: ViscoelasticModulus>(
+    truth: M,
+    temperatures: &[f64],
+    speeds: &[f64],
+    log_shift: impl Fn(f64) -> f64,
+    noise: f64,
+    seed: u64,
+    with_sigma: bool,
+) -> Measurements {
     let s = setup();
     let scene = Scene::new(s.geometry, s.substrate, s.contact, truth).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let normal = Normal::new(0.0, 1.0).unwrap();
     let (mut v, mut mu, mut sigma, mut temps) = (vec![], vec![], vec![], vec![]);
     for &t in temperatures {
-        let a = 10f64.powf(wlf_truth(t));
+        let a = 10f64.powf(log_shift(t));
         let reduced: Vec<f64> = speeds.iter().map(|x| x * a).collect();
         for (x, m) in speeds.iter().zip(scene.friction_sweep(&reduced).unwrap()) {
             v.push(*x);

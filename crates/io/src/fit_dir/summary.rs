@@ -5,12 +5,15 @@
 //! A fit.json edited by hand is checked where a wrong value would be read
 //! as something else rather than fail: Poisson's ratio in (−1, 0.5], the
 //! shift model "wlf" (with C1, C2 > 0 and C2 + T − T_ref > 0 at its
-//! temperatures) or "free" (without them). Errors name fit.json and the
+//! temperatures), "arrhenius" (with E_a > 0, without C1, C2) or "free"
+//! (without any of them). Errors name fit.json and the
 //! line of the key (`shift.log_aT[2].T`).
 
 use std::path::{Path, PathBuf};
 
-use serde::Deserialize;
+use serde::{Deserialize, Deserializer};
+
+use rollfit_model::modulus::Arrhenius;
 
 use super::json_error::line_of_key;
 use crate::error::IoError;
@@ -150,7 +153,7 @@ pub struct AnchorSummary {
 /// The shift of a temperature set.
 #[derive(Debug, Clone, Deserialize)]
 pub struct ShiftSummary {
-    /// "wlf" or "free".
+    /// "wlf", "arrhenius" or "free".
     pub model: String,
     /// °C.
     #[serde(rename = "T_ref")]
@@ -167,6 +170,12 @@ pub struct ShiftSummary {
     /// 1σ of C2, K.
     #[serde(default, rename = "C2_sigma")]
     pub c2_sigma: Option<f64>,
+    /// Arrhenius activation energy, J/mol.
+    #[serde(default, rename = "E_a")]
+    pub activation_energy: Option<f64>,
+    /// 1σ of E_a, J/mol.
+    #[serde(default, rename = "E_a_sigma")]
+    pub activation_energy_sigma: Option<f64>,
     /// log10 a_T per measured temperature.
     #[serde(rename = "log_aT")]
     pub log_shift: Vec<LogShiftSummary>,
@@ -181,9 +190,15 @@ pub struct LogShiftSummary {
     /// log10 a_T.
     #[serde(rename = "log_aT")]
     pub log_shift: f64,
-    /// 1σ.
-    #[serde(default, rename = "log_aT_sigma")]
+    /// 1σ (NaN where fit.json has null: a shift the data do not
+    /// determine).
+    #[serde(default, rename = "log_aT_sigma", deserialize_with = "null_as_nan")]
     pub log_shift_sigma: f64,
+}
+
+/// A number, or null read as NaN (a σ fit.json could not write).
+fn null_as_nan<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(deserializer)?.unwrap_or(f64::NAN))
 }
 
 impl FitSummary {
@@ -210,7 +225,31 @@ impl FitSummary {
                 let key = if c1.is_none() { "C1" } else { "C2" };
                 Err(IoError::WlfKeyMissing { path, line, key })
             }
-            ("free", None, None) => Ok(()),
+            ("arrhenius", None, None) => match shift.activation_energy {
+                Some(e) if e > 0.0 => Ok(()),
+                value => {
+                    let (path, line) = at(if value.is_some() {
+                        "shift.E_a"
+                    } else {
+                        "shift.model"
+                    });
+                    Err(IoError::ArrheniusEnergy { path, line, value })
+                }
+            },
+            ("arrhenius", c1, _) => {
+                let key = if c1.is_some() { "C1" } else { "C2" };
+                let (path, line) = at(&format!("shift.{key}"));
+                Err(IoError::ArrheniusWithWlfKey { path, line, key })
+            }
+            ("free", None, None) if shift.activation_energy.is_none() => Ok(()),
+            ("free", None, None) => {
+                let (path, line) = at("shift.E_a");
+                Err(IoError::FreeShiftWithWlfKey {
+                    path,
+                    line,
+                    key: "E_a",
+                })
+            }
             ("free", c1, _) => {
                 let key = if c1.is_some() { "C1" } else { "C2" };
                 let (path, line) = at(&format!("shift.{key}"));
@@ -279,6 +318,11 @@ impl ShiftSummary {
         if let (Some(c1), Some(c2)) = (self.c1, self.c2) {
             let dt = t - self.t_ref;
             return (c2 + dt > 0.0).then(|| -c1 * dt / (c2 + dt));
+        }
+        if let (Some(energy), "arrhenius") = (self.activation_energy, self.model.as_str()) {
+            return Arrhenius::new(self.t_ref, energy)
+                .and_then(|law| law.log10_shift(t))
+                .ok();
         }
         let mut points: Vec<(f64, f64)> = self
             .log_shift

@@ -90,7 +90,7 @@ fn unknown_or_incomplete_shift_models_are_refused() {
         &e,
         &[
             "fit.json, line 10",
-            "shift.model = \"foo\": unknown shift model; allowed: \"wlf\", \"free\"",
+            "shift.model = \"foo\": unknown shift model; allowed: \"wlf\", \"arrhenius\", \"free\"",
         ],
     );
     let e = edited("noc2", r#", "C2": 101.6"#, "").error();
@@ -120,6 +120,43 @@ fn unknown_or_incomplete_shift_models_are_refused() {
             .unwrap()
             .model,
         "free"
+    );
+}
+
+/// Issue 31: an Arrhenius shift reads back with its law (log10 a_T at any
+/// temperature from E_a), a null σ reads as NaN, and an Arrhenius record
+/// without a positive E_a or with a WLF constant is refused.
+#[test]
+fn arrhenius_shifts_and_null_sigmas_read() {
+    let arrhenius = GOOD
+        .replacen(r#""model": "wlf", "#, r#""model": "arrhenius", "#, 1)
+        .replacen(
+            r#", "C1": 8.86, "C2": 101.6"#,
+            r#", "E_a": 2e5, "E_a_sigma": null"#,
+            1,
+        )
+        .replacen(
+            r#""log_aT": 1.26}"#,
+            r#""log_aT": 1.26, "log_aT_sigma": null}"#,
+            1,
+        );
+    let folder = Folder::new("arrhenius-ok", arrhenius.as_bytes());
+    let shift = FitDir::read(&folder.0).unwrap().summary.shift.unwrap();
+    assert_eq!(shift.model, "arrhenius");
+    assert!(shift.log_shift[0].log_shift_sigma.is_nan());
+    let hand = 2e5 / (8.314462618 * 10f64.ln()) * (1.0 / 283.15 - 1.0 / 293.15);
+    assert!((shift.log_shift_at(10.0).unwrap() - hand).abs() < 1e-12);
+    let without = arrhenius.replacen(r#", "E_a": 2e5"#, "", 1);
+    let e = Folder::new("arrhenius-no-energy", without.as_bytes()).error();
+    assert_contains(
+        &e,
+        &["shift.model = \"arrhenius\" needs a positive shift.E_a"],
+    );
+    let with_c1 = arrhenius.replacen(r#", "E_a": 2e5"#, r#", "E_a": 2e5, "C1": 8.0"#, 1);
+    let e = Folder::new("arrhenius-c1", with_c1.as_bytes()).error();
+    assert_contains(
+        &e,
+        &["shift.C1 does not belong to shift.model = \"arrhenius\""],
     );
 }
 

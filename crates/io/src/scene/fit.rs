@@ -213,8 +213,10 @@ impl SceneFile {
                 error,
             })?;
         params.start = self.material.as_ref().and_then(MaterialSection::start);
-        // A scene's shift gives a temperature set its reference temperature
-        // and, for WLF, starting constants; [fit] shift and T_ref override.
+        // A scene's shift gives a temperature set its reference temperature,
+        // its law (instead of "auto": the scene has said which law the
+        // material follows) and, for WLF, starting constants; [fit] shift
+        // and T_ref override.
         if let Some(shift) = self.material.as_ref().and_then(|m| m.shift.as_ref()) {
             shift.check().section("[material.shift]")?;
             if params.shift.t_ref.is_none() {
@@ -223,8 +225,12 @@ impl SceneFile {
             if let (Some(Real(c1)), Some(Real(c2))) = (shift.c1, shift.c2) {
                 params.shift.wlf_start = Some((c1, c2));
             }
-            if fit.settings.shift.is_none() && shift.model == ShiftKind::Free {
-                params.shift.kind = rollfit_fit::ShiftKind::Free;
+            if fit.settings.shift.is_none() {
+                params.shift.kind = match shift.model {
+                    ShiftKind::Wlf => rollfit_fit::ShiftKind::Wlf,
+                    ShiftKind::Arrhenius => rollfit_fit::ShiftKind::Arrhenius,
+                    ShiftKind::Free => rollfit_fit::ShiftKind::Free,
+                };
             }
         }
         Ok((setup, params))

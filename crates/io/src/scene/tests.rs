@@ -452,3 +452,20 @@ fn fit_settings_are_read_by_the_one_parser() {
         }
     }
 }
+
+/// Issue 31: a temperature set's law is "auto" unless the scene says
+/// otherwise: `[material.shift]` gives its model as the law (its T_ref, and
+/// for WLF its constants as the start), and `[fit] shift` overrides both.
+#[test]
+fn the_fit_law_is_auto_unless_the_scene_names_one() {
+    let kind = |text: &str| parse(text).unwrap().fit_setup().unwrap().1.shift.kind;
+    assert_eq!(kind(SLS), rollfit_fit::ShiftKind::Auto);
+    let arrhenius =
+        format!("{SLS}[material.shift]\nmodel = \"arrhenius\"\nT_ref = 20.0\nE_a = 1.5e5\n");
+    assert_eq!(kind(&arrhenius), rollfit_fit::ShiftKind::Arrhenius);
+    let wlf =
+        format!("{SLS}[material.shift]\nmodel = \"wlf\"\nT_ref = 20.0\nC1 = 8.86\nC2 = 101.6\n");
+    assert_eq!(kind(&wlf), rollfit_fit::ShiftKind::Wlf);
+    let overridden = format!("{wlf}[fit]\nshift = \"auto\"\n");
+    assert_eq!(kind(&overridden), rollfit_fit::ShiftKind::Auto);
+}
