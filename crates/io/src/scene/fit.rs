@@ -229,7 +229,9 @@ impl SceneFile {
                 params.shift.kind = match shift.model {
                     ShiftKind::Wlf => rollfit_fit::ShiftKind::Wlf,
                     ShiftKind::Arrhenius => rollfit_fit::ShiftKind::Arrhenius,
-                    ShiftKind::Free => rollfit_fit::ShiftKind::Free,
+                    // The fit has no two-branch law; free shifts follow
+                    // any law, the kink included.
+                    ShiftKind::Free | ShiftKind::WlfArrhenius => rollfit_fit::ShiftKind::Free,
                 };
             }
         }

@@ -1,8 +1,9 @@
 //! Picture 5, for a temperature set (a fit with a shift): the master
 //! friction curve, μ against the reduced speed v·a_T with every
 //! temperature's points in its own colour on the one fitted curve, and the
-//! shift itself, log10 a_T against T with the WLF curve when the shift is
-//! WLF. (μ(v) per temperature with the fitted curves is picture 1, which
+//! shift itself, log10 a_T against T with ±1σ bars (hollow where the data
+//! do not determine it) and the law's curve when the shift is WLF or
+//! Arrhenius. (μ(v) per temperature with the fitted curves is picture 1, which
 //! colours a set by temperature.)
 
 use plotters::coord::Shift;
@@ -101,10 +102,16 @@ impl Figure for ShiftFigure<'_> {
                     "Shift factors log10 a_T (points, ±1σ) and the fitted WLF curve: C1 = {c1:.4}, C2 = {c2:.2} K at T_ref = {} °C.",
                     format_tick(s.t_ref)
                 ),
-                _ => format!(
-                    "Free shift factors log10 a_T (points, ±1σ), T_ref = {} °C.",
-                    format_tick(s.t_ref)
-                ),
+                _ => match (s.model.as_str(), s.activation_energy) {
+                    ("arrhenius", Some(energy)) => format!(
+                        "Shift factors log10 a_T (points, ±1σ) and the fitted Arrhenius curve: E_a = {energy:.4e} J/mol at T_ref = {} °C.",
+                        format_tick(s.t_ref)
+                    ),
+                    _ => format!(
+                        "Free shift factors log10 a_T (points, ±1σ; hollow: not determined by the data), T_ref = {} °C.",
+                        format_tick(s.t_ref)
+                    ),
+                },
             },
             None => "No shift: not a temperature set.".into(),
         }
@@ -120,8 +127,13 @@ impl Figure for ShiftFigure<'_> {
         };
         let points = &shift.log_shift;
         let x_range = linear_range(points.iter().map(|p| p.temperature), 0.08);
-        let wlf_curve: Vec<(f64, f64)> = match (shift.c1, shift.c2) {
-            (Some(_), Some(_)) => (0..=200)
+        let law = match shift.model.as_str() {
+            "wlf" => Some("WLF fit"),
+            "arrhenius" => Some("Arrhenius fit"),
+            _ => None,
+        };
+        let wlf_curve: Vec<(f64, f64)> = match law {
+            Some(_) => (0..=200)
                 .filter_map(|i| {
                     let t = x_range.start + (x_range.end - x_range.start) * f64::from(i) / 200.0;
                     shift.log_shift_at(t).map(|l| (t, l))
@@ -151,7 +163,7 @@ impl Figure for ShiftFigure<'_> {
         if !wlf_curve.is_empty() {
             chart
                 .draw_series(LineSeries::new(wlf_curve, style::WLF.stroke_width(2)))?
-                .label("WLF fit")
+                .label(law.unwrap_or("law"))
                 .legend(|(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], style::WLF.stroke_width(2))
                 });
@@ -166,14 +178,32 @@ impl Figure for ShiftFigure<'_> {
                 8,
             )))?;
         }
+        let determined = |p: &&rollfit_io::fit_dir::LogShiftSummary| p.log_shift_sigma.is_finite();
         chart
             .draw_series(
-                points.iter().map(|p| {
+                points.iter().filter(determined).map(|p| {
                     Circle::new((p.temperature, p.log_shift), 5, style::MEASURED.filled())
                 }),
             )?
             .label("joint fit, per temperature")
             .legend(|(x, y)| Circle::new((x + 10, y), 5, style::MEASURED.filled()));
+        if points.iter().any(|p| !p.log_shift_sigma.is_finite()) {
+            chart
+                .draw_series(
+                    points
+                        .iter()
+                        .filter(|p| !p.log_shift_sigma.is_finite())
+                        .map(|p| {
+                            Circle::new(
+                                (p.temperature, p.log_shift),
+                                5,
+                                style::MEASURED.stroke_width(2),
+                            )
+                        }),
+                )?
+                .label("not determined by the data")
+                .legend(|(x, y)| Circle::new((x + 10, y), 5, style::MEASURED.stroke_width(2)));
+        }
         draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         Ok(())
     }
