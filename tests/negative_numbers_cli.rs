@@ -10,7 +10,7 @@ use std::ffi::OsStr;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use common::{Table, TempDir, rollfit, text};
+use common::{Table, TempDir, succeed};
 use rollfit_model::{HavriliakNegami, ViscoelasticModulus};
 
 /// WLF of the synthetic isotherms about −5 °C.
@@ -36,16 +36,6 @@ fn isotherms_csv(temps: &[f64], count: usize) -> String {
         }
     }
     out
-}
-
-/// Runs rollfit with `args` and requires success.
-fn succeed(args: &[&OsStr]) {
-    let out = rollfit(args);
-    assert!(
-        out.status.success(),
-        "rollfit failed:\n{}",
-        text(&out.stderr)
-    );
 }
 
 fn json(path: &Path) -> serde_json::Value {

@@ -48,6 +48,7 @@ use crate::regularization::path;
 use crate::report::{FitReport, LambdaRecord};
 use crate::temperature_set::cross_check::cross_check;
 use crate::temperature_set::{ShiftStart, material_first, temperature_set, wlf_before_free};
+use crate::vertical::LoadGroups;
 
 use assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
 use grid::solve_on_grid;
@@ -89,6 +90,11 @@ pub(crate) fn fit_measured(
     let data = condensed.as_ref().map_or(rows, |c| &c.data);
     let set = temperature_set(data, params)?;
     let set = set.as_ref();
+    if set.is_some() {
+        // Vertical factors undefined at a measured temperature: refused
+        // before any numerics, naming the key.
+        LoadGroups::of(data, params.shift.vertical.as_ref())?;
+    }
     let (outcome, candidates) = master_curve(data, params, set)?;
     let terms = terms_record(&outcome.fit.model.tau, &params.terms, candidates);
     let cross_check = match set {

@@ -213,8 +213,9 @@ impl SceneFile {
                 error,
             })?;
         params.start = self.material.as_ref().and_then(MaterialSection::start);
-        // A scene's shift gives a temperature set its reference temperature
-        // and, for WLF, starting constants; [fit] shift and T_ref override.
+        // A scene's shift gives a temperature set its reference temperature,
+        // for WLF starting constants, and its vertical factors b_T (known,
+        // not fitted); [fit] shift and T_ref override the first two.
         if let Some(shift) = self.material.as_ref().and_then(|m| m.shift.as_ref()) {
             shift.check().section("[material.shift]")?;
             if params.shift.t_ref.is_none() {
@@ -226,6 +227,7 @@ impl SceneFile {
             if fit.settings.shift.is_none() && shift.model == ShiftKind::Free {
                 params.shift.kind = rollfit_fit::ShiftKind::Free;
             }
+            params.shift.vertical = shift.vertical_rule().section("[material.shift]")?;
         }
         Ok((setup, params))
     }
