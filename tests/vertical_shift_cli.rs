@@ -20,7 +20,7 @@ use std::ffi::OsStr;
 use std::fs;
 use std::path::Path;
 
-use common::{Table, TempDir, succeed};
+use common::{Table, TempDir, assert_failure, rollfit, succeed};
 use rollfit_model::{
     ContactSize, Geometry, HavriliakNegami, Prony, Scene, Shape, Shifted, Substrate,
     ViscoelasticModulus,
@@ -289,4 +289,25 @@ fn a_temperature_set_with_vertical_factors_is_fitted_at_t_ref() {
         .iter()
         .fold(0.0f64, |m, r| m.max(r.abs()));
     assert!(worst < 0.05, "largest residual {worst}");
+    let said = report["warnings"].as_array().unwrap().iter().any(|w| {
+        w.as_str()
+            .unwrap()
+            .contains("log10 b_T = -0.2000 at -20 °C, -0.1000 at 0 °C, 0.0000 at 20 °C")
+    });
+    assert!(said, "{}", report["warnings"]);
+
+    // A measured temperature outside the table is refused before any
+    // numerics, naming the key, and nothing is written.
+    let short = with_vertical.replace(", { T = 60.0, log_bT = 0.2 }", "");
+    let scene = tmp.write("short.toml", &format!("{short}{fit_section}"));
+    let out = tmp.path().join("short");
+    let failed = rollfit(&[
+        OsStr::new("fit"),
+        scene.as_os_str(),
+        data.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert_failure(&failed, &["log_bT", "no vertical factor for T = 60 °C"]);
+    assert!(!out.exists());
 }

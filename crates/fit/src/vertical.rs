@@ -148,6 +148,32 @@ pub(crate) fn scene_under_load(
     Ok(Scene::new(geometry, setup.substrate, setup.contact, prony)?.with_tolerance(tolerance)?)
 }
 
+/// What a fit with vertical factors says about them (None without):
+/// log10 b_T at each measured temperature of `data`; an error naming the
+/// key where b_T is undefined.
+pub(crate) fn note(
+    data: &Measurements,
+    vertical: Option<&VerticalShift>,
+) -> Result<Option<String>, FitError> {
+    let (Some(v), Some(temps)) = (vertical, data.temperature()) else {
+        return Ok(None);
+    };
+    let mut distinct: Vec<f64> = temps.to_vec();
+    distinct.sort_by(f64::total_cmp);
+    distinct.dedup();
+    let values = distinct
+        .iter()
+        .map(|&t| Ok(format!("{:.4} at {t} °C", log10_factor(Some(v), t)? + 0.0)))
+        .collect::<Result<Vec<_>, FitError>>()?;
+    Ok(Some(format!(
+        "vertical factors from [material.shift] `{}` taken as known, E*(ω, T) = b_T E*_ref(ω a_T): \
+         log10 b_T = {}; the master curve is at T_ref (compare and report --dma move DMA data \
+         horizontally only)",
+        key(v),
+        values.join(", ")
+    )))
+}
+
 /// log10 b_T at `t` (°C) under `vertical` (0 without), as a fit setting's
 /// error when undefined there.
 pub(crate) fn log10_factor(vertical: Option<&VerticalShift>, t: f64) -> Result<f64, FitError> {

@@ -48,7 +48,7 @@ use crate::regularization::path;
 use crate::report::{FitReport, LambdaRecord};
 use crate::temperature_set::cross_check::cross_check;
 use crate::temperature_set::{ShiftStart, material_first, temperature_set, wlf_before_free};
-use crate::vertical::LoadGroups;
+use crate::vertical;
 
 use assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
 use grid::solve_on_grid;
@@ -90,10 +90,11 @@ pub(crate) fn fit_measured(
     let data = condensed.as_ref().map_or(rows, |c| &c.data);
     let set = temperature_set(data, params)?;
     let set = set.as_ref();
+    let mut set_notes = set.map_or_else(Vec::new, |s| s.notes.clone());
     if set.is_some() {
-        // Vertical factors undefined at a measured temperature: refused
-        // before any numerics, naming the key.
-        LoadGroups::of(data, params.shift.vertical.as_ref())?;
+        // Vertical factors undefined at a measured temperature are refused
+        // here, before any numerics, naming the key.
+        set_notes.extend(vertical::note(data, params.shift.vertical.as_ref())?);
     }
     let (outcome, candidates) = master_curve(data, params, set)?;
     let terms = terms_record(&outcome.fit.model.tau, &params.terms, candidates);
@@ -123,7 +124,7 @@ pub(crate) fn fit_measured(
     let report = assemble(Whole {
         data,
         params,
-        set_notes: set.map_or_else(Vec::new, |s| s.notes.clone()),
+        set_notes,
         grid: outcome,
         terms,
         cross_check,
