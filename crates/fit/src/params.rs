@@ -345,13 +345,6 @@ impl FitParams {
             check_start(s)?;
         }
         check_shift(&self.shift)?;
-        if self.physics == Physics::Exact && self.shift.vertical.is_some() {
-            return Err(FitError::setting(
-                "physics",
-                "\"exact\" does not take vertical factors b_T (`log_bT` or `vertical` in \
-                 [material.shift]); use \"approximate\", or remove the vertical factors",
-            ));
-        }
         Ok(ValidFitParams {
             method: self.method,
             terms: self.terms,

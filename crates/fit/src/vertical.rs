@@ -21,8 +21,9 @@
 //! (`crate::shift`) is untouched.
 //!
 //! Only a temperature set uses b_T: a single temperature's fit recovers
-//! the modulus at that temperature. `physics = "exact"` with vertical
-//! factors is refused ([`crate::params`]).
+//! the modulus at that temperature. A temperature set with vertical
+//! factors and `physics = "exact"` is refused ([`refuse_exact`]): the
+//! defect correction's exact solves would need the same load per row.
 //!
 //! # References
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
@@ -34,7 +35,8 @@ use rollfit_model::{FrictionJacobian, Geometry, Prony, Scene, VerticalShift};
 
 use crate::data::Measurements;
 use crate::error::FitError;
-use crate::params::RollingSetup;
+use crate::params::{RollingSetup, ValidFitParams};
+use crate::shift::distinct_temperatures;
 
 /// The rows of a temperature set grouped by their load factor 1/b_T.
 #[derive(Debug, Clone, PartialEq)]
@@ -155,13 +157,10 @@ pub(crate) fn note(
     data: &Measurements,
     vertical: Option<&VerticalShift>,
 ) -> Result<Option<String>, FitError> {
-    let (Some(v), Some(temps)) = (vertical, data.temperature()) else {
+    let (Some(v), Some(_)) = (vertical, data.temperature()) else {
         return Ok(None);
     };
-    let mut distinct: Vec<f64> = temps.to_vec();
-    distinct.sort_by(f64::total_cmp);
-    distinct.dedup();
-    let values = distinct
+    let values = distinct_temperatures(data)
         .iter()
         .map(|&t| Ok(format!("{:.4} at {t} °C", log10_factor(Some(v), t)? + 0.0)))
         .collect::<Result<Vec<_>, FitError>>()?;
@@ -172,6 +171,22 @@ pub(crate) fn note(
         key(v),
         values.join(", ")
     )))
+}
+
+/// `physics = "exact"` refused for a temperature set with vertical
+/// factors (a single temperature ignores them).
+pub(crate) fn refuse_exact(rows: &Measurements, params: &ValidFitParams) -> Result<(), FitError> {
+    match &params.shift.vertical {
+        Some(v) if distinct_temperatures(rows).len() > 1 => Err(FitError::setting(
+            "physics",
+            format!(
+                "\"exact\" does not take vertical factors b_T (`{}` in [material.shift]) for a \
+                 temperature set; use \"approximate\", or remove the vertical factors",
+                key(v)
+            ),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// log10 b_T at `t` (°C) under `vertical` (0 without), as a fit setting's
@@ -213,8 +228,8 @@ mod tests {
         }
     }
 
-    /// b_T = 1 at its own T_ref: the fit must be at that temperature, and
-    /// the exact physics does not take vertical factors.
+    /// b_T = 1 at its own T_ref: the fit must be at that temperature; the
+    /// exact physics does not take vertical factors for a temperature set.
     #[test]
     fn settings_are_checked_naming_the_key() {
         assert!(
@@ -229,8 +244,17 @@ mod tests {
                 "{m}"
             );
         }
-        let m = refusal(params(Some(20.0), Physics::Exact));
+        let exact = params(Some(20.0), Physics::Exact)
+            .check(example_setup())
+            .unwrap();
+        let speeds: Vec<f64> = (0..8).map(|i| 10f64.powi(i % 4 - 4)).collect();
+        let set = |temps: Vec<f64>| {
+            Measurements::new(speeds.clone(), vec![0.01; 8], None, Some(temps)).unwrap()
+        };
+        let two = set(vec![0.0, 0.0, 0.0, 0.0, 40.0, 40.0, 40.0, 40.0]);
+        let m = refuse_exact(&two, &exact).unwrap_err().to_string();
         assert!(m.contains("physics") && m.contains("log_bT"), "{m}");
+        assert!(refuse_exact(&set(vec![40.0; 8]), &exact).is_ok());
     }
 
     /// Rows group by temperature; a temperature outside the table is

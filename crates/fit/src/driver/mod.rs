@@ -61,7 +61,10 @@ use terms::{AUTO_DENSITIES, TermChoice, grid, terms_record};
 pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
     let report = match params.physics {
         Physics::Approximate => fit_measured(rows, None, params),
-        Physics::Exact => defect_correction(rows, params, fit_measured),
+        Physics::Exact => {
+            vertical::refuse_exact(rows, params)?;
+            defect_correction(rows, params, fit_measured)
+        }
     };
     // A stage that tolerates a failed run may have gone on after the
     // cancellation; what it made is not the fit asked for.
