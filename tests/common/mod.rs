@@ -32,6 +32,15 @@ pub fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
+/// Runs the `rollfit` binary with `args` and requires success; returns
+/// stderr (summaries, notes and warnings).
+pub fn succeed(args: &[&OsStr]) -> String {
+    let out = rollfit(args);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "rollfit failed:\n{stderr}");
+    stderr
+}
+
 /// Checks the promise of every bad-input test: a non-zero exit, no panic,
 /// every `expected` fragment on stderr and nothing on stdout. Returns
 /// stderr.

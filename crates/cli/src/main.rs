@@ -130,3 +130,102 @@ fn main() -> ExitCode {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! Negative numbers as users type them (issue 31): `--T-ref -5`, not
+    //! only `--T-ref=-5`. clap reads a word starting with `-` as a flag
+    //! unless the option allows hyphen values; every option that takes a
+    //! number allows them, so its own parser judges the value (a range
+    //! message instead of "unexpected argument '-5'"). `allow_hyphen_values`
+    //! rather than `allow_negative_numbers`: the latter's test of a number
+    //! rejects `-5e-3` and lists such as `-5,11.6,79.9`.
+
+    use std::any::TypeId;
+    use std::path::PathBuf;
+
+    use clap::{CommandFactory, Parser};
+    use rollfit_fit::{Method, Physics};
+
+    use super::{Cli, Command};
+
+    /// Every option of every command that takes a value allows hyphen
+    /// values, except those whose value cannot be a number: paths, names
+    /// (sheet, solver, physics) and fixed choices.
+    #[test]
+    fn every_numeric_option_takes_a_leading_minus() {
+        let not_numbers = [
+            TypeId::of::<PathBuf>(),
+            TypeId::of::<String>(),
+            TypeId::of::<Method>(),
+            TypeId::of::<Physics>(),
+        ];
+        let cli = Cli::command();
+        let mut checked = 0;
+        for command in cli.get_subcommands() {
+            for arg in command.get_opts() {
+                let parser = arg.get_value_parser();
+                let kind = parser.type_id();
+                if not_numbers.iter().any(|t| kind == *t) || !arg.get_possible_values().is_empty() {
+                    continue;
+                }
+                assert!(
+                    arg.is_allow_hyphen_values_set(),
+                    "rollfit {} --{}: a numeric option without allow_hyphen_values",
+                    command.get_name(),
+                    arg.get_long().unwrap_or_default()
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 10, "only {checked} numeric options found");
+    }
+
+    #[test]
+    fn negative_values_parse_as_typed() {
+        let cli = Cli::try_parse_from([
+            "rollfit",
+            "master",
+            "dma.csv",
+            "--T-ref",
+            "-5",
+            "--vertical",
+        ])
+        .unwrap();
+        let Command::Master(args) = cli.command else {
+            panic!("not master")
+        };
+        assert_eq!(args.t_ref, Some(-5.0));
+        assert!(args.vertical);
+        let cli =
+            Cli::try_parse_from(["rollfit", "master", "dma.csv", "--T-ref", "-2.5e1"]).unwrap();
+        let Command::Master(args) = cli.command else {
+            panic!("not master")
+        };
+        assert_eq!(args.t_ref, Some(-25.0));
+        let cli =
+            Cli::try_parse_from(["rollfit", "report", "fit", "--dma-wlf", "-5,11.6,79.9"]).unwrap();
+        let Command::Report(args) = cli.command else {
+            panic!("not report")
+        };
+        let wlf = args.dma_flags.dma_wlf.expect("--dma-wlf parsed");
+        assert_eq!((wlf.t_ref, wlf.c1, wlf.c2), (-5.0, 11.6, 79.9));
+        // A negative value where none is allowed is the option's own
+        // message, not "unexpected argument".
+        let error = Cli::try_parse_from(["rollfit", "master", "dma.csv", "--poisson", "-0.1"]);
+        if let Err(error) = error {
+            assert_ne!(
+                error.kind(),
+                clap::error::ErrorKind::UnknownArgument,
+                "{error}"
+            );
+        }
+        let error = Cli::try_parse_from(["rollfit", "fit", "s.toml", "d.csv", "--seed", "-1"])
+            .expect_err("a negative seed");
+        assert_eq!(
+            error.kind(),
+            clap::error::ErrorKind::ValueValidation,
+            "{error}"
+        );
+    }
+}

@@ -19,7 +19,7 @@
 //! - [`quality`]: goodness of fit (χ² and runs tests).
 //! - [`sanity`]: warnings for inputs and results outside the theory or any lab.
 //! - `temperature_set`: the start and the cross-check of a temperature set's
-//!   shift.
+//!   shift; `vertical`: its vertical factors b_T, as a load per row.
 //! - [`exact_physics`]: fits against the exact rolling contact by defect
 //!   correction around the approximate model (`physics = "exact"`).
 //! - [`driver`]: the driver tying them together, entered by [`fit()`];
@@ -86,6 +86,7 @@ mod parametrization;
 pub mod quality;
 mod shift;
 mod temperature_set;
+mod vertical;
 
 pub use cancel::Cancel;
 pub use data::Measurements;

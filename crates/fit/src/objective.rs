@@ -11,7 +11,9 @@
 //!
 //! ∂μ_th/∂θ comes from the forward model's one-pass Jacobian
 //! ([`rollfit_model::Scene::friction_with_gradient`]) through the chain rule
-//! of [`crate::parametrization`].
+//! of [`crate::parametrization`]. With vertical factors b_T a row at T is
+//! the master curve under the load F/b_T ([`crate::vertical`]): the rows
+//! are evaluated in groups of one load, with the same chain rule.
 //!
 //! The objective is a pure function of θ at a given λ: it holds no budget,
 //! best point or history. The solvers see it through
@@ -21,13 +23,14 @@
 //! argmin's solvers (as `CostFunction` V and `Gradient` 2Jᵀr).
 
 use nalgebra::{DMatrix, DVector};
-use rollfit_model::{Prony, Scene};
+use rollfit_model::{Prony, Scene, VerticalShift};
 
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::parametrization::{Mapped, Parametrization};
 use crate::params::RollingSetup;
 use crate::shift::ShiftParam;
+use crate::vertical::{LoadGroups, scene_under_load};
 
 /// Weight of the E1_max penalty: one per cent above the bound costs as much
 /// as a hundred standard deviations of misfit.
@@ -57,6 +60,8 @@ pub(crate) struct Objective<'a> {
     pub e1_max: f64,
     /// The forward model's relative tolerance.
     pub tolerance: f64,
+    /// A temperature set's known vertical factors (None: b_T = 1).
+    pub vertical: Option<&'a VerticalShift>,
 }
 
 /// Residuals (and Jacobian) at one θ.
@@ -123,16 +128,15 @@ impl Objective<'_> {
             })
     }
 
-    /// The scene for a mapped θ.
-    pub fn scene(&self, m: &Mapped) -> Result<Scene<Prony>, FitError> {
-        let prony = self.param.prony(m)?;
-        Ok(Scene::new(
-            self.setup.geometry,
-            self.setup.substrate,
-            self.setup.contact,
-            prony,
-        )?
-        .with_tolerance(self.tolerance)?)
+    /// The scene for a mapped θ, under the set-up's load times
+    /// `load_factor` (1/b_T of a row's temperature, else 1).
+    pub fn scene(&self, m: &Mapped, load_factor: f64) -> Result<Scene<Prony>, FitError> {
+        scene_under_load(
+            self.setup,
+            self.param.prony(m)?,
+            self.tolerance,
+            load_factor,
+        )
     }
 
     /// Residuals, and the Jacobian when `with_jacobian`.
@@ -145,7 +149,8 @@ impl Objective<'_> {
         }
         let n_material = self.param.free_count();
         let m = self.param.map(&theta[..n_material]);
-        let scene = self.scene(&m)?;
+        let groups = LoadGroups::of(self.data, self.vertical)?;
+        let scene_at = |factor: f64| self.scene(&m, factor);
         let n_data = self.data.len();
         let n_free = self.free_count();
         let (speeds, shift_grads) = self.reduced_speeds(theta);
@@ -159,7 +164,10 @@ impl Objective<'_> {
         let mut residuals = DVector::zeros(rows);
         let mut jacobian = with_jacobian.then(|| DMatrix::zeros(rows, n_free));
         let mu = if let Some(jac) = jacobian.as_mut() {
-            let fj = scene.friction_with_gradient(&speeds)?;
+            let fj = match &groups {
+                Some(g) => g.friction_with_gradient(scene_at, &speeds)?,
+                None => scene_at(1.0)?.friction_with_gradient(&speeds)?,
+            };
             let np = fj.parameter_count;
             let mut grad_p = vec![0.0; np];
             let mut grad_theta = vec![0.0; n_material];
@@ -182,7 +190,10 @@ impl Objective<'_> {
             }
             fj.mu
         } else {
-            scene.friction_sweep(&speeds)?
+            match &groups {
+                Some(g) => g.friction_sweep(scene_at, &speeds)?,
+                None => scene_at(1.0)?.friction_sweep(&speeds)?,
+            }
         };
         let mut misfit = 0.0;
         for i in 0..n_data {
@@ -253,6 +264,7 @@ mod tests {
             lambda: 0.3,
             e1_max,
             tolerance: 1e-10,
+            vertical: None,
         }
     }
 
@@ -293,34 +305,35 @@ mod tests {
                 })
                 .collect();
             let objective = test_objective(&setup, &data, param, None, 1e8);
-            let e = objective.evaluate(&theta, true).unwrap();
-            let jac = e.jacobian.unwrap();
-            for j in 0..n {
-                let step = 1e-5;
-                let mut up = theta.clone();
-                let mut dn = theta.clone();
-                up[j] += step;
-                dn[j] -= step;
-                let ru = objective.evaluate(&up, false).unwrap().residuals;
-                let rd = objective.evaluate(&dn, false).unwrap().residuals;
-                for i in 0..ru.len() {
-                    let fd = (ru[i] - rd[i]) / (2.0 * step);
-                    assert!(
-                        (jac[(i, j)] - fd).abs() <= 1e-5 * (1.0 + fd.abs()),
-                        "{anchor:?} row {i} column {j}: {} vs {fd}",
-                        jac[(i, j)]
-                    );
-                }
+            assert_jacobian(&objective, &theta, &format!("{anchor:?}"));
+        }
+    }
+
+    /// Every column of the residual Jacobian at `theta` against central
+    /// finite differences; `case` names the case in a failure.
+    fn assert_jacobian(objective: &Objective<'_>, theta: &[f64], case: &str) {
+        let jac = objective.evaluate(theta, true).unwrap().jacobian.unwrap();
+        for j in 0..theta.len() {
+            let step = 1e-5;
+            let mut up = theta.to_vec();
+            let mut dn = theta.to_vec();
+            up[j] += step;
+            dn[j] -= step;
+            let ru = objective.evaluate(&up, false).unwrap().residuals;
+            let rd = objective.evaluate(&dn, false).unwrap().residuals;
+            for i in 0..ru.len() {
+                let fd = (ru[i] - rd[i]) / (2.0 * step);
+                assert!(
+                    (jac[(i, j)] - fd).abs() <= 1e-5 * (1.0 + fd.abs()),
+                    "{case} row {i} column {j}: {} vs {fd}",
+                    jac[(i, j)]
+                );
             }
         }
     }
 
-    /// The shift columns of a temperature set's Jacobian (WLF and free)
-    /// against central finite differences.
-    #[test]
-    fn shift_jacobian_matches_finite_differences() {
-        use crate::params::{ShiftKind, ShiftSettings};
-        let setup = crate::params::example_setup();
+    /// Three temperatures × five speeds.
+    fn temperature_set() -> Measurements {
         let mut speeds = Vec::new();
         let mut temps = Vec::new();
         for t in [0.0, 20.0, 45.0] {
@@ -333,44 +346,101 @@ mod tests {
             .iter()
             .map(|v| 0.02 + 0.001 * v.log10().abs())
             .collect();
-        let data = Measurements::new(speeds, mu, None, Some(temps)).unwrap();
+        Measurements::new(speeds, mu, None, Some(temps)).unwrap()
+    }
+
+    /// The objective of a temperature set with shift `kind` about 20 °C,
+    /// anchored, and a fixed θ (material, then WLF-like shifts).
+    fn set_objective<'a>(
+        setup: &'a RollingSetup,
+        data: &'a Measurements,
+        kind: crate::params::ShiftKind,
+    ) -> (Objective<'a>, Vec<f64>) {
+        let settings = crate::params::ShiftSettings {
+            kind,
+            t_ref: Some(20.0),
+            ..crate::params::ShiftSettings::default()
+        };
+        let shift = ShiftParam::new(data, &settings).unwrap();
         let tau: Vec<f64> = (0..8).map(|k| 10f64.powf(k as f64 - 6.0)).collect();
+        let anchor = Some(ModulusAnchor {
+            omega: 0.0,
+            modulus: 2e6,
+            source: "E0",
+        });
+        let param = Parametrization::new(tau, anchor);
+        let mut theta: Vec<f64> = (0..param.free_count())
+            .map(|k| 3.0 + 0.4 * (k as f64).sin())
+            .collect();
+        theta.extend(shift.theta_of_wlf(8.86, 101.6));
+        (test_objective(setup, data, param, Some(shift), 1e10), theta)
+    }
+
+    /// Vertical factors 10^−0.15 at 0 °C and 10^0.2 at 45 °C about 20 °C.
+    fn vertical_table() -> rollfit_model::VerticalShift {
+        rollfit_model::VerticalShift::table(20.0, vec![(0.0, -0.15), (45.0, 0.2)]).unwrap()
+    }
+
+    /// A temperature set's Jacobian (WLF and free shifts, with and without
+    /// vertical factors), material and shift columns, against central
+    /// finite differences.
+    #[test]
+    fn shift_jacobian_matches_finite_differences() {
+        use crate::params::ShiftKind;
+        let setup = crate::params::example_setup();
+        let data = temperature_set();
+        let table = vertical_table();
         for kind in [ShiftKind::Wlf, ShiftKind::Free] {
-            let settings = ShiftSettings {
-                kind,
-                t_ref: Some(20.0),
-                ..ShiftSettings::default()
-            };
-            let shift = ShiftParam::new(&data, &settings).unwrap();
-            let anchor = Some(ModulusAnchor {
-                omega: 0.0,
-                modulus: 2e6,
-                source: "E0",
-            });
-            let param = Parametrization::new(tau.clone(), anchor);
-            let mut theta: Vec<f64> = (0..param.free_count())
-                .map(|k| 3.0 + 0.4 * (k as f64).sin())
-                .collect();
-            theta.extend(shift.theta_of_wlf(8.86, 101.6));
-            let objective = test_objective(&setup, &data, param, Some(shift), 1e10);
-            let jac = objective.evaluate(&theta, true).unwrap().jacobian.unwrap();
-            for j in objective.param.free_count()..theta.len() {
-                let step = 1e-5;
-                let mut up = theta.clone();
-                let mut dn = theta.clone();
-                up[j] += step;
-                dn[j] -= step;
-                let ru = objective.evaluate(&up, false).unwrap().residuals;
-                let rd = objective.evaluate(&dn, false).unwrap().residuals;
-                for i in 0..ru.len() {
-                    let fd = (ru[i] - rd[i]) / (2.0 * step);
-                    assert!(
-                        (jac[(i, j)] - fd).abs() <= 1e-5 * (1.0 + fd.abs()),
-                        "{kind:?} row {i} column {j}: {} vs {fd}",
-                        jac[(i, j)]
-                    );
-                }
+            for vertical in [None, Some(&table)] {
+                let (mut objective, theta) = set_objective(&setup, &data, kind);
+                objective.vertical = vertical;
+                assert_jacobian(&objective, &theta, &format!("{kind:?} {vertical:?}"));
             }
         }
+    }
+
+    /// A temperature set with vertical factors: each row's μ is that of the
+    /// master curve times b_T at v a_T, computed here directly with the
+    /// model's `Shifted` wrapper (b_T applied to the modulus, the load
+    /// unchanged), where the objective divides the load by b_T.
+    #[test]
+    fn vertical_factors_scale_each_temperature() {
+        use rollfit_model::Shifted;
+        let setup = crate::params::example_setup();
+        let data = temperature_set();
+        let vertical = vertical_table();
+        let (mut objective, theta) = set_objective(&setup, &data, crate::params::ShiftKind::Wlf);
+        objective.vertical = Some(&vertical);
+        let e = objective.evaluate(&theta, false).unwrap();
+        let n_material = objective.param.free_count();
+        let prony = objective
+            .param
+            .prony(&objective.param.map(&theta[..n_material]))
+            .unwrap();
+        let (reduced, _) = objective.reduced_speeds(&theta);
+        let (speeds, temps) = (data.speeds(), data.temperature().unwrap());
+        for i in 0..speeds.len() {
+            let log_a = (reduced[i] / speeds[i]).log10();
+            let log_b = vertical.log10_factor(temps[i]).unwrap();
+            let modulus = Shifted::new(prony.clone(), log_a)
+                .unwrap()
+                .with_vertical(log_b)
+                .unwrap();
+            let direct = Scene::new(setup.geometry, setup.substrate, setup.contact, modulus)
+                .unwrap()
+                .with_tolerance(1e-10)
+                .unwrap()
+                .friction(speeds[i])
+                .unwrap();
+            assert!(
+                (e.mu[i] / direct - 1.0).abs() < 1e-8,
+                "row {i}: {} vs {direct}",
+                e.mu[i]
+            );
+        }
+        // b_T matters here: without it μ differs by far more.
+        objective.vertical = None;
+        let plain = objective.evaluate(&theta, false).unwrap();
+        assert!((plain.mu[0] / e.mu[0] - 1.0).abs() > 1e-2);
     }
 }

@@ -6,7 +6,8 @@
 use std::f64::consts::PI;
 
 use rollfit_model::exact::exact_body;
-use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate};
+use rollfit_model::modulus::FreeShift;
+use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate, VerticalShift};
 
 use crate::cancel::Cancel;
 use crate::error::FitError;
@@ -185,6 +186,11 @@ pub struct ShiftSettings {
     /// Also fit each temperature alone and estimate the shifts by
     /// overlapping the single-temperature tan δ curves (a cross-check).
     pub cross_check: bool,
+    /// Known vertical factors b_T (a scene's `[material.shift]` `log_bT`
+    /// or `vertical`): each temperature's modulus is b_T times the master
+    /// curve's (`crate::vertical`). None: b_T = 1. Their T_ref must be the
+    /// fit's.
+    pub vertical: Option<VerticalShift>,
 }
 
 impl Default for ShiftSettings {
@@ -194,6 +200,7 @@ impl Default for ShiftSettings {
             t_ref: None,
             wlf_start: None,
             cross_check: true,
+            vertical: None,
         }
     }
 }
@@ -526,6 +533,26 @@ fn check_shift(shift: &ShiftSettings) -> Result<(), FitError> {
     if let Some((c1, c2)) = shift.wlf_start {
         positive("C1", c1)?;
         positive("C2", c2)?;
+    }
+    if let Some(vertical) = &shift.vertical {
+        // b_T = 1 at the vertical factors' own T_ref; a master curve at
+        // another temperature would need them renormalised.
+        let t = vertical.t_ref();
+        if shift
+            .t_ref
+            .is_none_or(|fit| (fit - t).abs() > FreeShift::TEMPERATURE_TOLERANCE)
+        {
+            return Err(FitError::setting(
+                "T_ref",
+                format!(
+                    "the vertical factors b_T are relative to T_ref = {t} °C (b_T = 1 there), \
+                     so the master curve must be fitted at T_ref = {t} °C, not at {}",
+                    shift
+                        .t_ref
+                        .map_or("the middle temperature".to_string(), |f| format!("{f} °C"))
+                ),
+            ));
+        }
     }
     Ok(())
 }

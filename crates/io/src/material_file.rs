@@ -2,7 +2,10 @@
 //! scene file (docs/ARCHITECTURE.md, "Contract", "Scene file") holding the master
 //! curve's Prony series at T_ref and, for several isotherms, its
 //! `[material.shift]`, for a scene to copy (or to use the DMA file itself,
-//! `model = "dma"`); numbers are written with the shortest digits that read
+//! `model = "dma"`). With `--vertical` the shift carries the measured
+//! vertical factors as the table `log_bT = [{ T, log_bT }, ..]`, so that
+//! a scene reproduces each isotherm as E*(ω, T) = b_T E*_ref(ω a_T)
+//! (`scene/vertical.rs`). Numbers are written with the shortest digits that read
 //! back to the same f64, so a scene using the file predicts exactly what
 //! the master curve does.
 
@@ -46,6 +49,8 @@ struct Shift {
     activation_energy: Option<f64>,
     #[serde(rename = "log_aT", skip_serializing_if = "Option::is_none")]
     log_shift: Option<Vec<ShiftPoint>>,
+    #[serde(rename = "log_bT", skip_serializing_if = "Option::is_none")]
+    log_vertical: Option<Vec<VerticalPoint>>,
 }
 
 #[derive(Serialize)]
@@ -54,6 +59,14 @@ struct ShiftPoint {
     temperature: f64,
     #[serde(rename = "log_aT")]
     log_shift: f64,
+}
+
+#[derive(Serialize)]
+struct VerticalPoint {
+    #[serde(rename = "T")]
+    temperature: f64,
+    #[serde(rename = "log_bT")]
+    log_vertical: f64,
 }
 
 /// The file's text, with a comment header saying where it came from.
@@ -70,6 +83,16 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
             t_junction: None,
             activation_energy: None,
             log_shift: None,
+            log_vertical: built.settings.vertical().then(|| {
+                m.shift
+                    .shifts
+                    .iter()
+                    .map(|s| VerticalPoint {
+                        temperature: s.temperature,
+                        log_vertical: s.log_vertical,
+                    })
+                    .collect()
+            }),
         };
         match m.shift.law {
             ShiftLaw::Wlf => {
@@ -126,9 +149,9 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
         m.shift.shifts.len(),
         m.points.len(),
         prony.static_modulus(),
-        if built.settings.vertical() {
-            "\n# The vertical factors b_T of the master curve are not part of [material.shift]: \
-             away from T_ref the moduli are those of T_ref, shifted in frequency only."
+        if built.settings.vertical() && m.shift.shifts.len() > 1 {
+            "\n# Away from T_ref, E*(ω, T) = b_T E*(ω a_T) with the measured vertical factors \
+             log_bT (log10 b_T,\n# linear in T between isotherms, not extrapolated beyond them)."
         } else {
             ""
         }

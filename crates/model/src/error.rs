@@ -138,6 +138,23 @@ pub enum ModelError {
         /// The listed temperatures as shown, T_ref marked.
         listed: String,
     },
+    /// A temperature outside the listed temperatures of a table of vertical
+    /// factors ([`crate::modulus::VerticalShift::table`]).
+    #[error(
+        "no vertical factor for T = {temperature} °C: it lies outside the temperatures of the \
+         table of log10 b_T, {lowest} to {highest} °C (listed: {listed} °C); log10 b_T is \
+         interpolated linearly between listed temperatures but not extrapolated beyond them"
+    )]
+    OutsideVerticalTable {
+        /// Requested temperature, °C.
+        temperature: f64,
+        /// Lowest listed temperature, °C.
+        lowest: f64,
+        /// Highest listed temperature, °C.
+        highest: f64,
+        /// The listed temperatures as shown, T_ref marked.
+        listed: String,
+    },
     /// A film under a sphere: μ or its derivatives came out non-finite (an
     /// internal fault).
     #[error("film under a sphere: {what} not finite at v = {speed:e} m/s")]

@@ -69,7 +69,7 @@ pub use contact::{ContactSize, Shape};
 pub use error::ModelError;
 pub use friction::FrictionJacobian;
 pub use modulus::{
-    HavriliakNegami, Prony, Shifted, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus,
-    Wlf,
+    HavriliakNegami, Prony, Shifted, StandardLinearSolid, TabulatedModulus, VerticalShift,
+    ViscoelasticModulus, Wlf,
 };
 pub use scene::{Geometry, Scene, Substrate};

@@ -92,7 +92,7 @@ pub struct Args {
     #[arg(long, value_name = "i/n", value_parser = parse_shard, allow_hyphen_values = true)]
     pub shard: Option<Shard>,
     /// Number of fits run at the same time (threads). Default: all cores.
-    #[arg(short, long, value_name = "N", value_parser = parse_jobs)]
+    #[arg(short, long, value_name = "N", value_parser = parse_jobs, allow_hyphen_values = true)]
     pub jobs: Option<usize>,
 }
 

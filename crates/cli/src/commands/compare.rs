@@ -52,7 +52,12 @@ pub struct DmaFlags {
     /// temperatures to the fit's reference instead of the fit's shift.
     /// Needed for DMA data at several temperatures when the fit is not a
     /// temperature set.
-    #[arg(long = "dma-wlf", value_name = "T_REF,C1,C2", value_parser = parse_wlf)]
+    #[arg(
+        long = "dma-wlf",
+        value_name = "T_REF,C1,C2",
+        value_parser = parse_wlf,
+        allow_hyphen_values = true
+    )]
     pub dma_wlf: Option<DmaWlf>,
 }
 

@@ -69,16 +69,21 @@ pub struct Settings {
     #[arg(long, value_name = "VALUE|auto", value_parser = setting::<Lambda>, allow_hyphen_values = true)]
     pub lambda: Option<Lambda>,
     /// Seed of the multi-start perturbations. Overrides [fit] seed.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub seed: Option<u64>,
     /// Number of starts (the neutral one plus seeded perturbations).
     /// Overrides [fit] starts.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub starts: Option<usize>,
     /// Relaxation times: a count N, "auto" (1, 2 or 3 per decade by AICc) or
     /// a density "X/decade". Overrides [fit] terms (or its aliases
     /// terms_per_decade and tau).
-    #[arg(long, value_name = "N|auto|X/decade", value_parser = setting::<TermRule>)]
+    #[arg(
+        long,
+        value_name = "N|auto|X/decade",
+        value_parser = setting::<TermRule>,
+        allow_hyphen_values = true
+    )]
     pub terms: Option<TermRule>,
     /// The model's physics: approximate (Eq. (11)/(17), the default) or
     /// exact (the exact rolling contact, by defect correction; slower).

@@ -95,7 +95,7 @@ pub struct Args {
     pub noise: Option<f64>,
     /// Seed of the noise generator (ChaCha8); the same seed gives the same
     /// file on every machine. Default 0. Needs --noise.
-    #[arg(long, value_name = "N", requires = "noise")]
+    #[arg(long, value_name = "N", requires = "noise", allow_hyphen_values = true)]
     pub seed: Option<u64>,
     /// Also write the exact contact's pressure map at this speed (m/s;
     /// repeatable), beside OUT.csv: OUT-pressure-map-v<V>.csv (x, y,

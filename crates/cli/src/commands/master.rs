@@ -52,7 +52,7 @@ pub struct Args {
     pub output: PathBuf,
     /// Reference temperature, °C (default 20 °C when inside the measured
     /// temperatures, else the nearest measured one).
-    #[arg(long = "T-ref", value_name = "T")]
+    #[arg(long = "T-ref", value_name = "T", allow_hyphen_values = true)]
     pub t_ref: Option<f64>,
     /// The law of the shift factor a_T: chosen by the data (auto: WLF,
     /// else WLF above T_g with Arrhenius below or Arrhenius, else the
@@ -61,11 +61,12 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "auto")]
     pub shift: ShiftChoice,
     /// Also find vertical shift factors b_T from the data (E′ offsets at
-    /// the overlap); off by default, as in most TTS practice.
+    /// the overlap; material.toml then carries them as `log_bT`); off by
+    /// default, as in most TTS practice.
     #[arg(long)]
     pub vertical: bool,
     /// Poisson's ratio converting shear moduli to Young's, E = 2(1+ν)G.
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     pub poisson: f64,
     /// Read a TRIOS file's moduli as Young's or shear (default: decided
     /// from the file).

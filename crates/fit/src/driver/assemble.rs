@@ -4,7 +4,7 @@
 //! shift cross-check, the sanity warnings, the condensing of dense data and
 //! the totals.
 
-use rollfit_model::{Prony, Scene, ViscoelasticModulus};
+use rollfit_model::{Prony, ViscoelasticModulus};
 
 use crate::analysis::{DETERMINED_RELATIVE_SIGMA, determined_stretch};
 use crate::condense::Condensed;
@@ -16,6 +16,7 @@ use crate::report::{
     AnchorRecord, FitReport, ShiftChoice, ShiftCrossCheck, ShiftRecord, TermsRecord, Window,
 };
 use crate::sanity;
+use crate::vertical::{LoadGroups, scene_under_load};
 
 use super::optimum::Optimum;
 use super::profile::ScaleProfile;
@@ -237,7 +238,8 @@ fn free_shift_hint(
 }
 
 /// The fitted μ at every row of `data` (the rows of condensed data): the
-/// fitted master curve at v·a_T.
+/// fitted master curve at v·a_T, under the load F/b_T with vertical
+/// factors ([`crate::vertical`]).
 pub(super) fn fitted_friction(
     data: &Measurements,
     params: &ValidFitParams,
@@ -247,9 +249,12 @@ pub(super) fn fitted_friction(
     let m = &fit.model;
     let prony = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
     let setup = &params.setup;
-    let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, prony)?
-        .with_tolerance(params.model_tolerance)?;
-    Ok(scene.friction_sweep(&speeds)?)
+    let scene_at = |factor| scene_under_load(setup, prony.clone(), params.model_tolerance, factor);
+    let vertical = fit.shift.as_ref().and(params.shift.vertical.as_ref());
+    match LoadGroups::of(data, vertical)? {
+        Some(groups) => groups.friction_sweep(scene_at, &speeds),
+        None => Ok(scene_at(1.0)?.friction_sweep(&speeds)?),
+    }
 }
 
 /// The speeds of `data` on the master curve: v·a_T for a temperature set.

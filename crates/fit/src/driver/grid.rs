@@ -150,6 +150,8 @@ impl<'a> GridSolver<'a> {
             lambda: 0.0,
             e1_max: params.e1_max,
             tolerance: params.model_tolerance,
+            // Only a temperature set's rows take b_T.
+            vertical: set.and(params.shift.vertical.as_ref()),
         };
         let budget = params
             .max_evaluations

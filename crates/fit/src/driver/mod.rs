@@ -50,6 +50,7 @@ use crate::regularization::path;
 use crate::report::{FitReport, LambdaRecord, ModelRecord};
 use crate::temperature_set::cross_check::cross_check;
 use crate::temperature_set::{ShiftStart, material_first, temperature_set, wlf_before_free};
+use crate::vertical;
 
 use assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
 use grid::solve_on_grid;
@@ -63,7 +64,10 @@ use terms::{AUTO_DENSITIES, TermChoice, grid, terms_record};
 pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
     let report = match params.physics {
         Physics::Approximate => fit_measured(rows, None, params),
-        Physics::Exact => defect_correction(rows, params, fit_measured),
+        Physics::Exact => {
+            vertical::refuse_exact(rows, params)?;
+            defect_correction(rows, params, fit_measured)
+        }
     };
     // A stage that tolerates a failed run may have gone on after the
     // cancellation; what it made is not the fit asked for.
@@ -90,6 +94,13 @@ pub(crate) fn fit_measured(
     let clock = Instant::now();
     let condensed = condense(rows)?;
     let data = condensed.as_ref().map_or(rows, |c| &c.data);
+    // Vertical factors undefined at a measured temperature are refused
+    // here, before any numerics, naming the key.
+    let vertical_note = if crate::shift::distinct_temperatures(data).len() > 1 {
+        vertical::note(data, params.shift.vertical.as_ref())?
+    } else {
+        None
+    };
     let (outcome, candidates, set, shift_choice) = match params.shift.kind {
         ShiftKind::Auto => match choose_law(data, params)? {
             Some(l) => (l.grid, l.candidates, Some(l.set), Some(l.choice)),
@@ -105,6 +116,10 @@ pub(crate) fn fit_measured(
         }
     };
     let set = set.as_ref();
+    let mut set_notes = set.map_or_else(Vec::new, |s| s.notes.clone());
+    if set.is_some() {
+        set_notes.extend(vertical_note);
+    }
     let terms = terms_record(&outcome.fit.model.tau, &params.terms, candidates);
     let cross_check = match set {
         Some(set) if params.shift.cross_check => Some(cross_check(
@@ -132,7 +147,7 @@ pub(crate) fn fit_measured(
     let report = assemble(Whole {
         data,
         params,
-        set_notes: set.map_or_else(Vec::new, |s| s.notes.clone()),
+        set_notes,
         shift_choice,
         grid: outcome,
         terms,

@@ -7,6 +7,7 @@ use crate::params::{ModulusAnchor, ValidFitParams};
 use crate::report::{CrossCheckRow, ShiftCrossCheck, ShiftRecord};
 use crate::shift::index_of;
 use crate::shift::overlap::{Curve, chained_shifts};
+use crate::vertical::log10_factor;
 
 /// The cross-check of the joint fit's shift `joint`: single-temperature
 /// fits (by `single_fit`) overlapped by tan δ. `Err` carries a reason the
@@ -37,9 +38,13 @@ pub(crate) fn cross_check(
         // One temperature's rows carry no temperature column: no shift, and
         // so no cross-check, is fitted to them.
         let mut single = params.clone();
-        // |E_T(ω_a/a_T)| = |E_ref(ω_a)|: the anchor moves with the start shift.
+        // |E_T(ω_a/a_T)| = b_T |E_ref(ω_a)|: the anchor moves with the start
+        // shift (and the vertical factor, 1 without).
+        let log_b =
+            log10_factor(params.shift.vertical.as_ref(), temps[j]).map_err(|e| e.to_string())?;
         single.anchor = params.anchor.map(|a| ModulusAnchor {
             omega: a.omega / 10f64.powf(start_log_shift[j]),
+            modulus: a.modulus * 10f64.powf(log_b),
             ..a
         });
         let fitted = single_fit(&subset, &single)

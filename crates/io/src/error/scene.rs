@@ -80,6 +80,12 @@ pub enum SceneError {
     /// Free-shift entries the model refuses.
     #[error("`log_aT`: {error}")]
     FreeShiftEntries { error: ModelError },
+    /// A temperature outside a table of vertical factors.
+    #[error("{error}; add a `log_bT` entry at or beyond it, or use vertical = \"density\"")]
+    VerticalOutside { error: ModelError },
+    /// Entries of a table of vertical factors the model refuses.
+    #[error("`log_bT`: {error}")]
+    VerticalEntries { error: ModelError },
     /// The shift law of a DMA master curve the model refuses.
     #[error("the DMA master curve's shift: {error}")]
     MasterShift { error: ModelError },
@@ -218,6 +224,19 @@ pub enum SceneError {
          = [{{ T = 0.0, log_aT = 2.1 }}, {{ T = 40.0, log_aT = -1.3 }}]"
     )]
     FreeNeedsList,
+
+    /// Both forms of vertical factors.
+    #[error(
+        "give the vertical factors either as a table `log_bT = [{{ T = .., log_bT = .. }}, ..]` \
+         or as the law vertical = \"density\", not both"
+    )]
+    VerticalTwoForms,
+    /// `expansion` without the density law.
+    #[error(
+        "`expansion` (the volumetric expansion coefficient, 1/K) belongs to vertical = \
+         \"density\"; add it, or remove `expansion`"
+    )]
+    ExpansionWithoutDensity,
 
     // ------------------------------------------------------------ [sweep]
     /// `temperature = []`.

@@ -215,8 +215,9 @@ impl SceneFile {
         params.start = self.material.as_ref().and_then(MaterialSection::start);
         // A scene's shift gives a temperature set its reference temperature,
         // its law (instead of "auto": the scene has said which law the
-        // material follows) and, for WLF, starting constants; [fit] shift
-        // and T_ref override.
+        // material follows), for WLF starting constants, and its vertical
+        // factors b_T (known, not fitted); [fit] shift and T_ref override
+        // the law and T_ref.
         if let Some(shift) = self.material.as_ref().and_then(|m| m.shift.as_ref()) {
             shift.check().section("[material.shift]")?;
             if params.shift.t_ref.is_none() {
@@ -234,6 +235,7 @@ impl SceneFile {
                     ShiftKind::Free | ShiftKind::WlfArrhenius => rollfit_fit::ShiftKind::Free,
                 };
             }
+            params.shift.vertical = shift.vertical_rule().section("[material.shift]")?;
         }
         Ok((setup, params))
     }

@@ -15,6 +15,7 @@ use super::material::MaterialSection;
 use super::setup::{ContactName, DEFAULT_ACCURACY, ShapeName};
 use super::sweep::temperature_without_shift;
 use super::values::Real;
+use super::vertical;
 use super::{DynScene, InSection, SceneFile};
 use crate::error::{IoError, SceneError};
 
@@ -43,6 +44,9 @@ pub struct ShiftApplied {
     pub temperature: f64,
     /// log10 a_T applied to the reference-temperature modulus.
     pub log10_a_t: f64,
+    /// log10 b_T applied (0 without vertical factors):
+    /// E*(ω, T) = b_T E*_ref(ω a_T).
+    pub log10_b_t: f64,
 }
 
 /// One sweep of `rollfit forward`: the scene at one temperature.
@@ -99,27 +103,33 @@ impl SceneFile {
                         .shift_rule(base_dir)
                         .section("[material]")?
                         .ok_or_else(|| temperature_without_shift(temperatures))?;
+                    let vertical = material_section
+                        .vertical_rule(base_dir)
+                        .section("[material]")?;
                     // One reference modulus (a table is read once), shifted
                     // to each temperature.
                     let reference: Arc<dyn ViscoelasticModulus> = Arc::from(material);
                     let mut materials = Vec::new();
                     for (i, &temperature) in temperatures.values().iter().enumerate() {
-                        let log10_a_t =
-                            rule.log10_shift(temperature)
-                                .map_err(|e| SceneError::ShiftAt {
-                                    entry: temperatures.entry(i),
-                                    source: Box::new(e),
-                                })?;
-                        let shifted =
-                            Shifted::new(Arc::clone(&reference), log10_a_t).map_err(|error| {
-                                SceneError::SectionModel {
-                                    section: "[material.shift]",
-                                    error,
-                                }
+                        let at = |e| SceneError::ShiftAt {
+                            entry: temperatures.entry(i),
+                            source: Box::new(e),
+                        };
+                        let log10_a_t = rule.log10_shift(temperature).map_err(at)?;
+                        let log10_b_t = match &vertical {
+                            Some(v) => vertical::log10_factor(v, temperature).map_err(at)?,
+                            None => 0.0,
+                        };
+                        let shifted = Shifted::new(Arc::clone(&reference), log10_a_t)
+                            .and_then(|s| s.with_vertical(log10_b_t))
+                            .map_err(|error| SceneError::SectionModel {
+                                section: "[material.shift]",
+                                error,
                             })?;
                         let applied = ShiftApplied {
                             temperature,
                             log10_a_t,
+                            log10_b_t,
                         };
                         materials.push((
                             Box::new(shifted) as Box<dyn ViscoelasticModulus>,
@@ -148,21 +158,23 @@ impl SceneFile {
                             error,
                         })?;
             }
-            let log10_a_t = shift.map(|s| s.log10_a_t);
             let rung = match self.contact.size {
-                Some(ContactName::Exact) => ForwardRung::Exact(self.exact_body(
-                    material_section,
-                    base_dir,
-                    log10_a_t,
-                    note,
-                )?),
+                Some(ContactName::Exact) => {
+                    ForwardRung::Exact(self.exact_body(material_section, base_dir, shift, note)?)
+                }
                 Some(ContactName::LowSpeed) => ForwardRung::LowSpeed,
                 Some(ContactName::Auto) => ForwardRung::Auto {
                     accuracy: self.contact.accuracy.map_or(DEFAULT_ACCURACY, |r| r.0),
                     // auto may use the exact cylinder where a film is
                     // negligible, so the film does not rule it out here.
                     exact: self
-                        .exact_material_for(material_section, base_dir, log10_a_t, false, note)
+                        .exact_material_for(
+                            material_section,
+                            base_dir,
+                            shift.map(|s| (s.log10_a_t, s.log10_b_t)),
+                            false,
+                            note,
+                        )
                         .and_then(|prony| self.exact_body_with(&prony))
                         .map_err(|e| crate::chain(&e)),
                 },
@@ -177,15 +189,17 @@ impl SceneFile {
 impl SceneFile {
     /// The exact rolling body of `[contact] size = "exact"`: a cylinder or
     /// sphere on a half-space, the material a standard linear solid or a
-    /// Prony series (shifted by log10 a_T: τ_k → τ_k a_T).
+    /// Prony series (shifted by log10 a_T: τ_k → τ_k a_T, and scaled by
+    /// b_T: E1, H_k → b_T E1, b_T H_k).
     fn exact_body(
         &self,
         material: &MaterialSection,
         base_dir: &Path,
-        log10_a_t: Option<f64>,
+        shift: Option<ShiftApplied>,
         note: &dyn Fn(&str),
     ) -> Result<Box<dyn ExactRolling>, SceneError> {
-        let prony = self.exact_material_for(material, base_dir, log10_a_t, true, note)?;
+        let factors = shift.map(|s| (s.log10_a_t, s.log10_b_t));
+        let prony = self.exact_material_for(material, base_dir, factors, true, note)?;
         self.exact_body_with(&prony)
     }
 
@@ -226,16 +240,18 @@ impl SceneFile {
         if self.geometry.shape != ShapeName::Cylinder {
             return Err(SceneError::ExactNeedsCylinder.into());
         }
-        Ok(self.exact_material_for(material, base_dir, log10_a_t, true, note)?)
+        let factors = log10_a_t.map(|a| (a, 0.0));
+        Ok(self.exact_material_for(material, base_dir, factors, true, note)?)
     }
 
-    /// As [`Self::exact_material`]; `refuse_film`: a film rules the exact
-    /// solution out (it is for a half-space).
+    /// As [`Self::exact_material`], shifted by `factors` = (log10 a_T,
+    /// log10 b_T); `refuse_film`: a film rules the exact solution out (it
+    /// is for a half-space).
     fn exact_material_for(
         &self,
         material: &MaterialSection,
         base_dir: &Path,
-        log10_a_t: Option<f64>,
+        factors: Option<(f64, f64)>,
         refuse_film: bool,
         note: &dyn Fn(&str),
     ) -> Result<Prony, SceneError> {
@@ -245,11 +261,14 @@ impl SceneFile {
         let Some(prony) = material.prony(base_dir, note).section("[material]")? else {
             return Err(SceneError::ExactNeedsProny);
         };
-        Ok(match log10_a_t {
-            Some(l) => prony.shifted(l).map_err(|error| SceneError::SectionModel {
-                section: "[material.shift]",
-                error,
-            })?,
+        Ok(match factors {
+            Some((log10_a_t, log10_b_t)) => prony
+                .shifted(log10_a_t)
+                .and_then(|p| p.scaled(log10_b_t))
+                .map_err(|error| SceneError::SectionModel {
+                    section: "[material.shift]",
+                    error,
+                })?,
             None => prony,
         })
     }

@@ -10,7 +10,8 @@ use std::sync::Arc;
 
 use rollfit_fit::StartMaterial;
 use rollfit_model::{
-    HavriliakNegami, ModelError, Prony, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus,
+    HavriliakNegami, ModelError, Prony, StandardLinearSolid, TabulatedModulus, VerticalShift,
+    ViscoelasticModulus,
 };
 use serde::Deserialize;
 
@@ -18,6 +19,7 @@ use super::InSection;
 use super::setup::DEFAULT_POISSON;
 use super::shift::{ShiftRule, ShiftSection};
 use super::values::{Real, RealOrList, reals};
+use super::vertical;
 use crate::dma_master::{self, DmaMaster};
 use crate::error::{IoError, SceneError};
 use crate::table;
@@ -371,6 +373,22 @@ impl MaterialSection {
             .as_ref()
             .map(|s| s.rule().section("[material.shift]"))
             .transpose()
+    }
+
+    /// The vertical factors b_T of this material: `[material.shift]`'s, or
+    /// for "dma" with `vertical = true` the master curve's (None: b_T = 1).
+    pub(crate) fn vertical_rule(
+        &self,
+        base_dir: &Path,
+    ) -> Result<Option<VerticalShift>, SceneError> {
+        if self.model == MaterialKind::Dma {
+            return vertical::of_master(self.dma_master(base_dir)?.as_ref());
+        }
+        self.shift
+            .as_ref()
+            .map(|s| s.vertical_rule().section("[material.shift]"))
+            .transpose()
+            .map(Option::flatten)
     }
 
     /// An "sls" (one term), "prony" or "dma" material as a Prony series;

@@ -39,6 +39,7 @@ mod setup;
 mod shift;
 mod sweep;
 mod values;
+mod vertical;
 
 // What the commands use, at the paths they have always used.
 pub use fit::{ContactAnchor, FIT_KEYS, FitSection, ModulusAnchor};
@@ -51,6 +52,7 @@ pub use setup::{
 pub use shift::{ShiftKind, ShiftPoint, ShiftSection};
 pub use sweep::{DEFAULT_SWEEP_COUNT, MAX_SWEEP_COUNT, SweepSection, SweepTemperature, log_spaced};
 pub use values::{Real, RealOrList};
+pub use vertical::{VerticalLawName, VerticalPoint};
 
 use sweep::temperature_without_shift;
 

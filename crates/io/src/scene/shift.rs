@@ -6,6 +6,7 @@ use rollfit_model::modulus::{Arrhenius, FreeShift, Wlf, WlfArrhenius};
 use serde::Deserialize;
 
 use super::values::{Real, value_of};
+use super::vertical::{VerticalLawName, VerticalPoint};
 use crate::dma_master::DmaMaster;
 use crate::error::{Fault, SceneError};
 
@@ -47,6 +48,15 @@ pub struct ShiftSection {
     /// The junction of "wlf-arrhenius", °C.
     #[serde(rename = "T_g")]
     pub t_junction: Option<Real>,
+    /// Vertical factors as a table: log10 b_T at each listed temperature
+    /// (`super::vertical`; any shift model).
+    #[serde(rename = "log_bT")]
+    pub log_bt: Option<Vec<VerticalPoint>>,
+    /// Vertical factors by a law: "density", b_T = T ρ/(T_ref ρ_ref).
+    pub vertical: Option<VerticalLawName>,
+    /// The density law's volumetric expansion coefficient α_V, 1/K
+    /// (default 0: ρ constant).
+    pub expansion: Option<Real>,
 }
 
 /// One entry of a free shift.
@@ -206,8 +216,9 @@ impl ShiftSection {
         }
     }
 
-    /// Checks the section by building its shift.
+    /// Checks the section by building its shift and vertical factors.
     pub(super) fn check(&self) -> Result<(), SceneError> {
-        self.rule().map(|_| ())
+        self.rule()?;
+        self.vertical_rule().map(|_| ())
     }
 }

@@ -18,7 +18,8 @@
 //! - [`HavriliakNegami`]: E1 + (E0 − E1)/(1 + (iωτ)^α)^β, a broad transition
 //!   with power-law wings (Havriliak & Negami 1967); E″ ∝ ω^α at low ω.
 //! - [`TabulatedModulus`]: a measured master curve, interpolated in log–log.
-//! - [`Shifted`]: time–temperature superposition, E(ω, T) = E(ω a_T, T_ref).
+//! - [`Shifted`]: time–temperature superposition, E(ω, T) = b_T E(ω a_T, T_ref),
+//!   with the vertical factor b_T of [`VerticalShift`] (1 unless given).
 //!
 //! # References
 //! - B.N.J. Persson, "Rolling friction for hard cylinder and sphere on
@@ -34,6 +35,7 @@ mod prony;
 mod shift;
 mod sls;
 mod table;
+mod vertical;
 mod wlf_arrhenius;
 
 pub use havriliak_negami::HavriliakNegami;
@@ -41,6 +43,7 @@ pub use prony::Prony;
 pub use shift::{Arrhenius, FreeShift, GAS_CONSTANT, Shifted, Wlf, ZERO_CELSIUS};
 pub use sls::StandardLinearSolid;
 pub use table::TabulatedModulus;
+pub use vertical::{MAX_EXPANSION, VerticalShift};
 pub use wlf_arrhenius::WlfArrhenius;
 
 use num_complex::Complex64;

@@ -71,6 +71,19 @@ impl Prony {
         )
     }
 
+    /// The series times the vertical factor b = 10^`log10_b_t`
+    /// (`modulus::shift`): b E*(ω) is a Prony series again, with E1 and
+    /// every H_k multiplied by b. The exact rolling contact needs the
+    /// series itself, not a wrapper.
+    pub fn scaled(&self, log10_b_t: f64) -> Result<Prony, ModelError> {
+        let factor = 10f64.powf(log10_b_t);
+        Prony::new(
+            self.glassy_modulus * factor,
+            self.strengths.iter().map(|h| h * factor).collect(),
+            self.relaxation_times.clone(),
+        )
+    }
+
     /// The glassy modulus E1, Pa.
     pub fn glassy_modulus(&self) -> f64 {
         self.glassy_modulus
@@ -205,9 +218,18 @@ mod tests {
     #[test]
     fn shifted_series_equals_the_shift_wrapper() {
         let p = Prony::new(1e8, vec![5e7, 3e7, 1.5e7], vec![1e-4, 1e-2, 1.0]).unwrap();
-        for log_a in [-2.5, 0.0, 1.3] {
-            let series = p.shifted(log_a).unwrap();
-            let wrapper = super::super::Shifted::new(p.clone(), log_a).unwrap();
+        for (log_a, log_b) in [
+            (-2.5, 0.0),
+            (0.0, 0.0),
+            (1.3, 0.0),
+            (1.3, -0.07),
+            (-0.4, 0.2),
+        ] {
+            let series = p.shifted(log_a).unwrap().scaled(log_b).unwrap();
+            let wrapper = super::super::Shifted::new(p.clone(), log_a)
+                .unwrap()
+                .with_vertical(log_b)
+                .unwrap();
             for &w in &[1e-3, 0.3, 20.0, 4e3] {
                 let (a, b) = (series.modulus(w), wrapper.modulus(w));
                 assert!(

@@ -9,8 +9,20 @@
 //! Because μ(v) depends on the modulus only through E*(qv) (the dynamic
 //! contact size through |E*| as well, the static one through E(0), which a
 //! shift leaves alone), the friction curve moves the same way:
-//! μ(v, T) = μ_ref(v a_T). No vertical shift (the ρT/ρ_ref T_ref factor of
-//! Ferry) is applied.
+//! μ(v, T) = μ_ref(v a_T).
+//!
+//! With a vertical factor b_T (Ferry ch. 11: the modulus of the rubbery
+//! network is proportional to ρT, so the reduced modulus is
+//! E T_ref ρ_ref/(T ρ); laws and tables in [`super::VerticalShift`]),
+//!
+//! E*(ω, T) = b_T E*_ref(ω a_T).
+//!
+//! The friction curve then moves and changes: with ν fixed, Eqs. (11) and
+//! (17) see the modulus only through L = E″_eff/|E_eff|², which b_T divides,
+//! and the Hertz size, which depends on load/|E|; the prefactor is the
+//! load. So μ(v; b E, F) = μ(v; E, F/b): a stiffer solid rolls like the
+//! same solid under a lighter load (the same holds for the exact contact,
+//! whose pressure scales with the load and whose strain with p/E).
 //!
 //! Shift factors:
 //! - Williams–Landel–Ferry, [`Wlf`]:
@@ -39,13 +51,14 @@
 //!   above, listed every 10 K from 0 to 40 °C, it is within 0.035 decades
 //!   of WLF in between.
 //!
-//! [`Shifted`] wraps a reference modulus with one shift factor:
-//! - E*(ω) = E*_ref(ω a_T);
-//! - dE*/d ln ω = (dE*_ref/d ln ω)(ω a_T): a frequency scaling does not change
-//!   log slopes;
-//! - E(0) unchanged; lim E″/ω = a_T · lim E″_ref/ω;
+//! [`Shifted`] wraps a reference modulus with one shift factor a_T and a
+//! vertical factor b_T (1 unless [`Shifted::with_vertical`]):
+//! - E*(ω) = b_T E*_ref(ω a_T);
+//! - dE*/d ln ω = b_T (dE*_ref/d ln ω)(ω a_T): a frequency scaling does not
+//!   change log slopes;
+//! - E(0) = b_T E_ref(0); lim E″/ω = b_T a_T · lim E″_ref/ω;
 //! - structure range [ω_lo/a_T, ω_hi/a_T];
-//! - relaxation bound (sup |E*| of a positive spectrum) unchanged.
+//! - relaxation bound (sup |E*| of a positive spectrum) times b_T.
 //!
 //! # References
 //! - M.L. Williams, R.F. Landel, J.D. Ferry, "The temperature dependence of
@@ -174,6 +187,10 @@ impl Arrhenius {
 pub struct FreeShift {
     t_ref: f64,
     entries: Vec<(f64, f64)>,
+    /// What the list holds: log10 a_T, or log10 b_T for a table of
+    /// vertical factors ([`super::VerticalShift`]), which follows the same
+    /// rule; it names the quantity in messages.
+    factor: Factor,
     /// The entries and, unless listed, (T_ref, 0), sorted by temperature:
     /// the knots of the interpolation.
     knots: Vec<(f64, f64)>,
@@ -194,7 +211,17 @@ impl FreeShift {
     /// and an entry at T_ref, if present, must have log10 a_T = 0. Errors
     /// name the entry (counted from 0).
     pub fn new(t_ref: f64, entries: Vec<(f64, f64)>) -> Result<Self, ModelError> {
-        const NAME: &str = "free shift";
+        Self::listed(t_ref, entries, Factor::Horizontal)
+    }
+
+    /// [`Self::new`] for a list of `factor`.
+    pub(super) fn listed(
+        t_ref: f64,
+        entries: Vec<(f64, f64)>,
+        factor: Factor,
+    ) -> Result<Self, ModelError> {
+        let name = factor.list();
+        let quantity = factor.quantity();
         if !t_ref.is_finite() {
             return Err(ModelError::parameter(
                 "T_ref",
@@ -203,19 +230,19 @@ impl FreeShift {
             ));
         }
         if entries.is_empty() {
-            return Err(ModelError::table(NAME, "no temperatures listed"));
+            return Err(ModelError::table(name, "no temperatures listed"));
         }
         for (i, &(t, log_a)) in entries.iter().enumerate() {
             if !t.is_finite() {
                 return Err(ModelError::table(
-                    NAME,
+                    name,
                     format!("entry {i}: T = {t} is not a finite temperature"),
                 ));
             }
             if !log_a.is_finite() {
                 return Err(ModelError::table(
-                    NAME,
-                    format!("entry {i} (T = {t} °C): log10 a_T = {log_a} is not a finite number"),
+                    name,
+                    format!("entry {i} (T = {t} °C): {quantity} = {log_a} is not a finite number"),
                 ));
             }
             if let Some(j) = entries[..i]
@@ -223,7 +250,7 @@ impl FreeShift {
                 .position(|&(tj, _)| same_temperature(t, tj))
             {
                 return Err(ModelError::table(
-                    NAME,
+                    name,
                     format!(
                         "entry {i}: T = {t} °C is listed before as entry {j} (T = {} °C); \
                          each temperature may have only one shift",
@@ -233,9 +260,9 @@ impl FreeShift {
             }
             if same_temperature(t, t_ref) && log_a.abs() > Self::REFERENCE_TOLERANCE {
                 return Err(ModelError::table(
-                    NAME,
+                    name,
                     format!(
-                        "entry {i}: T = {t} °C is the reference temperature, so log10 a_T \
+                        "entry {i}: T = {t} °C is the reference temperature, so {quantity} \
                          must be 0, not {log_a}"
                     ),
                 ));
@@ -251,6 +278,7 @@ impl FreeShift {
         Ok(FreeShift {
             t_ref,
             entries,
+            factor,
             knots,
         })
     }
@@ -312,13 +340,49 @@ impl FreeShift {
                         }
                     })
                     .collect();
-                Err(ModelError::OutsideFreeShift {
-                    temperature: t,
-                    lowest: lo,
-                    highest: hi,
-                    listed: listed.join(", "),
+                let (temperature, lowest, highest, listed) = (t, lo, hi, listed.join(", "));
+                Err(match self.factor {
+                    Factor::Horizontal => ModelError::OutsideFreeShift {
+                        temperature,
+                        lowest,
+                        highest,
+                        listed,
+                    },
+                    Factor::Vertical => ModelError::OutsideVerticalTable {
+                        temperature,
+                        lowest,
+                        highest,
+                        listed,
+                    },
                 })
             }
+        }
+    }
+}
+
+/// The quantity a [`FreeShift`] lists.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Factor {
+    /// log10 a_T: a free shift.
+    Horizontal,
+    /// log10 b_T: a table of vertical factors.
+    Vertical,
+}
+
+impl Factor {
+    /// The list's name in messages.
+    fn list(self) -> &'static str {
+        match self {
+            Factor::Horizontal => "free shift",
+            Factor::Vertical => "vertical factors",
+        }
+    }
+
+    /// The listed quantity in messages.
+    fn quantity(self) -> &'static str {
+        match self {
+            Factor::Horizontal => "log10 a_T",
+            Factor::Vertical => "log10 b_T",
         }
     }
 }
@@ -328,38 +392,61 @@ fn same_temperature(a: f64, b: f64) -> bool {
     (a - b).abs() <= FreeShift::TEMPERATURE_TOLERANCE
 }
 
-/// E(ω, T) = E_ref(ω a_T): a modulus at reference temperature, shifted.
+/// E(ω, T) = b_T E_ref(ω a_T): a modulus at reference temperature, shifted.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shifted<M> {
     inner: M,
     log10_a_t: f64,
     shift_factor: f64,
+    log10_b_t: f64,
+    vertical_factor: f64,
+}
+
+/// 10^`log10`, refused unless `log10` is finite and the power a normal
+/// binary64 number (|log10| below about 307); `name` names the key.
+fn power_of_ten(name: &str, log10: f64) -> Result<f64, ModelError> {
+    let factor = 10f64.powf(log10);
+    if !log10.is_finite() {
+        return Err(ModelError::parameter(
+            name,
+            log10,
+            "must be a finite number",
+        ));
+    }
+    if !factor.is_normal() {
+        return Err(ModelError::parameter(
+            name,
+            log10,
+            &format!("must give a representable factor 10^{name} (|{name}| < 307)"),
+        ));
+    }
+    Ok(factor)
 }
 
 impl<M: ViscoelasticModulus> Shifted<M> {
-    /// Wraps `inner` (the modulus at T_ref) with shift factor 10^`log10_a_t`.
-    /// `log10_a_t` must be finite and 10^`log10_a_t` a normal binary64
-    /// number (|log10 a_T| below about 307).
+    /// Wraps `inner` (the modulus at T_ref) with shift factor 10^`log10_a_t`
+    /// and no vertical factor. `log10_a_t` must be finite and
+    /// 10^`log10_a_t` a normal binary64 number (|log10 a_T| below about
+    /// 307).
     pub fn new(inner: M, log10_a_t: f64) -> Result<Self, ModelError> {
-        let shift_factor = 10f64.powf(log10_a_t);
-        if !log10_a_t.is_finite() {
-            return Err(ModelError::parameter(
-                "log10_aT",
-                log10_a_t,
-                "must be a finite number",
-            ));
-        }
-        if !shift_factor.is_normal() {
-            return Err(ModelError::parameter(
-                "log10_aT",
-                log10_a_t,
-                "must give a representable shift factor 10^log10_aT (|log10_aT| < 307)",
-            ));
-        }
+        let shift_factor = power_of_ten("log10_aT", log10_a_t)?;
         Ok(Shifted {
             inner,
             log10_a_t,
             shift_factor,
+            log10_b_t: 0.0,
+            vertical_factor: 1.0,
+        })
+    }
+
+    /// The same shift with the vertical factor b_T = 10^`log10_b_t`
+    /// (finite, b_T a normal binary64 number): E*(ω) = b_T E*_ref(ω a_T).
+    pub fn with_vertical(self, log10_b_t: f64) -> Result<Self, ModelError> {
+        let vertical_factor = power_of_ten("log10_bT", log10_b_t)?;
+        Ok(Shifted {
+            log10_b_t,
+            vertical_factor,
+            ..self
         })
     }
 
@@ -377,20 +464,31 @@ impl<M: ViscoelasticModulus> Shifted<M> {
     pub fn shift_factor(&self) -> f64 {
         self.shift_factor
     }
+
+    /// log10 b_T (0 without a vertical factor).
+    pub fn log10_vertical(&self) -> f64 {
+        self.log10_b_t
+    }
+
+    /// The vertical factor b_T.
+    pub fn vertical_factor(&self) -> f64 {
+        self.vertical_factor
+    }
 }
 
 impl<M: ViscoelasticModulus> ViscoelasticModulus for Shifted<M> {
     fn modulus(&self, omega: f64) -> Complex64 {
-        self.inner.modulus(omega * self.shift_factor)
+        self.inner.modulus(omega * self.shift_factor) * self.vertical_factor
     }
     fn modulus_and_log_slope(&self, omega: f64) -> (Complex64, Complex64) {
-        self.inner.modulus_and_log_slope(omega * self.shift_factor)
+        let (e, slope) = self.inner.modulus_and_log_slope(omega * self.shift_factor);
+        (e * self.vertical_factor, slope * self.vertical_factor)
     }
     fn static_modulus(&self) -> f64 {
-        self.inner.static_modulus()
+        self.inner.static_modulus() * self.vertical_factor
     }
     fn loss_slope_at_zero(&self) -> f64 {
-        self.inner.loss_slope_at_zero() * self.shift_factor
+        self.inner.loss_slope_at_zero() * self.shift_factor * self.vertical_factor
     }
     fn loss_exponent_at_zero(&self) -> f64 {
         self.inner.loss_exponent_at_zero()
@@ -401,8 +499,11 @@ impl<M: ViscoelasticModulus> ViscoelasticModulus for Shifted<M> {
     }
     fn relaxation_bound(&self) -> Option<f64> {
         // Rescaling ω keeps sup |E*|, and L(ω) = L_ref(ω a_T) ≤ L′_ref(0) a_T ω
-        // = L′(0) ω: both parts of the bound carry over.
-        self.inner.relaxation_bound()
+        // = L′(0) ω: both parts of the bound carry over. A vertical factor
+        // multiplies sup |E*| by b_T and divides L and L′(0) alike.
+        self.inner
+            .relaxation_bound()
+            .map(|bound| bound * self.vertical_factor)
     }
     fn knots(&self) -> Vec<f64> {
         self.inner
@@ -417,6 +518,8 @@ impl<M: ViscoelasticModulus> ViscoelasticModulus for Shifted<M> {
                 inner,
                 log10_a_t: self.log10_a_t,
                 shift_factor: self.shift_factor,
+                log10_b_t: self.log10_b_t,
+                vertical_factor: self.vertical_factor,
             }) as Box<dyn ViscoelasticModulus>
         })
     }
@@ -603,17 +706,24 @@ mod tests {
         );
     }
 
-    /// Every trait method of `Shifted` against the unshifted modulus.
-    fn check_shifted<M: ViscoelasticModulus + Clone>(reference: M, log10_a_t: f64) {
+    /// Every trait method of `Shifted` against the unshifted modulus, with
+    /// the vertical factor 10^`log10_b_t`.
+    fn check_shifted<M: ViscoelasticModulus + Clone>(reference: M, log10_a_t: f64, log10_b_t: f64) {
         let a_t = 10f64.powf(log10_a_t);
-        let s = Shifted::new(reference.clone(), log10_a_t).unwrap();
+        let b_t = 10f64.powf(log10_b_t);
+        let s = Shifted::new(reference.clone(), log10_a_t)
+            .unwrap()
+            .with_vertical(log10_b_t)
+            .unwrap();
         assert_eq!(s.shift_factor(), a_t);
         assert_eq!(s.log10_shift(), log10_a_t);
+        assert_eq!(s.vertical_factor(), b_t);
+        assert_eq!(s.log10_vertical(), log10_b_t);
         for &w in &[0.0, 1e-5, 3e-2, 1.0, 7.0, 2e3, 1e7] {
-            assert_eq!(s.modulus(w), reference.modulus(w * a_t));
+            assert_eq!(s.modulus(w), reference.modulus(w * a_t) * b_t);
             let (e, slope) = s.modulus_and_log_slope(w);
             let (e_ref, slope_ref) = reference.modulus_and_log_slope(w * a_t);
-            assert_eq!((e, slope), (e_ref, slope_ref));
+            assert_eq!((e, slope), (e_ref * b_t, slope_ref * b_t));
             if w > 0.0 {
                 // The log slope of the shifted curve, by finite differences.
                 let h = 1e-6f64;
@@ -621,15 +731,25 @@ mod tests {
                 assert!((fd - slope).norm() < 1e-6 * e.norm(), "{w}");
             }
         }
-        assert_eq!(s.static_modulus(), reference.static_modulus());
+        assert_eq!(s.static_modulus(), reference.static_modulus() * b_t);
         let slope0 = s.loss_slope_at_zero();
-        assert!((slope0 / (a_t * reference.loss_slope_at_zero()) - 1.0).abs() < 1e-15);
+        assert!((slope0 / (b_t * a_t * reference.loss_slope_at_zero()) - 1.0).abs() < 1e-15);
         // lim E″/ω of the shifted curve, directly.
         let w = 1e-9 * s.structure_range().0;
         assert!((s.modulus(w).im / w / slope0 - 1.0).abs() < 1e-6);
         let (lo, hi) = reference.structure_range();
         assert_eq!(s.structure_range(), (lo / a_t, hi / a_t));
-        assert_eq!(s.relaxation_bound(), reference.relaxation_bound());
+        assert_eq!(
+            s.relaxation_bound(),
+            reference.relaxation_bound().map(|e1| e1 * b_t)
+        );
+        // The bound's promise, sup |E*| ≤ bound, on the scaled curve.
+        if let Some(bound) = s.relaxation_bound() {
+            for i in 0..=80 {
+                let w = 10f64.powf(-8.0 + 0.2 * f64::from(i));
+                assert!(s.modulus(w).norm() <= bound * (1.0 + 1e-12), "{w}");
+            }
+        }
     }
 
     #[test]
@@ -646,10 +766,17 @@ mod tests {
             e.iter().map(|z| z.im).collect(),
         )
         .unwrap();
-        for log_a in [-2.5, 0.0, 0.967, 4.0] {
-            check_shifted(sls.clone(), log_a);
-            check_shifted(prony.clone(), log_a);
-            check_shifted(table.clone(), log_a);
+        for (log_a, log_b) in [
+            (-2.5, 0.0),
+            (0.0, 0.0),
+            (0.967, 0.0),
+            (4.0, 0.0),
+            (0.967, -0.05),
+            (-2.5, 0.3),
+        ] {
+            check_shifted(sls.clone(), log_a, log_b);
+            check_shifted(prony.clone(), log_a, log_b);
+            check_shifted(table.clone(), log_a, log_b);
         }
         // Zero shift is the identity.
         let s = Shifted::new(sls.clone(), 0.0).unwrap();
@@ -666,6 +793,12 @@ mod tests {
                 Err(ModelError::InvalidParameter { ref name, .. }) if name == "log10_aT"
             ));
         }
-        assert!(Shifted::new(sls, 300.0).is_ok());
+        assert!(Shifted::new(sls.clone(), 300.0).is_ok());
+        for bad in [f64::NAN, f64::INFINITY, 400.0, -400.0] {
+            assert!(matches!(
+                Shifted::new(sls.clone(), 0.0).unwrap().with_vertical(bad),
+                Err(ModelError::InvalidParameter { ref name, .. }) if name == "log10_bT"
+            ));
+        }
     }
 }

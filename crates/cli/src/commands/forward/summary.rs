@@ -88,26 +88,36 @@ fn summary_line(setup: &ForwardSetup, mu: &[Vec<f64>]) -> String {
     let speeds = &setup.speeds;
     let mut line = format!("{shape} R = {} m, load {} {load_unit}", g.radius, g.load);
     let shifts: Vec<_> = setup.blocks.iter().filter_map(|b| b.shift).collect();
+    // The vertical factors, where the scene has any (b_T = 1 says nothing).
+    let vertical = shifts.iter().any(|s| s.log10_b_t != 0.0);
+    let list = |f: &dyn Fn(&scene_file::ShiftApplied) -> String| {
+        shifts.iter().map(f).collect::<Vec<_>>().join(", ")
+    };
+    let factors = || {
+        // + 0.0: WLF gives −0 at T_ref, which would print as "-0.0000".
+        let mut text = format!(
+            "log10 a_T = {}",
+            list(&|s| format!("{:.4}", s.log10_a_t + 0.0))
+        );
+        if vertical {
+            text += &format!(
+                "; log10 b_T = {}",
+                list(&|s| format!("{:.4}", s.log10_b_t + 0.0))
+            );
+        }
+        text
+    };
     match shifts.as_slice() {
         [] => {}
         [shift] => {
-            line += &format!(
-                ", T = {} °C (log10 a_T = {:.4})",
-                shift.temperature,
-                // + 0.0: WLF gives −0 at T_ref, which would print as "-0.0000".
-                shift.log10_a_t + 0.0
-            );
+            line += &format!(", T = {} °C ({})", shift.temperature, factors());
         }
         many => {
-            let list = |f: &dyn Fn(&scene_file::ShiftApplied) -> String| {
-                many.iter().map(f).collect::<Vec<_>>().join(", ")
-            };
             line += &format!(
-                ", temperature set of {} temperatures T = {} °C (log10 a_T = {}), {} speeds \
-                 each, {} rows",
+                ", temperature set of {} temperatures T = {} °C ({}), {} speeds each, {} rows",
                 many.len(),
                 list(&|s| s.temperature.to_string()),
-                list(&|s| format!("{:.4}", s.log10_a_t + 0.0)),
+                factors(),
                 speeds.len(),
                 many.len() * speeds.len()
             );

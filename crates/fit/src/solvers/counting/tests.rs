@@ -30,6 +30,7 @@ fn objective<'a>(setup: &'a crate::params::RollingSetup, data: &'a Measurements)
         lambda: 0.3,
         e1_max: 1e10,
         tolerance: 1e-6,
+        vertical: None,
     }
 }
 
