@@ -27,8 +27,9 @@ pub struct IsothermShift {
     /// log10 a_T applied: the law's value (the measured one for "free").
     pub log_shift: f64,
     /// 1σ of the applied value about T_ref, decades: the law's from its
-    /// constants' covariance, the measurement's for "free" (infinite where
-    /// a free shift is undetermined).
+    /// constants' covariance, the measurement's for "free"; infinite where
+    /// the isotherm is undetermined (its value is then the law's
+    /// assumption, which the data cannot test).
     pub log_shift_sigma: f64,
     /// log10 b_T applied (0 without vertical shifts).
     pub log_vertical: f64,
@@ -107,10 +108,13 @@ pub fn shift_factors(
     let found = horizontal::pairs(&sorted, settings.vertical)?;
     let network = network::solve(&found.pairs, &temps, t_ref).ok_or_else(|| {
         FitError::InsufficientData(format!(
-            "no shift between the isotherms ({} °C) is determined by the data: E′ and tan δ are \
-             flat across them (a glassy or rubbery plateau), so any shift fits about equally \
-             well; measure isotherms through the transition, or give the shifts in the \
-             scene's [material.shift]",
+            "no shift between the isotherms ({} °C) is determined by the data: either E′ and \
+             tan δ are flat across them (a glassy or rubbery plateau), so any shift fits about \
+             equally well, or neighbouring isotherms overlap too little (their best overlap \
+             lies at the edge of the frequency range the overlap rule allows: a fifth of an \
+             isotherm's points, and four, inside its neighbour's range); measure isotherms \
+             through the transition, closer in temperature or over more frequencies, or give \
+             the shifts in the scene's [material.shift]",
             list_temperatures(&temps)
         ))
     })?;
@@ -304,7 +308,11 @@ fn place(
     };
     let applied: Vec<(f64, f64)> = (0..temps.len())
         .map(|i| match (&law_values, measured[i]) {
-            (Some(values), _) => (values[i], factors.law_sigma_at(temps[i])),
+            // The law's σ holds where the law does; at an undetermined
+            // isotherm the data cannot tell, so its value is the law's
+            // assumption and carries no σ.
+            (Some(values), Some(_)) => (values[i], factors.law_sigma_at(temps[i])),
+            (Some(values), None) => (values[i], f64::INFINITY),
             (None, Some(m)) => m,
             (None, None) => {
                 let k = nearest_determined(i);
