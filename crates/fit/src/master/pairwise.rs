@@ -42,7 +42,7 @@
 //! - J. Dealy, D. Plazek, "Time–temperature superposition — a users
 //!   guide", Rheology Bulletin 78(2) (2009) 16–31.
 
-use crate::shift::overlap::{Curve, differences};
+use crate::shift::overlap::{Curve, differences, golden_section};
 
 /// What the data say about the shift of a pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -285,21 +285,6 @@ fn best_shift_in(cost: &dyn Fn(f64) -> f64, s_min: f64, s_max: f64) -> Option<(f
         best_s
     };
     Some((s0, s_min, s_max))
-}
-
-/// The minimum of a unimodal `f` on [a, b] by golden section.
-fn golden_section(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, iterations: usize) -> f64 {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..iterations {
-        let c = b - g * (b - a);
-        let d = a + g * (b - a);
-        if f(c) < f(d) {
-            b = d;
-        } else {
-            a = c;
-        }
-    }
-    0.5 * (a + b)
 }
 
 /// The two-sample delete-one jackknife of the shift: each point of the

@@ -119,20 +119,29 @@ pub(crate) fn joint_relative_shift(
     if !best.0.is_finite() {
         return None;
     }
-    // Golden section on [s − step, s + step].
-    let (mut a, mut b) = (best.1 - STEP, best.1 + STEP);
+    let s = golden_section(&cost, best.1 - STEP, best.1 + STEP, 40);
+    Some(if cost(s) <= best.0 { s } else { best.1 })
+}
+
+/// The minimum of a unimodal `f` on [a, b] by golden section in
+/// `iterations` steps (each shrinks the bracket by 0.618).
+pub(crate) fn golden_section(
+    f: &dyn Fn(f64) -> f64,
+    mut a: f64,
+    mut b: f64,
+    iterations: usize,
+) -> f64 {
     let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..40 {
+    for _ in 0..iterations {
         let c = b - g * (b - a);
         let d = a + g * (b - a);
-        if cost(c) < cost(d) {
+        if f(c) < f(d) {
             b = d;
         } else {
             a = c;
         }
     }
-    let s = 0.5 * (a + b);
-    Some(if cost(s) <= best.0 { s } else { best.1 })
+    0.5 * (a + b)
 }
 
 /// log10 a_T of curves at ascending temperatures, relative to the first,
