@@ -98,7 +98,7 @@ pub use params::{
 };
 pub use quality::FitQuality;
 pub use report::{
-    CrossCheckRow, FitReport, LawCandidate, LogShift, ModulusPoint, PhysicsRecord, ShiftChoice,
-    ShiftCrossCheck, ShiftRecord,
+    CrossCheckRow, FitReport, LawCandidate, LogShift, ModulusPoint, PhysicsRecord, ScaleRecord,
+    ShiftChoice, ShiftCrossCheck, ShiftRecord,
 };
 pub use settings::{FitSettings, SettingValue};

@@ -57,7 +57,9 @@ pub struct RunsTest {
 /// Goodness of fit, as written to fit.json (`fit_quality`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FitQuality {
-    /// "good" or "poor".
+    /// "good", "poor" (a test failed: the model does not describe the
+    /// data) or "invalid" (at the fitted modulus the model's own
+    /// assumptions fail at a measured speed: see [`crate::sanity`]).
     pub verdict: &'static str,
     /// "measured" (a sigma column) or "estimated" (from the residuals).
     pub noise_source: &'static str,
@@ -81,6 +83,11 @@ impl FitQuality {
     /// True when a test marked the fit poor.
     pub fn is_poor(&self) -> bool {
         self.verdict == "poor"
+    }
+
+    /// True when the fitted modulus breaks the model's assumptions.
+    pub fn is_invalid(&self) -> bool {
+        self.verdict == "invalid"
     }
 }
 

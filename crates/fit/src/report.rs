@@ -82,6 +82,47 @@ pub struct AnchorRecord {
     pub modulus: f64,
 }
 
+/// How well the data determine the modulus scale of a fit without an
+/// anchor (fit.json `scale`; absent when an anchor fixes the scale). From
+/// the profile of the data misfit over E0 with the shape refitted at each
+/// E0 ([`crate::driver`]'s `profile`), within the range of E0 where the
+/// model's assumptions hold.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ScaleRecord {
+    /// "data" when the 2σ interval lies within a factor
+    /// [`crate::driver::SCALE_FACTOR_LIMIT`] of E0 on both sides, else
+    /// "undetermined" (the fit is refused unless the user allows an
+    /// unanchored result; `--allow-unanchored`).
+    pub status: &'static str,
+    /// E0 of the fit, Pa.
+    #[serde(rename = "E0")]
+    pub static_modulus: f64,
+    /// Lower end of the 2σ interval of E0 (profile Δχ² ≤ 4), Pa; None when
+    /// the data fit as well down to the lowest E0 profiled.
+    #[serde(rename = "E0_low")]
+    pub low: Option<f64>,
+    /// Upper end of the 2σ interval, Pa; None when open upward.
+    #[serde(rename = "E0_high")]
+    pub high: Option<f64>,
+    /// The range of E0 profiled, Pa: from the smallest E0 at which the
+    /// rubbery Hertz contact stays within R/5 (and E0 ≥ 10 kPa) up to
+    /// E1_max.
+    #[serde(rename = "E0_range")]
+    pub range: [f64; 2],
+    /// (E0 in Pa, Δχ² against the profile's best) of every profiled E0.
+    pub profile: Vec<[f64; 2]>,
+    /// What the profile says, in words (with the anchors that would fix an
+    /// undetermined scale).
+    pub reason: String,
+}
+
+impl ScaleRecord {
+    /// Whether the data leave the scale undetermined.
+    pub fn is_undetermined(&self) -> bool {
+        self.status == "undetermined"
+    }
+}
+
 /// One solver run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RunRecord {
@@ -241,6 +282,9 @@ pub struct FitReport {
     /// one noise unit of the fit (else the weakest); those within widen the
     /// bands.
     pub scale_profile: Vec<[f64; 3]>,
+    /// Without an anchor: how well the data determine the modulus scale.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scale: Option<ScaleRecord>,
     /// For a temperature set: the shifts estimated again by fitting each
     /// temperature alone and overlapping the tan δ curves.
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -201,6 +201,7 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         runs: fit.runs,
         history: fit.history,
         scale_profile,
+        scale: None,
         shift_cross_check,
         condensed,
         physics: None,

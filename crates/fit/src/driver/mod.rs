@@ -58,6 +58,15 @@ use law::choose_law;
 use profile::profile_scale;
 use terms::{AUTO_DENSITIES, TermChoice, grid, terms_record};
 
+/// How far (a factor, either side of the fitted E0) the 2σ interval of an
+/// unanchored fit's E0 may reach before the scale counts as undetermined
+/// ([`crate::report::ScaleRecord`]). A factor 3 in E0 moves the Hertz
+/// contact radius by 3^{1/3} ≈ 1.44 for a ball (√3 for a cylinder) and
+/// with it every contact frequency v/a by 0.16–0.24 decade, about the
+/// width over which tan δ is resolved from 15 speeds; beyond it the master
+/// curve's place on the frequency axis is as uncertain as its shape.
+pub const SCALE_FACTOR_LIMIT: f64 = 3.0;
+
 /// Fits `data` under `params`: with the approximate physics (Eq. (11) or
 /// (17)) directly, with the exact physics by defect correction around such
 /// fits ([`crate::exact_physics`]).
