@@ -277,6 +277,10 @@ pub struct ValidFitParams {
     /// window to what the data determine (off for the internal refits of a
     /// scale profile, which need neither).
     pub(crate) bands: bool,
+    /// Whether a fit at a fixed λ may stop at the λ path's looser
+    /// tolerance (the steps of a scale profile, which compare misfits to a
+    /// tenth of a noise unit, not to the last digit).
+    pub(crate) coarse: bool,
     /// The largest λ of the λ path (None: the path's own top): a temperature
     /// set's joint fit starts where its shifts are determined.
     pub(crate) path_top: Option<f64>,
@@ -365,6 +369,7 @@ impl FitParams {
             physics: self.physics,
             setup,
             bands: true,
+            coarse: false,
             path_top: None,
             cancel: Cancel::default(),
         })

@@ -85,6 +85,12 @@ impl FitQuality {
         self.verdict == "poor"
     }
 
+    /// True for the verdict "good": the tests pass and the assumptions
+    /// hold.
+    pub fn is_good(&self) -> bool {
+        self.verdict == "good"
+    }
+
     /// True when the fitted modulus breaks the model's assumptions.
     pub fn is_invalid(&self) -> bool {
         self.verdict == "invalid"

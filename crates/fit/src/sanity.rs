@@ -133,6 +133,11 @@ pub struct Warning {
     pub key: Option<&'static str>,
     /// The explanation, one paragraph, naming the key.
     pub message: String,
+    /// The model's assumption a material breaks (checks 1, 2 and 4: "small
+    /// contact", "small strain", "rubber modulus"); a fit whose material
+    /// breaks one is judged "invalid", not merely warned about.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub assumption: Option<&'static str>,
 }
 
 impl fmt::Display for Warning {
@@ -164,6 +169,7 @@ pub fn input_warnings(
     if let Some(top) = fast.iter().copied().reduce(f64::max) {
         out.push(Warning {
             key: None,
+            assumption: None,
             message: format!(
                 "{} of {} speeds are above {} m/s (up to {} m/s): the theory is isothermal, \
                  but at such speeds frictional heating of the contact (a few kelvin per pass, \
@@ -181,6 +187,7 @@ pub fn input_warnings(
     {
         out.push(Warning {
             key: Some("mu"),
+            assumption: None,
             message: format!(
                 "the measured μ reaches {} at v = {} m/s (above {} at {} of {} points): rolling \
                  friction of a hard {} on rubber is normally ≤ 0.1, and since the pressure \
@@ -229,17 +236,20 @@ pub fn material_warnings(
                 ContactSize::Static => format!("with E(0) = {} Pa", sig(large.modulus)),
             };
             let (key, advice) = blame(setup, static_modulus, fitted);
-            out.push(warning(
-                key,
-                format!(
-                    "the Hertz contact {size} {symbol} = {} m at v = {} m/s ({at}) is larger \
+            out.push(broken(
+                "small contact",
+                warning(
+                    key,
+                    format!(
+                        "the Hertz contact {size} {symbol} = {} m at v = {} m/s ({at}) is larger \
                      than R/3 = {} m (R = {} m){}: the theory assumes a contact small against \
                      the body (Hertz pressure on a half-space), so μ there is unreliable; {advice}",
-                    sig(large.size),
-                    num(large.speed),
-                    sig(g.radius * MAX_CONTACT_RATIO),
-                    num(g.radius),
-                    of_speeds(large.count, speeds.len()),
+                        sig(large.size),
+                        num(large.speed),
+                        sig(g.radius * MAX_CONTACT_RATIO),
+                        num(g.radius),
+                        of_speeds(large.count, speeds.len()),
+                    ),
                 ),
             ));
         }
@@ -247,49 +257,24 @@ pub fn material_warnings(
         let ln_p = ln_mean_pressure(setup, ln_r0);
         if ln_p > static_modulus.ln() {
             let (key, advice) = blame(setup, static_modulus, fitted);
-            out.push(warning(
-                key,
-                format!(
-                    "the mean contact pressure p_a = {} Pa of the static Hertz contact exceeds \
+            out.push(broken(
+                "small strain",
+                warning(
+                    key,
+                    format!(
+                        "the mean contact pressure p_a = {} Pa of the static Hertz contact exceeds \
                      the {origin} static modulus E0 = {} Pa: strains of order p_a/E0 > 1 are \
                      not small, and linear viscoelasticity, on which the theory rests, fails; \
                      {advice}",
-                    sig(ln_p.exp()),
-                    sig(static_modulus)
+                        sig(ln_p.exp()),
+                        sig(static_modulus)
+                    ),
                 ),
             ));
         }
     }
     if e0_ok && static_modulus < MIN_RUBBER_MODULUS {
-        let (key, advice) = match (implausible_radius(setup), implausible_load(setup), fitted) {
-            (Some(input), _, _) | (None, Some(input), _) => input,
-            (None, None, true) => (
-                "fit.E0",
-                "check the units of geometry.radius (m) and geometry.load (N for a sphere, \
-                 N/m for a cylinder), and anchor the modulus scale in [fit] (E0, E_at or \
-                 contact_radius)"
-                    .to_string(),
-            ),
-            (None, None, false) => (
-                "material",
-                "check the unit of the modulus in [material] (Pa, not MPa)".to_string(),
-            ),
-        };
-        out.push(warning(
-            key,
-            format!(
-                "the {origin} static modulus E0 = {} Pa is below any rubber's (the softest \
-                 elastomers start near {} Pa, ordinary rubbers are 1e6–1e7 Pa){}; {advice}",
-                sig(static_modulus),
-                num(MIN_RUBBER_MODULUS),
-                if fitted {
-                    ": the fit has compensated for a wrong input, or the weakly determined \
-                     modulus scale has drifted"
-                } else {
-                    ""
-                }
-            ),
-        ));
+        out.push(soft_rubber(setup, static_modulus, fitted));
     }
     if glassy_modulus > MAX_GLASSY_MODULUS {
         let (key, advice) = match (implausible_radius(setup), implausible_load(setup), fitted) {
@@ -316,6 +301,43 @@ pub fn material_warnings(
         ));
     }
     out
+}
+
+/// Check 4's lower end: E0 (Pa, `fitted` or given) below any rubber's.
+fn soft_rubber(setup: &RollingSetup, static_modulus: f64, fitted: bool) -> Warning {
+    let origin = if fitted { "fitted" } else { "given" };
+    let (key, advice) = match (implausible_radius(setup), implausible_load(setup), fitted) {
+        (Some(input), _, _) | (None, Some(input), _) => input,
+        (None, None, true) => (
+            "fit.E0",
+            "check the units of geometry.radius (m) and geometry.load (N for a sphere, \
+             N/m for a cylinder), and anchor the modulus scale in [fit] (E0, E_at or \
+             contact_radius)"
+                .to_string(),
+        ),
+        (None, None, false) => (
+            "material",
+            "check the unit of the modulus in [material] (Pa, not MPa)".to_string(),
+        ),
+    };
+    broken(
+        "rubber modulus",
+        warning(
+            key,
+            format!(
+                "the {origin} static modulus E0 = {} Pa is below any rubber's (the softest \
+             elastomers start near {} Pa, ordinary rubbers are 1e6–1e7 Pa){}; {advice}",
+                sig(static_modulus),
+                num(MIN_RUBBER_MODULUS),
+                if fitted {
+                    ": the fit has compensated for a wrong input, or the weakly determined \
+                 modulus scale has drifted"
+                } else {
+                    ""
+                }
+            ),
+        ),
+    )
 }
 
 /// Check 3 for friction coefficients the model predicted (`mu`, one per
@@ -355,6 +377,15 @@ fn warning(key: &'static str, message: String) -> Warning {
     Warning {
         key: Some(key),
         message,
+        assumption: None,
+    }
+}
+
+/// A warning that the material breaks the model's `assumption`.
+fn broken(assumption: &'static str, w: Warning) -> Warning {
+    Warning {
+        assumption: Some(assumption),
+        ..w
     }
 }
 

@@ -219,47 +219,45 @@ fn prony_data_are_fitted_back_to_the_noise_floor() {
     eprintln!("L-BFGS stopped short in {lbfgs_stalls} of 5 seeds");
 }
 
-/// Without an anchor the fit runs, warns that the modulus scale is weakly
-/// determined, and its 1σ band on |E| says so honestly: the truth lies
-/// inside the band over most of the window, for each of 6 seeds. (The
-/// warning is also checked end to end in tests/fit_cli.rs.) Measured: the fit
-/// itself is 3–5 times too soft at the window's centre, and the band, widened
-/// by the scale profile, covers the truth over 64–100 % of the window.
+/// Without an anchor (issue 32) the fit measures how well the data fix the
+/// scale: for each of 6 seeds of the bundled example (41 speeds, 1 % noise,
+/// σ measured) the 2σ interval of its scale profile contains the true E0,
+/// the fit's E0 lies inside its own interval, the warnings name the
+/// anchors, and the 1σ band of |E|, widened by the profile, covers the truth
+/// over most of the probed window.
 #[test]
-fn unanchored_fit_warns_and_its_band_covers_the_truth() {
+fn unanchored_fit_reports_a_scale_interval_that_holds_the_truth() {
     let truth = hn_rubber();
     let mut total = 0.0;
     for seed in 0..6 {
         let params = FitParams::default().check(setup()).unwrap();
         let report = fit(&synthetic(hn_rubber(), 0.01, seed), &params).unwrap();
+        let scale = report
+            .scale
+            .as_ref()
+            .expect("an unanchored fit has a scale record");
         assert!(
             report
                 .warnings
                 .iter()
-                .any(|w| w.contains("weakly determined")),
+                .any(|w| w.contains("no scale anchor") && w.contains("contact_radius")),
             "{:?}",
             report.warnings
         );
-        let lo = report.window.omega_min * 10f64.powf(0.5);
-        let hi = report.window.omega_max / 10f64.powf(0.5);
-        let inside: Vec<bool> = report
+        let e0 = report.model.static_modulus;
+        let inside = |x: f64| scale.low.is_none_or(|l| x >= l) && scale.high.is_none_or(|h| x <= h);
+        assert!(inside(e0), "seed {seed}: E0 {e0} outside {scale:?}");
+        assert!(inside(2e6), "seed {seed}: the truth outside {scale:?}");
+        let covered = report
             .curve
             .iter()
-            .filter(|p| p.omega >= lo && p.omega <= hi)
-            .map(|p| (p.magnitude - truth.modulus(p.omega).norm()).abs() <= p.magnitude_sigma)
-            .collect();
-        let covered = inside.iter().filter(|c| **c).count() as f64 / inside.len() as f64;
-        let (t, e) = errors(&report, &truth);
+            .filter(|p| (p.magnitude - truth.modulus(p.omega).norm()).abs() <= p.magnitude_sigma)
+            .count() as f64
+            / report.curve.len() as f64;
         eprintln!(
-            "seed {seed}: |E| inside 1σ over {covered:.2} of the window; tan δ {t:.3}, \
-             |E| {e:.3}; E0 {:.3e}, E1 {:.3e}",
-            report.model.static_modulus, report.model.glassy_modulus
+            "seed {seed}: {} interval {:?} … {:?}, E0 {e0:.3e}; |E| inside 1σ over {covered:.2}",
+            scale.status, scale.low, scale.high
         );
-        eprintln!(
-            "   V {:.2} profile {:?}",
-            report.objective, report.scale_profile
-        );
-        assert!(covered >= 0.5, "seed {seed}: covered {covered}");
         total += covered;
     }
     assert!(total / 6.0 >= 0.8, "mean coverage {}", total / 6.0);

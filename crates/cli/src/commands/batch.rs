@@ -86,6 +86,11 @@ pub struct Args {
     /// their data (status "poor"; a kept, skipped result counts too).
     #[arg(long)]
     pub allow_poor_fit: bool,
+    /// Exit with status 0 even when some unanchored fits leave the modulus
+    /// scale undetermined (fit.json's "scale"; their results are kept,
+    /// marked).
+    #[arg(long)]
+    pub allow_unanchored: bool,
     /// Run only shard i of n (0 ≤ i < n): the entries whose position in the
     /// manifest, counting from 0, is i modulo n. The summary is then
     /// DIR/summary-<i>-of-<n>.csv.
@@ -194,8 +199,12 @@ struct EntryResult {
     omega_max: Option<f64>,
     wall_time_s: Option<f64>,
     converged: Option<bool>,
-    /// The fit_quality verdict is "poor" (also of a kept result).
+    /// The fit_quality verdict is "poor" or "invalid" (also of a kept
+    /// result).
     poor_fit: bool,
+    /// The data leave the modulus scale undetermined (also of a kept
+    /// result).
+    undetermined_scale: bool,
     wlf: Option<(f64, f64)>,
     message: String,
 }
@@ -212,6 +221,7 @@ impl EntryResult {
             wall_time_s: None,
             converged: None,
             poor_fit: false,
+            undetermined_scale: false,
             wlf: None,
             message,
         }
@@ -369,6 +379,15 @@ fn verdict(args: &Args, results: &[EntryResult], summary: &Path) -> Result<()> {
     let failed = names(&|r| r.status == Status::Failed);
     let unconverged = names(&|r| r.unconverged());
     let poor = names(&|r| r.poor());
+    let unanchored = names(&|r| r.undetermined_scale && !r.unconverged());
+    if !unanchored.is_empty() && args.allow_unanchored {
+        eprintln!(
+            "warning: {} fit(s) leave the modulus scale undetermined ({}); accepted because of \
+             --allow-unanchored",
+            unanchored.len(),
+            unanchored.join(", ")
+        );
+    }
     if !unconverged.is_empty() && args.allow_unconverged {
         eprintln!(
             "warning: {} fit(s) did not converge ({}); accepted because of --allow-unconverged",
@@ -408,6 +427,16 @@ fn verdict(args: &Args, results: &[EntryResult], summary: &Path) -> Result<()> {
              message column; give --allow-poor-fit to accept them)",
             poor.len(),
             poor.join(", ")
+        ));
+    }
+    if !unanchored.is_empty() && !args.allow_unanchored {
+        problems.push(format!(
+            "{} fit(s) leave the modulus scale undetermined ({}); their results are kept, \
+             marked \"scale\": {{\"status\": \"undetermined\"}} (anchor the scale in their \
+             scenes' [fit] with E0, E_at or contact_radius, or give --allow-unanchored to accept \
+             them)",
+            unanchored.len(),
+            unanchored.join(", ")
         ));
     }
     if !problems.is_empty() {
@@ -469,12 +498,17 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &FitSettings, force: bool) -> 
                     Status::Unconverged,
                     format!("did not converge: {}", report.stop_reason),
                 )
-            } else if report.fit_quality.is_poor() {
+            } else if !report.fit_quality.is_good() {
                 // The reasons follow among the warnings ("fit quality: …").
                 (
                     Status::Poor,
-                    "the fit does not describe the data (fit_quality poor)".to_string(),
+                    format!(
+                        "the fit does not describe the data (fit_quality {})",
+                        report.fit_quality.verdict
+                    ),
                 )
+            } else if let Some(scale) = report.scale.as_ref().filter(|s| s.is_undetermined()) {
+                (Status::Poor, scale.reason.clone())
             } else {
                 (Status::Ok, String::new())
             };
@@ -529,6 +563,7 @@ fn from_disk(entry: &Entry, folder: &Path, status: Status, parts: Vec<String>) -
         wall_time_s: digest.wall_time_s,
         converged,
         poor_fit: digest.poor_fit,
+        undetermined_scale: digest.undetermined_scale,
         wlf: digest.wlf,
         message,
     }

@@ -53,6 +53,11 @@ pub struct Args {
     /// one-signed residuals) find that the fit does not describe the data.
     #[arg(long)]
     pub allow_poor_fit: bool,
+    /// Without a scale anchor in [fit]: write the result even when the data
+    /// do not determine the modulus scale (fit.json's "scale" then says
+    /// "undetermined", with the interval of E0 the data allow).
+    #[arg(long)]
+    pub allow_unanchored: bool,
 }
 
 /// Fit settings that override the scene's [fit] table (shared by `fit` and
@@ -146,8 +151,11 @@ pub fn run(args: &Args) -> Result<()> {
     let report = &outcome.report;
     // Only an accepted fit is written: a non-zero exit leaves the output
     // folder as it was.
+    let quality = &report.fit_quality;
+    let undetermined = report.scale.as_ref().filter(|s| s.is_undetermined());
     let accepted = (report.converged || args.allow_unconverged)
-        && (!report.converged || !report.fit_quality.is_poor() || args.allow_poor_fit);
+        && (!report.converged || quality.is_good() || args.allow_poor_fit)
+        && (undetermined.is_none() || args.allow_unanchored);
     if accepted {
         outcome.commit(&dir)?;
     }
@@ -164,20 +172,44 @@ pub fn run(args: &Args) -> Result<()> {
             shift.t_ref()
         );
     }
+    if let Some(scale) = &report.scale {
+        eprintln!("note: modulus scale: {}", scale.reason);
+    }
     // An unconverged fit is judged by the convergence gate below alone.
-    if report.converged && report.fit_quality.is_poor() {
+    if report.converged && !quality.is_good() {
+        let what = if quality.is_invalid() {
+            "the fitted material breaks the model's assumptions"
+        } else {
+            "the fit does not describe the data"
+        };
         if args.allow_poor_fit {
             eprintln!(
-                "warning: the fit does not describe the data (fit_quality in fit.json); results \
-                 kept because of --allow-poor-fit"
+                "warning: {what} (fit_quality in fit.json); results kept because of \
+                 --allow-poor-fit"
             );
         } else {
             bail!(
-                "the fit does not describe the data: {}; nothing was written to {} (check the \
-                 scene's units and geometry, or give --allow-poor-fit to write the results, \
-                 marked \"fit_quality\": {{\"verdict\": \"poor\"}}, and look at the \
-                 residuals in mu.csv or `rollfit report`)",
-                report.fit_quality.reasons.join("; "),
+                "{what}: {}; nothing was written to {} (check the scene's units and geometry, \
+                 or give --allow-poor-fit to write the results, marked \"fit_quality\": \
+                 {{\"verdict\": \"{}\"}}, and look at the residuals in mu.csv or `rollfit \
+                 report`)",
+                quality.reasons.join("; "),
+                dir.display(),
+                quality.verdict
+            );
+        }
+    }
+    if let Some(scale) = undetermined {
+        if args.allow_unanchored {
+            eprintln!(
+                "warning: the data do not determine the modulus scale (fit.json's \"scale\"); \
+                 results kept because of --allow-unanchored"
+            );
+        } else {
+            bail!(
+                "{}; nothing was written to {} (or give --allow-unanchored to write the result, \
+                 marked \"scale\": {{\"status\": \"undetermined\"}})",
+                scale.reason,
                 dir.display()
             );
         }
@@ -391,6 +423,19 @@ pub fn summary(report: &FitReport, dir: &Path, written: bool) -> String {
             )
         }
         None => {}
+    }
+    if let Some(scale) = &report.scale {
+        let end = |x: Option<f64>| x.map_or("open".to_string(), |x| format!("{x:.3e}"));
+        text += &format!(
+            "no scale anchor: E0 2σ interval {} … {} Pa from the scale profile ({})\n",
+            end(scale.low),
+            end(scale.high),
+            if scale.is_undetermined() {
+                "NOT determined by the data"
+            } else {
+                "determined by the data"
+            }
+        );
     }
     text += &format!(
         "E0 = {:.4e} Pa, E1 = {:.4e} Pa; wall time {:.3} s\n",

@@ -13,7 +13,8 @@ use crate::error::FitError;
 use crate::params::ValidFitParams;
 use crate::quality::FitQuality;
 use crate::report::{
-    AnchorRecord, FitReport, ShiftChoice, ShiftCrossCheck, ShiftRecord, TermsRecord, Window,
+    AnchorRecord, FitReport, ScaleRecord, ShiftChoice, ShiftCrossCheck, ShiftRecord, TermsRecord,
+    Window,
 };
 use crate::sanity;
 use crate::vertical::{LoadGroups, scene_under_load};
@@ -35,6 +36,8 @@ pub(super) struct GridOutcome {
     pub window: Window,
     /// (factor, misfit, λ) of the scale profile of an unanchored fit.
     pub scale_profile: Vec<[f64; 3]>,
+    /// How well the data determine an unanchored fit's scale.
+    pub scale: Option<ScaleRecord>,
 }
 
 impl GridOutcome {
@@ -42,13 +45,13 @@ impl GridOutcome {
     /// and, with `bands`, the window and curve cut to what the data
     /// determine.
     pub(super) fn new(mut fit: Optimum, profile: Option<ScaleProfile>, bands: bool) -> Self {
-        let scale_profile = match profile {
+        let (scale_profile, scale) = match profile {
             Some(profile) => {
                 profile.widen(&mut fit.curve);
                 fit.runs.extend(profile.runs);
-                profile.points
+                (profile.points, Some(profile.record))
             }
-            None => Vec::new(),
+            None => (Vec::new(), None),
         };
         let window = if bands {
             restrict_to_determined(&mut fit)
@@ -59,6 +62,7 @@ impl GridOutcome {
             fit,
             window,
             scale_profile,
+            scale,
         }
     }
 }
@@ -105,7 +109,7 @@ pub(super) struct Whole<'x> {
     /// The shift cross-check of a temperature set, or why it was not made.
     pub cross_check: Option<Result<ShiftCrossCheck, String>>,
     /// The sanity warnings on data and result.
-    pub sanity: Vec<String>,
+    pub sanity: Vec<sanity::Warning>,
     /// Dense data: how they were condensed, and the fitted μ at every row.
     pub condensed: Option<(&'x Condensed, Vec<f64>)>,
     /// Wall time of the whole fit, s.
@@ -130,8 +134,12 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         fit,
         window,
         scale_profile,
+        scale,
     } = grid;
     let mut warnings = fit.warnings;
+    if let Some(scale) = &scale {
+        warnings.push(format!("no scale anchor: {}", scale.reason));
+    }
     warnings.extend(set_notes);
     let shift_cross_check = match cross_check {
         Some(Ok(check)) => {
@@ -150,8 +158,8 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         }
         None => None,
     };
-    warnings.extend(sanity);
     let mut fit_quality = fit.fit_quality;
+    judge_assumptions(&mut fit_quality, &mut warnings, sanity);
     if let Some(c) = &shift_choice {
         warnings.push(format!("shift law {}: {}", c.model, c.reason));
     }
@@ -201,13 +209,40 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         runs: fit.runs,
         history: fit.history,
         scale_profile,
-        scale: None,
+        scale,
         shift_cross_check,
         condensed,
         physics: None,
         shift_theta: fit.shift_theta,
         curve: fit.curve,
         mu_fit,
+    }
+}
+
+/// The sanity warnings into `warnings`; those that say the fitted material
+/// breaks one of the model's assumptions (a contact small against the body,
+/// small strains, a rubber's modulus: [`sanity`]'s checks 1, 2 and 4) make
+/// the verdict "invalid": the model has described the data with a material
+/// for which the model does not hold, so the fit describes nothing.
+fn judge_assumptions(
+    quality: &mut FitQuality,
+    warnings: &mut Vec<String>,
+    sanity: Vec<sanity::Warning>,
+) {
+    for w in sanity {
+        match w.assumption {
+            Some(assumption) => {
+                let reason = format!(
+                    "invalid: the fitted material breaks the model's assumption of a \
+                     {assumption}: {}",
+                    w.message
+                );
+                warnings.push(format!("fit quality: {reason}"));
+                quality.reasons.push(reason);
+                quality.verdict = "invalid";
+            }
+            None => warnings.push(w.message),
+        }
     }
 }
 
@@ -280,7 +315,7 @@ pub(super) fn sanity_warnings(
     friction: &[f64],
     params: &ValidFitParams,
     fit: &Optimum,
-) -> Result<Vec<String>, FitError> {
+) -> Result<Vec<sanity::Warning>, FitError> {
     let setup = &params.setup;
     let speeds = reduced_speeds(data, fit);
     let m = &fit.model;
@@ -294,5 +329,5 @@ pub(super) fn sanity_warnings(
         m.glassy_modulus,
         true,
     ));
-    Ok(out.into_iter().map(|w| w.message).collect())
+    Ok(out)
 }

@@ -259,7 +259,11 @@ impl<'a> GridSolver<'a> {
 
     /// The fit at the user's fixed λ.
     fn fixed_lambda(&mut self, lambda: f64, from: &[f64]) -> Result<LambdaChoice, FitError> {
-        self.tolerance = Tolerance::Final;
+        self.tolerance = if self.params.coarse {
+            Tolerance::Path
+        } else {
+            Tolerance::Final
+        };
         let (trial, run) = self.solve(lambda, from, "fixed lambda")?;
         Ok(LambdaChoice {
             rule: LambdaRule::Fixed,

@@ -45,7 +45,7 @@ use crate::data::Measurements;
 use crate::error::FitError;
 use crate::exact_physics::defect_correction;
 use crate::parametrization::Parametrization;
-use crate::params::{Lambda, Physics, ShiftKind, TermRule, ValidFitParams};
+use crate::params::{Lambda, ModulusAnchor, Physics, ShiftKind, TermRule, ValidFitParams};
 use crate::regularization::path;
 use crate::report::{FitReport, LambdaRecord, ModelRecord};
 use crate::temperature_set::cross_check::cross_check;
@@ -240,12 +240,34 @@ fn fit_on_grid(
     warm: Option<Vec<f64>>,
     set: Option<&ShiftStart>,
 ) -> Result<GridOutcome, FitError> {
-    let optimum = solve_on_grid(data, params, tau, warm, set)?;
-    let profile = match params.anchor {
-        None => Some(profile_scale(data, params, &optimum, set)?),
-        Some(_) => None,
+    let optimum = solve_on_grid(data, params, tau.clone(), warm, set)?;
+    if params.anchor.is_some() {
+        return Ok(GridOutcome::new(optimum, None, params.bands));
+    }
+    let mut profile = profile_scale(data, params, &optimum, set)?;
+    let optimum = match profile.refit.take() {
+        None => optimum,
+        Some((e0, shape)) => {
+            let mut pinned = params.clone();
+            pinned.anchor = Some(ModulusAnchor {
+                omega: 0.0,
+                modulus: e0,
+                source: "profile",
+            });
+            let set = set.map(|s| s.with_theta(data, optimum.shift_theta.clone()));
+            let mut refit = solve_on_grid(data, &pinned, tau, Some(shape), set.as_ref())?;
+            refit.runs = optimum.runs.into_iter().chain(refit.runs).collect();
+            refit.warnings.push(format!(
+                "the unanchored optimum (E0 = {:.3e} Pa) lies outside the range of E0 where \
+                 the model holds or outside the scale profile's 2σ interval; the result is the \
+                 fit at the profile's best E0 = {e0:.3e} Pa",
+                optimum.model.static_modulus
+            ));
+            profile.rescale_to(refit.model.static_modulus);
+            refit
+        }
     };
-    Ok(GridOutcome::new(optimum, profile, params.bands))
+    Ok(GridOutcome::new(optimum, Some(profile), params.bands))
 }
 
 /// Free shifts fitted at the λ and on the τ grid of a joint fit with WLF

@@ -259,7 +259,7 @@ impl Material<'_> {
     }
 }
 
-/// The warnings about the chosen fit itself: no anchor, no convergence,
+/// The warnings about the chosen fit itself: no convergence,
 /// the noise floor not reached, E1 at its bound, undetermined terms.
 fn fit_warnings(
     data: &Measurements,
@@ -269,14 +269,6 @@ fn fit_warnings(
     model: &ModelRecord,
 ) -> Vec<String> {
     let mut warnings = Vec::new();
-    if params.anchor.is_none() {
-        warnings.push(
-            "no scale anchor ([fit] E0, E_at or contact_radius): rolling friction fixes the \
-             shape of tan δ(ω) far better than the level of |E|, so the modulus scale is weakly \
-             determined; see the uncertainty band"
-                .into(),
-        );
-    }
     if !chosen.run.stop.converged() {
         warnings.push(format!(
             "the final {} run did not converge: {}",

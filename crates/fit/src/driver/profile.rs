@@ -1,58 +1,121 @@
-//! The scale profile: the bands of an unanchored fit widened by a profile
-//! along the modulus scale, the direction rolling data determine worst.
+//! The scale profile of an unanchored fit: how well the data determine the
+//! modulus scale, the direction rolling data determine worst.
 //!
-//! The curvature band is local: where V is nearly flat along "stiffer with
-//! a little more loss" but the optimum sits against E1_max or the penalty's
-//! preference, it can be far too narrow. So the fit is repeated with |E*| at
-//! the window's centre ω_c pinned to c·|E*_fit(ω_c)| for the factors
-//! [`PROFILE_FACTORS`] (same τ grid and λ); every profile whose data misfit
-//! lies within one noise unit of the fit's is as good a description of the
-//! data, and the band is widened to enclose all of them (a
-//! profile-likelihood interval on the scale; the misfit, not V, decides,
-//! because the penalty would otherwise vote for its favourite scale).
+//! Without an anchor, μ(v) fixes the modulus scale only through the
+//! contact size (a ∝ E^{-1/3} for a ball, E^{-1/2} for a cylinder) and the
+//! non-linear dependence of μ on tan δ. Where tan δ is small, a softer
+//! rubber with proportionally less loss gives nearly the same μ(v): the fit
+//! can slide along that valley to a "rubber" of a few Pa whose contact is
+//! larger than the ball, and describe the data well. So the scale is
+//! measured, not assumed:
 //!
-//! Each pinned fit starts from its neighbour's shape (continuation): from
-//! the neutral start alone a pinned fit far from the optimum can stall in a
-//! poor local minimum and cut the profile short with a spurious wall.
+//! 1. The range of E0 in which the model holds: from the largest of
+//!    10 kPa ([`MIN_RUBBER_MODULUS`]) and the E0 at which the rubbery
+//!    (static) Hertz contact reaches the trusted size R/3
+//!    ([`MAX_CONTACT_RATIO`]) up to a tenth of E1_max.
+//! 2. The profile: E0 pinned (the anchored parametrisation with ω_a = 0)
+//!    on a grid of half-decade steps walked outward from the fit's E0
+//!    (clamped into the range), the shape refitted at each step from its
+//!    neighbour's (continuation) at one λ_p = λ/10 for all steps, so that
+//!    misfits compare on one footing and the penalty does not build the
+//!    profile's walls. The walk stops where Δχ² exceeds
+//!    [`PROFILE_STOP`] or at the range's end.
+//! 3. Δχ² = (misfit − min misfit)/s², s² the noise variance at the best
+//!    step (1 with a measured σ). The 2σ interval is where Δχ² ≤ 4 (a
+//!    profile-likelihood interval, Venzon & Moolgavkar), its ends refined by
+//!    one bisection of the bracketing step and interpolated linearly in
+//!    ln E0; an end that reaches the range's edge is open.
+//! 4. The scale counts as determined when both ends lie within
+//!    [`SCALE_FACTOR_LIMIT`] of the reported E0; otherwise it is
+//!    undetermined and the command line refuses the fit unless asked to
+//!    keep it.
+//! 5. When the unanchored optimum lies outside the range or outside the
+//!    interval (the valley's far end), the result is refitted with E0
+//!    pinned at the profile's minimum (a parabola through the best step and
+//!    its neighbours in ln E0): the profile likelihood's maximum within the
+//!    model's range.
+//!
+//! The steps within one noise unit (Δχ² ≤ 1) describe the data as well as
+//! the result and widen its bands ([`ScaleProfile::widen`]).
 //!
 //! # References
 //! - D.J. Venzon, S.H. Moolgavkar, "A method for computing
 //!   profile-likelihood-based confidence intervals", Appl. Statist. 37
 //!   (1988) 87–94.
+//! - K.L. Johnson, *Contact Mechanics*, Cambridge University Press 1985,
+//!   §4.2 (the Hertz contact size).
 
 use rollfit_model::{Prony, ViscoelasticModulus};
 
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::params::{Lambda, ModulusAnchor, TermRule, ValidFitParams};
-use crate::report::{ModulusPoint, RunRecord};
+use crate::report::{ModulusPoint, RunRecord, ScaleRecord};
+use crate::sanity::{MAX_CONTACT_RATIO, MIN_RUBBER_MODULUS};
+use crate::tau_grid::contact_size;
 use crate::temperature_set::ShiftStart;
 
+use super::SCALE_FACTOR_LIMIT;
 use super::grid::solve_on_grid;
 use super::optimum::Optimum;
+use super::starts::neutral_start;
+use crate::parametrization::Parametrization;
 
-/// Scale factors of the profile along the weak direction, walked outward
-/// from the fit in two chains (stiffer, softer).
-const PROFILE_FACTORS: [&[f64]; 2] = [
-    &[1.0 / 0.7, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0],
-    &[0.7, 0.5, 0.35, 0.2, 0.1],
-];
+/// Step of the profile's grid in E0 (half a decade).
+const PROFILE_STEP: f64 = 3.162_277_660_168_379_5;
 
-/// Relaxations of λ tried at each point of the scale profile.
-const PROFILE_RELAXATION: [f64; 4] = [1.0, 0.1, 0.01, 0.001];
+/// Δχ² beyond which a walk stops: 5σ, from where no step returns within
+/// the 2σ interval unless a second valley exists.
+const PROFILE_STOP: f64 = 25.0;
+
+/// λ_p/λ: the profile's smoothing relative to the fit's.
+const PROFILE_RELAXATION: f64 = 0.1;
+
+/// Bisections of the step that brackets an end of the 2σ interval: the
+/// profile can rise from 0 to hundreds within one step (E0 above the
+/// rubbery plateau the slowest speeds see is a cliff), where interpolation
+/// over the whole step would put the end far inside; four halve the half
+/// decade to 1/32 decade (7 % in E0).
+const BISECTIONS: usize = 4;
+
+/// Δχ² of the 2σ interval.
+const TWO_SIGMA: f64 = 4.0;
+
+/// Δχ² of the steps that widen the bands (1σ).
+const ONE_SIGMA: f64 = 1.0;
+
+/// One step of the profile.
+struct Step {
+    /// E0 pinned, Pa.
+    e0: f64,
+    /// The data misfit.
+    misfit: f64,
+    /// The noise variance s² at this step (1 with a measured σ).
+    noise_variance: f64,
+    /// ln(H_k/E0) of the refitted shape.
+    shape: Vec<f64>,
+    /// The refitted material (None where E1/E0 is beyond what a Prony
+    /// series in double precision holds: such a step widens no band).
+    prony: Option<Prony>,
+}
 
 /// The profile of one fit.
 pub(super) struct ScaleProfile {
-    /// (factor c, misfit, λ) of each pinned fit, by factor.
+    /// (E0/E0 of the result, misfit, λ_p) of each step, by E0.
     pub points: Vec<[f64; 3]>,
     /// Every run of the pinned fits, in order.
     pub runs: Vec<RunRecord>,
-    /// The pinned fits that describe the data as well as the fit does.
+    /// What fit.json says of the scale.
+    pub record: ScaleRecord,
+    /// When the unanchored optimum lies outside the range or the interval:
+    /// the E0 (Pa) to pin the result at, and the shape to start from.
+    pub refit: Option<(f64, Vec<f64>)>,
+    /// The steps within one noise unit of the best.
     accepted: Vec<Prony>,
 }
 
 impl ScaleProfile {
-    /// Widens the bands of `curve` to enclose every accepted pinned fit.
+    /// Widens the bands of `curve` to enclose every accepted step.
     pub(super) fn widen(&self, curve: &mut [ModulusPoint]) {
         for point in curve.iter_mut() {
             for p in &self.accepted {
@@ -68,9 +131,34 @@ impl ScaleProfile {
             }
         }
     }
+
+    /// The record and the factors of [`Self::points`] for a result whose
+    /// E0 is `e0` (the refit's, which differs a little from the step's).
+    pub(super) fn rescale_to(&mut self, e0: f64) {
+        let old = self.record.static_modulus;
+        for p in &mut self.points {
+            p[0] *= old / e0;
+        }
+        self.record.static_modulus = e0;
+        self.record.status = status(e0, self.record.low, self.record.high);
+        self.record.reason = reason(&self.record);
+    }
 }
 
-/// The pinned refits of one fit: what they share.
+/// The range of E0 (Pa) in which the model's assumptions hold for the
+/// rubbery contact (module doc, step 1).
+pub(crate) fn static_modulus_range(params: &ValidFitParams) -> [f64; 2] {
+    let setup = &params.setup;
+    // The contact size scales as E^{-1/3} (ball) or E^{-1/2} (cylinder):
+    // its exponent read off two moduli, so no formula is repeated here.
+    let (a1, a2) = (contact_size(setup, 1.0), contact_size(setup, 2.0));
+    let exponent = (a1 / a2).ln() / 2f64.ln();
+    let limit = MAX_CONTACT_RATIO * setup.geometry.radius;
+    let smallest_valid = (a1 / limit).powf(1.0 / exponent);
+    [smallest_valid.max(MIN_RUBBER_MODULUS), 0.1 * params.e1_max]
+}
+
+/// The pinned refits: what they share.
 struct Profiler<'a> {
     data: &'a Measurements,
     params: &'a ValidFitParams,
@@ -78,16 +166,10 @@ struct Profiler<'a> {
     set: Option<ShiftStart>,
     /// The fit's τ grid.
     tau: &'a [f64],
-    /// The fit's λ.
+    /// λ_p.
     lambda: f64,
-    /// ω_c, the centre of the fit's window, rad/s.
-    omega_c: f64,
-    /// |E*_fit(ω_c)|, Pa.
-    centre: f64,
-    /// The fit's data misfit.
-    misfit: f64,
-    /// One noise unit of misfit, s².
-    threshold: f64,
+    /// The shape every step also starts from (besides its neighbour's).
+    reference: Vec<f64>,
     /// Every run so far.
     runs: Vec<RunRecord>,
 }
@@ -99,101 +181,385 @@ pub(super) fn profile_scale(
     fit: &Optimum,
     set: Option<&ShiftStart>,
 ) -> Result<ScaleProfile, FitError> {
-    let window = fit.probed_window;
-    let omega_c = (window.omega_min * window.omega_max).sqrt();
     let m = &fit.model;
-    let fitted = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
+    let range = static_modulus_range(params);
     let mut profiler = Profiler {
         data,
         params,
         set: set.map(|s| s.with_theta(data, fit.shift_theta.clone())),
         tau: &m.tau,
-        lambda: fit.lambda.value,
-        omega_c,
-        centre: fitted.modulus(omega_c).norm(),
-        misfit: fit.misfit,
-        threshold: fit.noise * fit.noise,
+        lambda: fit.lambda.value * PROFILE_RELAXATION,
+        reference: Vec::new(),
         runs: Vec::new(),
     };
-    let mut accepted = Vec::new();
-    let mut points = Vec::new();
-    // The fit's own shape in the pinned parametrisation: H_k/E0.
-    let own_shape = shape(m.strengths.iter(), m.static_modulus);
-    for chain in PROFILE_FACTORS {
-        let mut from = own_shape.clone();
-        for &factor in chain {
-            let Some(r) = profiler.pinned(factor, &mut from)? else {
-                break;
-            };
-            points.push([factor, r.misfit, r.lambda.value]);
-            let pm = &r.model;
-            if profiler.as_good(r.misfit) {
-                accepted.push(Prony::new(
-                    pm.glassy_modulus,
-                    pm.strengths.clone(),
-                    pm.tau.clone(),
-                )?);
-            }
-        }
+    if range[0] >= range[1] || range[0].is_nan() {
+        return Ok(ScaleProfile {
+            points: Vec::new(),
+            runs: Vec::new(),
+            record: no_range(m.static_modulus, range),
+            refit: Some((range[0], shape(m.strengths.iter(), m.static_modulus))),
+            accepted: Vec::new(),
+        });
     }
-    points.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    let start = m.static_modulus.clamp(range[0], range[1]);
+    profiler.reference = shape(m.strengths.iter(), m.static_modulus);
+    // An optimum outside the range, or one whose λ ran to the top of the
+    // path (the valley's flat far end), says nothing of the smoothing the
+    // data want: a fit pinned at `start` with λ chosen by the data sets it.
+    let top = super::lambda::lambda_path(params)[0];
+    if start != m.static_modulus {
+        // The optimum's shape at an E0 outside the range can be absurd
+        // (E1/E0 beyond 1e15 at a few Pa): the neutral start instead.
+        let pinned = profiler.pinned_params(start);
+        let param = Parametrization::new(m.tau.clone(), pinned.anchor);
+        profiler.reference = neutral_start(&param, &pinned);
+    }
+    if start != m.static_modulus || fit.lambda.value >= top * 0.999 {
+        let reference = profiler.reference_fit(start)?;
+        profiler.lambda = reference.lambda.value * PROFILE_RELAXATION;
+        profiler.reference = shape(
+            reference.model.strengths.iter(),
+            reference.model.static_modulus,
+        );
+    }
+    let from = profiler.reference.clone();
+    let Some(first) = profiler.pinned(start, &from, None)? else {
+        let mut record = no_range(m.static_modulus, range);
+        record.reason = format!(
+            "the shape could not be refitted with E0 pinned at {start:.3e} Pa, so the data's \
+             hold on the scale is unknown; {ANCHORS}"
+        );
+        return Ok(ScaleProfile {
+            points: Vec::new(),
+            runs: profiler.runs,
+            record,
+            refit: None,
+            accepted: Vec::new(),
+        });
+    };
+    let mut steps = vec![first];
+    for upward in [true, false] {
+        profiler.walk(upward, range, &mut steps)?;
+    }
+    steps.sort_by(|a, b| a.e0.total_cmp(&b.e0));
+    let (low, high) = profiler.interval(&mut steps, range)?;
+    let best = best_step(&steps);
+    let unit = steps[best].noise_variance;
+    let misfit_min = steps[best].misfit;
+    let inside = |e0: f64| low.is_none_or(|l| e0 >= l) && high.is_none_or(|h| e0 <= h);
+    let e0_fit = m.static_modulus;
+    let refit = if e0_fit >= range[0] && e0_fit <= range[1] && inside(e0_fit) {
+        None
+    } else {
+        let e0 = vertex(&steps, best);
+        Some((e0, steps[best].shape.clone()))
+    };
+    let e0 = refit.as_ref().map_or(e0_fit, |r| r.0);
+    let delta = |s: &Step| (s.misfit - misfit_min) / unit;
+    let mut record = ScaleRecord {
+        status: status(e0, low, high),
+        static_modulus: e0,
+        low,
+        high,
+        range,
+        profile: steps.iter().map(|s| [s.e0, delta(s)]).collect(),
+        reason: String::new(),
+    };
+    record.reason = reason(&record);
     Ok(ScaleProfile {
-        points,
+        points: steps
+            .iter()
+            .map(|s| [s.e0 / e0, s.misfit, profiler.lambda])
+            .collect(),
         runs: profiler.runs,
-        accepted,
+        record,
+        refit,
+        accepted: steps
+            .iter()
+            .filter(|s| delta(s) <= ONE_SIGMA)
+            .filter_map(|s| s.prony.clone())
+            .collect(),
     })
 }
 
 impl Profiler<'_> {
-    /// Whether a data misfit describes the data as well as the fit does:
-    /// within one noise unit of its misfit.
-    fn as_good(&self, misfit: f64) -> bool {
-        misfit - self.misfit <= self.threshold
+    /// Walks from the first step (`steps[0]`) up or down in
+    /// [`PROFILE_STEP`]s to the range's end or until Δχ² passes
+    /// [`PROFILE_STOP`], each step continued from the previous step's shape.
+    fn walk(
+        &mut self,
+        upward: bool,
+        range: [f64; 2],
+        steps: &mut Vec<Step>,
+    ) -> Result<(), FitError> {
+        let mut shape = steps[0].shape.clone();
+        let mut e0 = steps[0].e0;
+        loop {
+            let at_end = if upward {
+                e0 >= range[1]
+            } else {
+                e0 <= range[0]
+            };
+            if at_end {
+                return Ok(());
+            }
+            e0 = if upward {
+                (e0 * PROFILE_STEP).min(range[1])
+            } else {
+                (e0 / PROFILE_STEP).max(range[0])
+            };
+            let b = &steps[best_step(steps)];
+            let Some(step) = self.pinned(e0, &shape, Some((b.misfit, b.noise_variance)))? else {
+                return Ok(());
+            };
+            shape = step.shape.clone();
+            steps.push(step);
+            let best = best_step(steps);
+            let last = &steps[steps.len() - 1];
+            if (last.misfit - steps[best].misfit) / steps[best].noise_variance > PROFILE_STOP {
+                return Ok(());
+            }
+        }
     }
 
-    /// The fit with |E*(ω_c)| pinned to `factor` times the fit's, from the
-    /// shape `from` (updated to each refit's shape): the weakest smoothing
-    /// among λ, λ/10, … λ/1000 that describes the data as well as the fit
-    /// does ([`Self::as_good`]), else the weakest tried. At the fit's λ alone the penalty, not the data, would build the wall of
-    /// the profile. `None` when the model cannot reach the pinned scale at
-    /// all, which ends the chain.
-    fn pinned(&mut self, factor: f64, from: &mut Vec<f64>) -> Result<Option<Optimum>, FitError> {
-        let mut r = None;
-        for relax in PROFILE_RELAXATION {
-            let mut pinned = self.params.clone();
-            pinned.anchor = Some(ModulusAnchor {
-                omega: self.omega_c,
-                modulus: factor * self.centre,
-                source: "profile",
-            });
-            pinned.lambda = Lambda::Fixed(self.lambda * relax);
-            pinned.starts = 1;
-            pinned.bands = false;
-            pinned.terms = TermRule::Explicit(self.tau.to_vec());
+    /// `params` with E0 pinned to `e0` (Pa).
+    fn pinned_params(&self, e0: f64) -> ValidFitParams {
+        let mut pinned = self.params.clone();
+        pinned.anchor = Some(ModulusAnchor {
+            omega: 0.0,
+            modulus: e0,
+            source: "profile",
+        });
+        pinned.starts = 1;
+        pinned.bands = false;
+        pinned.terms = TermRule::Explicit(self.tau.to_vec());
+        pinned
+    }
+
+    /// The fit with E0 pinned to `e0` and λ chosen by the data, from the
+    /// reference shape.
+    fn reference_fit(&mut self, e0: f64) -> Result<Optimum, FitError> {
+        let pinned = self.pinned_params(e0);
+        let r = solve_on_grid(
+            self.data,
+            &pinned,
+            self.tau.to_vec(),
+            Some(self.reference.clone()),
+            self.set.as_ref(),
+        )?;
+        self.log(e0, &r);
+        Ok(r)
+    }
+
+    /// The fit with E0 pinned to `e0` (Pa) at λ_p from the shape `from`;
+    /// where it lies beyond 2σ of `best` (the best misfit so far and its
+    /// noise variance), again from the reference shape, keeping the better
+    /// (continuation alone can stall in a poor local minimum and raise a
+    /// spurious wall). `None` when the model cannot reach that E0 at all.
+    fn pinned(
+        &mut self,
+        e0: f64,
+        from: &[f64],
+        best: Option<(f64, f64)>,
+    ) -> Result<Option<Step>, FitError> {
+        let mut pinned = self.pinned_params(e0);
+        pinned.lambda = Lambda::Fixed(self.lambda);
+        pinned.coarse = true;
+        let mut kept: Option<Optimum> = None;
+        for start in [from.to_vec(), self.reference.clone()] {
+            if let Some(k) = &kept {
+                let beyond =
+                    best.is_some_and(|(misfit, unit)| (k.misfit - misfit) / unit > TWO_SIGMA);
+                if !beyond || start == from {
+                    break;
+                }
+            }
             let trial = match solve_on_grid(
                 self.data,
                 &pinned,
                 self.tau.to_vec(),
-                Some(from.clone()),
+                Some(start),
                 self.set.as_ref(),
             ) {
                 Ok(t) => t,
-                // A pinned scale the model cannot reach ends the relaxation.
-                Err(FitError::Model(_)) => break,
+                Err(FitError::Model(_)) => continue,
                 Err(e) => return Err(e),
             };
-            *from = shape(trial.model.strengths.iter(), trial.model.static_modulus);
-            self.runs.extend(trial.runs.iter().cloned().map(|mut run| {
-                run.stage = format!("scale profile ×{factor:.2}: {}", run.stage);
-                run
-            }));
-            let good = self.as_good(trial.misfit);
-            r = Some(trial);
-            if good {
-                break;
+            self.log(e0, &trial);
+            if kept.as_ref().is_none_or(|b| trial.objective < b.objective) {
+                kept = Some(trial);
             }
         }
-        Ok(r)
+        let Some(trial) = kept else {
+            return Ok(None);
+        };
+        let m = &trial.model;
+        Ok(Some(Step {
+            e0,
+            misfit: trial.misfit,
+            noise_variance: trial.noise * trial.noise,
+            shape: shape(m.strengths.iter(), m.static_modulus),
+            prony: Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone()).ok(),
+        }))
+    }
+
+    /// Keeps the runs of a pinned fit at `e0`.
+    fn log(&mut self, e0: f64, fit: &Optimum) {
+        self.runs.extend(fit.runs.iter().cloned().map(|mut run| {
+            run.stage = format!("scale profile E0 = {e0:.3e} Pa: {}", run.stage);
+            run
+        }));
+    }
+
+    /// The 2σ interval (module doc, step 3): `None` at an end that reaches
+    /// the range's edge. Adds the bisection steps to `steps`.
+    fn interval(
+        &mut self,
+        steps: &mut Vec<Step>,
+        range: [f64; 2],
+    ) -> Result<(Option<f64>, Option<f64>), FitError> {
+        let mut ends = [None, None];
+        for (k, end) in ends.iter_mut().enumerate() {
+            let best = best_step(steps);
+            let (unit, min) = (steps[best].noise_variance, steps[best].misfit);
+            let delta = |s: &Step| (s.misfit - min) / unit;
+            // The outermost step within 2σ on this side, and the next step
+            // outward (beyond 2σ), if any.
+            let within: Vec<usize> = (0..steps.len())
+                .filter(|&i| delta(&steps[i]) <= TWO_SIGMA)
+                .collect();
+            let inner = if k == 0 {
+                within[0]
+            } else {
+                within[within.len() - 1]
+            };
+            let outer = if k == 0 {
+                inner.checked_sub(1)
+            } else {
+                Some(inner + 1).filter(|&i| i < steps.len())
+            };
+            let Some(outer) = outer else {
+                let edge = if k == 0 { range[0] } else { range[1] };
+                *end = (steps[inner].e0 != edge).then_some(steps[inner].e0);
+                continue;
+            };
+            let mut from = steps[inner].shape.clone();
+            let (mut a, mut b) = (
+                (steps[inner].e0, delta(&steps[inner])),
+                (steps[outer].e0, delta(&steps[outer])),
+            );
+            for _ in 0..BISECTIONS {
+                let middle = (a.0 * b.0).sqrt();
+                let Some(step) = self.pinned(middle, &from, Some((min, unit)))? else {
+                    break;
+                };
+                let d = (step.misfit - min) / unit;
+                if d <= TWO_SIGMA {
+                    a = (middle, d);
+                    from = step.shape.clone();
+                } else {
+                    b = (middle, d);
+                }
+                steps.push(step);
+            }
+            steps.sort_by(|x, y| x.e0.total_cmp(&y.e0));
+            let t = ((TWO_SIGMA - a.1) / (b.1 - a.1)).clamp(0.0, 1.0);
+            *end = Some((a.0.ln() + t * (b.0.ln() - a.0.ln())).exp());
+        }
+        Ok((ends[0], ends[1]))
+    }
+}
+
+/// Index of the step with the smallest misfit.
+fn best_step(steps: &[Step]) -> usize {
+    (0..steps.len())
+        .min_by(|&a, &b| steps[a].misfit.total_cmp(&steps[b].misfit))
+        .unwrap_or(0)
+}
+
+/// The minimum in ln E0 of the parabola through the best step and its
+/// neighbours (the best step's E0 at an end, or where the parabola opens
+/// downward), kept between the neighbours.
+fn vertex(steps: &[Step], best: usize) -> f64 {
+    if best == 0 || best + 1 >= steps.len() {
+        return steps[best].e0;
+    }
+    let (x0, x1, x2) = (
+        steps[best - 1].e0.ln(),
+        steps[best].e0.ln(),
+        steps[best + 1].e0.ln(),
+    );
+    let (y0, y1, y2) = (
+        steps[best - 1].misfit,
+        steps[best].misfit,
+        steps[best + 1].misfit,
+    );
+    let numerator = (x1 - x0).powi(2) * (y1 - y2) - (x1 - x2).powi(2) * (y1 - y0);
+    let denominator = (x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0);
+    if denominator == 0.0 || !denominator.is_finite() {
+        return steps[best].e0;
+    }
+    let x = x1 - 0.5 * numerator / denominator;
+    x.clamp(x0, x2).exp()
+}
+
+/// "data" when both ends lie within [`SCALE_FACTOR_LIMIT`] of `e0`.
+fn status(e0: f64, low: Option<f64>, high: Option<f64>) -> &'static str {
+    match (low, high) {
+        (Some(l), Some(h)) if e0 / l <= SCALE_FACTOR_LIMIT && h / e0 <= SCALE_FACTOR_LIMIT => {
+            "data"
+        }
+        _ => "undetermined",
+    }
+}
+
+/// The anchors that fix the scale, and what each needs.
+pub(crate) const ANCHORS: &str = "anchor the scale in the scene's [fit] with one of: E0 = … \
+     (the static modulus in Pa, from a tensile, compression or indentation test at low rate), \
+     E_at = { omega = …, E = … } (|E*| in Pa at one angular frequency in rad/s, e.g. one DMA \
+     point) or contact_radius = { v = …, r = … } (a contact radius in m measured at one speed \
+     in m/s, e.g. through a transparent ball)";
+
+/// What the profile says, in words.
+fn reason(r: &ScaleRecord) -> String {
+    let end = |x: Option<f64>, edge: f64, side: &str| match x {
+        Some(x) => format!("{x:.3e} Pa"),
+        None => format!("the {side} E0 the model allows ({edge:.3e} Pa)"),
+    };
+    let interval = format!(
+        "E0 from {} to {} describes the data as well at 2σ (profile Δχ² ≤ 4 with the shape \
+         refitted at each E0)",
+        end(r.low, r.range[0], "lowest"),
+        end(r.high, r.range[1], "highest")
+    );
+    if r.status == "data" {
+        format!(
+            "the data determine the modulus scale: E0 = {:.3e} Pa; {interval}",
+            r.static_modulus
+        )
+    } else {
+        format!(
+            "the data do not determine the modulus scale: {interval}, more than a factor {} \
+             either side of the fit's E0 = {:.3e} Pa; {ANCHORS}",
+            SCALE_FACTOR_LIMIT, r.static_modulus
+        )
+    }
+}
+
+/// The record when no E0 satisfies the model's assumptions.
+fn no_range(e0: f64, range: [f64; 2]) -> ScaleRecord {
+    ScaleRecord {
+        status: "undetermined",
+        static_modulus: e0,
+        low: None,
+        high: None,
+        range,
+        profile: Vec::new(),
+        reason: format!(
+            "no E0 keeps the rubbery contact within R/3 below a tenth of E1_max (E0 would need \
+             at least {:.3e} Pa): check geometry.radius and geometry.load; {ANCHORS}",
+            range[0]
+        ),
     }
 }
 

@@ -28,9 +28,12 @@ pub struct Digest {
     pub converged: Option<bool>,
     /// `stop_reason`.
     pub stop_reason: Option<String>,
-    /// `fit_quality.verdict` is "poor" (results written before fit_quality
-    /// existed have no verdict).
+    /// `fit_quality.verdict` is "poor" or "invalid" (results written
+    /// before fit_quality existed have no verdict).
     pub poor_fit: bool,
+    /// `scale.status` is "undetermined": an unanchored fit whose data do
+    /// not determine the modulus scale.
+    pub undetermined_scale: bool,
     /// `fit_quality.reasons`.
     pub reasons: Vec<String>,
     /// `shift.C1` and `shift.C2`, when both are numbers.
@@ -55,7 +58,11 @@ impl Digest {
             wall_time_s: number(&report["wall_time_s"]),
             converged: report["converged"].as_bool(),
             stop_reason: report["stop_reason"].as_str().map(str::to_string),
-            poor_fit: report["fit_quality"]["verdict"].as_str() == Some("poor"),
+            poor_fit: matches!(
+                report["fit_quality"]["verdict"].as_str(),
+                Some("poor" | "invalid")
+            ),
+            undetermined_scale: report["scale"]["status"].as_str() == Some("undetermined"),
             reasons: report["fit_quality"]["reasons"]
                 .as_array()
                 .map(|r| {
