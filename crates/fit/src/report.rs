@@ -89,8 +89,9 @@ pub struct AnchorRecord {
 /// model's assumptions hold.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ScaleRecord {
-    /// "data" when the 2σ interval lies within a factor
-    /// [`crate::driver::SCALE_FACTOR_LIMIT`] of E0 on both sides, else
+    /// "data" when the 2σ interval (an open end closed by `range`) spans at
+    /// most a factor [`crate::driver::SCALE_FACTOR_LIMIT`] either side of
+    /// its geometric centre, else
     /// "undetermined" (the fit is refused unless the user allows an
     /// unanchored result; `--allow-unanchored`).
     pub status: &'static str,

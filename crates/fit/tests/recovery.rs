@@ -222,9 +222,13 @@ fn prony_data_are_fitted_back_to_the_noise_floor() {
 /// Without an anchor (issue 32) the fit measures how well the data fix the
 /// scale: for each of 6 seeds of the bundled example (41 speeds, 1 % noise,
 /// σ measured) the 2σ interval of its scale profile contains the true E0,
-/// the fit's E0 lies inside its own interval, the warnings name the
-/// anchors, and the 1σ band of |E|, widened by the profile, covers the truth
-/// over most of the probed window.
+/// the fit's E0 lies inside its own interval, the warnings say what the
+/// profile found (naming the anchors where the scale is undetermined), and
+/// the 1σ band of |E|, widened by the profile, covers the truth over most
+/// of the probed window. Measured: the data bound E0 from above at
+/// 2.1–2.2 MPa (truth 2 MPa); below, the profile stays flat down to the
+/// 0.61 MPa at which the static contact reaches R/3, so the interval spans
+/// a factor 3.5–3.7, within the factor 9 that counts as determined.
 #[test]
 fn unanchored_fit_reports_a_scale_interval_that_holds_the_truth() {
     let truth = hn_rubber();
@@ -236,13 +240,14 @@ fn unanchored_fit_reports_a_scale_interval_that_holds_the_truth() {
             .scale
             .as_ref()
             .expect("an unanchored fit has a scale record");
+        let note = report
+            .warnings
+            .iter()
+            .find(|w| w.contains("no scale anchor"))
+            .expect("the warnings say what the profile found");
         assert!(
-            report
-                .warnings
-                .iter()
-                .any(|w| w.contains("no scale anchor") && w.contains("contact_radius")),
-            "{:?}",
-            report.warnings
+            !scale.is_undetermined() || note.contains("contact_radius"),
+            "{note}"
         );
         let e0 = report.model.static_modulus;
         let inside = |x: f64| scale.low.is_none_or(|l| x >= l) && scale.high.is_none_or(|h| x <= h);

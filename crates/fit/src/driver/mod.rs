@@ -58,8 +58,9 @@ use law::choose_law;
 use profile::profile_scale;
 use terms::{AUTO_DENSITIES, TermChoice, grid, terms_record};
 
-/// How far (a factor, either side of the fitted E0) the 2σ interval of an
-/// unanchored fit's E0 may reach before the scale counts as undetermined
+/// How far (a factor, either side of its geometric centre) the 2σ interval
+/// of an unanchored fit's E0 may reach before the scale counts as
+/// undetermined
 /// ([`crate::report::ScaleRecord`]). A factor 3 in E0 moves the Hertz
 /// contact radius by 3^{1/3} ≈ 1.44 for a ball (√3 for a cylinder) and
 /// with it every contact frequency v/a by 0.16–0.24 decade, about the

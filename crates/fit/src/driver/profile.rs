@@ -25,15 +25,19 @@
 //!    profile-likelihood interval, Venzon & Moolgavkar), its ends refined by
 //!    one bisection of the bracketing step and interpolated linearly in
 //!    ln E0; an end that reaches the range's edge is open.
-//! 4. The scale counts as determined when both ends lie within
-//!    [`SCALE_FACTOR_LIMIT`] of the reported E0; otherwise it is
+//! 4. The scale counts as determined when the interval (an open end taken
+//!    at the range's edge: the model's own limits bound the scale there too)
+//!    spans at most a factor [`SCALE_FACTOR_LIMIT`] either side of its
+//!    geometric centre; otherwise it is
 //!    undetermined and the command line refuses the fit unless asked to
 //!    keep it.
-//! 5. When the unanchored optimum lies outside the range or outside the
-//!    interval (the valley's far end), the result is refitted with E0
-//!    pinned at the profile's minimum (a parabola through the best step and
-//!    its neighbours in ln E0): the profile likelihood's maximum within the
-//!    model's range.
+//! 5. When the unanchored optimum lies outside the range or more than one
+//!    noise unit (Δχ² > 1) above the profile's minimum — the penalty, which
+//!    prefers some shapes, has pulled it along the valley — the result is
+//!    refitted with E0 pinned at the profile's minimum (a parabola through
+//!    the best step and its neighbours in ln E0): the profile likelihood's
+//!    maximum within the model's range. The data misfit, not the penalised
+//!    objective, decides the scale.
 //!
 //! The steps within one noise unit (Δχ² ≤ 1) describe the data as well as
 //! the result and widen its bands ([`ScaleProfile::widen`]).
@@ -140,7 +144,7 @@ impl ScaleProfile {
             p[0] *= old / e0;
         }
         self.record.static_modulus = e0;
-        self.record.status = status(e0, self.record.low, self.record.high);
+        self.record.status = status(self.record.low, self.record.high, self.record.range);
         self.record.reason = reason(&self.record);
     }
 }
@@ -246,18 +250,20 @@ pub(super) fn profile_scale(
     let best = best_step(&steps);
     let unit = steps[best].noise_variance;
     let misfit_min = steps[best].misfit;
-    let inside = |e0: f64| low.is_none_or(|l| e0 >= l) && high.is_none_or(|h| e0 <= h);
     let e0_fit = m.static_modulus;
-    let refit = if e0_fit >= range[0] && e0_fit <= range[1] && inside(e0_fit) {
+    // The fit's own E0 is the first step when it lies in the range.
+    let own = (e0_fit == start).then(|| steps.iter().find(|s| s.e0 == start));
+    let own_delta = own.flatten().map(|s| (s.misfit - misfit_min) / unit);
+    let refit = if own_delta.is_some_and(|d| d <= ONE_SIGMA) {
         None
     } else {
-        let e0 = vertex(&steps, best);
+        let e0 = vertex(&steps, best).clamp(low.unwrap_or(range[0]), high.unwrap_or(range[1]));
         Some((e0, steps[best].shape.clone()))
     };
     let e0 = refit.as_ref().map_or(e0_fit, |r| r.0);
     let delta = |s: &Step| (s.misfit - misfit_min) / unit;
     let mut record = ScaleRecord {
-        status: status(e0, low, high),
+        status: status(low, high, range),
         static_modulus: e0,
         low,
         high,
@@ -503,13 +509,16 @@ fn vertex(steps: &[Step], best: usize) -> f64 {
     x.clamp(x0, x2).exp()
 }
 
-/// "data" when both ends lie within [`SCALE_FACTOR_LIMIT`] of `e0`.
-fn status(e0: f64, low: Option<f64>, high: Option<f64>) -> &'static str {
-    match (low, high) {
-        (Some(l), Some(h)) if e0 / l <= SCALE_FACTOR_LIMIT && h / e0 <= SCALE_FACTOR_LIMIT => {
-            "data"
-        }
-        _ => "undetermined",
+/// "data" when the interval, an open end closed by the range in which the
+/// model holds, spans at most [`SCALE_FACTOR_LIMIT`]² (a factor
+/// [`SCALE_FACTOR_LIMIT`] either side of its geometric centre): the data and
+/// the model's own limits then fix the scale. The reported E0 lies inside.
+fn status(low: Option<f64>, high: Option<f64>, range: [f64; 2]) -> &'static str {
+    let (l, h) = (low.unwrap_or(range[0]), high.unwrap_or(range[1]));
+    if h / l <= SCALE_FACTOR_LIMIT * SCALE_FACTOR_LIMIT {
+        "data"
+    } else {
+        "undetermined"
     }
 }
 
@@ -540,7 +549,7 @@ fn reason(r: &ScaleRecord) -> String {
     } else {
         format!(
             "the data do not determine the modulus scale: {interval}, more than a factor {} \
-             either side of the fit's E0 = {:.3e} Pa; {ANCHORS}",
+             either side of its centre (the fit's E0 = {:.3e} Pa); {ANCHORS}",
             SCALE_FACTOR_LIMIT, r.static_modulus
         )
     }
