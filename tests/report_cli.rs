@@ -121,7 +121,22 @@ fn a_fifteen_term_fit_gets_every_picture_and_a_self_contained_page() {
     let out = report(&dir, &[]);
     assert!(out.status.success(), "report failed: {}", text(&out.stderr));
     let page = check_report(&dir, &SINGLE);
+    // Judged poor, and said so at the top of the page and in the friction
+    // picture; the fitted μ(v) is dense under the scene fit.json names.
+    let verdict = page.find("<div class=\"status bad\" id=\"verdict\"><strong>Verdict: poor");
+    assert!(
+        verdict.is_some_and(|at| at < page.find("<h2>Fit</h2>").unwrap()),
+        "no red verdict banner at the top"
+    );
+    let friction = fs::read_to_string(dir.join("friction.svg")).unwrap();
+    assert!(friction.contains("Rolling friction μ(v) — verdict: poor"));
+    assert!(
+        !text(&out.stderr).contains("no dense curve"),
+        "{}",
+        text(&out.stderr)
+    );
     for fragment in [
+        "the model&#39;s μ(v) on 240 speeds through the measured range",
         "The fit converged (",
         "levenberg-marquardt",
         "Prony series, 15 relaxation times",
@@ -160,6 +175,61 @@ fn a_temperature_set_gets_its_shift_pictures() {
     );
     assert!(page.contains("WLF at T_ref = 20"));
     assert!(page.contains("log10 a_T"));
+    assert!(page.contains("a temperature set, its master curve at T_ref = 20.00 °C"));
+    let master = fs::read_to_string(dir.join("master_curve.svg")).unwrap();
+    assert!(master.contains("Recovered master curve E*(ω) at T_ref = 20 °C"));
+}
+
+/// friction.png's dense fitted μ(v) needs the fit's scene: the one
+/// fit.json names, relative to the folder `rollfit report` runs in, or
+/// --scene. Not found, the report is still written, its line through the
+/// measured speeds, and a warning says why; a --scene that is not the
+/// fit's is refused and nothing is written.
+#[test]
+fn the_dense_fitted_curve_comes_from_the_fits_scene() {
+    let tmp = TempDir::new("scene");
+    let dir = committed_fit(&tmp, "hn-rubber");
+    // Elsewhere, data/hn-rubber.toml (as fit.json names it) is not found.
+    let elsewhere = rollfit_in(Some(tmp.path()), &["report".as_ref(), dir.as_os_str()]);
+    assert!(elsewhere.status.success(), "{}", text(&elsewhere.stderr));
+    let stderr = text(&elsewhere.stderr);
+    assert!(
+        stderr.contains("warning: friction.png joins the fit's μ at the measured speeds")
+            && stderr.contains("data/hn-rubber.toml")
+            && stderr.contains("--scene"),
+        "{stderr}"
+    );
+    let page = fs::read_to_string(dir.join("report.html")).unwrap();
+    assert!(page.contains("joined by straight lines"));
+
+    let other = workspace().join("data/lab-ball.toml");
+    let other_tmp = TempDir::new("scene-other");
+    let fresh = committed_fit(&other_tmp, "hn-rubber");
+    let out = report(&fresh, &["--scene".as_ref(), other.as_os_str()]);
+    assert_failure(
+        &out,
+        &["--scene", "lab-ball.toml", "does not reproduce the fit's μ"],
+    );
+    assert!(!fresh.join("report.html").exists() && !fresh.join("friction.png").exists());
+
+    let own = workspace().join("data/hn-rubber.toml");
+    let out = rollfit_in(
+        Some(tmp.path()),
+        &[
+            "report".as_ref(),
+            dir.as_os_str(),
+            "--scene".as_ref(),
+            own.as_os_str(),
+        ],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        !text(&out.stderr).contains("warning"),
+        "{}",
+        text(&out.stderr)
+    );
+    let page = fs::read_to_string(dir.join("report.html")).unwrap();
+    assert!(page.contains("μ(v) on 240 speeds through the measured range"));
 }
 
 /// DMA data drawn from the fit's own Prony series, computed here from

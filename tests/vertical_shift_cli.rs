@@ -14,7 +14,8 @@
 //!
 //! And `rollfit fit` of a temperature set made with known b_T, given the
 //! same b_T in the scene's `[material.shift]`, recovers the master curve at
-//! T_ref (and fails to without them).
+//! T_ref (and fails to without them), and `rollfit report` draws its
+//! fitted μ(v) under the same b_T.
 
 mod common;
 
@@ -22,7 +23,7 @@ use std::ffi::OsStr;
 use std::fs;
 use std::path::Path;
 
-use common::{Table, TempDir, assert_failure, rollfit, succeed};
+use common::{Table, TempDir, assert_failure, rollfit, succeed, text};
 use rollfit_model::{
     ContactSize, Geometry, HavriliakNegami, Prony, Scene, Shape, Shifted, Substrate,
     ViscoelasticModulus,
@@ -316,6 +317,30 @@ fn a_temperature_set_with_vertical_factors_is_fitted_at_t_ref() {
             .contains("log10 b_T = -0.2000 at -20 °C, -0.1000 at 0 °C, 0.0000 at 20 °C")
     });
     assert!(said, "{}", report["warnings"]);
+
+    // Issue 32: the report draws the fitted μ(v) under the scene's b_T, so
+    // it reproduces mu.csv at every temperature (805 rows condensed to bins
+    // for the fit, μ at every row); under the same scene without b_T it
+    // does not, at a temperature other than T_ref.
+    let with_dir = tmp.path().join("with");
+    let drawn = rollfit(&[OsStr::new("report"), with_dir.as_os_str()]);
+    let stderr = text(&drawn.stderr);
+    assert!(
+        drawn.status.success() && !stderr.contains("warning"),
+        "{stderr}"
+    );
+    let page = fs::read_to_string(with_dir.join("report.html")).unwrap();
+    assert!(page.contains("μ(v) on 240 speeds through the measured range"));
+    assert!(page.contains("<strong>Verdict: good</strong>"));
+    let without_scene = tmp.path().join("without.toml");
+    let refused = rollfit(&[
+        OsStr::new("report"),
+        with_dir.as_os_str(),
+        OsStr::new("--scene"),
+        without_scene.as_os_str(),
+    ]);
+    let message = assert_failure(&refused, &["does not reproduce the fit's μ", ", T = "]);
+    assert!(!message.contains("T = 20 °C"), "{message}");
 
     // A measured temperature outside the table is refused before any
     // numerics, naming the key, and nothing is written.

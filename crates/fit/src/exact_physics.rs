@@ -128,7 +128,8 @@ use rollfit_model::{Prony, Scene, Shape};
 
 mod nodes;
 
-use nodes::{adaptive_fill, interpolate, solve_nodes, thinned};
+pub use nodes::interpolate;
+use nodes::{adaptive_fill, solve_nodes, thinned};
 
 use crate::data::Measurements;
 use crate::error::FitError;

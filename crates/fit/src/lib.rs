@@ -86,7 +86,7 @@ mod parametrization;
 pub mod quality;
 mod shift;
 mod temperature_set;
-mod vertical;
+pub mod vertical;
 
 pub use cancel::Cancel;
 pub use data::Measurements;

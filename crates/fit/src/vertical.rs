@@ -68,14 +68,7 @@ impl LoadGroups {
         };
         let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
         for (i, &t) in temps.iter().enumerate() {
-            let log_b = log10_factor(Some(vertical), t)?;
-            let factor = 10f64.powf(-log_b);
-            if !factor.is_normal() {
-                return Err(FitError::setting(
-                    key(vertical),
-                    format!("log10 b_T = {log_b} at T = {t} °C gives no usable factor"),
-                ));
-            }
+            let factor = load_factor(Some(vertical), t)?;
             // Rows of one temperature share a factor bit for bit.
             match groups.iter_mut().find(|(f, _)| *f == factor) {
                 Some((_, rows)) => rows.push(i),
@@ -136,8 +129,11 @@ impl LoadGroups {
 }
 
 /// The scene of `setup` for `prony` at the quadrature `tolerance`, under
-/// the set-up's load times `load_factor` (1/b_T of a row's temperature).
-pub(crate) fn scene_under_load(
+/// the set-up's load times `load_factor` (1/b_T of a row's temperature,
+/// [`load_factor`]): by μ(v; b E, F) = μ(v; E, F/b) the friction of the
+/// modulus b_T E*_ref at the set-up's load. Public so that a report draws
+/// the fitted μ(v) of a temperature set as the fit computes it.
+pub fn scene_under_load(
     setup: &RollingSetup,
     prony: Prony,
     tolerance: f64,
@@ -186,6 +182,22 @@ pub(crate) fn refuse_exact(rows: &Measurements, params: &ValidFitParams) -> Resu
             ),
         )),
         _ => Ok(()),
+    }
+}
+
+/// The load factor 1/b_T at `t` (°C) under `vertical` (1 without): the
+/// factor of the set-up's load under which the master curve gives the
+/// friction at `t` ([`scene_under_load`]). An error naming the key where
+/// b_T is undefined or gives no usable factor.
+pub fn load_factor(vertical: Option<&VerticalShift>, t: f64) -> Result<f64, FitError> {
+    let log_b = log10_factor(vertical, t)?;
+    let factor = 10f64.powf(-log_b);
+    match vertical {
+        Some(v) if !factor.is_normal() => Err(FitError::setting(
+            key(v),
+            format!("log10 b_T = {log_b} at T = {t} °C gives no usable factor"),
+        )),
+        _ => Ok(factor),
     }
 }
 

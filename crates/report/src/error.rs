@@ -84,6 +84,28 @@ pub enum ReportError {
          modulus near 1e-308?)"
     )]
     ModuliOutOfRange,
+    /// The scene read for the dense fitted μ(v) does not give the fit's μ
+    /// at the measured speeds (`fitted_friction`).
+    #[error(
+        "the scene does not reproduce the fit's μ at the measured speeds ({:.2} % off at v = \
+         {speed:e} m/s{}): it is not the scene the fit was made with, or it was edited since",
+        100.0 * off,
+        temperature.map_or_else(String::new, |t| format!(", T = {t} °C"))
+    )]
+    SceneMismatch {
+        /// |μ_scene/μ_fit − 1| at that speed (NaN when not a number).
+        off: f64,
+        /// The measured speed, m/s.
+        speed: f64,
+        /// Its temperature, °C, in a temperature set.
+        temperature: Option<f64>,
+    },
+    /// The fitted μ(v) cannot be computed under the scene.
+    #[error("the fitted μ(v) cannot be computed under the scene: {message}")]
+    FittedFriction {
+        /// What the model or the shift said.
+        message: String,
+    },
     /// Drawing a picture failed.
     #[error("picture {name}: {message}")]
     Plot {

@@ -5,23 +5,12 @@
 //! The fits are the committed example results under fits/ (a single
 //! temperature and a temperature set), read as any user's would be.
 
-use std::path::{Path, PathBuf};
-
 mod common;
 
-use common::{Decoded, count, decode};
+use common::{Decoded, committed_fit as fit, count, decode, dense_line};
 use plotters::style::RGBColor;
-use rollfit_io::FitDir;
 use rollfit_report::plot::master_curve::DmaMarker;
 use rollfit_report::plot::{Picture, pictures, style};
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn fit(name: &str) -> FitDir {
-    FitDir::read(&workspace().join("fits").join(name)).expect("the committed fit reads")
-}
 
 fn hex(c: RGBColor) -> String {
     format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
@@ -69,7 +58,7 @@ fn strokes(svg: &str, c: RGBColor) -> usize {
 #[test]
 fn a_single_temperature_fit_gets_four_pictures_with_every_series() {
     let fit = fit("hn-rubber");
-    let all = pictures(&fit, &[]).unwrap();
+    let all = pictures(&fit, &[], &dense_line(&fit, "hn-rubber")).unwrap();
     let names: Vec<&str> = all.iter().map(|p| p.name).collect();
     assert_eq!(
         names,
@@ -155,7 +144,7 @@ fn dma_points_are_drawn_on_the_master_curve() {
             }
         })
         .collect();
-    let all = pictures(&fit, &dma).unwrap();
+    let all = pictures(&fit, &dma, &dense_line(&fit, "hn-rubber")).unwrap();
     let (_, text) = check(&all[1]);
     for label in ["DMA E′", "DMA E″", "DMA tan δ"] {
         assert!(text.contains(label), "no {label:?}");
@@ -172,7 +161,7 @@ fn dma_points_are_drawn_on_the_master_curve() {
 #[test]
 fn a_temperature_set_gets_its_master_friction_curve_and_shift() {
     let fit = fit("hn-rubber-tset");
-    let all = pictures(&fit, &[]).unwrap();
+    let all = pictures(&fit, &[], &dense_line(&fit, "hn-rubber-tset")).unwrap();
     let names: Vec<&str> = all.iter().map(|p| p.name).collect();
     assert_eq!(
         names,

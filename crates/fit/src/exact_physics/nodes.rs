@@ -146,8 +146,10 @@ const THIN_FROM: usize = 12;
 
 /// `values` (given at the increasing `nodes`) at `x`: the node's own value
 /// where x is a node, else the cubic in ln v through the four nearest
-/// nodes (fewer where there are fewer).
-pub(super) fn interpolate(nodes: &[f64], values: &[f64], x: f64) -> f64 {
+/// nodes (fewer where there are fewer). Public (as
+/// [`crate::exact_physics::interpolate`]) so that a report carries
+/// ln r = ln(μ_exact/μ_approx) between the data's speeds as the fit does.
+pub fn interpolate(nodes: &[f64], values: &[f64], x: f64) -> f64 {
     let k = nodes.partition_point(|&n| n < x);
     if k < nodes.len() && nodes[k] == x {
         return values[k];

@@ -8,7 +8,9 @@
 //! rollfit adds beyond them (bands, runs, shift, warnings) is optional, so
 //! a fit.json written by another program that honours the contract can be
 //! reported too. The master curve is rebuilt from the Prony series, so it
-//! can be drawn and compared outside the window modulus.csv covers.
+//! can be drawn and compared outside the window modulus.csv covers. What
+//! fit.json says about trusting the fit (verdict, noise, scale) is read
+//! by [`quality`].
 //!
 //! A fit.json edited by hand is checked where a wrong value would be read
 //! as something else rather than fail ([`summary`]). Errors name fit.json
@@ -26,10 +28,12 @@ use crate::text_file::read_utf8_file;
 pub mod columns;
 pub mod digest;
 mod json_error;
+pub mod quality;
 mod read;
 pub mod summary;
 pub mod write;
 
+pub use quality::{CondensedSummary, QualitySummary, RunsSummary, ScaleSummary};
 pub use read::{FrictionRow, ModulusRow};
 pub use summary::{
     AnchorSummary, FitSummary, InputSummary, LambdaSummary, LogShiftSummary, ModelSummary,

@@ -16,6 +16,7 @@ use serde::{Deserialize, Deserializer};
 use rollfit_model::modulus::Arrhenius;
 
 use super::json_error::line_of_key;
+use super::quality::{CondensedSummary, QualitySummary, ScaleSummary};
 use crate::error::IoError;
 
 /// fit.json, the keys the report uses.
@@ -74,6 +75,15 @@ pub struct FitSummary {
     /// (absent: the approximate physics of Eq. (11)/(17)).
     #[serde(default)]
     pub physics: Option<PhysicsSummary>,
+    /// The goodness-of-fit verdict, its tests and the noise they assume.
+    #[serde(default)]
+    pub fit_quality: Option<QualitySummary>,
+    /// Without an anchor: how well the data determine the modulus scale.
+    #[serde(default)]
+    pub scale: Option<ScaleSummary>,
+    /// Dense data: how the rows were condensed to bins before the fit.
+    #[serde(default)]
+    pub condensed: Option<CondensedSummary>,
 }
 
 /// fit.json's `physics` (fits with `physics = "exact"`).

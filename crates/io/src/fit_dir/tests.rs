@@ -289,45 +289,36 @@ fn modulus_values_follow_the_column_list() {
     assert_eq!(MODULUS_VALUES.map(|(name, _)| name), MODULUS_COLUMNS);
 }
 
-/// Issue 17: a fit with `physics = "exact"` writes fit.json's `physics`
-/// and mu.csv's `exact_correction`, and the reader reads back what the
-/// writer wrote; the approximate fit of the same data writes neither.
-#[test]
-fn exact_physics_round_trips_through_the_fit_folder() {
-    use rollfit_fit::{FitParams, Lambda, Measurements, Physics, RollingSetup, ScaleAnchor};
-    use rollfit_model::{ContactSize, Geometry, Scene, Shape, StandardLinearSolid, Substrate};
+/// A fit of 8 speeds made by a standard linear solid under a cylinder,
+/// anchored by E0 (σ = 1 % given, no noise): the report, and what it fits
+/// as mu.csv's measured columns.
+struct SmallFit {
+    speeds: Vec<f64>,
+    mu: Vec<f64>,
+    sigma: Vec<f64>,
+}
 
-    let setup = RollingSetup {
-        geometry: Geometry {
-            shape: Shape::Cylinder,
-            radius: 0.005,
-            load: 1000.0,
-        },
-        substrate: Substrate {
-            poisson: 0.5,
-            film_thickness: None,
-        },
-        contact: ContactSize::Dynamic,
-    };
-    let truth = StandardLinearSolid::new(2e6, 2e7, 1e-2).unwrap();
-    let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, truth).unwrap();
-    let speeds: Vec<f64> = (0..8).map(|k| 1e-6 * 10f64.powf(0.5 * k as f64)).collect();
-    let mu = scene.friction_sweep(&speeds).unwrap();
-    let sigma: Vec<f64> = mu.iter().map(|m| 0.01 * m).collect();
-    let data = Measurements::new(speeds.clone(), mu.clone(), Some(sigma.clone()), None).unwrap();
-    let input = FitInput {
-        scene: "scene.toml".into(),
-        data: "data.csv".into(),
-        temperature: None,
-        rollfit_version: "test",
-    };
-    let measured = Measured {
-        speeds: &speeds,
-        friction: &mu,
-        sigma: Some(&sigma),
-        temperature: None,
-    };
-    for physics in [Physics::Approximate, Physics::Exact] {
+impl SmallFit {
+    fn new() -> SmallFit {
+        use rollfit_model::{Scene, StandardLinearSolid};
+        let setup = small_setup();
+        let truth = StandardLinearSolid::new(2e6, 2e7, 1e-2).unwrap();
+        let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, truth).unwrap();
+        let speeds: Vec<f64> = (0..8).map(|k| 1e-6 * 10f64.powf(0.5 * k as f64)).collect();
+        let mu = scene.friction_sweep(&speeds).unwrap();
+        let sigma: Vec<f64> = mu.iter().map(|m| 0.01 * m).collect();
+        SmallFit { speeds, mu, sigma }
+    }
+
+    fn fit(&self, physics: rollfit_fit::Physics) -> rollfit_fit::FitReport {
+        use rollfit_fit::{FitParams, Lambda, Measurements, ScaleAnchor};
+        let data = Measurements::new(
+            self.speeds.clone(),
+            self.mu.clone(),
+            Some(self.sigma.clone()),
+            None,
+        )
+        .unwrap();
         let params = FitParams {
             anchor: Some(ScaleAnchor::StaticModulus(2e6)),
             lambda: Lambda::Fixed(1.0),
@@ -336,15 +327,51 @@ fn exact_physics_round_trips_through_the_fit_folder() {
             physics,
             ..FitParams::default()
         }
-        .check(setup)
+        .check(small_setup())
         .unwrap();
-        let report = rollfit_fit::fit(&data, &params).unwrap();
-        let files = FitFiles::encode(&report, &measured, &input).unwrap();
-        let folder = Folder::new(physics.name(), b"{}");
+        rollfit_fit::fit(&data, &params).unwrap()
+    }
+
+    /// `report`'s files written to a folder of their own, and read back.
+    fn round_trip(&self, report: &rollfit_fit::FitReport, name: &str) -> (FitDir, FitFiles) {
+        let input = FitInput {
+            scene: "scene.toml".into(),
+            data: "data.csv".into(),
+            temperature: None,
+            rollfit_version: "test",
+        };
+        let measured = Measured {
+            speeds: &self.speeds,
+            friction: &self.mu,
+            sigma: Some(&self.sigma),
+            temperature: None,
+        };
+        let files = FitFiles::encode(report, &measured, &input).unwrap();
+        let folder = Folder::new(name, b"{}");
         for (name, bytes) in files.named() {
             std::fs::write(folder.0.join(name), bytes).unwrap();
         }
-        let read = FitDir::read(&folder.0).unwrap();
+        (FitDir::read(&folder.0).unwrap(), files)
+    }
+}
+
+/// A 5 mm cylinder at 1000 N/m on a thick rubber, ν = 0.5, dynamic
+/// contact, as a scene file says it.
+fn small_setup() -> rollfit_fit::RollingSetup {
+    let scene = "[geometry]\nshape = \"cylinder\"\nradius = 0.005\nload = 1000.0\n";
+    crate::scene::parse(scene).unwrap().fit_setup().unwrap().0
+}
+
+/// Issue 17: a fit with `physics = "exact"` writes fit.json's `physics`
+/// and mu.csv's `exact_correction`, and the reader reads back what the
+/// writer wrote; the approximate fit of the same data writes neither.
+#[test]
+fn exact_physics_round_trips_through_the_fit_folder() {
+    use rollfit_fit::Physics;
+    let small = SmallFit::new();
+    for physics in [Physics::Approximate, Physics::Exact] {
+        let report = small.fit(physics);
+        let (read, files) = small.round_trip(&report, physics.name());
         let fitted: Vec<f64> = read.friction.iter().map(|r| r.mu_fit).collect();
         assert_eq!(fitted, report.mu_fit);
         let corrections: Vec<Option<f64>> =
@@ -369,4 +396,80 @@ fn exact_physics_round_trips_through_the_fit_folder() {
             (written, back) => panic!("{physics:?}: wrote {written:?}, read {back:?}"),
         }
     }
+}
+
+/// Issue 32: fit.json's `fit_quality` and `scale` read back as written,
+/// the scale absent, undetermined with both ends open (null), or
+/// determined with both ends; the "invalid" verdict reads as not good. A
+/// fit.json without them (another program's) reads with neither.
+#[test]
+fn verdict_noise_and_scale_round_trip_through_the_fit_folder() {
+    use rollfit_fit::ScaleRecord;
+    let small = SmallFit::new();
+    let mut report = small.fit(rollfit_fit::Physics::Approximate);
+    // Noiseless data may leave too few residuals of one sign for a runs
+    // test; one is set so that its keys are read back too.
+    report.fit_quality.runs = Some(rollfit_fit::quality::RunsTest {
+        observed: 3,
+        expected: 4.5,
+        z: -1.2,
+        p_value: 0.115,
+    });
+    let (read, _) = small.round_trip(&report, "quality");
+    let q = read.summary.fit_quality.expect("fit_quality reads");
+    let written = &report.fit_quality;
+    assert_eq!(q.verdict, written.verdict);
+    assert_eq!(q.is_good(), written.verdict == "good");
+    assert_eq!(q.noise_source.as_deref(), Some(written.noise_source));
+    assert_eq!(q.noise, Some(written.noise));
+    assert_eq!(q.chi2, Some(written.chi2));
+    assert_eq!(q.degrees_of_freedom, Some(written.degrees_of_freedom));
+    assert_eq!(q.chi2_p_value, written.chi2_p_value);
+    assert!(q.chi2_p_value.is_some(), "σ is given: a χ² p-value");
+    let runs = written.runs.unwrap();
+    let back = q.runs.expect("the runs test reads");
+    assert_eq!(
+        (back.observed, back.expected, back.p_value),
+        (runs.observed, runs.expected, runs.p_value)
+    );
+    assert!(read.summary.scale.is_none(), "an anchored fit has no scale");
+
+    let e0 = report.model.static_modulus;
+    let open = ScaleRecord {
+        status: "undetermined",
+        static_modulus: e0,
+        low: None,
+        high: None,
+        range: [1e4, 1e10],
+        profile: vec![[1e5, 0.5], [e0, 0.0], [1e8, 0.25]],
+        reason: "the data fit as well at every E0 profiled".into(),
+    };
+    let closed = ScaleRecord {
+        status: "data",
+        low: Some(0.5 * e0),
+        high: Some(2.0 * e0),
+        ..open.clone()
+    };
+    report.fit_quality.verdict = "invalid";
+    report.fit_quality.reasons = vec!["the contact is too large".into()];
+    for record in [open, closed] {
+        report.scale = Some(record.clone());
+        let (read, _) = small.round_trip(&report, record.status);
+        let q = read.summary.fit_quality.unwrap();
+        assert_eq!(q.verdict, "invalid");
+        assert!(!q.is_good());
+        assert_eq!(q.reasons, report.fit_quality.reasons);
+        let scale = read.summary.scale.expect("scale reads");
+        assert_eq!(scale.status, record.status);
+        assert_eq!(scale.is_determined(), !record.is_undetermined());
+        assert_eq!(scale.static_modulus, record.static_modulus);
+        assert_eq!((scale.low, scale.high), (record.low, record.high));
+        assert_eq!(scale.range, Some(record.range));
+        assert_eq!(scale.profile, record.profile);
+        assert_eq!(scale.reason.as_deref(), Some(record.reason.as_str()));
+    }
+
+    let folder = Folder::new("bare", GOOD.as_bytes());
+    let bare = FitDir::read(&folder.0).unwrap().summary;
+    assert!(bare.fit_quality.is_none() && bare.scale.is_none() && bare.condensed.is_none());
 }

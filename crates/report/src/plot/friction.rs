@@ -3,35 +3,32 @@
 //! percent, 100 (μ_fit − μ_meas)/μ_meas — the `residual` column of mu.csv
 //! (README, "Fit results") — with error bars ±100 σ/μ_meas where σ is
 //! known. A temperature set gets one colour per temperature.
+//!
+//! The fitted curve is the model's μ(v) on a dense grid of speeds
+//! ([`crate::fitted_friction`]) when the fit's scene could be read, else
+//! mu.csv's fitted values at the measured speeds joined by straight lines
+//! (the caption says which, and why). The title carries the fit's verdict,
+//! so that the picture copied alone still says whether the fit describes
+//! its data.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::axes::{self, lg, log_axis, log_range};
 use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
-use rollfit_io::fit_dir::{FitDir, FrictionRow};
+use crate::fitted_friction::{DENSE_POINTS, FittedLine, temperature_groups};
+use rollfit_io::fit_dir::{FitDir, FitSummary, FrictionRow};
 
 /// μ(v) with residuals.
 pub struct FrictionFigure<'a> {
     /// The fit.
     pub fit: &'a FitDir,
+    /// The fitted line to draw.
+    pub line: &'a FittedLine,
 }
 
-/// Rows of mu.csv grouped by temperature (one group without a T column),
-/// in the file's order of first appearance, each sorted by speed.
-pub(crate) fn temperature_groups(rows: &[FrictionRow]) -> Vec<(Option<f64>, Vec<FrictionRow>)> {
-    let mut groups: Vec<(Option<f64>, Vec<FrictionRow>)> = Vec::new();
-    for row in rows {
-        match groups.iter_mut().find(|(t, _)| *t == row.temperature) {
-            Some((_, members)) => members.push(*row),
-            None => groups.push((row.temperature, vec![*row])),
-        }
-    }
-    for (_, members) in &mut groups {
-        members.sort_by(|a, b| a.speed.total_cmp(&b.speed));
-    }
-    groups
-}
+/// One temperature's fitted line as (log10 v, log10 μ) points.
+pub type FittedSeries = (Option<f64>, Vec<(f64, f64)>);
 
 /// "T = 20 °C", or the given label without a temperature.
 pub(crate) fn temperature_label(t: Option<f64>, otherwise: &str) -> String {
@@ -41,17 +38,74 @@ pub(crate) fn temperature_label(t: Option<f64>, otherwise: &str) -> String {
     }
 }
 
+/// "verdict: good" (or poor, invalid), or "no verdict" when fit.json has
+/// no `fit_quality`: the words the picture's title adds.
+pub fn verdict_phrase(summary: &FitSummary) -> String {
+    match &summary.fit_quality {
+        Some(q) => format!("verdict: {}", q.verdict),
+        None => "no verdict in fit.json".into(),
+    }
+}
+
+impl FrictionFigure<'_> {
+    /// The fitted lines the picture draws, one per temperature in the
+    /// order of [`temperature_groups`]: the dense curve where there is one
+    /// for that temperature, else mu.csv's fitted μ at the measured speeds.
+    pub fn fitted_series(&self) -> Vec<FittedSeries> {
+        let points = |speeds: &mut dyn Iterator<Item = (f64, f64)>| -> Vec<(f64, f64)> {
+            speeds
+                .filter_map(|(v, mu)| Some((lg(v)?, lg(mu)?)))
+                .collect()
+        };
+        temperature_groups(&self.fit.friction)
+            .into_iter()
+            .map(|(t, members)| {
+                let dense = match self.line {
+                    FittedLine::Dense(curves) => curves.iter().find(|c| c.temperature == t),
+                    FittedLine::AtData { .. } => None,
+                };
+                let line = match dense {
+                    Some(c) => {
+                        points(&mut c.speeds.iter().copied().zip(c.friction.iter().copied()))
+                    }
+                    None => points(&mut members.iter().map(|r| (r.speed, r.mu_fit))),
+                };
+                (t, line)
+            })
+            .collect()
+    }
+}
+
 impl Figure for FrictionFigure<'_> {
     fn name(&self) -> &'static str {
         "friction"
     }
 
     fn caption(&self) -> String {
-        if self.fit.is_temperature_set() {
-            "Measured μ(v) per temperature (points) and the joint fit (lines); relative residuals (μ_fit − μ_meas)/μ_meas below.".into()
+        let line = match self.line {
+            FittedLine::Dense(_) => {
+                format!("the model's μ(v) on {DENSE_POINTS} speeds through the measured range")
+            }
+            FittedLine::AtData { why } => format!(
+                "the fit's μ at the measured speeds joined by straight lines, for want of a dense \
+                 curve: {why}"
+            ),
+        };
+        let (points, lines) = if self.fit.is_temperature_set() {
+            (
+                "Measured μ(v) per temperature (points)",
+                "the joint fit (lines)",
+            )
         } else {
-            "Measured μ(v) (points, ±1σ bars where σ is known) and the fit (line); relative residuals (μ_fit − μ_meas)/μ_meas below.".into()
-        }
+            (
+                "Measured μ(v) (points, ±1σ bars where σ is known)",
+                "the fit (line)",
+            )
+        };
+        format!(
+            "{points} and {lines}, {}; relative residuals (μ_fit − μ_meas)/μ_meas at the data below; {line}.",
+            verdict_phrase(&self.fit.summary)
+        )
     }
 
     fn size(&self) -> (u32, u32) {
@@ -65,6 +119,7 @@ impl Figure for FrictionFigure<'_> {
     {
         let rows = &self.fit.friction;
         let groups = temperature_groups(rows);
+        let fitted = self.fitted_series();
         let several = groups.len() > 1;
         let colour = |i: usize| {
             if several {
@@ -76,27 +131,37 @@ impl Figure for FrictionFigure<'_> {
 
         let x_range = log_range(rows.iter().map(|r| r.speed), 0.2, -6.0..0.0);
         let y_range = log_range(
-            rows.iter().flat_map(|r| {
-                [
-                    r.mu_measured,
-                    r.mu_fit,
-                    r.mu_measured - r.sigma.unwrap_or(0.0),
-                ]
-            }),
+            rows.iter()
+                .flat_map(|r| {
+                    [
+                        r.mu_measured,
+                        r.mu_fit,
+                        r.mu_measured - r.sigma.unwrap_or(0.0),
+                    ]
+                })
+                .chain(
+                    fitted
+                        .iter()
+                        .flat_map(|(_, line)| line.iter().map(|p| 10f64.powf(p.1))),
+                ),
             0.1,
             -3.0..0.0,
         );
         let (upper, lower) = root.split_vertically(530);
 
+        let title = format!(
+            "Rolling friction μ(v) — {}",
+            verdict_phrase(&self.fit.summary)
+        );
         let mut chart = ChartBuilder::on(&upper)
             .margin(12)
-            .caption("Rolling friction μ(v)", ("sans-serif", style::CAPTION))
+            .caption(title, ("sans-serif", style::CAPTION))
             .x_label_area_size(40)
             .y_label_area_size(75)
             .build_cartesian_2d(log_axis(x_range.clone()), log_axis(y_range.clone()))?;
         draw_mesh(&mut chart, "v (m/s)", "μ", true)?;
 
-        for (i, (t, members)) in groups.iter().enumerate() {
+        for (i, ((t, members), (_, line))) in groups.iter().zip(&fitted).enumerate() {
             let c = colour(i);
             for r in members {
                 if let (Some(s), Some(y)) = (r.sigma, lg(r.mu_measured)) {
@@ -117,16 +182,14 @@ impl Figure for FrictionFigure<'_> {
                 }))?
                 .label(label)
                 .legend(move |(x, y)| Circle::new((x + 10, y), 4, c.stroke_width(1)));
-            let line = if several { c } else { style::FITTED };
+            let line_colour = if several { c } else { style::FITTED };
             let series = chart.draw_series(LineSeries::new(
-                members
-                    .iter()
-                    .filter_map(|r| lg(r.mu_fit).map(|y| (r.speed.log10(), y))),
-                line.stroke_width(2),
+                line.iter().copied(),
+                line_colour.stroke_width(2),
             ))?;
             if !several {
                 series.label("fit").legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], line.stroke_width(2))
+                    PathElement::new(vec![(x, y), (x + 20, y)], line_colour.stroke_width(2))
                 });
             }
         }

@@ -72,6 +72,21 @@ impl MasterCurveFigure<'_> {
             .collect()
     }
 
+    /// The title: the reference temperature of a temperature set, and a
+    /// scale the data leave undetermined (E′ and E″ then only up to a
+    /// common factor), so that the picture copied alone says both.
+    pub fn title(&self) -> String {
+        let s = &self.fit.summary;
+        let mut title = "Recovered master curve E*(ω)".to_string();
+        if let Some(shift) = &s.shift {
+            title += &format!(" at T_ref = {} °C", super::format_tick(shift.t_ref));
+        }
+        if s.anchor.is_none() && s.scale.as_ref().is_some_and(|c| !c.is_determined()) {
+            title += " — scale undetermined";
+        }
+        title
+    }
+
     fn in_window(&self, lg_omega: f64) -> bool {
         let w = self.fit.summary.window;
         lg_omega >= w.omega_min.log10() - 1e-9 && lg_omega <= w.omega_max.log10() + 1e-9
@@ -172,6 +187,18 @@ impl Figure for MasterCurveFigure<'_> {
             text.push_str(&format!(
                 " (reference temperature {} °C)",
                 super::format_tick(shift.t_ref)
+            ));
+        }
+        if let Some(scale) = self
+            .fit
+            .summary
+            .scale
+            .as_ref()
+            .filter(|c| !c.is_determined())
+        {
+            text.push_str(&format!(
+                "; the data do not determine the modulus scale (scale {}): E′ and E″ are known only up to a common factor",
+                scale.status
             ));
         }
         text + "."
@@ -281,10 +308,7 @@ impl MasterCurveFigure<'_> {
         );
         let mut chart = ChartBuilder::on(area)
             .margin(12)
-            .caption(
-                "Recovered master curve E*(ω)",
-                ("sans-serif", style::CAPTION),
-            )
+            .caption(self.title(), ("sans-serif", style::CAPTION))
             .x_label_area_size(40)
             .y_label_area_size(75)
             .build_cartesian_2d(log_axis(x_range.clone()), log_axis(y_moduli.clone()))?;

@@ -237,13 +237,16 @@ where
 
 /// Every picture of a fit, in reading order: friction, master curve,
 /// spectrum, convergence, and for a temperature set the master friction
-/// curve and the shift. `dma` holds DMA points at the reference state.
+/// curve and the shift. `dma` holds DMA points at the reference state;
+/// `line` is the fitted μ(v) friction.png draws
+/// ([`crate::fitted_friction::FittedLine::of`]).
 pub fn pictures(
     fit: &rollfit_io::FitDir,
     dma: &[master_curve::DmaMarker],
+    line: &crate::fitted_friction::FittedLine,
 ) -> Result<Vec<Picture>, ReportError> {
     let mut pictures = vec![
-        render(&friction::FrictionFigure { fit })?,
+        render(&friction::FrictionFigure { fit, line })?,
         render(&master_curve::MasterCurveFigure { fit, dma })?,
         render(&spectrum::SpectrumFigure { fit })?,
         render(&convergence::ConvergenceFigure { fit })?,

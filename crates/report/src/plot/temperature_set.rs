@@ -10,8 +10,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::axes::{lg, linear_range, log_axis, log_range};
-use super::friction::{temperature_groups, temperature_label};
+use super::friction::temperature_label;
 use super::{DrawResult, Figure, draw_legend, draw_mesh, draw_shift_mesh, format_tick, style};
+use crate::fitted_friction::temperature_groups;
 use rollfit_io::fit_dir::FitDir;
 
 /// μ against v·a_T.

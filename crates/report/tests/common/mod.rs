@@ -1,9 +1,42 @@
 //! Helpers shared by the picture tests: decoding a rendered PNG and
-//! counting its pixels.
+//! counting its pixels; the committed example fits under fits/ and their
+//! scenes under data/, read as any user's would be.
 #![allow(dead_code)]
 
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use plotters::style::RGBColor;
+use rollfit_io::FitDir;
+use rollfit_report::fitted_friction::{FittedLine, RollingScene};
 use rollfit_report::plot::Picture;
+
+/// The workspace's root.
+pub fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The committed fit fits/`name`.
+pub fn committed_fit(name: &str) -> FitDir {
+    FitDir::read(&workspace().join("fits").join(name)).expect("the committed fit reads")
+}
+
+/// What the fitted μ(v) needs of the scene data/`name`.toml.
+pub fn scene(name: &str) -> RollingScene {
+    let path = workspace().join("data").join(format!("{name}.toml"));
+    let (setup, params) = rollfit_io::scene::load(&path)
+        .and_then(|s| s.fit_setup())
+        .expect("the example scene reads");
+    RollingScene::new(setup, &params)
+}
+
+/// The dense fitted line of the committed fit `name` under its own scene
+/// (the fit and the scene share the name).
+pub fn dense_line(fit: &FitDir, name: &str) -> FittedLine {
+    let line = FittedLine::of(fit, &scene(name));
+    assert!(matches!(line, FittedLine::Dense(_)), "{line:?}");
+    line
+}
 
 /// A decoded RGB image.
 pub struct Decoded {
@@ -34,4 +67,45 @@ pub fn count(image: &Decoded, c: RGBColor) -> usize {
         .chunks_exact(3)
         .filter(|px| px[0] == c.0 && px[1] == c.1 && px[2] == c.2)
         .count()
+}
+
+/// μ of the fit's master curve under `scene` at the scene's own load, at
+/// speed `v` (m/s), computed alone.
+pub fn model(scene: &RollingScene, fit: &FitDir, v: f64) -> f64 {
+    let s = scene.setup;
+    rollfit_model::Scene::new(s.geometry, s.substrate, s.contact, fit.master_curve.clone())
+        .and_then(|m| m.with_tolerance(scene.tolerance))
+        .and_then(|m| m.friction_sweep(&[v]))
+        .unwrap()[0]
+}
+
+/// A folder of its own under the system's temporary folder, removed on
+/// drop.
+pub struct TempFolder(pub PathBuf);
+
+impl TempFolder {
+    pub fn new(name: &str) -> TempFolder {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!(
+            "rollfit-report-test-{}-{name}-{n}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        TempFolder(dir)
+    }
+}
+
+impl Drop for TempFolder {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// Fails naming the first of `fragments` not in `text`.
+pub fn assert_contains(text: &str, fragments: &[&str]) {
+    for f in fragments {
+        assert!(text.contains(f), "{f:?} not in:\n{text}");
+    }
 }

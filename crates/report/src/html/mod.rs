@@ -1,9 +1,13 @@
 //! DIR/report.html: one self-contained page (no network, no external
-//! files: the pictures are inline SVG) with the fit's table, its
-//! parameters and their uncertainty, the warnings, the pictures and, when
-//! DMA data were given, the comparison metrics.
+//! files: the pictures are inline SVG) that opens with how far to trust
+//! the fit — convergence, the goodness-of-fit verdict with its tests and
+//! noise, and a flagged modulus scale ([`quality`]) — followed by the fit's
+//! table, the warnings, the pictures, its parameters and their uncertainty
+//! and, when DMA data were given, the comparison metrics.
 
 use std::fmt::Write as _;
+
+mod quality;
 
 use crate::compare::Comparison;
 use crate::plot::Picture;
@@ -23,6 +27,9 @@ tr.warn td { background: #fff3e0; }
 .status { padding: 0.6em 1em; border-radius: 4px; margin: 1em 0; }
 .ok { background: #e8f5e9; border: 1px solid #a5d6a7; }
 .bad { background: #ffebee; border: 1px solid #ef9a9a; }
+.caution { background: #fff8e1; border: 1px solid #ffe082; }
+.status ul { margin: 0.3em 0; }
+.status p.reasons { margin: 0.3em 0 0 0; }
 .warnings { background: #fff8e1; border: 1px solid #ffe082; padding: 0.6em 1em 0.6em 2em; }
 figure { margin: 1.5em 0; }
 figure svg { max-width: 100%; height: auto; border: 1px solid #eee; }
@@ -46,9 +53,9 @@ pub fn escape(text: &str) -> String {
     out
 }
 
-/// A number with 4 significant digits, in exponent form outside
-/// 1e-3 … 1e5.
-fn num(v: f64) -> String {
+/// A number as the page writes it: 4 significant digits, in exponent form
+/// outside 1e-3 … 1e5.
+pub fn num(v: f64) -> String {
     if !v.is_finite() {
         return v.to_string();
     }
@@ -101,6 +108,13 @@ pub fn report_html(
             let _ = write!(meta, "; {points} data points");
         }
     }
+    if let Some(shift) = &s.shift {
+        let _ = write!(
+            meta,
+            "; a temperature set, its master curve at T_ref = {} °C",
+            num(shift.t_ref)
+        );
+    }
     let _ = writeln!(page, "<p class=\"meta\">{meta}.</p>");
 
     // stop_reason reads "converged (…)" or says why not; the box says it once.
@@ -115,13 +129,11 @@ pub fn report_html(
         )
     };
     let _ = writeln!(page, "<div class=\"status {class}\">{text}</div>");
-    if !s.warnings.is_empty() {
-        page.push_str("<ul class=\"warnings\">\n");
-        for w in &s.warnings {
-            let _ = writeln!(page, "<li>{}</li>", escape(w));
-        }
-        page.push_str("</ul>\n");
+    page.push_str(&quality::verdict_banner(s));
+    if let Some(banner) = quality::scale_banner(s) {
+        page.push_str(&banner);
     }
+    list(&mut page, "warnings", &s.warnings);
 
     page.push_str("<h2>Fit</h2>\n");
     page.push_str(&fit_table(fit));
@@ -158,6 +170,19 @@ fn inline_svg(svg: &str) -> &str {
     } else {
         trimmed
     }
+}
+
+/// `items` as an unordered list of class `class`, each escaped; nothing
+/// when there are none.
+fn list<S: AsRef<str>>(out: &mut String, class: &str, items: &[S]) {
+    if items.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "<ul class=\"{class}\">");
+    for item in items {
+        let _ = writeln!(out, "<li>{}</li>", escape(item.as_ref()));
+    }
+    out.push_str("</ul>\n");
 }
 
 fn row(out: &mut String, name: &str, value: &str) {
@@ -227,6 +252,11 @@ fn fit_table(fit: &FitDir) -> String {
         ),
     );
     if let Some(shift) = &s.shift {
+        row(
+            &mut t,
+            "reference temperature T_ref",
+            &format!("{} °C", num(shift.t_ref)),
+        );
         let text = shift_law(shift);
         row(&mut t, "shift", &escape(&text));
         let list: Vec<String> = shift
@@ -243,24 +273,7 @@ fn fit_table(fit: &FitDir) -> String {
             .collect();
         row(&mut t, "log10 a_T", &escape(&list.join("; ")));
     }
-    if let Some(anchor) = &s.anchor {
-        row(
-            &mut t,
-            "scale anchor",
-            &escape(&format!(
-                "{}: |E*| = {} Pa at ω = {} rad/s",
-                anchor.source,
-                num(anchor.modulus),
-                num(anchor.omega)
-            )),
-        );
-    } else {
-        row(
-            &mut t,
-            "scale anchor",
-            "none: the modulus scale is not determined by μ(v) alone",
-        );
-    }
+    row(&mut t, "scale", &quality::scale_row(s));
     row(&mut t, "method", &escape(&s.method));
     row(&mut t, "objective V", &num(s.objective));
     if let Some(m) = s.misfit_per_point {
@@ -347,20 +360,8 @@ fn comparison_table(section: &ComparisonSection<'_>) -> String {
         num(c.fit_window[0]),
         num(c.fit_window[1]),
     );
-    if !c.warnings.is_empty() {
-        t.push_str("<ul class=\"warnings\">\n");
-        for w in &c.warnings {
-            let _ = writeln!(t, "<li>{}</li>", escape(w));
-        }
-        t.push_str("</ul>\n");
-    }
-    if !c.notes.is_empty() {
-        t.push_str("<ul class=\"meta\">\n");
-        for note in &c.notes {
-            let _ = writeln!(t, "<li>{}</li>", escape(note));
-        }
-        t.push_str("</ul>\n");
-    }
+    list(&mut t, "warnings", &c.warnings);
+    list(&mut t, "meta", &c.notes);
     if c.overlap_empty {
         t.push_str(
             "<p class=\"status bad\">The fit's window and the DMA frequencies do not overlap: \
