@@ -6,7 +6,12 @@
 //!
 //! - Influence trace: t = tr(H⁻¹ J_dᵀJ_d), the effective number of
 //!   parameters the data fix (≤ free parameters; smaller with smoothing).
-//! - Noise: s² = 1 when σ is measured (residuals are in units of σ), else
+//! - Noise: s² = 1 when σ is measured (residuals are in units of σ). Else,
+//!   with λ by the marginal likelihood, its restricted estimate
+//!   s² = V̂/(N − m₀) at the criterion's minimum (V̂ the penalised misfit,
+//!   m₀ the unpenalised directions; [`crate::regularization`]): the λ
+//!   chosen leans to the smooth side of that minimum, and its residuals
+//!   carry a smoothing bias that is not noise. With a fixed λ,
 //!   s² = misfit/(N − t), the residual variance of a relative-error model.
 //! - Covariance: C = s² H⁻¹ (the curvature of V at the optimum), via a
 //!   pseudo-inverse so that directions the data and penalty leave flat show
@@ -131,12 +136,14 @@ pub(crate) fn pseudo_inverse(h: &DMatrix<f64>) -> (DMatrix<f64>, f64) {
 
 /// Statistics from the full residual Jacobian `jacobian` whose first
 /// `data_count` rows are data residuals and whose last row is the E1_max
-/// bound.
+/// bound; the noise variance s² is `noise_variance` when known (1 for a
+/// measured σ, or an estimate made elsewhere), else misfit/(N − t) from
+/// the data residuals' `misfit`.
 pub(crate) fn curvature(
     jacobian: &DMatrix<f64>,
     data_count: usize,
     misfit: f64,
-    sigma_known: bool,
+    noise_variance: Option<f64>,
 ) -> Curvature {
     // The last row is the E1_max bound: a guard against runaway steps, not
     // information about the material, so it does not narrow the band.
@@ -147,7 +154,7 @@ pub(crate) fn curvature(
     let (h_inv, log_det) = pseudo_inverse(&h);
     let effective_parameters = (&h_inv * &hd).trace();
     let dof = (data_count as f64 - effective_parameters).max(1.0);
-    let noise_variance = if sigma_known { 1.0 } else { misfit / dof };
+    let noise_variance = noise_variance.unwrap_or(misfit / dof);
     let sensitivity = (0..jacobian.ncols()).map(|k| hd[(k, k)]).collect();
     Curvature {
         covariance: h_inv * noise_variance,

@@ -21,8 +21,16 @@
 //!   restricted likelihood of the smoothing-spline literature). It asks the
 //!   noise level of the data rather than assuming it, and unlike GCV it has
 //!   no tendency to run to λ → 0 on few points, where GCV's minimum is
-//!   shallow and often at the interpolating end. Golden-section refinement
-//!   in ln λ.
+//!   shallow and often at the interpolating end. Its minimum is located
+//!   between the path points by a parabola in ln λ (the driver's λ
+//!   module).
+//!
+//!   The profiled σ̂² at the criterion's minimum is the restricted (REML)
+//!   estimate of the noise: for a linear model with the smoothness prior
+//!   that λ expresses, V̂ = yᵀ(I − A)y (A the influence matrix) has the
+//!   expectation σ²(N − m₀), so V̂/(N − m₀) is unbiased there. It is the
+//!   noise estimate of a fit without a sigma column
+//!   (`Trial::evidence_noise_variance`, taken at the criterion's minimum).
 //! - Generalised cross-validation (kept for comparison): the λ minimising
 //!   GCV(λ) = N·misfit/(N − t(λ))², t the influence trace of
 //!   `analysis`.
@@ -94,6 +102,14 @@ impl Trial {
         let dof = (n as f64 - unpenalised).max(1.0);
         dof * self.penalised.max(f64::MIN_POSITIVE).ln() + self.log_det
             - self.penalty_rank as f64 * self.lambda.max(f64::MIN_POSITIVE).ln()
+    }
+
+    /// The noise variance the marginal likelihood profiles out,
+    /// σ̂² = V̂/(N − m₀) (the module doc), in units of the residuals (for
+    /// relative residuals: the relative variance of μ).
+    pub fn evidence_noise_variance(&self, n: usize) -> f64 {
+        let unpenalised = self.free.saturating_sub(self.penalty_rank) as f64;
+        self.penalised / (n as f64 - unpenalised).max(1.0)
     }
 
     /// The criterion `rule` minimises (GCV for a fixed λ: unused).

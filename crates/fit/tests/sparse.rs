@@ -9,9 +9,10 @@
 mod common;
 
 use common::{
-    band_coverage, cylinder_setup, hn_rubber, narrow_rubber, setup, sparse, synthetic,
-    window_errors,
+    band_coverage, cylinder_setup, exact_friction, hn_rubber, narrow_rubber, setup, sparse,
+    synthetic, window_errors,
 };
+use rollfit_fit::quality::RUNS_P_VALUE;
 use rollfit_fit::{FitParams, Lambda, Measurements, RollingSetup, ScaleAnchor, TermRule, fit};
 use rollfit_model::{HavriliakNegami, ViscoelasticModulus};
 
@@ -45,14 +46,13 @@ fn cases() -> Vec<(&'static str, RollingSetup, HavriliakNegami, f64)> {
 /// determined window shrunk by half a decade at each end, for each of 10
 /// seeds, and the 2σ band covering the truth at ≥ 90 % of those points on
 /// average over the seeds; every fit judged "good". Measured (this test's
-/// output): |E| ≤ 4.5 % everywhere; tan δ ≤ 6.2 % in 39 of 40 fits and
-/// 9.1 % in one (broad sphere, seed 5, whose noise draw a smooth curve
-/// absorbs); mean coverage 0.96–1.00 per case. The test holds that line —
-/// |E| ≤ 8 % always, tan δ ≤ 8 % in at least 39 of 40 and ≤ 10 % always —
-/// so a regression shows; the issue's "every seed" is not met for tan δ.
+/// output): tan δ ≤ 7.3 % and |E| ≤ 7.3 % in all 40 fits, mean coverage
+/// 0.93–0.94 per case. Before issue 32 (λ leaning to the smooth side, the
+/// noise read off its residuals) tan δ was 9.1 % in one fit (broad sphere,
+/// seed 5, whose noise draw a smooth curve absorbs; now 7.0 %) and the
+/// coverage 0.96–1.00 inside bands widened by an overestimated noise.
 #[test]
 fn sparse_lab_data_are_recovered() {
-    let mut over = Vec::new();
     for (name, s, truth, v_min) in cases() {
         let params = anchored_at(s, &truth, v_min * 10f64.powf(2.5))
             .check(s)
@@ -70,16 +70,63 @@ fn sparse_lab_data_are_recovered() {
             );
             assert!(n >= 20, "{name} seed {seed}: window of {n} points");
             assert!(e <= 0.08, "{name} seed {seed}: |E| {e}");
-            assert!(t <= 0.10, "{name} seed {seed}: tan δ {t}");
+            assert!(t <= 0.08, "{name} seed {seed}: tan δ {t}");
             assert!(!report.fit_quality.is_poor(), "{:?}", report.fit_quality);
-            if t > 0.08 {
-                over.push((name, seed, t));
-            }
             coverage += covered / 10.0;
         }
         assert!(coverage >= 0.9, "{name}: mean 2σ coverage {coverage}");
     }
-    assert!(over.len() <= 1, "tan δ above 8 %: {over:?}");
+}
+
+/// Issue 32: the noise estimate of a fit without a sigma column is not
+/// inflated by the smoothing. 15 speeds over 5 decades with 3 % noise, the
+/// broad and the narrow rubber under the ball (anchored as above), 20 seeds
+/// each: the median estimate lies within 2.6–3.5 % and none exceeds 4.5 %;
+/// with the correct model the runs test flags at most a tenth of the fits.
+/// The noise actually drawn (the RMS of the 15 relative errors added) is
+/// printed beside each estimate. Measured (this test's output): median
+/// 2.7 %, largest 4.2 %, estimate/drawn 0.96–1.00 in the median; the runs
+/// test flags none (before issue 32: median 3.3 %, largest 5.5 %, estimate/
+/// drawn 1.12–1.27, the noise read off an over-smoothed fit's residuals).
+#[test]
+fn noise_estimate_on_sparse_data() {
+    let s = setup();
+    let (mut estimates, mut flagged) = (Vec::new(), 0);
+    for (name, truth, v_min) in [
+        ("broad", hn_rubber(), 1e-6),
+        ("narrow", narrow_rubber(), 1e-5),
+    ] {
+        let params = anchored_at(s, &truth, v_min * 10f64.powf(2.5))
+            .check(s)
+            .unwrap();
+        for seed in 0..20 {
+            let data = sparse(s, truth.clone(), v_min, 5.0, 15, 0.03, seed);
+            let drawn = drawn_noise(s, &truth, &data);
+            let report = fit(&data, &params).unwrap();
+            let q = &report.fit_quality;
+            let runs_p = q.runs.map_or(1.0, |r| r.p_value);
+            eprintln!(
+                "{name} seed {seed}: noise {:.4} (drawn {drawn:.4}), λ {:.2e}, runs p {runs_p:.3}, \
+                 {}",
+                report.noise, report.lambda.value, q.verdict
+            );
+            assert_eq!(q.noise_source, "estimated");
+            estimates.push(report.noise);
+            if runs_p < RUNS_P_VALUE {
+                flagged += 1;
+            }
+        }
+    }
+    estimates.sort_by(f64::total_cmp);
+    let median = 0.5 * (estimates[19] + estimates[20]);
+    let largest = estimates[39];
+    eprintln!("median {median:.4}, largest {largest:.4}, runs test flags {flagged} of 40");
+    assert!((0.026..=0.035).contains(&median), "median noise {median}");
+    assert!(largest <= 0.045, "largest noise {largest}");
+    assert!(
+        flagged <= 4,
+        "the runs test flags {flagged} of 40 correct fits"
+    );
 }
 
 /// Issue 13: "more data never gives a worse answer". The same truth, noise
@@ -88,8 +135,8 @@ fn sparse_lab_data_are_recovered() {
 /// scatter gives the noise): over three seeds, the dense fit's mean tan δ
 /// and |E| errors are no larger than the 41-row fit's, and it says how it
 /// condensed the rows. Measured (this test's output, and the study with
-/// COUNT=41 and COUNT=10000): tan δ 1.4–7.6 % from 41 rows, 0.4–2.3 % from
-/// 10 000.
+/// COUNT=41 and COUNT=10000): tan δ 1.3–8.3 % from 41 rows (1.4–7.6 % before
+/// issue 32), 0.4–2.3 % from 10 000.
 #[test]
 fn ten_thousand_rows_are_no_worse_than_forty_one() {
     for (name, s, truth, v_min) in [cases()[0].clone(), cases()[3].clone()] {
@@ -221,70 +268,123 @@ fn wrong_units_in_the_scene_are_named() {
     );
 }
 
-#[test]
-/// The same study with its knobs in the environment (CASE, SEEDS, COUNT,
-/// DECADES, NOISE, LAMBDA):
-/// `SEEDS=10 NOISE=0.05 cargo test --release -p rollfit-fit --test sparse study_sparse -- --ignored --nocapture`.
-#[ignore = "study: run by hand"]
-fn study_sparse() {
-    let cases: Vec<(&str, RollingSetup, HavriliakNegami, f64)> = vec![
-        ("broad sphere", setup(), hn_rubber(), 1e-6),
-        ("narrow sphere", setup(), narrow_rubber(), 1e-5),
-        ("broad cylinder", cylinder_setup(), hn_rubber(), 1e-6),
-        ("narrow cylinder", cylinder_setup(), narrow_rubber(), 1e-5),
-    ];
-    let seeds: u64 = std::env::var("SEEDS")
+/// The relative noise actually drawn into `data`: the RMS of μ_i/μ_true − 1
+/// at its speeds, μ_true of `truth` under `setup`.
+fn drawn_noise(setup: RollingSetup, truth: &HavriliakNegami, data: &Measurements) -> f64 {
+    let exact = exact_friction(setup, truth.clone(), data.speeds());
+    let squares: f64 = data
+        .friction()
+        .iter()
+        .zip(&exact)
+        .map(|(m, e)| (m / e - 1.0).powi(2))
+        .sum();
+    (squares / data.len() as f64).sqrt()
+}
+
+/// A knob of [`study_sparse`] from the environment.
+fn knob<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name)
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(3);
+        .unwrap_or(default)
+}
+
+/// The median, 90th percentile and largest of `values`.
+fn spread(mut values: Vec<f64>) -> [f64; 3] {
+    values.sort_by(f64::total_cmp);
+    let at = |q: f64| values[(q * (values.len() - 1) as f64).round() as usize];
+    [at(0.5), at(0.9), at(1.0)]
+}
+
+/// What one fit of [`study_sparse`] found.
+#[derive(Default)]
+struct StudyRow {
+    tan_delta: f64,
+    modulus: f64,
+    coverage: f64,
+    points: usize,
+    noise: f64,
+    flagged: bool,
+}
+
+/// The study's summary of `rows` under `name`.
+fn summarise(name: &str, rows: &[StudyRow]) {
+    let column = |f: fn(&StudyRow) -> f64| spread(rows.iter().map(f).collect());
+    let [t50, t90, t_max] = column(|r| r.tan_delta);
+    let [e50, e90, e_max] = column(|r| r.modulus);
+    let [n50, n90, n_max] = column(|r| r.noise);
+    let over = |f: fn(&StudyRow) -> f64| rows.iter().filter(|r| f(r) > 0.08).count();
+    eprintln!(
+        "{name} ({} fits): tan δ median {t50:.4} q90 {t90:.4} max {t_max:.4} (> 8 %: {}); |E| \
+         median {e50:.4} q90 {e90:.4} max {e_max:.4} (> 8 %: {}); 2σ coverage mean {:.3}; window \
+         ≥ {} points; noise median {n50:.4} q90 {n90:.4} max {n_max:.4}; runs test flags {}",
+        rows.len(),
+        over(|r| r.tan_delta),
+        over(|r| r.modulus),
+        rows.iter().map(|r| r.coverage).sum::<f64>() / rows.len() as f64,
+        rows.iter().map(|r| r.points).min().unwrap_or(0),
+        rows.iter().filter(|r| r.flagged).count()
+    );
+}
+
+/// The same study with its knobs in the environment (CASE, SEEDS, COUNT,
+/// DECADES, NOISE, LAMBDA), each fit's line and a summary per case and over
+/// all: `SEEDS=40 cargo test --release -p rollfit-fit --test sparse
+/// study_sparse -- --ignored --nocapture` (the figures of issue 32 in
+/// crates/fit/src/driver/lambda.rs).
+#[test]
+#[ignore = "study: run by hand"]
+fn study_sparse() {
+    let seeds: u64 = knob("SEEDS", 3);
+    let (count, decades, noise) = (knob("COUNT", 15), knob("DECADES", 5.0), knob("NOISE", 0.03));
     let only = std::env::var("CASE").ok();
     let lambda = std::env::var("LAMBDA")
         .ok()
         .and_then(|s| s.parse().ok())
         .map(rollfit_fit::Lambda::Fixed)
         .unwrap_or(rollfit_fit::Lambda::Auto);
-    for (name, s, truth, v_min) in cases {
+    let mut all = Vec::new();
+    for (name, s, truth, v_min) in cases() {
         if only.as_deref().is_some_and(|o| o != name) {
             continue;
         }
-        let omega_a = centre_omega(s, &truth, v_min * 10f64.powf(2.5));
+        let params = FitParams {
+            lambda,
+            ..anchored_at(s, &truth, v_min * 10f64.powf(2.5))
+        }
+        .check(s)
+        .unwrap();
+        let mut rows = Vec::new();
         for seed in 0..seeds {
-            let count: usize = std::env::var("COUNT")
-                .ok()
-                .and_then(|s| s.parse().ok())
-                .unwrap_or(15);
-            let decades: f64 = std::env::var("DECADES")
-                .ok()
-                .and_then(|s| s.parse().ok())
-                .unwrap_or(5.0);
-            let noise: f64 = std::env::var("NOISE")
-                .ok()
-                .and_then(|s| s.parse().ok())
-                .unwrap_or(0.03);
             let data = sparse(s, truth.clone(), v_min, decades, count, noise, seed);
-            let params = FitParams {
-                anchor: Some(ScaleAnchor::ModulusAt {
-                    omega: omega_a,
-                    modulus: truth.modulus(omega_a).norm(),
-                }),
-                lambda,
-                ..FitParams::default()
-            }
-            .check(s)
-            .unwrap();
             let report = fit(&data, &params).unwrap();
             let (t, e, n) = window_errors(&report, &truth);
             let (ct, ce) = band_coverage(&report, &truth, 2.0);
+            let runs_p = report.fit_quality.runs.map_or(f64::NAN, |r| r.p_value);
             eprintln!(
-                "{name} seed {seed}: tan δ {t:.4} |E| {e:.4} ({n} pts) cover2σ {ct:.2}/{ce:.2} {} runs p {:.3} λ {:.2e} t {:.1} noise {:.4} terms {} {:.3} s",
+                "{name} seed {seed}: tan δ {t:.4} |E| {e:.4} ({n} pts) cover2σ {ct:.2}/{ce:.2} {} \
+                 runs p {runs_p:.3} λ {:.2e} t {:.1} noise {:.4} (drawn {:.4}) terms {} \
+                 {} evaluations {:.3} s",
                 report.fit_quality.verdict,
-                report.fit_quality.runs.map_or(f64::NAN, |r| r.p_value),
                 report.lambda.value,
                 report.effective_parameters,
                 report.noise,
+                drawn_noise(s, &truth, &data),
                 report.terms.count,
+                report.evaluations,
                 report.wall_time_s
             );
+            rows.push(StudyRow {
+                tan_delta: t,
+                modulus: e,
+                coverage: ct,
+                points: n,
+                noise: report.noise,
+                flagged: runs_p < RUNS_P_VALUE,
+            });
         }
+        summarise(name, &rows);
+        all.extend(rows);
     }
+    summarise("all", &all);
 }

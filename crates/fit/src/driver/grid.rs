@@ -27,7 +27,7 @@ use crate::solvers::{SolverRun, Tolerance, default_budget, run};
 use crate::temperature_set::ShiftStart;
 
 use super::lambda::{
-    Refinement, first_lambda, lambda_path, path_walked, refine, smoothest_acceptable,
+    Refinement, criterion_minimum, first_lambda, lambda_path, path_walked, refine,
 };
 use super::optimum::{Chosen, Optimum, analyse};
 use super::starts::{Starts, neutral_start};
@@ -103,6 +103,8 @@ struct LambdaChoice {
     run: SolverRun,
     /// (λ, criterion) along the path for the criterion rules.
     criterion: Vec<[f64; 2]>,
+    /// The marginal likelihood's noise variance at its minimum.
+    evidence_noise_variance: Option<f64>,
 }
 
 /// One solver run as the grid asks for it.
@@ -191,7 +193,8 @@ impl<'a> GridSolver<'a> {
             .jacobian
             .as_ref()
             .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
-        let c = curvature(jac, self.data.len(), e.misfit, self.data.sigma().is_some());
+        let known = self.data.sigma().map(|_| 1.0);
+        let c = curvature(jac, self.data.len(), e.misfit, known);
         let bound = e.residuals[e.residuals.len() - 1];
         Ok((
             Trial {
@@ -270,6 +273,7 @@ impl<'a> GridSolver<'a> {
             trial,
             run,
             criterion: Vec::new(),
+            evidence_noise_variance: None,
         })
     }
 
@@ -300,12 +304,15 @@ impl<'a> GridSolver<'a> {
                 break;
             }
         }
-        let (lambda, from) = match rule {
+        let (lambda, from, evidence_noise_variance) = match rule {
             LambdaRule::Discrepancy => {
                 let (t, _) = refine(rule, n, trials, self)?;
-                (t.lambda, t.theta)
+                (t.lambda, t.theta, None)
             }
-            _ => smoothest_acceptable(rule, n, &trials),
+            _ => {
+                let minimum = criterion_minimum(rule, n, &trials);
+                (minimum.lambda, minimum.from, minimum.noise_variance)
+            }
         };
         self.tolerance = Tolerance::Final;
         let (trial, run) = self.solve(lambda, &from, "chosen lambda")?;
@@ -316,6 +323,7 @@ impl<'a> GridSolver<'a> {
             trial,
             run,
             criterion,
+            evidence_noise_variance,
         })
     }
 
@@ -394,6 +402,7 @@ impl<'a> GridSolver<'a> {
             criterion: choice.criterion,
             runs: self.runs,
             less_smoothed,
+            evidence_noise_variance: choice.evidence_noise_variance,
         };
         analyse(self.data, self.params, &mut self.objective, chosen)
     }

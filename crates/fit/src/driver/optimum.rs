@@ -36,6 +36,9 @@ pub(super) struct Chosen {
     pub runs: Vec<RunRecord>,
     /// θ of the fit at λ/10, for the smoothing bias of the bands.
     pub less_smoothed: Option<Vec<f64>>,
+    /// The noise variance of the marginal likelihood at its minimum (σ
+    /// unknown, λ by that rule): the fit's noise estimate.
+    pub evidence_noise_variance: Option<f64>,
 }
 
 /// The analysed optimum on one τ grid.
@@ -105,7 +108,11 @@ pub(super) fn analyse(
         .as_ref()
         .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
     let sigma_known = data.sigma().is_some();
-    let c = curvature(jac, data.len(), e.misfit, sigma_known);
+    let noise_variance = match sigma_known {
+        true => Some(1.0),
+        false => chosen.evidence_noise_variance,
+    };
+    let c = curvature(jac, data.len(), e.misfit, noise_variance);
     let param = &objective.param;
     let n_material = param.free_count();
     let mapped = param.map(&chosen.trial.theta[..n_material]);

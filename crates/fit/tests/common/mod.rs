@@ -221,6 +221,26 @@ pub fn sparse<M: ViscoelasticModulus>(
     Measurements::new(speeds, noisy, None, None).unwrap()
 }
 
+/// μ of `truth` under `setup` at `speeds`, without noise.
+pub fn exact_friction<M: ViscoelasticModulus>(
+    setup: RollingSetup,
+    truth: M,
+    speeds: &[f64],
+) -> Vec<f64> {
+    let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, truth).unwrap();
+    scene.friction_sweep(speeds).unwrap()
+}
+
+/// Whether a fit judged poor says, among its reasons, to try free shifts
+/// (`shift = "free"`): the hint of a law the cross-check questions.
+pub fn points_to_free_shifts(report: &FitReport) -> bool {
+    report
+        .fit_quality
+        .reasons
+        .iter()
+        .any(|r| r.contains("shift = \"free\""))
+}
+
 /// Fraction of the reported curve's points inside the window shrunk by
 /// half a decade at each end where the truth lies within `k` reported σ, for
 /// tan δ and |E|.
