@@ -277,11 +277,10 @@ pub struct FitReport {
     pub runs: Vec<RunRecord>,
     /// (evaluations, best V) of the final run.
     pub history: Vec<[f64; 2]>,
-    /// Without an anchor: (factor c, misfit, λ) of the refits with |E*| at
-    /// the window's centre pinned to c times the fitted value, each at the
-    /// strongest of λ, λ/10, λ/100, λ/1000 that describes the data within
-    /// one noise unit of the fit (else the weakest); those within widen the
-    /// bands.
+    /// Without an anchor: (factor c, misfit, λ_p) of the scale profile's
+    /// refits with E0 pinned to c times the result's E0, the shape refitted
+    /// at one λ_p (`driver`'s profile); those within one noise unit of the
+    /// best widen the bands.
     pub scale_profile: Vec<[f64; 3]>,
     /// Without an anchor: how well the data determine the modulus scale.
     #[serde(skip_serializing_if = "Option::is_none")]
