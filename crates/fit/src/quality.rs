@@ -49,6 +49,8 @@
 //!   goodness of fit), §14.3.
 
 use serde::Serialize;
+
+use crate::data::Measurements;
 use statrs::distribution::{ChiSquared, ContinuousCDF, Normal};
 
 /// p-value below which the χ² test (σ measured) marks the fit poor.
@@ -230,6 +232,27 @@ pub(crate) fn assess(
         runs,
         reasons,
     }
+}
+
+/// The data's row indices by temperature (one group without a `T`
+/// column), each in order of speed: the order of the runs test.
+pub(crate) fn speed_ordered_groups(data: &Measurements) -> Vec<Vec<usize>> {
+    let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
+    for i in 0..data.len() {
+        let t = data.temperature().map_or(0.0, |t| t[i]);
+        match groups.iter_mut().find(|(g, _)| *g == t) {
+            Some((_, rows)) => rows.push(i),
+            None => groups.push((t, vec![i])),
+        }
+    }
+    let speeds = data.speeds();
+    groups
+        .into_iter()
+        .map(|(_, mut rows)| {
+            rows.sort_by(|&a, &b| speeds[a].total_cmp(&speeds[b]));
+            rows
+        })
+        .collect()
 }
 
 #[cfg(test)]

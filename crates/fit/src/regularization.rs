@@ -4,9 +4,13 @@
 //! so each costs a few Levenberg–Marquardt steps), then refined in ln λ.
 //!
 //! - Discrepancy principle (σ measured): the largest λ whose misfit
-//!   χ²(λ) = Σ r_i² does not exceed N, the expected χ² of the truth; the
-//!   smoothest model the noise cannot tell from the data. Bisection in ln λ
-//!   between the last λ above and the first below refines it.
+//!   χ²(λ) = Σ r_i² does not exceed N, the expected χ² of the truth, and
+//!   whose residual signs pass the runs test of [`crate::quality`]; the
+//!   smoothest model the noise cannot tell from the data by either of the
+//!   tests its fit is judged by. Bisection in ln λ between the last λ that
+//!   fails and the first that passes refines it. (Residual whiteness as a
+//!   condition on λ: Hansen, Kilmer and Kjeldsen; Rust and O'Leary. The
+//!   driver's λ module says where the runs condition stops.)
 //! - Marginal likelihood (σ unknown, the default): the λ that makes the
 //!   data most probable when the noise level is integrated out. In the
 //!   Gaussian linearisation at the optimum θ̂(λ), with data Jacobian J_d,
@@ -43,6 +47,12 @@
 //!   13 (1985) 1378–1402.
 //! - D.J.C. MacKay, "Bayesian interpolation", Neural Comput. 4 (1992)
 //!   415–447.
+//! - P.C. Hansen, M.E. Kilmer, R.H. Kjeldsen, "Exploiting residual
+//!   information in the parameter choice for discrete ill-posed problems",
+//!   BIT 46 (2006) 41–59.
+//! - B.W. Rust, D.P. O'Leary, "Residual periodograms for choosing
+//!   regularization parameters for ill-posed problems", Inverse Problems
+//!   24 (2008) 034005.
 //! - G.H. Golub, M. Heath, G. Wahba, "Generalized cross-validation as a
 //!   method for choosing a good ridge parameter", Technometrics 21 (1979)
 //!   215–223.
@@ -87,6 +97,9 @@ pub(crate) struct Trial {
     pub penalty_rank: usize,
     /// Free parameters p.
     pub free: usize,
+    /// Whether the residual signs pass the runs test of
+    /// [`crate::quality`] at its level (or are too few to test).
+    pub random_signs: bool,
 }
 
 impl Trial {

@@ -163,8 +163,16 @@ pub struct ShiftCrossCheck {
     pub max_difference: f64,
 }
 
+impl ShiftCrossCheck {
+    /// The temperatures whose single and joint shifts differ by more than
+    /// their combined σ allows (`beyond_sigma`).
+    pub fn disagreeing(&self) -> impl Iterator<Item = &CrossCheckRow> {
+        self.temperatures.iter().filter(|r| r.beyond_sigma)
+    }
+}
+
 /// One temperature of the cross-check.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CrossCheckRow {
     /// °C.
     #[serde(rename = "T")]
@@ -180,6 +188,22 @@ pub struct CrossCheckRow {
     pub difference: f64,
     /// The single-temperature fit's misfit per point.
     pub single_misfit_per_point: f64,
+    /// 1σ of `log_aT_single`, decades, from the single fits' tan δ bands
+    /// (null when those fits do not determine it).
+    #[serde(rename = "log_aT_single_sigma")]
+    pub log_shift_single_sigma: Option<f64>,
+    /// 1σ of `log_aT_joint`, decades (null when not determined).
+    #[serde(rename = "log_aT_joint_sigma")]
+    pub log_shift_joint_sigma: Option<f64>,
+    /// The combined 1σ of `difference`, decades (null when either is
+    /// undetermined).
+    pub difference_sigma: Option<f64>,
+    /// |difference| above three times `difference_sigma`: the joint shift
+    /// at this temperature is questioned.
+    pub beyond_sigma: bool,
+    /// What limits the single-temperature fit (few speeds, low μ, μ
+    /// written with few digits); empty when nothing does.
+    pub single_fit_limits: Vec<String>,
 }
 
 /// How a fit with `physics = "exact"` reached the exact contact

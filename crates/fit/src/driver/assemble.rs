@@ -13,18 +13,14 @@ use crate::error::FitError;
 use crate::params::ValidFitParams;
 use crate::quality::FitQuality;
 use crate::report::{
-    AnchorRecord, FitReport, ScaleRecord, ShiftChoice, ShiftCrossCheck, ShiftRecord, TermsRecord,
-    Window,
+    AnchorRecord, CrossCheckRow, FitReport, ScaleRecord, ShiftChoice, ShiftCrossCheck, ShiftRecord,
+    TermsRecord, Window,
 };
 use crate::sanity;
 use crate::vertical::{LoadGroups, scene_under_load};
 
 use super::optimum::Optimum;
 use super::profile::ScaleProfile;
-
-/// Largest difference (decades) between the joint fit's shifts and the
-/// single-temperature fits' that passes without a warning.
-const CROSS_CHECK_TOLERANCE: f64 = 0.3;
 
 /// What the fit on one τ grid found.
 #[derive(Debug, Clone)]
@@ -143,13 +139,7 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
     warnings.extend(set_notes);
     let shift_cross_check = match cross_check {
         Some(Ok(check)) => {
-            if check.max_difference > CROSS_CHECK_TOLERANCE {
-                warnings.push(format!(
-                    "the shifts of the joint fit and of the single-temperature fits \
-                     differ by up to {:.2} decades (see shift_cross_check)",
-                    check.max_difference
-                ));
-            }
+            warnings.extend(check.disagreeing().map(cross_check_warning));
             Some(check)
         }
         Some(Err(why)) => {
@@ -246,9 +236,29 @@ fn judge_assumptions(
     }
 }
 
-/// For a poor fit under a law whose shifts the cross-check finds more than
-/// [`CROSS_CHECK_TOLERANCE`] off: the law may be what the data reject, and
-/// free shifts follow any law.
+/// The warning of a temperature whose single and joint shifts differ by
+/// more than their combined σ allows (`CrossCheckRow::beyond_sigma`): the
+/// difference, its σ, and what limits that temperature's single fit.
+fn cross_check_warning(row: &CrossCheckRow) -> String {
+    let sigma = row.difference_sigma.unwrap_or(f64::NAN);
+    let limits = match row.single_fit_limits.as_slice() {
+        [] => String::new(),
+        limits => format!(" (that temperature alone: {})", limits.join(", ")),
+    };
+    format!(
+        "shift cross-check: at T = {} °C the fit of that temperature alone puts log10 a_T \
+         {:+.2} decades from the joint fit's, {:.1} times their combined σ of {sigma:.2}{limits}; \
+         the joint shift there is questioned (see shift_cross_check)",
+        row.temperature,
+        row.difference,
+        row.difference.abs() / sigma
+    )
+}
+
+/// For a poor fit under a law whose shifts the cross-check questions (a
+/// temperature's single and joint shifts beyond their combined σ, as the
+/// warnings say): the law may be what the data reject, and free shifts
+/// follow any law.
 fn free_shift_hint(
     quality: &FitQuality,
     shift: Option<&ShiftRecord>,
@@ -257,19 +267,24 @@ fn free_shift_hint(
     let (Some(shift), Some(check)) = (shift, check) else {
         return None;
     };
-    if !quality.is_poor()
-        || matches!(shift, ShiftRecord::Free { .. })
-        || check.max_difference <= CROSS_CHECK_TOLERANCE
-    {
+    let questioned: Vec<&CrossCheckRow> = check.disagreeing().collect();
+    if !quality.is_poor() || matches!(shift, ShiftRecord::Free { .. }) || questioned.is_empty() {
         return None;
     }
+    let worst = questioned
+        .iter()
+        .fold(0.0f64, |m, r| m.max(r.difference.abs()));
+    let temperatures: Vec<String> = questioned
+        .iter()
+        .map(|r| format!("{} °C", r.temperature))
+        .collect();
     Some(format!(
-        "fitted alone, single temperatures put log10 a_T up to {:.2} decades off the {} law \
-         (shift_cross_check): the shifts may not follow it; fit one shift per temperature with \
-         shift = \"free\" (the scene's [fit], or --shift free), or let the data choose with \
-         shift = \"auto\"",
-        check.max_difference,
-        crate::temperature_set::law::law_name(shift.model_name())
+        "fitted alone, single temperatures put log10 a_T up to {worst:.2} decades off the {} \
+         law, beyond their σ at {} (shift_cross_check): the shifts may not follow it; fit one \
+         shift per temperature with shift = \"free\" (the scene's [fit], or --shift free), or \
+         let the data choose with shift = \"auto\"",
+        crate::temperature_set::law::law_name(shift.model_name()),
+        temperatures.join(", ")
     ))
 }
 

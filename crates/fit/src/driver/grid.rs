@@ -20,6 +20,7 @@ use crate::error::FitError;
 use crate::objective::Objective;
 use crate::parametrization::Parametrization;
 use crate::params::{Lambda, ValidFitParams};
+use crate::quality::{RUNS_P_VALUE, runs_test, speed_ordered_groups};
 use crate::regularization::{LambdaRule, Trial};
 use crate::report::RunRecord;
 use crate::solvers::counting::{Abandonment, Counted};
@@ -132,6 +133,8 @@ struct GridSolver<'a> {
     runs: Vec<RunRecord>,
     /// (λ, misfit, effective parameters) of every fit along the λ path.
     path: Vec<[f64; 3]>,
+    /// The data's rows in the runs test's order (by temperature, by speed).
+    groups: Vec<Vec<usize>>,
 }
 
 impl<'a> GridSolver<'a> {
@@ -167,6 +170,7 @@ impl<'a> GridSolver<'a> {
             tolerance: Tolerance::Final,
             runs: Vec::new(),
             path: Vec::new(),
+            groups: speed_ordered_groups(data),
         }
     }
 
@@ -196,6 +200,9 @@ impl<'a> GridSolver<'a> {
         let known = self.data.sigma().map(|_| 1.0);
         let c = curvature(jac, self.data.len(), e.misfit, known);
         let bound = e.residuals[e.residuals.len() - 1];
+        let data_residuals = &e.residuals.as_slice()[..self.data.len()];
+        let random_signs =
+            runs_test(data_residuals, &self.groups).is_none_or(|r| r.p_value >= RUNS_P_VALUE);
         Ok((
             Trial {
                 lambda,
@@ -206,6 +213,7 @@ impl<'a> GridSolver<'a> {
                 log_det: c.log_det,
                 penalty_rank: objective.param.terms().saturating_sub(2),
                 free: r.theta.len(),
+                random_signs,
             },
             r,
         ))

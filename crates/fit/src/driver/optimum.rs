@@ -12,7 +12,7 @@ use crate::error::FitError;
 use crate::objective::Objective;
 use crate::parametrization::{Mapped, Parametrization};
 use crate::params::{Method, ValidFitParams};
-use crate::quality::{FitQuality, assess};
+use crate::quality::{FitQuality, assess, speed_ordered_groups};
 use crate::regularization::{LambdaRule, Trial};
 use crate::report::{LambdaRecord, ModelRecord, ModulusPoint, RunRecord, ShiftRecord, Window};
 use crate::solvers::{SolverRun, StopReason};
@@ -306,25 +306,4 @@ fn fit_warnings(
         ));
     }
     warnings
-}
-
-/// The data's row indices by temperature (one group without a `T`
-/// column), each in order of speed: the order of the runs test.
-fn speed_ordered_groups(data: &Measurements) -> Vec<Vec<usize>> {
-    let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
-    for i in 0..data.len() {
-        let t = data.temperature().map_or(0.0, |t| t[i]);
-        match groups.iter_mut().find(|(g, _)| *g == t) {
-            Some((_, rows)) => rows.push(i),
-            None => groups.push((t, vec![i])),
-        }
-    }
-    let speeds = data.speeds();
-    groups
-        .into_iter()
-        .map(|(_, mut rows)| {
-            rows.sort_by(|&a, &b| speeds[a].total_cmp(&speeds[b]));
-            rows
-        })
-        .collect()
 }

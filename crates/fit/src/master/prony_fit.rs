@@ -179,6 +179,9 @@ impl Problem<'_> {
             log_det,
             penalty_rank: self.tau.len().saturating_sub(2),
             free: self.tau.len() + 1,
+            // Not asked: λ of a DMA fit is chosen by a criterion, not by
+            // the discrepancy principle.
+            random_signs: true,
         }
     }
 }

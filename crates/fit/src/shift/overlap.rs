@@ -12,6 +12,21 @@
 //! the joint fit, and on ln tan δ(ω) of single-temperature fits for the
 //! cross-check. [`fit_wlf`] then fits WLF constants to such shifts.
 //!
+//! The σ of a shift between two fitted curves with 1σ bands σ_u(x), σ_l(x)
+//! ([`relative_shift_sigma`]): at the least-squares s, Σ_i g_i (u_i −
+//! l(x_i + s)) = 0 with g_i = l′(x_i + s), so errors δu, δl of the curves
+//! move s by δs = Σ_i g_i (δu_i − δl(x_i + s)) / Σ_i g_i². The points of a
+//! fitted curve's band are correlated in a way the band does not record
+//! (a fit's error is smooth, and its likeliest form is a shift of the
+//! curve, which is what moves s); whatever the correlation,
+//! sd(Σ a_i δu_i) ≤ Σ |a_i| σ_u,i, and the two curves, fitted to different
+//! data, are independent:
+//!
+//!   σ_s ≤ [(Σ_i |g_i| σ_u,i)² + (Σ_i |g_i| σ_l(x_i + s))²]^{1/2} / Σ_i g_i²,
+//!
+//! which is taken as σ_s (exact when each band's error is one shape scaled,
+//! of the sign of g).
+//!
 //! # References
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
 //!   1980, §11.A (reduced variables and shifting by superposition).
@@ -45,6 +60,47 @@ impl Curve {
         let w = (x - x0) / (x1 - x0);
         Some(self.y[k - 1] * (1.0 - w) + self.y[k] * w)
     }
+}
+
+impl Curve {
+    /// The slope dy/dx of the linear interpolant at `x` inside the
+    /// sampled range (of the segment holding x).
+    fn slope(&self, x: f64) -> Option<f64> {
+        let n = self.x.len();
+        if n < 2 || x < self.x[0] || x > self.x[n - 1] {
+            return None;
+        }
+        let k = self.x.partition_point(|&xi| xi <= x).clamp(1, n - 1);
+        let dx = self.x[k] - self.x[k - 1];
+        (dx > 0.0).then(|| (self.y[k] - self.y[k - 1]) / dx)
+    }
+}
+
+/// The 1σ of the shift `s` with upper(x) ≈ lower(x + s) (from
+/// [`relative_shift`]) from the curves' 1σ bands `lower_sigma` and
+/// `upper_sigma`, sampled like them (the module doc); None where the
+/// overlap is empty or flat (no shift is determined) or a band is not
+/// finite.
+pub(crate) fn relative_shift_sigma(
+    lower: &Curve,
+    lower_sigma: &Curve,
+    upper: &Curve,
+    upper_sigma: &Curve,
+    s: f64,
+) -> Option<f64> {
+    let (mut gg, mut from_upper, mut from_lower) = (0.0, 0.0, 0.0);
+    for &x in &upper.x {
+        let (Some(g), Some(sl), Some(su)) =
+            (lower.slope(x + s), lower_sigma.at(x + s), upper_sigma.at(x))
+        else {
+            continue;
+        };
+        gg += g * g;
+        from_upper += g.abs() * su;
+        from_lower += g.abs() * sl;
+    }
+    let sigma = from_upper.hypot(from_lower) / gg;
+    (gg > 0.0 && sigma.is_finite()).then_some(sigma)
 }
 
 /// Mean squared mismatch of upper(x) against lower(x + s), summed over the
@@ -87,7 +143,8 @@ pub(crate) fn differences(lower: &Curve, upper: &Curve, s: f64) -> (f64, f64, us
 }
 
 /// The shift s with upper(x) ≈ lower(x + s), or None if the curves never
-/// overlap on at least a fifth of `upper`'s points (and four points).
+/// overlap on at least a fifth of the shorter curve's points (and four
+/// points).
 pub(crate) fn relative_shift(lower: &Curve, upper: &Curve) -> Option<f64> {
     joint_relative_shift(&[lower], &[upper], &[])
 }
@@ -95,13 +152,16 @@ pub(crate) fn relative_shift(lower: &Curve, upper: &Curve) -> Option<f64> {
 /// The one shift s with upper_k(x) ≈ lower_k(x + s) (+ a constant for the
 /// pairs with `free_offset`) for every pair k, the summed mean squared
 /// mismatches least; None if the first pair never overlaps on at least a
-/// fifth of its upper curve's points (and four).
+/// fifth of its shorter curve's points (and four). (Of the shorter: a
+/// short curve inside a long one's range overlaps on all its points, which
+/// a fifth of the long one's can exceed — a single fit that determines
+/// tan δ over half a decade against its neighbour's five decades.)
 pub(crate) fn joint_relative_shift(
     lower: &[&Curve],
     upper: &[&Curve],
     free_offset: &[bool],
 ) -> Option<f64> {
-    let need = (upper[0].x.len() / 5).max(4);
+    let need = (upper[0].x.len().min(lower[0].x.len()) / 5).max(4);
     let cost = |s: f64| {
         let (m, n) = mismatch(lower, upper, free_offset, s);
         if n >= need { m } else { f64::INFINITY }
@@ -235,6 +295,29 @@ mod tests {
         let short = Curve::new((0..3).map(|i| (i as f64, 1.0)).collect());
         assert!(relative_shift(&a, &b).is_some());
         assert!(relative_shift(&a, &short).is_none());
+    }
+
+    /// The σ of a shift between two bands: a straight line of slope g
+    /// with bands of constant σ over n overlapping points gives
+    /// √2 n σ |g| / (n g²) = √2 σ/|g|, the shift a common displacement of
+    /// either curve by σ causes; a flat overlap determines nothing.
+    #[test]
+    fn a_shift_sigma_is_the_bands_over_the_slope() {
+        let line = |offset: f64| {
+            Curve::new(
+                (0..21)
+                    .map(|i| (0.1 * i as f64, 0.5 * (0.1 * i as f64 + offset)))
+                    .collect(),
+            )
+        };
+        let band = Curve::new((0..21).map(|i| (0.1 * i as f64, 0.02)).collect());
+        let (lower, upper) = (line(0.0), line(0.4));
+        let s = relative_shift(&lower, &upper).unwrap();
+        assert!((s - 0.4).abs() < 1e-6, "{s}");
+        let sigma = relative_shift_sigma(&lower, &band, &upper, &band, s).unwrap();
+        assert!((sigma - 2f64.sqrt() * 0.02 / 0.5).abs() < 1e-9, "{sigma}");
+        let flat = Curve::new((0..21).map(|i| (0.1 * i as f64, 1.0)).collect());
+        assert!(relative_shift_sigma(&flat, &band, &flat, &band, 0.0).is_none());
     }
 
     /// WLF constants are recovered from exact shifts with an offset.
