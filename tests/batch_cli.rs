@@ -579,6 +579,68 @@ fn a_poor_entry_fails_the_batch_unless_allowed() {
     assert_eq!(output.status.code(), Some(1), "{}", text(&output.stderr));
 }
 
+/// Issue 32: an entry without an anchor whose data leave the modulus scale
+/// undetermined (a 0.01 N ball: the contact stays small down to 10 kPa, and
+/// the profile is flat there) is written, marked "unanchored", and fails the
+/// batch unless --allow-unanchored, which --allow-poor-fit does not replace.
+#[test]
+fn an_unanchored_entry_fails_the_batch_unless_allowed() {
+    let dir = bundled("unanchored");
+    let scene = fs::read_to_string(dir.path().join("hn-rubber.toml")).unwrap();
+    let light: String = scene
+        .lines()
+        .filter(|l| !l.starts_with("E_at"))
+        .map(|l| {
+            if l.starts_with("load") {
+                "load = 0.01"
+            } else {
+                l
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let light_scene = dir.write("light.toml", &light);
+    let data = dir.path().join("light.csv");
+    let made = rollfit(&[
+        OsStr::new("forward"),
+        light_scene.as_os_str(),
+        OsStr::new("--noise"),
+        OsStr::new("0.01"),
+        OsStr::new("--seed"),
+        OsStr::new("2"),
+        OsStr::new("-o"),
+        data.as_os_str(),
+    ]);
+    assert!(made.status.success(), "{}", text(&made.stderr));
+    let manifest = dir.write(
+        "light-batch.toml",
+        "[[entry]]\nname = \"light\"\nscene = \"light.toml\"\ndata = \"light.csv\"\n",
+    );
+    let out = dir.path().join("results");
+    let output = batch(&manifest, &out, &["--allow-poor-fit"]);
+    let stderr = text(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("leave the modulus scale undetermined (light)")
+            && stderr.contains("--allow-unanchored")
+            && stderr.contains("1 unanchored"),
+        "{stderr}"
+    );
+    let rows = summary(&out.join("summary.csv"));
+    assert_eq!(statuses(&rows), ["unanchored"]);
+    assert!(rows[0].get("message").contains("contact_radius"));
+    let report = json(&out.join("light").join("fit.json"));
+    assert_eq!(report["scale"]["status"], "undetermined");
+    // Kept and skipped, it still counts, unless allowed.
+    let again = batch(&manifest, &out, &[]);
+    assert_eq!(again.status.code(), Some(1), "{}", text(&again.stderr));
+    let stderr = batch_ok(&manifest, &out, &["--allow-unanchored"]);
+    assert!(
+        stderr.contains("warning: 1 fit(s) leave the modulus scale undetermined (light)"),
+        "{stderr}"
+    );
+}
+
 #[test]
 fn data_file_notes_and_warnings_reach_the_message() {
     // The bundled measurement with the speed in mm/s, the friction named

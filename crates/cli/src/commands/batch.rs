@@ -169,8 +169,11 @@ fn summary_name(shard: Option<Shard>) -> String {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Status {
     Ok,
-    /// Converged, but the fit_quality verdict is poor.
+    /// Converged, but the fit_quality verdict is poor (or invalid).
     Poor,
+    /// Converged and good, but without an anchor the data leave the
+    /// modulus scale undetermined (fit.json `scale`).
+    Unanchored,
     Unconverged,
     Failed,
     Skipped,
@@ -181,6 +184,7 @@ impl Status {
         match self {
             Status::Ok => "ok",
             Status::Poor => "poor",
+            Status::Unanchored => "unanchored",
             Status::Unconverged => "unconverged",
             Status::Failed => "failed",
             Status::Skipped => "skipped",
@@ -324,8 +328,12 @@ pub fn run(args: &Args) -> Result<()> {
     let summary = dir.join(summary_name(args.shard));
     output::write_atomically(&summary, &summary_csv(&results)?)?;
     let count = |status: Status| results.iter().filter(|r| r.status == status).count();
+    let unanchored = match count(Status::Unanchored) {
+        0 => String::new(),
+        n => format!(", {n} unanchored"),
+    };
     eprintln!(
-        "wrote {}: {} ok, {} poor, {} unconverged, {} failed, {} skipped",
+        "wrote {}: {} ok, {} poor, {} unconverged, {} failed, {} skipped{unanchored}",
         summary.display(),
         count(Status::Ok),
         count(Status::Poor),
@@ -508,7 +516,7 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &FitSettings, force: bool) -> 
                     ),
                 )
             } else if let Some(scale) = report.scale.as_ref().filter(|s| s.is_undetermined()) {
-                (Status::Poor, scale.reason.clone())
+                (Status::Unanchored, scale.reason.clone())
             } else {
                 (Status::Ok, String::new())
             };
@@ -545,6 +553,9 @@ fn from_disk(entry: &Entry, folder: &Path, status: Status, parts: Vec<String>) -
         if converged == Some(false) {
             let reason = digest.stop_reason.as_deref().unwrap_or("no reason given");
             message += &format!("; it did not converge: {reason}");
+        }
+        if digest.undetermined_scale && converged != Some(false) {
+            message += "; its data leave the modulus scale undetermined (scale in fit.json)";
         }
         if digest.poor_fit && converged != Some(false) {
             message += "; it does not describe the data (fit_quality poor)";
@@ -622,7 +633,7 @@ impl Progress {
             Progress::Bar(bar) => {
                 if matches!(
                     result.status,
-                    Status::Failed | Status::Unconverged | Status::Poor
+                    Status::Failed | Status::Unconverged | Status::Poor | Status::Unanchored
                 ) {
                     bar.println(result.line());
                 }
