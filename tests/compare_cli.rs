@@ -1,9 +1,9 @@
 //! End-to-end tests of `rollfit compare DIR DMA`: the committed
-//! temperature-set fit (fits/hn-rubber-tset, WLF shift) against DMA files
+//! temperature-set fit (examples/fits/hn-rubber-tset, WLF shift) against DMA files
 //! made here from its own master curve, and the refusals.
 //!
 //! Every test works on a copy of the fit folder in a temporary folder, so
-//! compare.json never lands in fits/. Every bad-input test checks the
+//! compare.json never lands in examples/fits/. Every bad-input test checks the
 //! same promise as the other commands (common::assert_failure): non-zero
 //! exit, an error naming the file and what is wrong, nothing on stdout —
 //! and no compare.json.
@@ -40,7 +40,11 @@ fn copy_fit(dir: &TempDir, name: &str) -> PathBuf {
     let target = dir.path().join(name);
     fs::create_dir_all(&target).unwrap();
     for file in ["fit.json", "mu.csv", "modulus.csv"] {
-        fs::copy(root().join("fits").join(name).join(file), target.join(file)).unwrap();
+        fs::copy(
+            root().join("examples/fits").join(name).join(file),
+            target.join(file),
+        )
+        .unwrap();
     }
     target
 }

@@ -950,7 +950,7 @@ fn physics_exact_writes_its_record_and_correction() {
 /// the friction maximum of a 5 mm ball at 1 N. The fit converges, every
 /// speed got an exact solve per sweep (fewer than 12 speeds: the first
 /// sweep is not thinned), and the correction r = μ_exact/μ_17
-/// is the few per cent Eq. (17) is off for this rubber (README, "Eq. (17)
+/// is the few per cent Eq. (17) is off for this rubber (docs/validation.md, "Eq. (17)
 /// against the exact rolling sphere"), not 1 and not far from it.
 #[test]
 fn physics_exact_fits_a_sphere() {

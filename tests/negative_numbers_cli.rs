@@ -96,7 +96,7 @@ fn report_takes_a_negative_dma_wlf_reference() {
     fs::create_dir_all(&fit).unwrap();
     for file in ["fit.json", "mu.csv", "modulus.csv"] {
         fs::copy(
-            workspace().join("fits/hn-rubber").join(file),
+            workspace().join("examples/fits/hn-rubber").join(file),
             fit.join(file),
         )
         .unwrap();

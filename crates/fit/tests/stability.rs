@@ -1,8 +1,8 @@
 //! Where the fitting methods hold and where they fail (issue 6, "stability
-//! tests"): each test asserts the behaviour the README's "Where the methods
+//! tests"): each test asserts the behaviour docs/validation.md's "Where the methods
 //! fail" documents — a bound, or a clear report — never a silent wrong
 //! answer. Fixed seeds throughout; the figures printed with --nocapture are
-//! the ones the README quotes.
+//! the ones docs/validation.md quotes.
 
 mod common;
 

@@ -4,7 +4,7 @@
 //! f_N = 100 N/m, E0 = 1 MPa, τ = 1 s, ν = 0), Eq. (11) with the dynamic
 //! contact size (the paper's) and with the static one.
 //!
-//! What it shows (printed with --nocapture; the README's "Where the methods
+//! What it shows (printed with --nocapture; docs/validation.md's "Where the methods
 //! fail" quotes it): Eq. (11) is exact in both speed limits and its error
 //! peaks near and above the friction maximum, growing with E1/E0; the
 //! static contact size is far worse at high speed, where the real contact

@@ -205,7 +205,7 @@ fn elastic_limits_are_hertz_line_contact() {
 
 /// The larger table: E1/E0 = 2, 10, 100, 1000, ν = 0 and 0.5, vτ/a0 =
 /// 0.01 … 100 in half decades, 96 and 144 strips. Prints the table the
-/// README quotes; asserts nothing beyond the solves succeeding.
+/// docs/validation.md quotes; asserts nothing beyond the solves succeeding.
 ///
 /// `cargo test --release -p rollfit-model --test exact_plane_strain -- --ignored --nocapture`
 #[test]

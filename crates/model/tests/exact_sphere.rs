@@ -162,7 +162,7 @@ fn error_estimate_is_within_three_of_the_true_error() {
     }
 }
 
-/// The error map of Eq. (17) against the exact sphere (README, "Where the
+/// The error map of Eq. (17) against the exact sphere (docs/validation.md, "Where the
 /// methods fail"): standard linear solids E1/E0 = 2, 10, 100, 1000
 /// (ν = 0, Fig. 2's sphere), 13 speeds over six decades centred on the
 /// friction maximum of Eq. (17), dynamic and static contact size. Prints a

@@ -10,7 +10,7 @@
 //! viscoelastic half-space, x from the sphere's axis, μ = x̄/R from the
 //! pressure centroid), written for a one-term Prony series
 //! E*(ω) = E1 − H/(1 + iωτ) (engineering convention, E″ > 0 for ω > 0,
-//! README, "Conventions") in creep form:
+//! docs/user-guide.md, "Conventions") in creep form:
 //! J*(ω) = 1/E*(ω) = J(∞) [j_g + Δj/(1 + iωτ_c)], j_g = E0/E1,
 //! Δj = 1 − E0/E1, τ_c = τ E1/E0 (checked against the crate's modulus in
 //! `creep_form_is_the_prony_modulus`). In the frame of the sphere a

@@ -2,7 +2,7 @@
 //! speeds from 1e-12 to 1e6 times the natural speed a0/τ, E1/E0 up to 1e4.
 //! Every result is finite and accurate, or clearly refused: never a NaN, a
 //! negative μ or a silent wrong number. Printed with --nocapture: the
-//! figures the README's "Where the methods fail" quotes.
+//! figures docs/validation.md, "Where the methods fail", quotes.
 
 use rollfit_model::{ContactSize, Geometry, Scene, Shape, StandardLinearSolid, Substrate};
 

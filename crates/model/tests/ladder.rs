@@ -411,7 +411,7 @@ fn auto_at_the_extremes_is_finite_and_says_what_it_cannot_meet() {
     assert_eq!(text.contains("NOT MET"), auto.unmet() > 0, "{text}");
 }
 
-/// A ball on the solids of the README's Eq. (17) error map.
+/// A ball on the solids of the Eq. (17) error map of docs/validation.md.
 fn ball(material: Prony, poisson: f64) -> Scene<Prony> {
     scene(
         Shape::Sphere,

@@ -3,7 +3,7 @@
 //! mu.csv's values; refused for a scene that does not reproduce the fit;
 //! and for `physics = "exact"` carried by the fit's own correction r.
 //!
-//! The fits are the committed example under fits/ with its scene under
+//! The fits are the committed example under examples/fits/ with its scene under
 //! data/, and a copy of it given an exact correction here.
 
 mod common;
@@ -106,7 +106,7 @@ fn a_scene_that_does_not_reproduce_the_fit_draws_no_dense_curve() {
 #[test]
 fn an_exact_physics_fit_gets_a_dense_curve_carrying_its_correction() {
     let r = |v: f64| 1.0 + 0.03 * (v.ln() / 3.0).sin();
-    let from = common::workspace().join("fits/hn-rubber");
+    let from = common::workspace().join("examples/fits/hn-rubber");
     let folder = TempFolder::new("exact");
     for file in ["fit.json", "modulus.csv"] {
         std::fs::copy(from.join(file), folder.0.join(file)).unwrap();

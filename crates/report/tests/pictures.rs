@@ -2,7 +2,7 @@
 //! and an SVG that parses, and each expected series is in both: in the PNG
 //! by its colour, in the SVG by its legend text and stroke colour.
 //!
-//! The fits are the committed example results under fits/ (a single
+//! The fits are the committed example results under examples/fits/ (a single
 //! temperature and a temperature set), read as any user's would be.
 
 mod common;

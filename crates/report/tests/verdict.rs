@@ -5,7 +5,7 @@
 //! and the master curve's names T_ref; friction.png draws a dense fitted
 //! μ(v) per temperature of a set (the curve itself: tests/fitted_friction.rs).
 //!
-//! The fits are the committed examples under fits/ with their scenes under
+//! The fits are the committed examples under examples/fits/ with their scenes under
 //! data/ (sparse σ-weighted data; a temperature set; laboratory-shaped data
 //! without σ), and copies of them whose fit.json is edited here: without a
 //! scale, with an undetermined scale whose interval is open at both ends,
@@ -28,7 +28,7 @@ impl EditedFit {
     fn new(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> EditedFit {
         let folder = TempFolder::new(name);
         let dir = &folder.0;
-        let from = workspace().join("fits").join(name);
+        let from = workspace().join("examples/fits").join(name);
         for file in ["mu.csv", "modulus.csv"] {
             std::fs::copy(from.join(file), dir.join(file)).unwrap();
         }

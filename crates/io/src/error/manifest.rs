@@ -154,7 +154,7 @@ pub enum ManifestError {
     /// No `[[entry]]`.
     #[error(
         "no entries: list each fit as an [[entry]] with a name, a scene and a data file (see the \
-         README, \"Batches\")"
+         docs/user-guide.md, \"Batches\")"
     )]
     NoEntries,
     /// What is wrong with the entries, one line each.

@@ -39,7 +39,7 @@
 //! tolerances ≤ 1e-6); the coarser steps that serve tolerances ≥ 1e-5 keep
 //! X0 = 20, whose error for a film (≤ 6e-7 measured) is below those.
 //! (The half-space keeps X0 = 20 and its floor of about 5e-9 … 1.4e-8, see
-//! README, known gaps.)
+//! docs/validation.md, "Known gaps".)
 //!
 //! **The step.** The product integration's error is that of P-point
 //! Lagrange interpolation of a function analytic in a strip of half-width δ

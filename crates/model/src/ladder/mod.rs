@@ -13,7 +13,7 @@
 //!
 //! and two dials: the quadrature tolerance of rungs 2–3, and, for a film,
 //! whether it is computed or neglected (a half-space). What each costs and
-//! how far it is from the next is measured by `rollfit bench` (fits/bench).
+//! how far it is from the next is measured by `rollfit bench` (examples/fits/bench).
 //!
 //! # `auto`
 //!
@@ -45,7 +45,7 @@
 //!
 //! The static contact size is never chosen: it costs what the dynamic one
 //! costs (one quadrature on the same grid) and is never closer to the
-//! exact cylinder (fits/bench, tests/eq11_error_map.rs).
+//! exact cylinder (examples/fits/bench, tests/eq11_error_map.rs).
 //!
 //! # References
 //! - B.N.J. Persson, Eur. Phys. J. E 33 (2010), Eqs. (11), (17)–(19).

@@ -1,7 +1,7 @@
 //! Picture 1: the measured μ(v) (error bars where σ is known) with the
 //! fitted curve on log–log axes, and below it the relative residuals in
 //! percent, 100 (μ_fit − μ_meas)/μ_meas — the `residual` column of mu.csv
-//! (README, "Fit results") — with error bars ±100 σ/μ_meas where σ is
+//! (docs/user-guide.md, "Reports and DMA comparison") — with error bars ±100 σ/μ_meas where σ is
 //! known. A temperature set gets one colour per temperature.
 //!
 //! The fitted curve is the model's μ(v) on a dense grid of speeds

@@ -1,5 +1,5 @@
 //! Helpers shared by the picture tests: decoding a rendered PNG and
-//! counting its pixels; the committed example fits under fits/ and their
+//! counting its pixels; the committed example fits under examples/fits/ and their
 //! scenes under data/, read as any user's would be.
 #![allow(dead_code)]
 
@@ -16,9 +16,9 @@ pub fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-/// The committed fit fits/`name`.
+/// The committed fit examples/fits/`name`.
 pub fn committed_fit(name: &str) -> FitDir {
-    FitDir::read(&workspace().join("fits").join(name)).expect("the committed fit reads")
+    FitDir::read(&workspace().join("examples/fits").join(name)).expect("the committed fit reads")
 }
 
 /// What the fitted μ(v) needs of the scene data/`name`.toml.
