@@ -1125,3 +1125,30 @@ fn bad_workbook_cells_name_the_sheet_and_cell() {
     let e = chain(&DmaData::read(&path, 0.5, &options).unwrap_err());
     assert_contains(&e, &["broken.xlsx: cannot read the file as a workbook"]);
 }
+
+#[test]
+fn one_isotherm_workbook_is_a_modulus_table() {
+    let dir = TempDir::new("table");
+    let points = eplexor_points(&[25.0]);
+    let path = dir.write(
+        "curve.xlsx",
+        xlsx(&[("Sheet1", eplexor_rows(&points, false))]),
+    );
+    let table = rollfit_io::table::read_sheet(&path, 0.5, None, Some("sheet1")).unwrap();
+    // Sorted up in frequency (the sweep ran down), rows of the sheet kept.
+    assert_eq!(table.omega.len(), points.len());
+    assert_eq!(table.lines.first(), Some(&(5 + points.len())));
+    for (k, &(_, f, s, l)) in points.iter().rev().enumerate() {
+        assert!(relative(table.omega[k], 2.0 * PI * f) < 1e-15);
+        assert!(relative(table.storage[k], s * 1e6) < 1e-15);
+        assert!(relative(table.loss[k], l * 1e6) < 1e-15);
+    }
+    assert!(
+        table
+            .notes
+            .iter()
+            .any(|n| n.contains("all points at 25 °C")),
+        "{:?}",
+        table.notes
+    );
+}
