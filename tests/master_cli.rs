@@ -550,6 +550,11 @@ fn eplexor_workbook_gives_the_csv_master_curve() {
     );
     assert!(!tmp.path().join("first").exists());
 
+    let out = master(&xlsx, &tmp.path().join("nope"), &["--sheet", "Nope"]);
+    assert_failure(
+        &out,
+        &["sweep.xlsx: no sheet \"Nope\": the workbook has \"Info\", \"Data\""],
+    );
     succeed(master(&csv, &tmp.path().join("csv"), &[]));
     succeed(master(
         &xlsx,

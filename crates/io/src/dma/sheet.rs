@@ -37,10 +37,10 @@ pub(super) fn parse(
     bytes: Vec<u8>,
     wanted: Option<&str>,
 ) -> Result<(FormRead, String, Vec<String>), IoError> {
-    let workbook = |source: DataError| -> IoError {
+    let workbook = |error: DataError| -> IoError {
         DmaSheetError::Workbook {
             path: path.to_path_buf(),
-            source: Box::new(source),
+            error: Box::new(error),
         }
         .into()
     };

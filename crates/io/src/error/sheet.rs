@@ -30,12 +30,13 @@ pub enum DmaSheetError {
         /// Every sheet's name and the cells of its most header-like row.
         found: Vec<(String, Vec<String>)>,
     },
-    /// A workbook whose sheets cannot be read (the source says why: not a
-    /// workbook, no such sheet).
-    #[error("{}", path.display())]
+    /// A workbook whose sheets cannot be read: not a workbook, no such
+    /// sheet. The measured-data reader's message, shown (not a source:
+    /// `rollfit master` and a scene show a DMA error's text alone).
+    #[error("{}: {error}", path.display())]
     Workbook {
         path: PathBuf,
-        source: Box<DataError>,
+        error: Box<DataError>,
     },
     /// A sheet named for a DMA file that is text.
     #[error(
