@@ -4,6 +4,8 @@
 //! when ../shared holds them, and the refusals.
 
 mod common;
+#[path = "../crates/io/tests/support/workbook.rs"]
+mod workbook;
 
 use std::ffi::OsStr;
 use std::fs;
@@ -482,4 +484,111 @@ fn scattered_tables_are_explained_and_dma_forms_are_tables() {
     let x = forward(&a, &tmp.path().join("a.csv"));
     let y = forward(&b, &tmp.path().join("b.csv"));
     assert!(largest_difference(&x, &y) <= 1e-12);
+}
+
+/// The synthetic isotherms as an Eplexor writes them, Young's moduli in
+/// MPa and f in Hz: (T, f, E′, E″).
+fn eplexor_points() -> Vec<[f64; 4]> {
+    let master = HavriliakNegami::new(2e6, 2e9, 1e-3, 0.55, 0.4).unwrap();
+    let mut points = Vec::new();
+    for t in [0.0, 10.0, 20.0, 30.0] {
+        let a = 10f64.powf(wlf(t));
+        for i in (0..8).rev() {
+            let f = 0.1 * 10f64.powf(3.0 * f64::from(i) / 7.0);
+            let e = master.modulus(2.0 * std::f64::consts::PI * f * a);
+            points.push([t, f, e.re / 1e6, e.im / 1e6]);
+        }
+    }
+    points
+}
+
+/// What master writes that does not name the input file: every table, and
+/// material.toml without its comment header.
+fn master_outputs(dir: &Path) -> Vec<(String, String)> {
+    ["master.csv", "shift.csv", "modulus.csv", "material.toml"]
+        .iter()
+        .map(|name| {
+            let text = fs::read_to_string(dir.join(name)).unwrap();
+            let body: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
+            (name.to_string(), body.join("\n"))
+        })
+        .collect()
+}
+
+#[test]
+fn eplexor_workbook_gives_the_csv_master_curve() {
+    use workbook::X::{self, E, N, S};
+    let tmp = TempDir::new("eplexor");
+    let points = eplexor_points();
+    let mut csv = String::from("T_C,f_Hz,E_storage_MPa,E_loss_MPa\n");
+    let mut rows: Vec<Vec<X>> = vec![
+        vec![S("Eplexor Excel Export"), E, S("2026-11-28")],
+        workbook::texts(&["T", "f", "E'", "E''", "tan delta", "|E*|"]),
+        workbook::texts(&["[°C]", "[Hz]", "[MPa]", "[MPa]", "[-]", "[MPa]"]),
+    ];
+    for &[t, f, s, l] in &points {
+        csv += &format!("{t:e},{f:e},{s:e},{l:e}\n");
+        rows.push(vec![N(t), N(f), N(s), N(l), N(l / s), N(s.hypot(l))]);
+    }
+    let csv = tmp.write("sweep.csv", &csv);
+    let book = workbook::xlsx(&[
+        ("Info", vec![vec![S("Operator"), S("A. N. Other")]]),
+        ("Data", rows),
+    ]);
+    let xlsx = tmp.path().join("sweep.xlsx");
+    fs::write(&xlsx, book).unwrap();
+
+    // The first sheet holds no DMA columns: refused, listing each sheet's,
+    // and nothing written.
+    let out = master(&xlsx, &tmp.path().join("first"), &[]);
+    assert_failure(
+        &out,
+        &[
+            "sweep.xlsx: sheet \"Info\": no header row",
+            "sheet \"Data\" has \"T\", \"f\", \"E'\"",
+        ],
+    );
+    assert!(!tmp.path().join("first").exists());
+
+    let out = master(&xlsx, &tmp.path().join("nope"), &["--sheet", "Nope"]);
+    assert_failure(
+        &out,
+        &["sweep.xlsx: no sheet \"Nope\": the workbook has \"Info\", \"Data\""],
+    );
+    succeed(master(&csv, &tmp.path().join("csv"), &[]));
+    succeed(master(
+        &xlsx,
+        &tmp.path().join("xlsx"),
+        &["--sheet", "Data"],
+    ));
+    let (from_csv, from_xlsx) = (
+        master_outputs(&tmp.path().join("csv")),
+        master_outputs(&tmp.path().join("xlsx")),
+    );
+    for (a, b) in from_csv.iter().zip(&from_xlsx) {
+        assert_eq!(a, b, "{} differs", a.0);
+    }
+    let json = fs::read_to_string(tmp.path().join("xlsx/master.json")).unwrap();
+    assert!(json.contains("\"dma_format\": \"workbook\""), "{json}");
+
+    // A scene's dma material reads the sheet it names: the same μ(v).
+    let material = |file: &str, sheet: &str| {
+        format!("[material]\nmodel = \"dma\"\nfile = \"{file}\"\n{sheet}")
+    };
+    let a = tmp.write(
+        "csv.toml",
+        &scene(&material("sweep.csv", ""), "[10.0, 20.0]"),
+    );
+    let b = tmp.write(
+        "xlsx.toml",
+        &scene(
+            &material("sweep.xlsx", "sheet = \"Data\"\n"),
+            "[10.0, 20.0]",
+        ),
+    );
+    let (a, b) = (
+        forward(&a, &tmp.path().join("a.csv")),
+        forward(&b, &tmp.path().join("b.csv")),
+    );
+    assert_eq!(largest_difference(&a, &b), 0.0);
 }

@@ -89,7 +89,8 @@ enum Command {
     /// Build a master curve from DMA isotherms by time–temperature
     /// superposition, and the material a scene can use.
     ///
-    /// Reads a DMA file (CSV or TRIOS LIMS export, shear or Young's),
+    /// Reads a DMA file (CSV, TRIOS LIMS export or a workbook such as an
+    /// Eplexor Excel export; shear or Young's),
     /// finds the shift factors a_T from the overlap of neighbouring
     /// isotherms in log E′ and log tan δ (and b_T with --vertical), fits
     /// WLF or Arrhenius to them with standard errors, and fits a smooth

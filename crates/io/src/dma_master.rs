@@ -24,18 +24,19 @@ pub struct DmaMaster {
     pub master: MasterCurve,
 }
 
-/// Reads `path` and builds its master curve. `poisson` converts shear
-/// moduli (E = 2(1+ν)G); `kind` overrides a TRIOS file's shear/tensile
-/// decision. Errors ([`DmaMasterError`]) name the file and, where one
+/// Reads `path` (of a workbook the sheet `sheet`, default the first) and
+/// builds its master curve. `poisson` converts shear moduli
+/// (E = 2(1+ν)G); `kind` overrides a TRIOS file's shear/tensile decision. Errors ([`DmaMasterError`]) name the file and, where one
 /// point is at fault, its line.
 pub fn build(
     path: &Path,
     poisson: f64,
     kind: Option<ModulusKind>,
+    sheet: Option<&str>,
     settings: &MasterSettings,
 ) -> Result<DmaMaster, IoError> {
     let options = DmaOptions { kind, wlf: None };
-    let data = DmaData::read(path, poisson, &options)
+    let data = DmaData::read_sheet(path, poisson, &options, sheet)
         .map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
     let in_file = |source: DmaMasterError| DmaMasterError::InFile {
         path: path.to_path_buf(),

@@ -5,8 +5,8 @@
 //! where one line is at fault, what is wrong and, where it helps, what to
 //! do. A system error is the [`std::error::Error::source`], which the
 //! command line's `{:#}` prints after a colon. Measured data, modulus
-//! tables and TRIOS exports have an enum each ([`DataError`],
-//! [`TableError`], [`TriosError`]), reached as one variant of [`IoError`].
+//! tables, TRIOS exports and DMA workbooks have an enum each ([`DataError`],
+//! [`TableError`], [`TriosError`], [`DmaSheetError`]), reached as one variant of [`IoError`].
 
 use std::path::PathBuf;
 
@@ -19,10 +19,11 @@ pub(crate) mod manifest;
 pub(crate) mod master;
 mod parts;
 pub(crate) mod scene;
+mod sheet;
 pub(crate) mod table;
 mod trios;
 
-pub use boxed::{DuplicateQuantity, UnknownUnit};
+pub use boxed::{DmaUnknownUnit, DuplicateQuantity, UnknownUnit};
 pub use data::{CellRef, ColumnName, DataError, RowRef, RowsRef, column_letter};
 pub use fault::Fault;
 pub use manifest::{EntryProblem, EntryRef, ManifestError, TomlPlace};
@@ -30,6 +31,7 @@ pub use master::{DmaMasterError, TurnPoint};
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
 use parts::{field_count_tail, found_byte, holders_note, null_expected, place};
 pub use scene::SceneError;
+pub use sheet::DmaSheetError;
 pub use table::{TableError, TableIsotherm};
 pub use trios::TriosError;
 
@@ -166,18 +168,22 @@ pub enum IoError {
         cut: bool,
     },
     /// A cell that is not a number.
-    #[error("{}, line {line}: {column}: \"{text}\" is not a number", path.display())]
+    #[error("{}, {cell}: {column}: \"{text}\" is not a number", path.display())]
     NotANumber {
         path: PathBuf,
-        line: usize,
+        /// A text file's line, or a sheet's cell (boxed: the error stays
+        /// small).
+        cell: Box<CellRef>,
         column: ColumnRef,
         text: String,
     },
     /// A cell that is NaN or infinite.
-    #[error("{}, line {line}: {column}: {text} is not a finite number", path.display())]
+    #[error("{}, {cell}: {column}: {text} is not a finite number", path.display())]
     NotFinite {
         path: PathBuf,
-        line: usize,
+        /// A text file's line, or a sheet's cell (boxed: the error stays
+        /// small).
+        cell: Box<CellRef>,
         column: ColumnRef,
         text: String,
     },
@@ -434,70 +440,76 @@ pub enum IoError {
     )]
     DmaPoisson { path: PathBuf, poisson: f64 },
     /// ω ≤ 0.
-    #[error("{}, line {line}: {column}: frequency {value} is not positive", path.display())]
+    #[error("{}, {row}: {column}: frequency {value} is not positive", path.display())]
     FrequencyNotPositive {
         path: PathBuf,
-        line: usize,
+        /// A text file's line, or a sheet's row.
+        row: RowRef,
         column: ColumnRef,
         /// rad/s.
         value: f64,
     },
     /// E′ ≤ 0.
-    #[error("{}, line {line}: {column}: storage modulus {value} is not positive", path.display())]
+    #[error("{}, {row}: {column}: storage modulus {value} is not positive", path.display())]
     StorageNotPositive {
         path: PathBuf,
-        line: usize,
+        /// A text file's line, or a sheet's row.
+        row: RowRef,
         column: ColumnRef,
         /// As in the file, Pa.
         value: f64,
     },
     /// ω outside 1e-30 … 1e30 rad/s.
     #[error(
-        "{}, line {line}: {column}: frequency {value:e} rad/s is outside 1e-30 … 1e30 rad/s, \
+        "{}, {row}: {column}: frequency {value:e} rad/s is outside 1e-30 … 1e30 rad/s, \
          beyond any master curve",
         path.display()
     )]
     FrequencyOutOfRange {
         path: PathBuf,
-        line: usize,
+        /// A text file's line, or a sheet's row.
+        row: RowRef,
         column: ColumnRef,
         /// rad/s.
         value: f64,
     },
     /// A modulus above 1e13 Pa (after conversion to Young's).
     #[error(
-        "{}, line {line}: {column}: modulus {value:e} is above 1e13 Pa, stiffer than any solid \
+        "{}, {row}: {column}: modulus {value:e} is above 1e13 Pa, stiffer than any solid \
          (diamond: about 1.2e12 Pa); is the column in Pa?",
         path.display()
     )]
     ModulusTooLarge {
         path: PathBuf,
-        line: usize,
+        /// A text file's line, or a sheet's row.
+        row: RowRef,
         column: ColumnRef,
         /// As in the file, Pa.
         value: f64,
     },
     /// E′ below 1e-3 Pa (after conversion to Young's).
     #[error(
-        "{}, line {line}: {column}: storage modulus {value:e} is below 1e-3 Pa, softer than any \
+        "{}, {row}: {column}: storage modulus {value:e} is below 1e-3 Pa, softer than any \
          solid; is the column in Pa?",
         path.display()
     )]
     StorageTooSmall {
         path: PathBuf,
-        line: usize,
+        /// A text file's line, or a sheet's row.
+        row: RowRef,
         column: ColumnRef,
         /// As in the file, Pa.
         value: f64,
     },
     /// A temperature outside (−273.15, 1000] °C.
     #[error(
-        "{}, line {line}: temperature {value} °C is outside (−273.15, 1000] °C",
+        "{}, {row}: temperature {value} °C is outside (−273.15, 1000] °C",
         path.display()
     )]
     TemperatureOutOfRange {
         path: PathBuf,
-        line: usize,
+        /// A text file's line, or a sheet's row.
+        row: RowRef,
         /// °C.
         value: f64,
     },
@@ -513,15 +525,15 @@ pub enum IoError {
     NoDataPoints { path: PathBuf },
     /// A column whose unit contradicts its name (`omega_Hz`, `f_rad_s`).
     #[error(
-        "{}, line {line}: column {number} ({}): {contradiction}: name it f_Hz if it holds hertz \
+        "{}, {line}: column {number} ({}): {contradiction}: name it f_Hz if it holds hertz \
          or omega_rad_s if it holds rad/s",
         path.display(),
         contradiction.column()
     )]
     ContradictoryUnit {
         path: PathBuf,
-        /// The header's line.
-        line: usize,
+        /// The header's line or row.
+        line: RowRef,
         /// The column, from 1.
         number: usize,
         contradiction: Contradiction,
@@ -551,6 +563,12 @@ pub enum IoError {
         missing: String,
         header: Vec<String>,
     },
+    /// A DMA column in a unit not known.
+    #[error(transparent)]
+    DmaUnknownUnit(Box<DmaUnknownUnit>),
+    /// A workbook DMA file that cannot be read: see [`DmaSheetError`].
+    #[error(transparent)]
+    DmaSheet(Box<DmaSheetError>),
     /// A TRIOS export that cannot be read: see [`TriosError`].
     #[error(transparent)]
     Trios(Box<TriosError>),

@@ -12,8 +12,13 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use rollfit_io::IoError;
+use rollfit_fit::master::MasterSettings;
 use rollfit_io::dma::{DmaData, DmaOptions, ModulusKind};
+use rollfit_io::{IoError, chain, dma_master, material_file};
+
+#[path = "support/workbook.rs"]
+mod workbook;
+use workbook::{X, ods, texts, xlsx};
 
 // ---------------------------------------------------------------- helpers
 
@@ -31,7 +36,7 @@ impl TempDir {
         TempDir(path)
     }
 
-    fn write(&self, name: &str, content: &str) -> PathBuf {
+    fn write(&self, name: &str, content: impl AsRef<[u8]>) -> PathBuf {
         let path = self.0.join(name);
         fs::write(&path, content).unwrap();
         path
@@ -836,4 +841,314 @@ fn csv_errors_name_the_right_line_below_comments_blank_lines_and_in_crlf_files()
         ));
         assert_contains(&e, &[&format!("{name}, line {line}:"), "\"abc\""]);
     }
+}
+
+// ---------------------------------------------------------------- workbooks
+
+/// Isotherms of the broad rubber as an Eplexor measures them: (T °C, f Hz,
+/// E′ MPa, E″ MPa), WLF about 20 °C, each sweep running down in frequency.
+fn eplexor_points(temperatures: &[f64]) -> Vec<(f64, f64, f64, f64)> {
+    let series = Series::broad_rubber();
+    let mut points = Vec::new();
+    for &t in temperatures {
+        let a = 10f64.powf(wlf(t, 20.0, 8.86, 101.6));
+        for i in (0..9).rev() {
+            let f = 0.1 * 10f64.powf(3.0 * f64::from(i) / 8.0);
+            let (storage, loss) = series.at(2.0 * PI * f * a);
+            points.push((t, f, storage / 1e6, loss / 1e6));
+        }
+    }
+    points
+}
+
+/// The Eplexor "Excel Export" layout: title and metadata rows, a names row,
+/// a units row, then the points, with the instrument's other columns
+/// (time, tan δ, |E*|) beside them. `g`: shear moduli (G′, G″).
+fn eplexor_rows(points: &[(f64, f64, f64, f64)], g: bool) -> Vec<Vec<X<'static>>> {
+    use X::*;
+    let (storage, loss) = if g { ("G'", "G''") } else { ("E'", "E''") };
+    let mut rows = vec![
+        vec![S("EPLEXOR Excel Export")],
+        vec![
+            S("Sample"),
+            S("HN rubber"),
+            E,
+            S("Thickness"),
+            N(2.0),
+            S("mm"),
+        ],
+        vec![],
+        texts(&["No.", "t", "T", "f", storage, loss, "tan delta", "|E*|"]),
+        texts(&[
+            "[-]", "[s]", "[°C]", "[Hz]", "[MPa]", "[MPa]", "[-]", "[MPa]",
+        ]),
+    ];
+    for (i, &(t, f, s, l)) in points.iter().enumerate() {
+        rows.push(vec![
+            N(i as f64 + 1.0),
+            N(60.0 * i as f64),
+            N(t),
+            N(f),
+            N(s),
+            N(l),
+            N(l / s),
+            N(s.hypot(l)),
+        ]);
+    }
+    rows
+}
+
+/// The same numbers as a CSV with the CSV reader's unit-suffixed names.
+fn eplexor_csv(points: &[(f64, f64, f64, f64)]) -> String {
+    let mut text = String::from("T_C,f_Hz,E_storage_MPa,E_loss_MPa\n");
+    for &(t, f, s, l) in points {
+        text += &format!("{t:e},{f:e},{s:e},{l:e}\n");
+    }
+    text
+}
+
+/// material.toml without its comment header (which names the file).
+fn material_body(built: &dma_master::DmaMaster) -> String {
+    let text = String::from_utf8(material_file::encode(built).unwrap()).unwrap();
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn eplexor_workbook_gives_the_csv_master_curve_to_the_last_digit() {
+    let dir = TempDir::new("eplexor");
+    let points = eplexor_points(&[0.0, 20.0, 40.0, 60.0]);
+    let csv = dir.write("sweep.csv", eplexor_csv(&points));
+    let book = xlsx(&[
+        ("Sheet1", eplexor_rows(&points, false)),
+        ("Info", vec![vec![X::S("Operator"), X::S("A. N. Other")]]),
+    ]);
+    let xlsx_path = dir.write("sweep.xlsx", &book);
+    let ods_path = dir.write("sweep.ods", ods("Messung", eplexor_rows(&points, false)));
+    let settings = MasterSettings::default();
+    let from_csv = dma_master::build(&csv, 0.5, None, None, &settings).unwrap();
+    assert_eq!(from_csv.data.format, "csv");
+    for path in [&xlsx_path, &ods_path] {
+        let built = dma_master::build(path, 0.5, None, None, &settings)
+            .unwrap_or_else(|e| panic!("{}: {}", path.display(), chain(&e)));
+        assert_eq!(built.data.format, "workbook");
+        // Bit for bit: the points, every shifted point, the series, the
+        // shift, and the material a scene reads.
+        assert_eq!(built.data.points, from_csv.data.points);
+        assert_eq!(built.data.kind, ModulusKind::Young);
+        assert_eq!(
+            format!("{:?}", built.master),
+            format!("{:?}", from_csv.master)
+        );
+        assert_eq!(material_body(&built), material_body(&from_csv));
+        // Rows of the sheet: the data start below the units row (row 5).
+        assert_eq!(built.data.lines[0], 6);
+        assert!(built.data.warnings.is_empty(), "{:?}", built.data.warnings);
+        assert!(
+            built
+                .data
+                .notes
+                .iter()
+                .any(|n| n.contains("header on sheet")
+                    && n.contains("row 4; the 2 rows above it (titles) ignored")),
+            "{:?}",
+            built.data.notes
+        );
+        assert!(
+            built
+                .data
+                .notes
+                .iter()
+                .any(|n| n.contains("row 5, below the header")),
+            "{:?}",
+            built.data.notes
+        );
+    }
+    // Independently of the CSV reader: E′ in MPa × 1e6, f in Hz × 2π.
+    let data = DmaData::read(&xlsx_path, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.sheet.as_deref(), Some("Sheet1"));
+    let (t, f, s, l) = points[3];
+    let p = data.points[3];
+    assert_eq!(p.temperature, Some(t));
+    assert!(relative(p.omega, 2.0 * PI * f) < 1e-15);
+    assert!(relative(p.storage, s * 1e6) < 1e-15);
+    assert!(relative(p.loss, l * 1e6) < 1e-15);
+    // A workbook saved under another name is one by its content.
+    let renamed = dir.write("sweep.txt", &book);
+    let data = DmaData::read(&renamed, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.points.len(), points.len());
+    assert!(
+        data.notes.iter().any(|n| n.contains("by its content")),
+        "{:?}",
+        data.notes
+    );
+}
+
+#[test]
+fn shear_eplexor_workbook_is_converted_with_poisson() {
+    let dir = TempDir::new("eplexor-shear");
+    let points = eplexor_points(&[20.0]);
+    let path = dir.write(
+        "shear.xlsx",
+        xlsx(&[("Sheet1", eplexor_rows(&points, true))]),
+    );
+    let nu = 0.4;
+    let data = DmaData::read(&path, nu, &DmaOptions::default()).unwrap();
+    assert_eq!(data.kind, ModulusKind::Shear);
+    for (p, &(_, f, s, l)) in data.points.iter().zip(&points) {
+        assert!(relative(p.omega, 2.0 * PI * f) < 1e-15);
+        assert!(relative(p.storage, 2.0 * (1.0 + nu) * s * 1e6) < 1e-15);
+        assert!(relative(p.loss, 2.0 * (1.0 + nu) * l * 1e6) < 1e-15);
+    }
+    assert!(
+        data.notes
+            .iter()
+            .any(|n| n.contains("shear moduli G′, G″ converted") && n.contains("ν = 0.4")),
+        "{:?}",
+        data.notes
+    );
+}
+
+#[test]
+fn workbook_sheet_by_name_and_plain_column_names() {
+    use X::*;
+    let dir = TempDir::new("sheets");
+    let book = xlsx(&[
+        ("Notes", vec![vec![S("measured 2026-03-01")]]),
+        (
+            "Run 2",
+            vec![
+                vec![
+                    S("omega_rad_s"),
+                    S("G_storage_kPa"),
+                    S("G_loss_kPa"),
+                    S("T_K"),
+                ],
+                vec![N(1.0), N(1e3), N(2e2), N(293.15)],
+                vec![N(10.0), S("2,5E+03"), N(5e2), N(293.15)],
+            ],
+        ),
+    ]);
+    let path = dir.write("runs.xlsx", &book);
+    let options = DmaOptions::default();
+    for name in ["Run 2", "run 2"] {
+        let data = DmaData::read_sheet(&path, 0.5, &options, Some(name)).unwrap();
+        assert_eq!(data.sheet.as_deref(), Some("Run 2"));
+        assert_eq!(data.kind, ModulusKind::Shear);
+        assert_eq!(data.lines, [2, 3]);
+        assert_eq!(data.points[1].omega, 10.0);
+        assert_eq!(data.points[1].storage, 3.0 * 2.5e6);
+        assert!((data.points[0].temperature.unwrap() - 20.0).abs() < 1e-12);
+    }
+    let e = chain(&DmaData::read_sheet(&path, 0.5, &options, Some("Run 3")).unwrap_err());
+    assert_contains(
+        &e,
+        &["runs.xlsx", "no sheet \"Run 3\"", "\"Notes\", \"Run 2\""],
+    );
+    // The first sheet has no DMA columns: every sheet's header cells listed.
+    let e = chain(&DmaData::read(&path, 0.5, &options).unwrap_err());
+    assert_contains(
+        &e,
+        &[
+            "runs.xlsx: sheet \"Notes\": no header row naming a frequency",
+            "sheet \"Notes\" has \"measured 2026-03-01\"",
+            "sheet \"Run 2\" has \"omega_rad_s\", \"G_storage_kPa\", \"G_loss_kPa\", \"T_K\"",
+        ],
+    );
+    // A sheet named for a text file.
+    let csv = dir.write("plain.csv", "omega,E_storage,E_loss\n1,1e6,1e5\n");
+    let e = chain(&DmaData::read_sheet(&csv, 0.5, &options, Some("Run 2")).unwrap_err());
+    assert_contains(
+        &e,
+        &["plain.csv: a sheet (\"Run 2\") was given", "not a workbook"],
+    );
+}
+
+#[test]
+fn bad_workbook_cells_name_the_sheet_and_cell() {
+    use X::*;
+    let dir = TempDir::new("bad-cells");
+    let points = eplexor_points(&[20.0]);
+    let options = DmaOptions::default();
+    // Text in a number column: row 7 is the second point (rows 6 on).
+    let mut rows = eplexor_rows(&points, false);
+    rows[6][5] = S("n. m.");
+    let path = dir.write("text.xlsx", xlsx(&[("Sheet1", rows)]));
+    let e = chain(&DmaData::read(&path, 0.5, &options).unwrap_err());
+    assert_contains(
+        &e,
+        &[
+            "text.xlsx, sheet \"Sheet1\", cell F7: column F (E'')",
+            "\"n. m.\" is not a number",
+        ],
+    );
+    // An error cell (#DIV/0!) or an empty cell: the row is skipped with a
+    // warning naming it, as the measured-data reader does.
+    let mut rows = eplexor_rows(&points, false);
+    rows[6][4] = Error;
+    rows[8][3] = E;
+    let path = dir.write("error.xlsx", xlsx(&[("Sheet1", rows)]));
+    let data = DmaData::read(&path, 0.5, &options).unwrap();
+    assert_eq!(data.points.len(), points.len() - 2);
+    assert!(!data.lines.contains(&7) && !data.lines.contains(&9));
+    assert!(
+        data.warnings
+            .iter()
+            .any(|w| w.contains("skipped sheet \"Sheet1\", rows 7, 9 with an empty cell")),
+        "{:?}",
+        data.warnings
+    );
+    // A non-positive value names the row and the column.
+    let mut rows = eplexor_rows(&points, false);
+    rows[7][4] = N(-1.0);
+    let path = dir.write("negative.xlsx", xlsx(&[("Sheet1", rows)]));
+    let e = chain(&DmaData::read(&path, 0.5, &options).unwrap_err());
+    assert_contains(
+        &e,
+        &[
+            "negative.xlsx, sheet \"Sheet1\", row 8: column E (E'): storage modulus -1000000 is not positive",
+        ],
+    );
+    // A unit not known in the units row names its cell.
+    let mut rows = eplexor_rows(&points, false);
+    rows[4][4] = S("[psi]");
+    let path = dir.write("psi.xlsx", xlsx(&[("Sheet1", rows)]));
+    let e = chain(&DmaData::read(&path, 0.5, &options).unwrap_err());
+    assert_contains(
+        &e,
+        &["psi.xlsx, sheet \"Sheet1\", cell E5: column \"E'\": unit \"psi\" not known"],
+    );
+    // Not a workbook after all.
+    let path = dir.write("broken.xlsx", b"PK\x03\x04 not really a zip");
+    let e = chain(&DmaData::read(&path, 0.5, &options).unwrap_err());
+    assert_contains(&e, &["broken.xlsx: cannot read the file as a workbook"]);
+}
+
+#[test]
+fn one_isotherm_workbook_is_a_modulus_table() {
+    let dir = TempDir::new("table");
+    let points = eplexor_points(&[25.0]);
+    let path = dir.write(
+        "curve.xlsx",
+        xlsx(&[("Sheet1", eplexor_rows(&points, false))]),
+    );
+    let table = rollfit_io::table::read_sheet(&path, 0.5, None, Some("sheet1")).unwrap();
+    // Sorted up in frequency (the sweep ran down), rows of the sheet kept.
+    assert_eq!(table.omega.len(), points.len());
+    assert_eq!(table.lines.first(), Some(&(5 + points.len())));
+    for (k, &(_, f, s, l)) in points.iter().rev().enumerate() {
+        assert!(relative(table.omega[k], 2.0 * PI * f) < 1e-15);
+        assert!(relative(table.storage[k], s * 1e6) < 1e-15);
+        assert!(relative(table.loss[k], l * 1e6) < 1e-15);
+    }
+    assert!(
+        table
+            .notes
+            .iter()
+            .any(|n| n.contains("all points at 25 °C")),
+        "{:?}",
+        table.notes
+    );
 }

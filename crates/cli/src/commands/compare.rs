@@ -25,7 +25,8 @@ pub struct Args {
     /// Fit result folder (as written by `rollfit fit`).
     pub dir: PathBuf,
     /// DMA file: CSV (omega or f; E_storage, E_loss or G_storage, G_loss;
-    /// optional T) or a TA Instruments TRIOS LIMS text export.
+    /// optional T), a TA Instruments TRIOS LIMS text export, or a workbook
+    /// (.xlsx, .xls, .ods; the same columns, or an Eplexor export's).
     pub dma: PathBuf,
     #[command(flatten)]
     pub flags: DmaFlags,
@@ -59,6 +60,9 @@ pub struct DmaFlags {
         allow_hyphen_values = true
     )]
     pub dma_wlf: Option<DmaWlf>,
+    /// The sheet of a workbook DMA file to read (default: the first).
+    #[arg(long, value_name = "NAME")]
+    pub sheet: Option<String>,
 }
 
 impl DmaFlags {
@@ -96,8 +100,8 @@ pub fn comparison(
 ) -> Result<Comparison> {
     let fit = FitDir::read(dir).context("cannot read the fit")?;
     let options = flags.options();
-    let data =
-        DmaData::read(dma, fit.summary.poisson, &options).context("cannot read the DMA file")?;
+    let data = DmaData::read_sheet(dma, fit.summary.poisson, &options, flags.sheet.as_deref())
+        .context("cannot read the DMA file")?;
     compare(&fit, &data, &options).context("cannot compare the fit with the DMA data")
 }
 

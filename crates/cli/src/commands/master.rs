@@ -44,9 +44,12 @@ use crate::stdout;
 /// Arguments of `rollfit master`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// DMA file: CSV (omega or f; E_storage, E_loss or G_storage, G_loss;
-    /// T) or a TA Instruments TRIOS LIMS text export, several isotherms.
+    /// DMA file: CSV (f or omega; E_storage, E_loss or G_storage, G_loss; T),
+    /// a TRIOS LIMS export or a workbook (Eplexor export), several isotherms.
     pub dma: PathBuf,
+    /// The sheet of a workbook DMA file to read (default: the first).
+    #[arg(long, value_name = "NAME")]
+    pub sheet: Option<String>,
     /// Output folder (replaced as a whole).
     #[arg(short, long, value_name = "DIR", default_value = "master")]
     pub output: PathBuf,
@@ -116,7 +119,8 @@ pub fn run(args: &Args) -> Result<()> {
         DmaModulus::Young => ModulusKind::Young,
         DmaModulus::Shear => ModulusKind::Shear,
     });
-    let built = dma_master::build(&args.dma, args.poisson, kind, &settings)?;
+    let sheet = args.sheet.as_deref();
+    let built = dma_master::build(&args.dma, args.poisson, kind, sheet, &settings)?;
     for note in &built.data.notes {
         eprintln!("note: {note}");
     }

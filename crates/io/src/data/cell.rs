@@ -11,7 +11,7 @@ use crate::error::{CellRef, ColumnName, DataError};
 
 /// One cell of a row.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) enum Cell {
+pub(crate) enum Cell {
     Empty,
     /// Text as written, trimmed (never empty).
     Text(String),
@@ -61,7 +61,7 @@ impl Cell {
 /// A row of the file (comments and blank lines left out) with its line or
 /// row number.
 #[derive(Debug, Clone)]
-pub(super) struct Row {
+pub(crate) struct Row {
     pub number: u64,
     pub cells: Vec<Cell>,
 }
@@ -118,29 +118,37 @@ fn no_value(text: &str) -> bool {
 
 /// A number read from a cell: its value, its decimal text (for exact
 /// powers of ten) and the text shown in messages.
-pub(super) struct Number {
+pub(crate) struct Number {
     pub value: f64,
     pub decimal: String,
     pub shown: String,
+    /// A decimal comma was read as a point.
+    pub comma: bool,
 }
 
-/// The number in `cell`; None for no value (empty, NaN, NA, …); an error
-/// at `at` (the cell and its column) for anything else that is not a
-/// finite number. Decimal commas are read where `source` allows them, and
-/// `decimal_commas` is set when one was.
-pub(super) fn number(
-    cell: &Cell,
-    source: &Source,
-    decimal_commas: &mut bool,
-    at: &dyn Fn() -> (CellRef, ColumnName),
-) -> Result<Option<Number>, DataError> {
+/// Why a cell that holds something is not a finite number; each carries
+/// the cell's text (or what it is, for a boolean or a date).
+pub(crate) enum NotNumber {
+    /// A boolean or a date of a workbook.
+    Other(String),
+    /// A decimal comma where commas separate the columns.
+    AmbiguousComma(String),
+    /// Two commas, or a comma and a point.
+    Thousands(String),
+    /// Text that is no number.
+    Text(String),
+    /// NaN or infinite.
+    NotFinite(String),
+}
+
+/// The number in `cell`; None for no value (empty, NaN, NA, a spreadsheet
+/// error); why not for anything else that is not a finite number. Decimal
+/// commas are read when `decimal_comma` allows them. The one reading of a
+/// cell for measured data and DMA workbooks alike.
+pub(crate) fn parse_number(cell: &Cell, decimal_comma: bool) -> Result<Option<Number>, NotNumber> {
     let (value, decimal, shown) = match cell {
         Cell::Empty | Cell::Missing => return Ok(None),
-        Cell::Other(what) => {
-            let (cell, column) = at();
-            let what = what.clone();
-            return Err(DataError::NonNumericValue { cell, column, what });
-        }
+        Cell::Other(what) => return Err(NotNumber::Other(what.clone())),
         Cell::Number(x) => (*x, format!("{x:e}"), x.to_string()),
         Cell::Text(text) => {
             if no_value(text) {
@@ -148,40 +156,56 @@ pub(super) fn number(
             }
             let mut decimal = text.clone();
             if text.contains(',') {
-                if !source.decimal_comma() {
-                    let (cell, column) = at();
-                    let text = text.clone();
-                    return Err(DataError::AmbiguousDecimalComma { cell, column, text });
+                if !decimal_comma {
+                    return Err(NotNumber::AmbiguousComma(text.clone()));
                 }
                 if text.matches(',').count() > 1 || text.contains('.') {
-                    let (cell, column) = at();
-                    let text = text.clone();
-                    return Err(DataError::ThousandsSeparator { cell, column, text });
+                    return Err(NotNumber::Thousands(text.clone()));
                 }
                 decimal = text.replace(',', ".");
             }
             let Ok(value) = decimal.parse::<f64>() else {
-                let (cell, column) = at();
-                let text = text.clone();
-                return Err(DataError::NotANumber { cell, column, text });
+                return Err(NotNumber::Text(text.clone()));
             };
-            if decimal != *text {
-                *decimal_commas = true;
-            }
             (value, decimal, text.clone())
         }
     };
     if !value.is_finite() {
-        let (cell, column) = at();
-        return Err(DataError::NotFinite {
-            cell,
-            column,
-            text: shown,
-        });
+        return Err(NotNumber::NotFinite(shown));
     }
+    let comma = matches!(cell, Cell::Text(t) if *t != decimal);
     Ok(Some(Number {
         value,
         decimal,
         shown,
+        comma,
     }))
+}
+
+/// The number in `cell` (see [`parse_number`]) for measured data: an error
+/// at `at` (the cell and its column) for anything that is not a finite
+/// number. Decimal commas are read where `source` allows them, and
+/// `decimal_commas` is set when one was.
+pub(super) fn number(
+    cell: &Cell,
+    source: &Source,
+    decimal_commas: &mut bool,
+    at: &dyn Fn() -> (CellRef, ColumnName),
+) -> Result<Option<Number>, DataError> {
+    let number = parse_number(cell, source.decimal_comma()).map_err(|problem| {
+        let (cell, column) = at();
+        match problem {
+            NotNumber::Other(what) => DataError::NonNumericValue { cell, column, what },
+            NotNumber::AmbiguousComma(text) => {
+                DataError::AmbiguousDecimalComma { cell, column, text }
+            }
+            NotNumber::Thousands(text) => DataError::ThousandsSeparator { cell, column, text },
+            NotNumber::Text(text) => DataError::NotANumber { cell, column, text },
+            NotNumber::NotFinite(text) => DataError::NotFinite { cell, column, text },
+        }
+    })?;
+    if number.as_ref().is_some_and(|n| n.comma) {
+        *decimal_commas = true;
+    }
+    Ok(number)
 }

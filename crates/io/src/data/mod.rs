@@ -49,7 +49,7 @@
 //! workbook the sheet and the cell) and the column, and when a column is
 //! missing list the columns found.
 
-mod cell;
+pub(crate) mod cell;
 mod header_row;
 mod headers;
 pub(crate) mod quantity;
@@ -57,7 +57,7 @@ mod rows;
 mod source;
 mod text;
 mod units;
-mod workbook;
+pub(crate) mod workbook;
 
 use std::path::Path;
 

@@ -34,14 +34,68 @@ const ZIP: [u8; 4] = *b"PK\x03\x04";
 const OLE: [u8; 8] = [0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A, 0xE1];
 
 /// Whether `path` with content `bytes` is a workbook.
-pub(super) fn is_workbook(path: &Path, bytes: &[u8]) -> bool {
+pub(crate) fn is_workbook(path: &Path, bytes: &[u8]) -> bool {
     has_workbook_extension(path) || bytes.starts_with(&ZIP) || bytes.starts_with(&OLE)
 }
 
-fn has_workbook_extension(path: &Path) -> bool {
+pub(crate) fn has_workbook_extension(path: &Path) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| EXTENSIONS.contains(&e.to_lowercase().as_str()))
+}
+
+/// A workbook opened: its sheets, read as rows of cells. Shared by
+/// measured data and DMA files (`crate::dma::sheet`), so that both read
+/// cells, comments and sheets alike.
+pub(crate) struct Book {
+    sheets: calamine::Sheets<Cursor<Vec<u8>>>,
+}
+
+impl Book {
+    /// The workbook `bytes`.
+    pub fn open(bytes: Vec<u8>) -> Result<Book, DataError> {
+        let sheets = calamine::open_workbook_auto_from_rs(Cursor::new(bytes))
+            .map_err(|error| DataError::NotWorkbook { error })?;
+        Ok(Book { sheets })
+    }
+
+    /// The names of its sheets, in order.
+    pub fn names(&self) -> Vec<String> {
+        self.sheets.sheet_names()
+    }
+
+    /// The sheet `wanted` (see [`choose_sheet`]) or the first.
+    pub fn choose(
+        &self,
+        wanted: Option<&str>,
+        notes: &mut Vec<String>,
+    ) -> Result<String, DataError> {
+        choose_sheet(&self.names(), wanted, notes)
+    }
+
+    /// The rows of the sheet `name`, numbered as the spreadsheet shows
+    /// them, `#` comment rows left out.
+    pub fn rows(&mut self, name: &str) -> Result<Vec<Row>, DataError> {
+        let range =
+            self.sheets
+                .worksheet_range(name)
+                .map_err(|error| DataError::UnreadableSheet {
+                    sheet: name.to_string(),
+                    error,
+                })?;
+        let (row0, column0) = range.start().unwrap_or((0, 0));
+        Ok(range
+            .rows()
+            .enumerate()
+            .map(|(i, cells)| Row {
+                number: u64::from(row0) + i as u64 + 1,
+                cells: std::iter::repeat_n(Cell::Empty, column0 as usize)
+                    .chain(cells.iter().map(cell))
+                    .collect(),
+            })
+            .filter(|row| !is_comment(row))
+            .collect())
+    }
 }
 
 /// Reads the sheet `wanted` (default: the first) of the workbook `bytes`.
@@ -54,27 +108,9 @@ pub(super) fn parse(
     if !has_workbook_extension(path) {
         notes.push("the file is a workbook (by its content), read as one".to_string());
     }
-    let mut workbook = calamine::open_workbook_auto_from_rs(Cursor::new(bytes))
-        .map_err(|error| DataError::NotWorkbook { error })?;
-    let name = choose_sheet(&workbook.sheet_names(), wanted, &mut notes)?;
-    let range = workbook
-        .worksheet_range(&name)
-        .map_err(|error| DataError::UnreadableSheet {
-            sheet: name.clone(),
-            error,
-        })?;
-    let (row0, column0) = range.start().unwrap_or((0, 0));
-    let rows: Vec<Row> = range
-        .rows()
-        .enumerate()
-        .map(|(i, cells)| Row {
-            number: u64::from(row0) + i as u64 + 1,
-            cells: std::iter::repeat_n(Cell::Empty, column0 as usize)
-                .chain(cells.iter().map(cell))
-                .collect(),
-        })
-        .filter(|row| !is_comment(row))
-        .collect();
+    let mut book = Book::open(bytes)?;
+    let name = book.choose(wanted, &mut notes)?;
+    let rows = book.rows(&name)?;
     if rows.iter().all(Row::is_blank) {
         return Err(DataError::EmptySheet { sheet: name });
     }

@@ -3,9 +3,7 @@
 //! temperature within (−273.15, 1000] °C; a point with E″ ≤ 0 dropped with
 //! a warning; at least one point left.
 
-use std::path::Path;
-
-use super::form::{FieldNames, RawPoint};
+use super::form::{FieldNames, Place, RawPoint};
 use super::point::DmaPoint;
 use crate::error::IoError;
 
@@ -25,7 +23,7 @@ const MIN_STORAGE: f64 = 1e-3;
 /// dropped with a warning); at least one point left. Multiplies the moduli
 /// by `factor` (2(1+ν) for shear). Returns the points kept and their lines.
 pub(super) fn check_points(
-    path: &Path,
+    place: &Place,
     raw: Vec<RawPoint>,
     names: &FieldNames,
     factor: f64,
@@ -34,16 +32,17 @@ pub(super) fn check_points(
     let mut points = Vec::with_capacity(raw.len());
     let mut lines = Vec::with_capacity(raw.len());
     let mut dropped = 0usize;
+    let path = place.path;
     for p in raw {
-        check_point(path, &p, names, factor)?;
+        check_point(place, &p, names, factor)?;
         // No instrument resolves tan δ below about 1e-4; a smaller E″ is
         // noise around zero (and 1/E″ weights overflow near 1e-308).
         if p.loss <= MIN_TAN_DELTA * p.storage {
             dropped += 1;
             warnings.push(format!(
-                "{}, line {}: {}: loss modulus {} ≤ 0 or below 1e-9 E′ (not physical; below the instrument's phase resolution?): point dropped",
+                "{}, {}: {}: loss modulus {} ≤ 0 or below 1e-9 E′ (not physical; below the instrument's phase resolution?): point dropped",
                 path.display(),
-                p.line,
+                place.row(p.line),
                 names.loss,
                 p.loss
             ));
@@ -69,13 +68,18 @@ pub(super) fn check_points(
 }
 
 /// The errors of one point (see [`check_points`]).
-fn check_point(path: &Path, p: &RawPoint, names: &FieldNames, factor: f64) -> Result<(), IoError> {
-    let line = p.line;
-    let path = || path.to_path_buf();
+fn check_point(
+    place: &Place,
+    p: &RawPoint,
+    names: &FieldNames,
+    factor: f64,
+) -> Result<(), IoError> {
+    let row = || place.row(p.line);
+    let path = || place.path.to_path_buf();
     if p.omega <= 0.0 {
         return Err(IoError::FrequencyNotPositive {
             path: path(),
-            line,
+            row: row(),
             column: names.omega.clone(),
             value: p.omega,
         });
@@ -83,7 +87,7 @@ fn check_point(path: &Path, p: &RawPoint, names: &FieldNames, factor: f64) -> Re
     if p.storage <= 0.0 {
         return Err(IoError::StorageNotPositive {
             path: path(),
-            line,
+            row: row(),
             column: names.storage.clone(),
             value: p.storage,
         });
@@ -93,7 +97,7 @@ fn check_point(path: &Path, p: &RawPoint, names: &FieldNames, factor: f64) -> Re
     if !(OMEGA_RANGE.0..=OMEGA_RANGE.1).contains(&p.omega) {
         return Err(IoError::FrequencyOutOfRange {
             path: path(),
-            line,
+            row: row(),
             column: names.omega.clone(),
             value: p.omega,
         });
@@ -102,7 +106,7 @@ fn check_point(path: &Path, p: &RawPoint, names: &FieldNames, factor: f64) -> Re
         if factor * value > MAX_MODULUS {
             return Err(IoError::ModulusTooLarge {
                 path: path(),
-                line,
+                row: row(),
                 column: column.clone(),
                 value,
             });
@@ -111,7 +115,7 @@ fn check_point(path: &Path, p: &RawPoint, names: &FieldNames, factor: f64) -> Re
     if factor * p.storage < MIN_STORAGE {
         return Err(IoError::StorageTooSmall {
             path: path(),
-            line,
+            row: row(),
             column: names.storage.clone(),
             value: p.storage,
         });
@@ -121,7 +125,7 @@ fn check_point(path: &Path, p: &RawPoint, names: &FieldNames, factor: f64) -> Re
     {
         return Err(IoError::TemperatureOutOfRange {
             path: path(),
-            line,
+            row: row(),
             value: t,
         });
     }

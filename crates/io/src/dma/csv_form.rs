@@ -1,119 +1,31 @@
 //! The CSV form of a DMA file (docs/ARCHITECTURE.md, "Contract", "DMA
-//! files"): a header line, then one point per line; `#` lines are
-//! comments, columns other than the ones below are ignored (they need not
-//! even be numbers).
+//! files"): a header line, optionally a units row below it, then one point
+//! per line; `#` lines are comments, columns other than the ones
+//! [`super::header`] names are ignored (they need not even be numbers).
 //!
-//! | quantity    | columns                         | unit suffixes (default first) |
-//! |-------------|---------------------------------|-------------------------------|
-//! | frequency   | `omega` or `f`                  | `rad_s` (omega), `Hz` (f)     |
-//! | storage     | `E_storage` or `G_storage`      | `Pa`, `kPa`, `MPa`, `GPa`     |
-//! | loss        | `E_loss` or `G_loss`            | `Pa`, `kPa`, `MPa`, `GPa`     |
-//! | temperature | `T` (optional)                  | `C`, `K`                      |
+//! The columns, their names and units are [`super::header`]'s, shared
+//! with workbooks: frequency `omega` (rad/s) or `f` (Hz), storage and loss
+//! `E_storage`, `E_loss` (Young's) or `G_storage`, `G_loss` (shear),
+//! optional `T` (°C), with unit suffixes such as `omega_rad_s`, `f_Hz`,
+//! `G_storage_Pa`, `E_loss_MPa`, `T_C`, `T_K`. When both Young's and shear
+//! columns are present the Young's ones are used (no ν needed). `omega`,
+//! `E_storage`, `E_loss` and `T` are the names of a fit folder's tables
+//! too ([`crate::fit_dir::columns`]), so a fit's modulus.csv reads here as
+//! it is.
 //!
-//! A suffix follows the name after an underscore: `omega_rad_s`, `f_Hz`,
-//! `G_storage_Pa`, `E_loss_MPa`, `T_C`, `T_K`. Without one the column is in
-//! the default unit (ω in rad/s, f in Hz, moduli in Pa, T in °C). ω = 2π f.
-//! When both Young's and shear columns are present the Young's ones are
-//! used (no ν needed). `omega`, `E_storage`, `E_loss` and `T` are the
-//! names of a fit folder's tables too ([`crate::fit_dir::columns`]), so a
-//! fit's modulus.csv reads here as it is.
-//!
-//! Refused, naming the columns: two columns for one quantity (`f` and
-//! `omega`, or `E_storage` and `E_storage_MPa`), since which one is meant
-//! is a guess and a factor 2π or 10⁶ rides on it; and the contradictory
-//! `omega_Hz` or `f_rad_s` (ω is rad/s and f is Hz by name: the name or
-//! the unit is wrong, and nothing says which).
+//! Every line below the header must have the header's number of fields
+//! and a finite number in each column read; a file cut off in its last
+//! line is refused or, when only its line break is missing, flagged.
 
-use std::f64::consts::PI;
 use std::path::Path;
 
-use super::form::{FieldNames, FormRead, RawPoint};
-use super::point::ModulusKind;
+use super::form::{FormRead, Place, RawPoint};
+use super::header::{self, Column, Header};
 use crate::csv_columns::csv_line;
-use crate::error::{ColumnRef, Contradiction, DuplicateQuantity, IoError};
-use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA, T};
+use crate::error::{CellRef, ColumnRef, IoError};
 
 /// The columns only DMA files have, defined with the other shared names.
 pub use crate::columns::{F, G_LOSS, G_STORAGE};
-
-/// One recognised column: its index, header name and the factor to SI
-/// (plus an offset, for kelvin).
-#[derive(Debug, Clone)]
-struct Column {
-    index: usize,
-    name: String,
-    factor: f64,
-    offset: f64,
-}
-
-impl Column {
-    /// `column N (name)` for messages.
-    fn reference(&self) -> ColumnRef {
-        ColumnRef::numbered(self.index + 1, &self.name)
-    }
-}
-
-/// The columns a file's header gives.
-struct Header {
-    names: Vec<String>,
-    /// Both Young's and shear columns (the Young's are used).
-    both: bool,
-    kind: ModulusKind,
-    omega: Column,
-    storage: Column,
-    loss: Column,
-    temperature: Option<Column>,
-}
-
-/// The columns among `header` named `base` or `base_UNIT` with UNIT one of
-/// `units` ((suffix, factor, offset) to the SI unit), in header order.
-fn find_all(header: &[String], base: &str, units: &[(&str, f64, f64)]) -> Vec<Column> {
-    header
-        .iter()
-        .enumerate()
-        .filter_map(|(index, name)| {
-            let (factor, offset) = if name == base {
-                (units[0].1, units[0].2)
-            } else {
-                let suffix = name.strip_prefix(base)?.strip_prefix('_')?;
-                let unit = units.iter().find(|u| u.0 == suffix)?;
-                (unit.1, unit.2)
-            };
-            Some(Column {
-                index,
-                name: name.clone(),
-                factor,
-                offset,
-            })
-        })
-        .collect()
-}
-
-/// The one column of `quantity` among `found`, or an error naming two.
-fn one(
-    path: &Path,
-    header_line: usize,
-    quantity: &'static str,
-    found: Vec<Column>,
-) -> Result<Option<Column>, IoError> {
-    match found.as_slice() {
-        [a, b, ..] => Err(IoError::DuplicateQuantity(Box::new(DuplicateQuantity {
-            path: path.to_path_buf(),
-            line: header_line,
-            quantity,
-            first: a.reference(),
-            second: b.reference(),
-        }))),
-        _ => Ok(found.into_iter().next()),
-    }
-}
-
-const MODULUS_UNITS: [(&str, f64, f64); 4] = [
-    ("Pa", 1.0, 0.0),
-    ("kPa", 1e3, 0.0),
-    ("MPa", 1e6, 0.0),
-    ("GPa", 1e9, 0.0),
-];
 
 /// Parses the CSV text of `path`.
 pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
@@ -134,7 +46,24 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
             }
         }
     };
-    let header = columns(path, header_line, names)?;
+    let place = Place { path, sheet: None };
+    // A units row below the header (an instrument's text export).
+    let mut records = records.peekable();
+    let units: Option<(usize, Vec<String>)> = match records.peek() {
+        Some(Ok(r))
+            if header::is_units_row(&names, &r.iter().map(str::to_string).collect::<Vec<_>>()) =>
+        {
+            let line = csv_line(text, r.position());
+            let cells = r.iter().map(str::to_string).collect();
+            records.next();
+            Some((line, cells))
+        }
+        _ => None,
+    };
+    let units = units
+        .as_ref()
+        .map(|(line, cells)| (*line, cells.as_slice()));
+    let header = header::columns(&place, header_line, names, units)?;
     let mut warnings = Vec::new();
     if header.both {
         warnings.push(format!(
@@ -159,90 +88,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
         let cut = unterminated == Some(line);
         points.push(row(path, line, cut, &header, &record, &mut warnings)?);
     }
-    if points.is_empty() {
-        return Err(IoError::NoRows {
-            path: path.to_path_buf(),
-        });
-    }
-    Ok(FormRead {
-        points,
-        kind: header.kind,
-        names: FieldNames {
-            omega: header.omega.reference(),
-            storage: header.storage.reference(),
-            loss: header.loss.reference(),
-        },
-        warnings,
-    })
-}
-
-/// The columns of the header `names` on line `line` (see the module doc).
-fn columns(path: &Path, line: usize, names: Vec<String>) -> Result<Header, IoError> {
-    for (index, name) in names.iter().enumerate() {
-        if let Some(contradiction) = Contradiction::of(name) {
-            return Err(IoError::ContradictoryUnit {
-                path: path.to_path_buf(),
-                line,
-                number: index + 1,
-                contradiction,
-            });
-        }
-    }
-    let mut frequencies = find_all(&names, OMEGA, &[("rad_s", 1.0, 0.0)]);
-    frequencies.extend(find_all(&names, F, &[("Hz", 2.0 * PI, 0.0)]));
-    frequencies.sort_by_key(|c| c.index);
-    let Some(omega) = one(path, line, "frequency", frequencies)? else {
-        return Err(IoError::NoFrequencyColumn {
-            path: path.to_path_buf(),
-            header: names,
-        });
-    };
-    let modulus =
-        |base: &'static str| one(path, line, base, find_all(&names, base, &MODULUS_UNITS));
-    let young = (modulus(E_STORAGE)?, modulus(E_LOSS)?);
-    let shear = (modulus(G_STORAGE)?, modulus(G_LOSS)?);
-    let both = young.0.is_some() && young.1.is_some() && shear.0.is_some() && shear.1.is_some();
-    let (kind, storage, loss) = match (young, shear) {
-        ((Some(s), Some(l)), _) => (ModulusKind::Young, s, l),
-        (_, (Some(s), Some(l))) => (ModulusKind::Shear, s, l),
-        ((s, l), (gs, gl)) => {
-            // Name what is missing of the kind the file started to give.
-            let absent = |pair: [(&Option<Column>, &'static str); 2]| {
-                pair.iter()
-                    .filter(|(c, _)| c.is_none())
-                    .map(|(_, n)| *n)
-                    .collect::<Vec<_>>()
-                    .join(" and ")
-            };
-            let missing = if s.is_some() || l.is_some() {
-                absent([(&s, E_STORAGE), (&l, E_LOSS)])
-            } else if gs.is_some() || gl.is_some() {
-                absent([(&gs, G_STORAGE), (&gl, G_LOSS)])
-            } else {
-                format!("{E_STORAGE} and {E_LOSS} (or {G_STORAGE} and {G_LOSS})")
-            };
-            return Err(IoError::NoModulusColumns {
-                path: path.to_path_buf(),
-                missing,
-                header: names,
-            });
-        }
-    };
-    let temperature = one(
-        path,
-        line,
-        "temperature",
-        find_all(&names, T, &[("C", 1.0, 0.0), ("K", 1.0, -273.15)]),
-    )?;
-    Ok(Header {
-        names,
-        both,
-        kind,
-        omega,
-        storage,
-        loss,
-        temperature,
-    })
+    header.form(path, points, warnings)
 }
 
 /// The point of the record on line `line`; `last_and_cut`: the record is
@@ -281,19 +127,19 @@ fn row(
         let field = &record[c.index];
         let v: f64 = field.parse().map_err(|_| IoError::NotANumber {
             path: path.to_path_buf(),
-            line,
-            column: c.reference(),
+            cell: Box::new(CellRef::line(line)),
+            column: c.reference.clone(),
             text: field.to_string(),
         })?;
         if !v.is_finite() {
             return Err(IoError::NotFinite {
                 path: path.to_path_buf(),
-                line,
-                column: c.reference(),
+                cell: Box::new(CellRef::line(line)),
+                column: c.reference.clone(),
                 text: field.to_string(),
             });
         }
-        Ok(v * c.factor + c.offset)
+        Ok(c.convert(v))
     };
     Ok(RawPoint {
         line,

@@ -2,7 +2,7 @@
 //! checks every form shares ([`super::checks`]).
 
 use super::point::ModulusKind;
-use crate::error::ColumnRef;
+use crate::error::{CellRef, ColumnRef, RowRef, column_letter};
 
 /// One point as a reader found it, before the checks common to all forms.
 pub(crate) struct RawPoint {
@@ -31,4 +31,40 @@ pub(crate) struct FormRead {
     pub kind: ModulusKind,
     pub names: FieldNames,
     pub warnings: Vec<String>,
+}
+
+/// Where the rows of a DMA table are: the file, and for a workbook the
+/// sheet; how messages name a row, a cell and a column there.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Place<'a> {
+    pub path: &'a std::path::Path,
+    /// The sheet of a workbook (`None`: a text file).
+    pub sheet: Option<&'a str>,
+}
+
+impl Place<'_> {
+    /// `line N` of a text file, `sheet "S", row N` of a workbook.
+    pub fn row(&self, number: usize) -> RowRef {
+        RowRef {
+            sheet: self.sheet.map(str::to_string),
+            number: number as u64,
+        }
+    }
+
+    /// `line N` of a text file, `sheet "S", cell C7` of a workbook.
+    pub fn cell(&self, number: usize, column: usize) -> CellRef {
+        CellRef {
+            row: self.row(number),
+            column,
+        }
+    }
+
+    /// `column 3 (E_storage)` in a text file, `column C (E'')` in a sheet
+    /// (`index` from 0).
+    pub fn column(&self, index: usize, name: &str) -> ColumnRef {
+        match self.sheet {
+            None => ColumnRef::numbered(index + 1, name),
+            Some(_) => ColumnRef::named(format!("{} ({name})", column_letter(index))),
+        }
+    }
 }

@@ -2,18 +2,26 @@
 //! (or an oscillatory shear rheometer), read from a file as Young's moduli
 //! and grouped into isotherms.
 //!
-//! Two file forms (docs/ARCHITECTURE.md, "Contract", "DMA files"):
-//! - CSV ([`csv_form`]): a frequency column `f` (Hz) or `omega` (rad/s),
-//!   storage and loss columns `E_storage`, `E_loss` (Young's) or
-//!   `G_storage`, `G_loss` (shear), optional `T` (°C). Unit-suffixed
-//!   spellings such as `omega_rad_s`, `f_Hz`, `G_storage_Pa`,
-//!   `E_loss_MPa`, `T_C` or `T_K` are read with their unit.
-//! - the TA Instruments TRIOS "LIMS" text export ([`trios`]), which
-//!   carries its own units and says (through its variables and instrument)
-//!   whether the moduli are shear or tensile.
+//! Three file forms (docs/ARCHITECTURE.md, "Contract", "DMA files"), in
+//! two sources of rows:
+//! - text, decoded by [`decode`] (UTF-8, UTF-16 with a byte-order mark,
+//!   Latin-1):
+//!   - CSV ([`csv_form`]): a frequency column `f` (Hz) or `omega`
+//!     (rad/s), storage and loss columns `E_storage`, `E_loss` (Young's) or
+//!     `G_storage`, `G_loss` (shear), optional `T` (°C). Unit-suffixed
+//!     spellings such as `omega_rad_s`, `f_Hz`, `G_storage_Pa`,
+//!     `E_loss_MPa`, `T_C` or `T_K` are read with their unit;
+//!   - the TA Instruments TRIOS "LIMS" text export ([`trios`]), which
+//!     carries its own units and says (through its variables and
+//!     instrument) whether the moduli are shear or tensile;
+//! - a workbook (.xlsx, .xlsm, .xlsb, .xls, .ods, told by its extension or
+//!   first bytes; `sheet.rs`): the first sheet or the one named, with the
+//!   CSV's column names or an instrument's (`f` [Hz], `T` [°C], `E'`, `E''`
+//!   [MPa], `G'`, `G''`: the Netzsch/GABO Eplexor "Excel Export", a names
+//!   row and a units row below title rows).
 //!
-//! Both are decoded by [`decode`] (UTF-8, UTF-16 with a byte-order mark,
-//! Latin-1). Shear moduli become Young's moduli with the fit's Poisson's
+//! CSV and workbook rows meet in one column recognition (`header.rs`):
+//! every name and unit is defined once, for both. Shear moduli become Young's moduli with the fit's Poisson's
 //! ratio ν, frequency-independent as everywhere in rollfit:
 //!
 //! E*(ω) = 2 (1 + ν) G*(ω),
@@ -45,17 +53,20 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::error::IoError;
+use crate::error::{DmaSheetError, IoError};
 
 mod checks;
 pub mod csv_form;
 pub mod decode;
 mod form;
+mod header;
 mod isotherm;
 mod point;
+mod sheet;
 pub mod trios;
 
-use form::FormRead;
+use crate::data::workbook::is_workbook;
+use form::{FormRead, Place};
 pub use isotherm::{ISOTHERM_TOLERANCE, Isotherm, isotherms};
 pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind, WLF_USAGE};
 
@@ -67,11 +78,13 @@ pub struct DmaData {
     /// The points in file order, as measured.
     pub points: Vec<DmaPoint>,
     /// The file line (from 1) of each entry of `points`, same order: for
-    /// messages about a point.
+    /// messages about a point. In a workbook, the row of the sheet.
     pub lines: Vec<usize>,
+    /// The sheet read, for a workbook (`None`: a text file).
+    pub sheet: Option<String>,
     /// What the file held (before conversion to Young's).
     pub kind: ModulusKind,
-    /// "csv" or "trios-lims".
+    /// "csv", "trios-lims" or "workbook".
     pub format: &'static str,
     /// Points dropped, columns or steps skipped, and how the file was
     /// read where that was a decision (shear or tensile, ν).
@@ -82,11 +95,22 @@ pub struct DmaData {
 }
 
 impl DmaData {
-    /// Reads a DMA file: TRIOS LIMS when its first line is `[Version]` or
-    /// mentions the LIMS export, CSV otherwise (the extension is not
-    /// consulted: exports are renamed freely). Shear moduli become Young's
-    /// with `poisson` (the fit's ν).
+    /// Reads a DMA file: a workbook (by its extension or first bytes) from
+    /// its first sheet, TRIOS LIMS when its first line is `[Version]` or
+    /// mentions the LIMS export, CSV otherwise. Shear moduli become
+    /// Young's with `poisson` (the fit's ν).
     pub fn read(path: &Path, poisson: f64, options: &DmaOptions) -> Result<DmaData, IoError> {
+        DmaData::read_sheet(path, poisson, options, None)
+    }
+
+    /// [`DmaData::read`], with the sheet of a workbook to read (`None`:
+    /// the first); a sheet named for a text file is an error.
+    pub fn read_sheet(
+        path: &Path,
+        poisson: f64,
+        options: &DmaOptions,
+        sheet: Option<&str>,
+    ) -> Result<DmaData, IoError> {
         if !(poisson > -1.0 && poisson <= 0.5) {
             // Not the DMA file's fault: say whose number it is.
             return Err(IoError::DmaPoisson {
@@ -94,31 +118,13 @@ impl DmaData {
                 poisson,
             });
         }
-        let bytes = std::fs::read(path).map_err(|source| IoError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let text = decode::decode(path, &bytes)?;
-        let (read, format) = if trios::is_lims(&text) {
-            (trios::parse(path, &text, options)?, "trios-lims")
-        } else {
-            let mut read = csv_form::parse(path, &text)?;
-            if options.kind.is_some_and(|k| k != read.kind) {
-                read.warnings.push(format!(
-                    "{}: the CSV's column names say {} moduli; the requested modulus kind applies to TRIOS files only and is ignored",
-                    path.display(),
-                    read.kind.name()
-                ));
-            }
-            (read, "csv")
-        };
+        let (read, format, sheet, mut notes) = read_form(path, options, sheet)?;
         let FormRead {
             points: raw,
             kind,
             names,
             mut warnings,
         } = read;
-        let mut notes = Vec::new();
         let factor = match kind {
             ModulusKind::Young => 1.0,
             ModulusKind::Shear => {
@@ -127,20 +133,25 @@ impl DmaData {
                     path.display()
                 );
                 // A TRIOS file's kind was inferred (a warning); a CSV's
-                // column names state it (a note).
-                if format == "csv" {
-                    notes.push(conversion);
-                } else {
+                // or a sheet's column names state it (a note).
+                if format == "trios-lims" {
                     warnings.push(conversion);
+                } else {
+                    notes.push(conversion);
                 }
                 2.0 * (1.0 + poisson)
             }
         };
-        let (points, lines) = checks::check_points(path, raw, &names, factor, &mut warnings)?;
+        let place = Place {
+            path,
+            sheet: sheet.as_deref(),
+        };
+        let (points, lines) = checks::check_points(&place, raw, &names, factor, &mut warnings)?;
         Ok(DmaData {
             path: path.to_path_buf(),
             points,
             lines,
+            sheet,
             kind,
             format,
             warnings,
@@ -157,4 +168,42 @@ impl DmaData {
             .map(|i| i.temperature)
             .collect()
     }
+}
+
+/// What the file's form reads: the points, the form's name, the sheet
+/// read (a workbook's) and the notes of reading it.
+type Form = (FormRead, &'static str, Option<String>, Vec<String>);
+
+/// Reads `path` in its form: a workbook's sheet `sheet`, else decoded
+/// text as TRIOS LIMS or CSV.
+fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<Form, IoError> {
+    let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let (mut read, format, sheet, notes) = if is_workbook(path, &bytes) {
+        let (read, name, notes) = sheet::parse(path, bytes, sheet)?;
+        (read, "workbook", Some(name), notes)
+    } else if let Some(sheet) = sheet {
+        return Err(DmaSheetError::SheetOfText {
+            path: path.to_path_buf(),
+            sheet: sheet.to_string(),
+        }
+        .into());
+    } else {
+        let text = decode::decode(path, &bytes)?;
+        if trios::is_lims(&text) {
+            let read = trios::parse(path, &text, options)?;
+            return Ok((read, "trios-lims", None, Vec::new()));
+        }
+        (csv_form::parse(path, &text)?, "csv", None, Vec::new())
+    };
+    if options.kind.is_some_and(|k| k != read.kind) {
+        read.warnings.push(format!(
+            "{}: the column names say {} moduli; the requested modulus kind applies to TRIOS files only and is ignored",
+            path.display(),
+            read.kind.name()
+        ));
+    }
+    Ok((read, format, sheet, notes))
 }

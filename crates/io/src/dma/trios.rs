@@ -44,7 +44,7 @@ use std::path::Path;
 
 use super::form::{FieldNames, FormRead, RawPoint};
 use super::point::{DmaOptions, ModulusKind};
-use crate::error::{ColumnRef, IoError, SkippedStep, StepRef, TriosError, UnknownUnit};
+use crate::error::{CellRef, ColumnRef, IoError, SkippedStep, StepRef, TriosError, UnknownUnit};
 
 /// Units of a quantity: (name in the file, factor, offset) to SI.
 type Units = [(&'static str, f64, f64)];
@@ -348,14 +348,14 @@ fn cell(path: &Path, line: usize, row: &[&str], f: &Field) -> Result<f64, IoErro
     let text = row.get(f.index).map_or("", |s| s.trim());
     let v: f64 = text.parse().map_err(|_| IoError::NotANumber {
         path: path.to_path_buf(),
-        line,
+        cell: Box::new(CellRef::line(line)),
         column: f.reference(),
         text: text.to_string(),
     })?;
     if !v.is_finite() {
         return Err(IoError::NotFinite {
             path: path.to_path_buf(),
-            line,
+            cell: Box::new(CellRef::line(line)),
             column: f.reference(),
             text: text.to_string(),
         });

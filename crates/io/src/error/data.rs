@@ -25,6 +25,16 @@ pub struct RowRef {
     pub number: u64,
 }
 
+impl RowRef {
+    /// Line `number` of a text file.
+    pub fn line(number: usize) -> RowRef {
+        RowRef {
+            sheet: None,
+            number: number as u64,
+        }
+    }
+}
+
 impl fmt::Display for RowRef {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.sheet {
@@ -42,6 +52,16 @@ pub struct CellRef {
     pub row: RowRef,
     /// Its column, from 0.
     pub column: usize,
+}
+
+impl CellRef {
+    /// Line `number` of a text file (the message names the column).
+    pub fn line(number: usize) -> CellRef {
+        CellRef {
+            row: RowRef::line(number),
+            column: 0,
+        }
+    }
 }
 
 impl fmt::Display for CellRef {

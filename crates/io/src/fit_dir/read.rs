@@ -10,7 +10,7 @@ use super::columns::{
     SIGMA, T, TAN_DELTA, TAN_DELTA_SIGMA, V, V_REDUCED,
 };
 use crate::csv_columns::csv_line;
-use crate::error::{ColumnRef, IoError};
+use crate::error::{CellRef, ColumnRef, IoError};
 use crate::text_file::read_utf8_file;
 
 /// One row of mu.csv.
@@ -196,14 +196,14 @@ impl Table {
         for (name, field) in names.iter().zip(record.iter()) {
             let value: f64 = field.parse().map_err(|_| IoError::NotANumber {
                 path: path.to_path_buf(),
-                line,
+                cell: Box::new(CellRef::line(line)),
                 column: ColumnRef::named(name),
                 text: field.to_string(),
             })?;
             if !value.is_finite() {
                 return Err(IoError::NotFinite {
                     path: path.to_path_buf(),
-                    line,
+                    cell: Box::new(CellRef::line(line)),
                     column: ColumnRef::named(name),
                     text: field.to_string(),
                 });

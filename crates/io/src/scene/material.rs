@@ -60,7 +60,7 @@ impl MaterialKind {
             MaterialKind::Prony => "E1, H, tau",
             MaterialKind::Table => "file",
             MaterialKind::HavriliakNegami => "E0, E1, tau, alpha, beta",
-            MaterialKind::Dma => "file, and optionally T_ref, modulus, shift_law, vertical",
+            MaterialKind::Dma => "file, and optionally sheet, T_ref, modulus, shift_law, vertical",
         }
     }
 }
@@ -94,6 +94,9 @@ pub struct MaterialSection {
     /// Modulus table ("table") or DMA file ("dma"), relative to the scene
     /// file's folder.
     pub file: Option<PathBuf>,
+    /// The sheet of a workbook `file` ("dma", "table"; default: the
+    /// first).
+    pub sheet: Option<String>,
     /// Reference temperature of the master curve, °C ("dma"; default as
     /// `rollfit master`).
     #[serde(rename = "T_ref")]
@@ -202,6 +205,11 @@ impl MaterialSection {
             (
                 "modulus",
                 self.modulus.is_some(),
+                &[MaterialKind::Dma, MaterialKind::Table][..],
+            ),
+            (
+                "sheet",
+                self.sheet.is_some(),
                 &[MaterialKind::Dma, MaterialKind::Table][..],
             ),
         ];
@@ -324,10 +332,11 @@ impl MaterialSection {
             .as_ref()
             .ok_or(SceneError::NeedsFile { model: "table" })?;
         let path = base_dir.join(file);
-        let table = table::read(
+        let table = table::read_sheet(
             &path,
             self.dma.poisson.unwrap_or(DEFAULT_POISSON),
             self.modulus.map(ModulusName::kind),
+            self.sheet.as_deref(),
         )?;
         Ok((path, table))
     }
@@ -356,6 +365,7 @@ impl MaterialSection {
             &base_dir.join(file),
             self.dma.poisson.unwrap_or(DEFAULT_POISSON),
             self.modulus.map(ModulusName::kind),
+            self.sheet.as_deref(),
             &settings,
         )?);
         let _ = self.dma.built.set(Arc::clone(&built));

@@ -20,13 +20,14 @@ pub(super) fn read(
     path: &Path,
     poisson: f64,
     kind: Option<ModulusKind>,
+    sheet: Option<&str>,
     shifted_points: bool,
 ) -> Result<ModulusTable, IoError> {
     // ν matters only for shear moduli: a bad ν is refused only then, and
     // named as the scene's (the DMA reader would call it the fit's).
     let usable = poisson > -1.0 && poisson <= 0.5;
     let options = DmaOptions { kind, wlf: None };
-    let data = DmaData::read(path, if usable { poisson } else { 0.5 }, &options)
+    let data = DmaData::read_sheet(path, if usable { poisson } else { 0.5 }, &options, sheet)
         .map_err(|e| TableError::Dma { error: Box::new(e) })?;
     if !usable && data.kind == ModulusKind::Shear {
         return Err(TableError::ShearWithoutPoisson {

@@ -75,10 +75,24 @@ pub struct ModulusTable {
 /// tensile decision for a TRIOS export (a CSV says it with its column
 /// names).
 pub fn read(path: &Path, poisson: f64, kind: Option<ModulusKind>) -> Result<ModulusTable, IoError> {
+    read_sheet(path, poisson, kind, None)
+}
+
+/// [`read`], with the sheet of a workbook to read (`None`: the first); a
+/// workbook is the DMA reader's.
+pub fn read_sheet(
+    path: &Path,
+    poisson: f64,
+    kind: Option<ModulusKind>,
+    sheet: Option<&str>,
+) -> Result<ModulusTable, IoError> {
     let bytes = std::fs::read(path).map_err(|source| TableError::Read {
         path: path.to_path_buf(),
         source,
     })?;
+    if sheet.is_some() || crate::data::workbook::is_workbook(path, &bytes) {
+        return dma_form::read(path, poisson, kind, sheet, false);
+    }
     // Text that is not UTF-8 (a Latin-1 or UTF-16 export) is the DMA
     // reader's: it decodes both.
     let text = std::str::from_utf8(&bytes).ok();
@@ -99,7 +113,7 @@ pub fn read(path: &Path, poisson: f64, kind: Option<ModulusKind>) -> Result<Modu
     let shifted_points = text
         .and_then(header_names)
         .is_some_and(|h| h.iter().any(|n| n == OMEGA_MEASURED));
-    dma_form::read(path, poisson, kind, shifted_points)
+    dma_form::read(path, poisson, kind, None, shifted_points)
 }
 
 /// Column names the DMA reader reads and the plain reader does not (see
