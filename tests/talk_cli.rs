@@ -320,15 +320,12 @@ fn master_names_whose_poisson_ratio_it_used() {
 #[test]
 fn batch_counts_entries_on_a_terminal_and_lines_in_a_pipe() {
     let tmp = TempDir::new("batch");
-    let scene = tmp.write("scene.toml", &small_scene(9));
-    let made = rollfit(&[
-        OsStr::new("forward"),
-        scene.as_os_str(),
-        OsStr::new("--noise"),
-        OsStr::new("0.01"),
-        OsStr::new("-o"),
-        tmp.path().join("data.csv").as_os_str(),
-    ]);
+    let scene = tmp
+        .write("scene.toml", &small_scene(9))
+        .display()
+        .to_string();
+    let data = tmp.path().join("data.csv").display().to_string();
+    let made = rollfit(&args(&["forward", &scene, "--noise", "0.01", "-o", &data]));
     assert!(made.status.success(), "{}", text(&made.stderr));
     let manifest = tmp.write(
         "batch.toml",
