@@ -230,9 +230,11 @@ fn bad_isotherms() {
     );
     // One isotherm is named and said to be unshifted, not given a law.
     assert!(
-        stderr.contains("one isotherm (at 25 °C): no time–temperature shift")
+        stderr.contains("one isotherm (at 25 °C): no shift to determine")
+            && stderr.contains("the master curve is that isotherm at T = 25 °C")
+            && stderr.contains("is not determined — an isotherm at another temperature")
             && stdout.contains("1 isotherm,")
-            && stdout.contains("no shift (one isotherm)"),
+            && stdout.contains("shift law not determined (one isotherm)"),
         "{stdout}{stderr}"
     );
     let toml = fs::read_to_string(tmp.path().join("one/material.toml")).unwrap();

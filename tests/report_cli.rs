@@ -353,7 +353,13 @@ fn the_page_renders_in_headless_chromium() {
             std::env::var_os("ROLLFIT_REQUIRE_CHROMIUM").is_none(),
             "ROLLFIT_REQUIRE_CHROMIUM is set but no Chromium was found"
         );
-        eprintln!("skipped: no Chromium on this machine (apt-get install chromium)");
+        // libtest captures `eprintln!` and shows a skipped test as `ok`;
+        // a write to stderr itself is not captured, so the skip is seen.
+        let _ = std::io::Write::write_all(
+            &mut std::io::stderr(),
+            b"the_page_renders_in_headless_chromium skipped: chromium not installed (set \
+              ROLLFIT_REQUIRE_CHROMIUM=1 to require it; apt-get install chromium)\n",
+        );
         return;
     };
     let tmp = TempDir::new("chromium");

@@ -10,6 +10,8 @@
 #![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 mod commands;
+mod hints;
+mod progress;
 mod stdout;
 
 use std::process::ExitCode;

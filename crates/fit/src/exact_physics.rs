@@ -181,10 +181,13 @@ pub(crate) fn defect_correction(
     approximate: ApproximateFit,
 ) -> Result<FitReport, FitError> {
     let clock = Instant::now();
+    let progress = &params.progress;
+    progress.stage("approximate fit");
     let mut report = approximate(rows, None, params)?;
     let accuracy = (ACCURACY_PER_NOISE * relative_noise(rows, &report))
         .clamp(ACCURACY_RANGE.0, ACCURACY_RANGE.1);
     let schedule = Schedule::of(params.setup.geometry.shape, accuracy);
+    progress.stage("exact sweep 1");
     let mut correction = Correction::at(
         rows,
         params,
@@ -205,6 +208,7 @@ pub(crate) fn defect_correction(
             // Only the coarse first sweep has r ≡ 1 within the tolerance
             // but was solved less accurately than asked: confirm at the
             // accuracy asked, at the same modulus, before stopping.
+            progress.stage("exact sweep, confirming");
             correction = Correction::at(rows, params, &report, accuracy, schedule.later(None))?;
             solves += correction.solves;
             change = correction.largest();
@@ -214,6 +218,7 @@ pub(crate) fn defect_correction(
             break;
         }
         let corrected = correction.apply(rows)?;
+        progress.stage(&format!("refit {}", iterations + 1));
         let next = approximate(&corrected, Some(rows), params)?;
         let stage = match iterations {
             0 => "approximate".to_string(),
@@ -222,6 +227,7 @@ pub(crate) fn defect_correction(
         earlier.extend(staged(std::mem::replace(&mut report, next).runs, &stage));
         iterations += 1;
         let sweep = schedule.later(Some(&correction));
+        progress.stage(&format!("exact sweep {}", iterations + 1));
         let updated = Correction::at(rows, params, &report, accuracy, sweep)?;
         solves += updated.solves;
         change = updated.change_from(&correction);
@@ -480,13 +486,16 @@ impl Correction {
         // solutions' error estimates.
         let solve = |at: &[usize]| -> Result<Vec<(f64, f64)>, FitError> {
             let speeds: Vec<f64> = at.iter().map(|&i| nodes[i]).collect();
+            params.progress.planned(speeds.len());
             let exact: Vec<ExactFriction> = speeds
                 .par_iter()
                 .map(|&v| {
-                    body.exact_friction(v).map_err(|e| FitError::ExactPhysics {
+                    let solved = body.exact_friction(v).map_err(|e| FitError::ExactPhysics {
                         speed: v,
                         problem: e.to_string(),
-                    })
+                    });
+                    params.progress.solved();
+                    solved
                 })
                 .collect::<Result<_, _>>()?;
             let approximate = approximate_model.friction_sweep(&speeds)?;

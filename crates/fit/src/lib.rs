@@ -73,6 +73,7 @@ pub mod exact_physics;
 pub mod fit;
 pub mod master;
 pub mod params;
+pub mod progress;
 pub mod regularization;
 pub mod report;
 pub mod sanity;
@@ -96,6 +97,7 @@ pub use params::{
     FitParams, Lambda, Method, ModulusAnchor, Physics, RollingSetup, ScaleAnchor, ShiftKind,
     ShiftSettings, StartMaterial, TermRule, ValidFitParams,
 };
+pub use progress::{Observer, Progress};
 pub use quality::FitQuality;
 pub use report::{
     CrossCheckRow, FitReport, LawCandidate, LogShift, ModulusPoint, PhysicsRecord, ScaleRecord,

@@ -11,6 +11,7 @@ use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate, 
 
 use crate::cancel::Cancel;
 use crate::error::FitError;
+use crate::progress::Observer;
 
 /// The optimiser.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -286,6 +287,8 @@ pub struct ValidFitParams {
     pub(crate) path_top: Option<f64>,
     /// Read before every solver run: set, it ends the fit.
     pub(crate) cancel: Cancel,
+    /// Told what the fit does (exact solves); watches only.
+    pub(crate) progress: Observer,
 }
 
 impl ValidFitParams {
@@ -310,6 +313,12 @@ impl ValidFitParams {
     /// [`FitError::Cancelled`]. Never set, it changes nothing.
     pub fn with_cancel(mut self, flag: Cancel) -> ValidFitParams {
         self.cancel = flag;
+        self
+    }
+    /// The same settings, with `observer` told the fit's progress (its
+    /// exact solves, [`crate::progress`]). It changes no number.
+    pub fn with_progress(mut self, observer: Observer) -> ValidFitParams {
+        self.progress = observer;
         self
     }
 }
@@ -372,6 +381,7 @@ impl FitParams {
             coarse: false,
             path_top: None,
             cancel: Cancel::default(),
+            progress: Observer::default(),
         })
     }
 

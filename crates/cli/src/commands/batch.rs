@@ -24,13 +24,12 @@
 
 use std::cell::RefCell;
 use std::fmt::Write as _;
-use std::io::IsTerminal;
 use std::panic::{self, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use anyhow::{Context, Result, bail};
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 use rayon::prelude::*;
 use rollfit_fit::{FitError, FitSettings};
 use rollfit_io::fit_dir::columns::FIT_JSON;
@@ -38,6 +37,7 @@ use rollfit_io::fit_dir::digest::Digest;
 use rollfit_io::{csv_text, output};
 
 use crate::commands::fit::{Job, Settings, fit_files};
+use crate::progress;
 use rollfit_io::manifest::{self, Entry};
 
 /// The lock file of a batch's output folder.
@@ -474,6 +474,9 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &FitSettings, force: bool) -> 
         sheet: entry.sheet.as_deref(),
         dir: &folder,
         settings,
+        usage: "in the manifest, scene = \"SCENE.toml\" and data = \"DATA.csv\"",
+        // The batch's own bar counts entries.
+        progress: false,
     };
     // The data file's notes and warnings (unit conversions, skipped rows),
     // which `rollfit fit` prints on stderr, go into the entry's message; the
@@ -602,24 +605,29 @@ fn summary_csv(results: &[EntryResult]) -> Result<Vec<u8>> {
     writer.into_inner().context("cannot finish the summary CSV")
 }
 
-/// Progress on stderr: a bar at a terminal, else one line per finished
-/// entry.
+/// Progress on stderr: a bar at a terminal (`progress::shown`), else one
+/// line per finished entry (a log keeps every entry's line; a terminal
+/// keeps those of the entries that need a look, above the bar).
 enum Progress {
-    Bar(ProgressBar),
-    Lines { done: AtomicUsize, total: usize },
+    Bar {
+        bar: ProgressBar,
+        /// Entries that failed, did not converge, or are poor or
+        /// unanchored, so far.
+        failures: AtomicUsize,
+    },
+    Lines {
+        done: AtomicUsize,
+        total: usize,
+    },
 }
 
 impl Progress {
     fn new(total: usize) -> Self {
-        if std::io::stderr().is_terminal() && total > 0 {
-            let bar = ProgressBar::new(total as u64);
-            if let Ok(style) = ProgressStyle::with_template(
-                "{bar:30} {pos}/{len} fits, {elapsed} elapsed, about {eta} left  {wide_msg}",
-            ) {
-                bar.set_style(style);
+        if progress::shown_here() && total > 0 {
+            Progress::Bar {
+                bar: progress::bar(Some(total as u64), "fits"),
+                failures: AtomicUsize::new(0),
             }
-            bar.enable_steady_tick(std::time::Duration::from_millis(500));
-            Progress::Bar(bar)
         } else {
             Progress::Lines {
                 done: AtomicUsize::new(0),
@@ -630,14 +638,20 @@ impl Progress {
 
     fn finished(&self, result: &EntryResult) {
         match self {
-            Progress::Bar(bar) => {
+            Progress::Bar { bar, failures } => {
+                let mut failed = failures.load(Ordering::Relaxed);
                 if matches!(
                     result.status,
                     Status::Failed | Status::Unconverged | Status::Poor | Status::Unanchored
                 ) {
                     bar.println(result.line());
+                    failed = failures.fetch_add(1, Ordering::Relaxed) + 1;
                 }
-                bar.set_message(format!("{}: {}", result.name, result.status.name()));
+                bar.set_message(format!(
+                    "{failed} not ok; last {}: {}",
+                    result.name,
+                    result.status.name()
+                ));
                 bar.inc(1);
             }
             Progress::Lines { done, total } => {
@@ -648,7 +662,7 @@ impl Progress {
     }
 
     fn finish(&self) {
-        if let Progress::Bar(bar) = self {
+        if let Progress::Bar { bar, .. } = self {
             bar.finish_and_clear();
         }
     }

@@ -17,7 +17,7 @@ use rollfit_io::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind, WLF_USAGE};
 use rollfit_io::output;
 use rollfit_report::compare::{Comparison, compare};
 
-use crate::stdout;
+use crate::{hints, stdout};
 
 /// Arguments of `rollfit compare`.
 #[derive(Debug, clap::Args)]
@@ -39,6 +39,16 @@ pub enum DmaModulus {
     Young,
     /// Shear moduli G′, G″, converted with E = 2(1+ν)G.
     Shear,
+}
+
+impl DmaModulus {
+    /// The DMA reader's word for it.
+    pub fn kind(self) -> ModulusKind {
+        match self {
+            DmaModulus::Young => ModulusKind::Young,
+            DmaModulus::Shear => ModulusKind::Shear,
+        }
+    }
 }
 
 /// The DMA flags shared by `rollfit compare` and `rollfit report --dma`.
@@ -65,14 +75,20 @@ pub struct DmaFlags {
     pub sheet: Option<String>,
 }
 
+/// ν of `rollfit master` (`--poisson`, else 0.5) and whose it is, in the
+/// words the DMA reader's "(the fit's)" is replaced by: no fit is involved.
+pub fn poisson_source(given: Option<f64>) -> (f64, &'static str) {
+    match given {
+        Some(nu) => (nu, "(--poisson)"),
+        None => (0.5, "(the default; --poisson sets another)"),
+    }
+}
+
 impl DmaFlags {
     /// The options of the DMA reader and of the comparison.
     pub fn options(&self) -> DmaOptions {
         DmaOptions {
-            kind: self.dma_modulus.map(|k| match k {
-                DmaModulus::Young => ModulusKind::Young,
-                DmaModulus::Shear => ModulusKind::Shear,
-            }),
+            kind: self.dma_modulus.map(DmaModulus::kind),
             wlf: self.dma_wlf,
         }
     }
@@ -98,10 +114,13 @@ pub fn comparison(
     dma: &std::path::Path,
     flags: &DmaFlags,
 ) -> Result<Comparison> {
-    let fit = FitDir::read(dir).context("cannot read the fit")?;
+    const USAGE: &str = "rollfit compare DIR DMA.csv (DIR the folder `rollfit fit` wrote)";
+    let fit = FitDir::read(dir).context("cannot read the fit");
+    let fit = hints::with_hint(fit, || hints::for_fit_folder(dir, Some(dma), USAGE))?;
     let options = flags.options();
     let data = DmaData::read_sheet(dma, fit.summary.poisson, &options, flags.sheet.as_deref())
-        .context("cannot read the DMA file")?;
+        .context("cannot read the DMA file");
+    let data = hints::with_hint(data, || hints::for_dma(dma, USAGE))?;
     compare(&fit, &data, &options).context("cannot compare the fit with the DMA data")
 }
 

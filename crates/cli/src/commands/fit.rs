@@ -25,6 +25,8 @@ use rollfit_model::Shape;
 use rollfit_io::data::read_sheet;
 use rollfit_io::scene as scene_file;
 
+use crate::{hints, progress};
+
 /// Arguments of `rollfit fit`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -146,6 +148,8 @@ pub fn run(args: &Args) -> Result<()> {
         sheet: args.sheet.as_deref(),
         dir: &dir,
         settings: &args.settings.fit_settings(),
+        usage: USAGE,
+        progress: true,
     };
     let outcome = fit_files(&job, |line| eprintln!("{line}"))?;
     let report = &outcome.report;
@@ -243,7 +247,17 @@ pub struct Job<'a> {
     /// Over the scene's `[fit]`: the flags (for a batch, also the
     /// manifest's settings, checked when the manifest was read).
     pub settings: &'a FitSettings,
+    /// The right order of scene and data, for the hint when they look
+    /// swapped ([`USAGE`], or a manifest's keys).
+    pub usage: &'static str,
+    /// Whether an exact-physics fit shows a bar of its exact solves (on a
+    /// terminal; a batch shows its own bar of entries instead).
+    pub progress: bool,
 }
+
+/// The order of `rollfit fit`'s files, for the hint when they look
+/// swapped.
+pub const USAGE: &str = "rollfit fit SCENE.toml DATA.csv";
 
 /// A finished fit and its result files, encoded but not yet written.
 pub struct Outcome {
@@ -272,12 +286,16 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     let (scene_path, data_path, dir) = (job.scene, job.data, job.dir);
     output::check_replaceable(dir)?;
 
-    let file = scene_file::load(scene_path)?;
+    let file = hints::with_hint(scene_file::load(scene_path).map_err(Into::into), || {
+        hints::for_scene(scene_path, data_path, job.usage)
+    })?;
     let (setup, mut params) = file
         .fit_setup()
         .with_context(|| format!("scene file {}", scene_path.display()))?;
     job.settings.apply(&mut params);
-    let table = read_sheet(data_path, job.sheet)?;
+    let table = hints::with_hint(read_sheet(data_path, job.sheet).map_err(Into::into), || {
+        hints::for_data(data_path, job.usage)
+    })?;
     for note in &table.notes {
         log(&format!("note: data file {}: {note}", data_path.display()));
     }
@@ -304,7 +322,18 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         scene_path.display(),
         describe_setup(&setup)
     ));
-    let report = rollfit_fit::fit(&data, &valid).map_err(|e| match e {
+    // A bar of the exact solves, the part that takes seconds to minutes.
+    let (valid, bar) = if job.progress && valid.physics() == Physics::Exact {
+        let (observer, bar) = progress::fit_observer();
+        (valid.with_progress(observer), Some(bar))
+    } else {
+        (valid, None)
+    };
+    let fitted = rollfit_fit::fit(&data, &valid);
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let report = fitted.map_err(|e| match e {
         FitError::InsufficientData(why) => anyhow!("data file {}: {why}", data_path.display()),
         other => anyhow!(
             "fitting data file {} with scene file {}: {other}",

@@ -18,6 +18,7 @@
 //! versions pinned in Cargo.lock. The first block of a set therefore has the
 //! noise of the single-temperature file with the same seed.
 
+mod counted;
 mod pressure_maps;
 mod summary;
 
@@ -32,13 +33,16 @@ use rollfit_fit::sanity;
 use rollfit_io::columns::MU;
 use rollfit_io::fit_dir::columns::{SIGMA, T, V};
 use rollfit_io::{csv_text, output, table};
+use rollfit_model::exact::ExactRolling;
 use rollfit_model::ladder::AutoSweep;
 use rollfit_model::{ModelError, Shape, ViscoelasticModulus};
 use rollfit_report::plot::{
     self, Picture, forward_sweep::ForwardSweepFigure, forward_sweep::SweepCurve,
 };
 
-use crate::stdout;
+use crate::{progress, stdout};
+use counted::Counted;
+use indicatif::ProgressBar;
 use rollfit_io::scene::{
     self as scene_file, DynScene, ForwardBlock, ForwardRung, ForwardSetup, MaterialKind, SceneFile,
 };
@@ -156,12 +160,16 @@ pub fn run(args: &Args) -> Result<()> {
         .forward_setup(path, &|note| eprintln!("note: {note}"))
         .with_context(|| format!("scene file {}", path.display()))?;
     pressure_maps::check_request(&setup, &args.pressure_map, path)?;
+    let bar = sweep_bar(&setup);
     // μ of each block, in row order.
     let solved = setup
         .blocks
         .iter()
         .map(|block| {
-            solve_block(block, &setup.speeds)
+            if let Some(s) = block.shift {
+                bar.set_message(format!("T = {} °C", s.temperature));
+            }
+            solve_block(block, &setup.speeds, &bar)
                 .map_err(|e| explain_table_error(&file, path, block, e))
                 .with_context(|| {
                     let at = block
@@ -171,7 +179,9 @@ pub fn run(args: &Args) -> Result<()> {
                     format!("computing μ(v){at} for scene file {}", path.display())
                 })
         })
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>>>();
+    bar.finish_and_clear();
+    let solved = solved?;
     let mu: Vec<Vec<f64>> = solved.iter().map(|s| s.mu.clone()).collect();
     let extra = Extra {
         edges: solved.iter().any(|s| s.edges.is_some()),
@@ -380,8 +390,25 @@ struct Extra {
     temperature: bool,
 }
 
-/// μ at every speed of one block by its rung.
-fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
+/// The bar of a sweep's exact solves: the speeds of its `exact` blocks,
+/// and the solves `auto` makes as it decides on them; hidden when no block
+/// solves the exact contact (the other rungs take milliseconds).
+fn sweep_bar(setup: &ForwardSetup) -> ProgressBar {
+    let exact = |rung: &ForwardRung| match rung {
+        ForwardRung::Exact(_) => Some(true),
+        ForwardRung::Auto { exact: Ok(_), .. } => Some(false),
+        _ => None,
+    };
+    let rungs: Vec<bool> = setup.blocks.iter().filter_map(|b| exact(&b.rung)).collect();
+    if rungs.is_empty() {
+        return ProgressBar::hidden();
+    }
+    let planned = rungs.iter().filter(|e| **e).count() * setup.speeds.len();
+    progress::bar(Some(planned as u64), "exact solves")
+}
+
+/// μ at every speed of one block by its rung; `bar` counts exact solves.
+fn solve_block(block: &ForwardBlock, speeds: &[f64], bar: &ProgressBar) -> Result<Solved> {
     let mu_only = |mu| Solved {
         mu,
         edges: None,
@@ -411,12 +438,19 @@ fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
                 .collect(),
         )),
         ForwardRung::Auto { accuracy, exact } => {
+            let counted = exact
+                .as_ref()
+                .map(|b| Counted::new(b.as_ref(), bar.clone()))
+                .map_err(Clone::clone);
             let auto = block
                 .scene
                 .friction_auto_with(
                     speeds,
                     *accuracy,
-                    exact.as_ref().map(|b| b.as_ref()).map_err(Clone::clone),
+                    counted
+                        .as_ref()
+                        .map(|c| c as &dyn ExactRolling)
+                        .map_err(Clone::clone),
                 )
                 .map_err(anyhow::Error::msg)?;
             Ok(Solved {
@@ -433,7 +467,11 @@ fn solve_block(block: &ForwardBlock, speeds: &[f64]) -> Result<Solved> {
             use rayon::prelude::*;
             let solutions = speeds
                 .par_iter()
-                .map(|&v| body.exact_friction(v))
+                .map(|&v| {
+                    let solved = body.exact_friction(v);
+                    bar.inc(1);
+                    solved
+                })
                 .collect::<Result<Vec<_>, _>>()
                 .map_err(anyhow::Error::msg)?;
             Ok(Solved {

@@ -27,7 +27,7 @@ use anyhow::{Context, Result};
 use rollfit_fit::master::pairwise::PairVerdict;
 use rollfit_fit::master::{LawTest, MasterSettings, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
-use rollfit_io::dma::{DmaPoint, ModulusKind};
+use rollfit_io::dma::DmaPoint;
 use rollfit_io::dma_master::{self, DmaMaster};
 use rollfit_io::fit_dir::columns::{
     E_LOSS, E_STORAGE, LOG_AT, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
@@ -38,8 +38,8 @@ use rollfit_report::causality::{self, CausalFit};
 use rollfit_report::plot::{self, dma_master as figure};
 use serde::Serialize;
 
-use crate::commands::compare::DmaModulus;
-use crate::stdout;
+use crate::commands::compare::{DmaModulus, poisson_source};
+use crate::{hints, progress, stdout};
 
 /// Arguments of `rollfit master`.
 #[derive(Debug, clap::Args)]
@@ -69,8 +69,9 @@ pub struct Args {
     #[arg(long)]
     pub vertical: bool,
     /// Poisson's ratio converting shear moduli to Young's, E = 2(1+ν)G.
-    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
-    pub poisson: f64,
+    /// Default 0.5.
+    #[arg(long, allow_hyphen_values = true)]
+    pub poisson: Option<f64>,
     /// Read a TRIOS file's moduli as Young's or shear (default: decided
     /// from the file).
     #[arg(long = "dma-modulus", value_enum, value_name = "KIND")]
@@ -115,14 +116,18 @@ pub fn run(args: &Args) -> Result<()> {
         law: args.shift.law(),
         vertical: args.vertical,
     };
-    let kind = args.dma_modulus.map(|k| match k {
-        DmaModulus::Young => ModulusKind::Young,
-        DmaModulus::Shear => ModulusKind::Shear,
-    });
+    let kind = args.dma_modulus.map(DmaModulus::kind);
+    let (poisson, whose) = poisson_source(args.poisson);
+    let spinner = progress::spinner(format!("master curve of {}", args.dma.display()));
     let sheet = args.sheet.as_deref();
-    let built = dma_master::build(&args.dma, args.poisson, kind, sheet, &settings)?;
+    let built = dma_master::build(&args.dma, poisson, kind, sheet, &settings).map_err(Into::into);
+    let hint = || hints::for_dma(&args.dma, "rollfit master DMA.csv");
+    let built = hints::with_hint(built, hint);
+    let causal = built.as_ref().ok().map(causal_floor);
+    spinner.finish_and_clear();
+    let built = built?;
     for note in &built.data.notes {
-        eprintln!("note: {note}");
+        eprintln!("note: {}", note.replace("(the fit's)", whose));
     }
     let shift = &built.master.shift;
     if shift.shifts.len() > 1 {
@@ -131,13 +136,13 @@ pub fn run(args: &Args) -> Result<()> {
         eprintln!("note: {}", shift.reason);
     }
     for warning in built.data.warnings.iter().chain(&built.master.warnings) {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", warning.replace("(the fit's)", whose));
     }
-    let causal = causal_floor(&built)?;
+    let causal = causal.context("no causal fit")??;
     for warning in &causal.warnings {
         eprintln!("warning: {warning}");
     }
-    let files = encode(&built, &causal, args.poisson)?;
+    let files = encode(&built, &causal, poisson)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
     output::replace_folder(&args.output, &named)?;
     stdout::write_stdout(summary(&built, &causal).as_bytes())?;
@@ -604,7 +609,7 @@ fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
         m.points.len(),
         built.settings.t_ref(),
         if count == 1 {
-            "no shift (one isotherm)".to_string()
+            "shift law not determined (one isotherm)".to_string()
         } else {
             format!("shift {}", m.shift.law.name())
         },

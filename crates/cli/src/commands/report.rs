@@ -28,6 +28,7 @@ use rollfit_report::html::{ComparisonSection, report_html};
 use rollfit_report::plot::{self, master_curve::DmaMarker};
 
 use super::compare::{DmaFlags, comparison};
+use crate::hints;
 
 /// Arguments of `rollfit report`.
 #[derive(Debug, clap::Args)]
@@ -52,7 +53,14 @@ pub struct Args {
 /// Runs `rollfit report`.
 pub fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
-    let fit = FitDir::read(&args.dir).context("cannot read the fit")?;
+    let fit = FitDir::read(&args.dir).context("cannot read the fit");
+    let fit = hints::with_hint(fit, || {
+        hints::for_fit_folder(
+            &args.dir,
+            None,
+            "rollfit report DIR (the folder `rollfit fit` wrote)",
+        )
+    })?;
 
     let comparison = match &args.dma {
         Some(path) => Some((path, comparison(&args.dir, path, &args.dma_flags)?)),

@@ -192,9 +192,10 @@ fn single(t_ref: f64, isotherm: &Isotherm) -> ShiftFactors {
         t_ref,
         law: ShiftLaw::Free,
         reason: format!(
-            "one isotherm (at {} °C): no time–temperature shift; the master curve is that \
-             isotherm",
-            law_choice::temperature(t)
+            "one isotherm (at {t} °C): no shift to determine; the master curve is that isotherm \
+             at T = {t} °C, and the shift law (a_T against T) is not determined — an isotherm at \
+             another temperature would determine it",
+            t = law_choice::temperature(t)
         ),
         shifts: vec![IsothermShift {
             temperature: t,

@@ -58,11 +58,47 @@ pub(super) fn table(
             }
         }
     }
+    // Whether the speed column gave no unit, before the units are applied.
+    let unitless_speed = columns
+        .iter()
+        .find(|(c, unit)| c.quantity == Quantity::Speed && unit.is_none())
+        .map(|(c, _)| c.raw.clone());
     let (columns, column_notes) = with_units(columns);
     let read = read_rows(source, &rows[start..], header_row, &columns)?;
     notes.extend(delimiter_note(source, read.decimal_commas));
     notes.extend(column_notes);
-    finish(source, &columns, read, notes)
+    let mut table = finish(source, &columns, read, notes)?;
+    if let Some(raw) = unitless_speed {
+        table.warnings.extend(speed_in_mm_hint(&raw, &table.speeds));
+    }
+    Ok(table)
+}
+
+/// The median speed above which a column without a unit was probably
+/// written in mm/s: rolling rigs run at µm/s to about 1 m/s (faster, the
+/// rubber heats up; the fit warns of that apart), while 1–1000 mm/s is the
+/// usual range of a rig that logs in mm/s. Such data, read as m/s, sit
+/// three decades too high and fail as a poor fit with no word of the unit.
+pub const MM_PER_S_MEDIAN: f64 = 1.0;
+
+/// The hint of a speed column `raw` without a unit whose median speed is
+/// above [`MM_PER_S_MEDIAN`] m/s (as the radius gets one for mm).
+fn speed_in_mm_hint(raw: &str, speeds: &[f64]) -> Option<String> {
+    let mut sorted = speeds.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let median = match sorted.len() {
+        0 => return None,
+        n if n % 2 == 1 => sorted[n / 2],
+        n => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
+    };
+    (median > MM_PER_S_MEDIAN).then(|| {
+        format!(
+            "the median speed of column {raw:?}, which gives no unit, is {median} m/s (rolling \
+             rigs run below about 1 m/s) — mm/s? name the column `v_mm_s` or `speed (mm/s)` \
+             ({median} mm/s = {} m/s)",
+            median * 1e-3
+        )
+    })
 }
 
 /// The error of a file without a header: what `row`, its first row, does

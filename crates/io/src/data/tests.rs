@@ -12,6 +12,16 @@ fn parse_str(text: &str) -> Result<DataTable, DataError> {
     parse_bytes(text.as_bytes())
 }
 
+/// The warnings of `t` but the hint that unitless speeds above 1 m/s may
+/// be mm/s (these tests' speeds of 1, 2, 3 are only numbers).
+fn warnings_but_mm(t: &DataTable) -> Vec<String> {
+    t.warnings
+        .iter()
+        .filter(|w| !w.contains("mm/s?"))
+        .cloned()
+        .collect()
+}
+
 fn message(text: &str) -> String {
     chain(&parse_str(text).unwrap_err())
 }
@@ -355,7 +365,7 @@ fn empty_and_nan_cells_skip_rows_with_one_warning() {
         [1.0, 2.0, 3.0, 4.0, 5.0, 7.0, 8.0, 9.0, 10.0, 14.0]
     );
     assert_eq!(
-        t.warnings,
+        warnings_but_mm(&t),
         ["skipped 3 rows with empty or NaN cells in v or mu: lines 7, 12, 13"]
     );
     assert_eq!(t.lines.len(), t.speeds.len());
@@ -368,7 +378,7 @@ fn empty_and_nan_cells_skip_rows_with_one_warning() {
     assert_eq!(t.sigma, Some(vec![0.01, 0.06]));
     assert_eq!(t.temperature, Some(vec![20.0, 20.0]));
     assert_eq!(
-        t.warnings,
+        warnings_but_mm(&t),
         ["skipped 5 rows with empty or NaN cells in v, mu, sigma or T: lines 3, 4, 5, 6, 7"]
     );
     let t = parse_str("v,mu\n1e-3,0.05\nnan,0.1\n").unwrap();
@@ -393,7 +403,7 @@ fn empty_and_nan_cells_skip_rows_with_one_warning() {
 fn trailing_empty_columns_and_rows_of_an_excel_export() {
     let t = parse_str("v;mu;;\n1;0,1;;\n2;0,2;;\n;;;\n;;;\n").unwrap();
     assert_eq!(t.speeds, [1.0, 2.0]);
-    assert!(t.warnings.is_empty(), "{:?}", t.warnings);
+    assert!(warnings_but_mm(&t).is_empty(), "{:?}", t.warnings);
     let t = parse_str("v;mu;;\n1;0,1\n").unwrap();
     assert_eq!(t.friction, [0.1]);
     let m = message("v;mu\n1;0,1;5\n");
@@ -498,4 +508,37 @@ fn forward_output_and_time_columns() {
     // mu.csv of a fit reads as data.
     let t = parse_str("v,mu_measured,mu_fit,sigma,residual\n1e-3,0.05,0.051,5e-4,0.02\n").unwrap();
     assert_eq!(t.friction, [0.05]);
+}
+
+/// Speeds in mm/s under a header without a unit read as m/s, three decades
+/// too fast: a median above 1 m/s earns a hint naming the two spellings
+/// that carry the unit, and both spellings are read as mm/s (issue 33).
+#[test]
+fn a_unitless_speed_column_with_fast_speeds_hints_at_mm_per_s() {
+    let rows = "5,0.01\n20,0.02\n100,0.03\n400,0.02\n";
+    let hint = |t: &DataTable| t.warnings.iter().find(|w| w.contains("mm/s?")).cloned();
+    let plain = parse_str(&format!("speed,mu\n{rows}")).unwrap();
+    let warning = hint(&plain).expect("a hint for speeds of 5–400 \"m/s\"");
+    assert!(
+        warning.contains("the median speed of column \"speed\", which gives no unit, is 60 m/s")
+            && warning.contains("name the column `v_mm_s` or `speed (mm/s)`"),
+        "{warning}"
+    );
+    assert!(hint(&parse_str(&format!("v,mu\n{rows}")).unwrap()).is_some());
+    // The spellings the hint proposes are read as mm/s, and give no hint.
+    for header in ["v_mm_s,mu", "speed (mm/s),mu", "speed,mu\nmm/s,-"] {
+        let table = parse_str(&format!("{header}\n{rows}")).unwrap();
+        for (v, want) in table.speeds.iter().zip([5e-3, 20e-3, 0.1, 0.4]) {
+            assert!((v / want - 1.0).abs() < 1e-12, "{header}: {v} for {want}");
+        }
+        assert_eq!(hint(&table), None, "{header}");
+    }
+    // A unit in m/s is the user's word: no hint, however fast.
+    assert_eq!(
+        hint(&parse_str(&format!("v (m/s),mu\n{rows}")).unwrap()),
+        None
+    );
+    // Ordinary speeds in m/s without a unit: no hint.
+    let slow = parse_str("speed,mu\n0.005,0.01\n0.02,0.02\n0.1,0.03\n0.4,0.02\n").unwrap();
+    assert_eq!(hint(&slow), None);
 }
