@@ -29,7 +29,7 @@ use std::path::Path;
 
 use super::form::{FieldNames, FormRead, RawPoint};
 use super::point::ModulusKind;
-use crate::csv_columns::csv_line;
+use crate::csv_columns::{csv_line, dma_number, not_csv};
 use crate::error::{ColumnRef, Contradiction, DuplicateQuantity, IoError};
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA, T};
 
@@ -39,16 +39,16 @@ pub use crate::columns::{F, G_LOSS, G_STORAGE};
 /// One recognised column: its index, header name and the factor to SI
 /// (plus an offset, for kelvin).
 #[derive(Debug, Clone)]
-struct Column {
-    index: usize,
-    name: String,
-    factor: f64,
-    offset: f64,
+pub(super) struct Column {
+    pub index: usize,
+    pub name: String,
+    pub factor: f64,
+    pub offset: f64,
 }
 
 impl Column {
     /// `column N (name)` for messages.
-    fn reference(&self) -> ColumnRef {
+    pub(super) fn reference(&self) -> ColumnRef {
         ColumnRef::numbered(self.index + 1, &self.name)
     }
 }
@@ -278,21 +278,7 @@ fn row(
         ));
     }
     let value = |c: &Column| -> Result<f64, IoError> {
-        let field = &record[c.index];
-        let v: f64 = field.parse().map_err(|_| IoError::NotANumber {
-            path: path.to_path_buf(),
-            line,
-            column: c.reference(),
-            text: field.to_string(),
-        })?;
-        if !v.is_finite() {
-            return Err(IoError::NotFinite {
-                path: path.to_path_buf(),
-                line,
-                column: c.reference(),
-                text: field.to_string(),
-            });
-        }
+        let v = dma_number(path, line, || c.reference(), &record[c.index])?;
         Ok(v * c.factor + c.offset)
     };
     Ok(RawPoint {
@@ -302,12 +288,4 @@ fn row(
         loss: value(&header.loss)?,
         temperature: header.temperature.as_ref().map(&value).transpose()?,
     })
-}
-
-fn not_csv(path: &Path, text: &str, error: csv::Error) -> IoError {
-    IoError::NotCsv {
-        path: path.to_path_buf(),
-        line: csv_line(text, error.position()),
-        error,
-    }
 }

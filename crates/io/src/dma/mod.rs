@@ -53,10 +53,11 @@ pub mod decode;
 mod form;
 mod isotherm;
 mod point;
+pub mod relaxation;
 pub mod trios;
 
 use form::FormRead;
-pub use isotherm::{ISOTHERM_TOLERANCE, Isotherm, isotherms};
+pub use isotherm::{ISOTHERM_TOLERANCE, Isotherm, group_temperatures, isotherms};
 pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind, WLF_USAGE};
 
 /// A DMA file read, its moduli as Young's moduli in Pa.
