@@ -78,6 +78,8 @@ struct Source<'a> {
     path: &'a Path,
     /// "isotherms" or "relaxation isotherms", for the comment.
     isotherms: &'static str,
+    /// What else a scene may do with the file, for the comment.
+    also: &'static str,
     points: usize,
     shift: &'a ShiftFactors,
     prony: &'a Prony,
@@ -89,6 +91,7 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
     encode_source(&Source {
         path: &built.data.path,
         isotherms: "isotherms",
+        also: " (or use the DMA file itself: [material] model = \"dma\")",
         points: built.master.points.len(),
         shift: &built.master.shift,
         prony: &built.master.fit.prony,
@@ -102,6 +105,8 @@ pub fn encode_relaxation(built: &RelaxationBuilt) -> Result<Vec<u8>, IoError> {
     encode_source(&Source {
         path: &built.data.path,
         isotherms: "relaxation isotherms",
+        // A scene's `model = "dma"` reads frequency sweeps only.
+        also: "",
         points: built.master.points.len(),
         shift: &built.master.shift,
         prony: &built.master.fit.prony,
@@ -184,7 +189,7 @@ fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
         "# Written by rollfit master from {} ({} {}, {} points).\n\
          # Young's modulus at T_ref = {t_ref} °C: a Prony series E*(ω) = E0 + Σ H_k iωτ_k/(1 + iωτ_k),\n\
          # E0 = E1 − Σ H_k = {:e} Pa.{}\n\
-         # Copy these tables into a scene file (or use the DMA file itself: [material] model = \"dma\").\n\n",
+         # Copy these tables into a scene file{}.\n\n",
         source.path.display(),
         shift_factors.shifts.len(),
         source.isotherms,
@@ -195,7 +200,8 @@ fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
              log_bT (log10 b_T,\n# linear in T between isotherms, not extrapolated beyond them)."
         } else {
             ""
-        }
+        },
+        source.also
     );
     text.push_str(&body);
     Ok(text.into_bytes())
