@@ -242,3 +242,36 @@ fn bad_dma_files_and_flags_are_refused_and_nothing_is_written() {
     );
     assert!(!fit.join("compare.json").exists());
 }
+
+/// A relaxation file against a fit (issue 33): the fit's series is
+/// converted to E(t) = E0 + Σ H_k e^(−t/τ_k) and compared over the times
+/// its window determines. Data made from that very series (as G = E/3 in
+/// kPa) compare to rounding; the same data 10 % stiffer show the fit 9.1 % (1/1.1) softer.
+#[test]
+fn relaxation_data_compare_as_e_of_t() {
+    let dir = TempDir::new("relaxation");
+    let fit = copy_fit(&dir, "hn-rubber");
+    let series = rollfit_io::FitDir::read(&fit).unwrap().master_curve;
+    let write = |name: &str, factor: f64| {
+        let mut text = String::from("t_s,G_relax_kPa\n");
+        for j in 0..=80 {
+            let t = 10f64.powf(-8.0 + 0.1 * j as f64);
+            let g = factor * series.relaxation_modulus(t) / 3.0 / 1e3;
+            text += &format!("{t:e},{g:e}\n");
+        }
+        dir.write(name, &text)
+    };
+    for (factor, expected) in [(1.0f64, 0.0f64), (1.1, 1.0 / 1.1 - 1.0)] {
+        let data = write(&format!("relax-{factor}.csv"), factor);
+        let out = rollfit(&[OsStr::new("compare"), fit.as_os_str(), data.as_os_str()]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let json: serde_json::Value =
+            serde_json::from_slice(&fs::read(fit.join("compare.json")).unwrap()).unwrap();
+        assert_eq!(json["dma_format"], "csv-relaxation");
+        assert!(json["n_points"].as_u64().unwrap() > 10, "{json}");
+        let max = json["E_relax_max_rel"].as_f64().unwrap();
+        let rms = json["E_relax_rms_rel"].as_f64().unwrap();
+        assert!((max - expected.abs()).abs() < 1e-6, "{json}");
+        assert!((rms - expected.abs()).abs() < 1e-6, "{json}");
+    }
+}

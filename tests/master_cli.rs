@@ -594,3 +594,138 @@ fn eplexor_workbook_gives_the_csv_master_curve() {
     );
     assert_eq!(largest_difference(&a, &b), 0.0);
 }
+
+/// The truth of the relaxation isotherms at 20 °C: a broad transition
+/// sampled two terms per decade (τ from 1e-7 to 1e5 s), log10 H falling
+/// 0.35 per decade from 1.5e8 Pa, E0 = 2e5 Pa (as the fit crate's
+/// relaxation test).
+fn relaxation_truth() -> rollfit_model::Prony {
+    let tau: Vec<f64> = (0..=24)
+        .map(|k| 10f64.powf(-7.0 + 0.5 * k as f64))
+        .collect();
+    let h: Vec<f64> = (0..tau.len())
+        .map(|k| 1.5e8 * 10f64.powf(-0.175 * k as f64))
+        .collect();
+    rollfit_model::Prony::new(2e5 + h.iter().sum::<f64>(), h, tau).unwrap()
+}
+
+/// A shear relaxation CSV with spelled-out headers (`time (s)`,
+/// `G(t) (kPa)`, `T (°C)`): at each of `temps`, 31 times over 1 … 1000 s,
+/// G = E/3 of the truth at t/a_T (WLF above), 1 % noise.
+fn relaxation_csv(temps: &[f64], seed: u64) -> String {
+    let truth = relaxation_truth();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let mut out = String::from("# synthetic stress relaxation\nT (°C),time (s),G(t) (kPa)\n");
+    for &t in temps {
+        let a = 10f64.powf(wlf(t));
+        for j in 0..=30 {
+            let time = 10f64.powf(j as f64 / 10.0);
+            let g =
+                truth.relaxation_modulus(time / a) / 3.0 * (1.0 + 0.01 * normal.sample(&mut rng));
+            out += &format!("{t},{time:e},{:e}\n", g / 1e3);
+        }
+    }
+    out
+}
+
+/// `rollfit master` on relaxation isotherms (issue 33): the shifts are the
+/// truth's within 0.05 decade, the files are there, and a scene with the
+/// written material.toml gives μ(v) within 2 % of the true series at the
+/// speeds that probe the reduced window (derived as in the fit crate's
+/// relaxation test: v from m r_max/t_max to r_min/(10 m t_min),
+/// m = 2 + √3).
+#[test]
+fn relaxation_isotherms_make_a_master_curve_and_a_material() {
+    let tmp = TempDir::new("relaxation");
+    let temps = [-20.0, -10.0, 0.0, 10.0, 20.0, 30.0];
+    let data = tmp.write("relax.csv", &relaxation_csv(&temps, 5));
+    let dir = tmp.path().join("master");
+    let stdout = succeed(master(&data, &dir, &[]));
+    assert!(
+        stdout.contains("6 isotherms") && stdout.contains("t/a_T"),
+        "{stdout}"
+    );
+    for name in [
+        "master.csv",
+        "shift.csv",
+        "relaxation.csv",
+        "modulus.csv",
+        "material.toml",
+        "master.json",
+    ] {
+        assert!(dir.join(name).is_file(), "{name} missing");
+    }
+    let shift = Table::read(&dir.join("shift.csv"));
+    for (t, log_a) in shift.column("T").iter().zip(shift.column("log_aT")) {
+        assert!(
+            (log_a - wlf(*t)).abs() <= 0.05,
+            "T = {t}: {log_a} vs {}",
+            wlf(*t)
+        );
+    }
+    // t_r = t/a_T: warmer isotherms at longer reduced times.
+    let points = Table::read(&dir.join("master.csv"));
+    let (t_r, t, temp) = (
+        points.column("t"),
+        points.column("t_measured"),
+        points.column("T"),
+    );
+    for i in 0..t_r.len() {
+        let expected = t[i] / 10f64.powf(wlf(temp[i]));
+        assert!((t_r[i] / expected - 1.0).abs() < 0.15, "row {i}");
+    }
+    let (t_lo, t_hi) = (t_r[0], t_r[t_r.len() - 1]);
+    let truth = relaxation_truth();
+    // The ball of the scene below: R = 0.01 m, F = 0.05 N, ν = 0.5.
+    let radius = |e: f64| (3.0 * 0.05 * 0.01 / (4.0 * e / 0.75)).cbrt();
+    // E″(ω) weighs H(τ) by ωτ/(1 + ω²τ²), above half its peak for
+    // ωτ in 2 ∓ √3: the band also keeps that far from the window's ends.
+    let margin = 2.0 + 3f64.sqrt();
+    let v_min = margin * radius(truth.relaxation_modulus(t_hi)) / t_hi;
+    let v_max = radius(truth.relaxation_modulus(t_lo)) / (10.0 * margin * t_lo);
+    let sweep = format!("[sweep]\nv_min = {v_min:e}\nv_max = {v_max:e}\ncount = 25\n");
+    let ball = "[geometry]\nshape = \"sphere\"\nradius = 0.01\nload = 0.05\n";
+    let material = fs::read_to_string(dir.join("material.toml")).unwrap();
+    assert!(material.contains("model = \"prony\"") && material.contains("[material.shift]"));
+    let list = |x: &[f64]| {
+        x.iter()
+            .map(|v| format!("{v:e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let true_material = format!(
+        "[material]\nmodel = \"prony\"\nE1 = {:e}\nH = [{}]\ntau = [{}]\n",
+        truth.glassy_modulus(),
+        list(truth.strengths()),
+        list(truth.relaxation_times())
+    );
+    let fitted = tmp.write("fitted.toml", &format!("{ball}{material}\n{sweep}"));
+    let exact = tmp.write("truth.toml", &format!("{ball}{true_material}\n{sweep}"));
+    let a = forward(&fitted, &tmp.path().join("a.csv"));
+    let b = forward(&exact, &tmp.path().join("b.csv"));
+    let worst = largest_difference(&a, &b);
+    eprintln!(
+        "μ(v) of material.toml against the truth: {:.3} %",
+        100.0 * worst
+    );
+    assert!(worst <= 0.02, "μ(v) differs by {worst}");
+}
+
+/// A relaxation file whose times do not increase within an isotherm is
+/// refused naming the two lines, and nothing is written.
+#[test]
+fn relaxation_times_that_turn_are_refused() {
+    let tmp = TempDir::new("relaxation-bad");
+    let mut text = relaxation_csv(&[10.0, 20.0, 30.0], 6);
+    // Lines 3.. are the 10 °C rows; swap the 5th and 6th of the 20 °C run
+    // (file lines 38 and 39).
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    lines.swap(37, 38);
+    text = lines.join("\n") + "\n";
+    let data = tmp.write("turn.csv", &text);
+    let dir = tmp.path().join("master");
+    let out = master(&data, &dir, &[]);
+    assert_failure(&out, &["turn.csv", "line 38", "line 39", "20.00 °C"]);
+    assert!(!dir.exists(), "a folder was written on error");
+}

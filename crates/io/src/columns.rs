@@ -22,3 +22,15 @@ pub const F: &str = "f";
 pub const G_STORAGE: &str = "G_storage";
 /// The shear loss modulus column of a DMA file (G″, Pa).
 pub const G_LOSS: &str = "G_loss";
+
+/// The time column of a stress-relaxation file and of the master.csv
+/// `rollfit master` writes from one, s (reduced t/a_T there).
+pub const TIME: &str = "t";
+/// The time a relaxation point was measured at, s, before its shift
+/// (master.csv of a relaxation file).
+pub const TIME_MEASURED: &str = "t_measured";
+/// The Young's relaxation modulus E(t) of a relaxation file and of its
+/// master.csv, Pa.
+pub const E_RELAX: &str = "E_relax";
+/// The shear relaxation modulus G(t) of a relaxation file, Pa.
+pub const G_RELAX: &str = "G_relax";

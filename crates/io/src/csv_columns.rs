@@ -100,3 +100,37 @@ pub fn csv_line(text: &str, position: Option<&csv::Position>) -> usize {
     }
     bytes[..i].iter().filter(|&&b| b == b'\n').count() + 1
 }
+
+/// A cell of a DMA file's CSV as a finite number, or the error naming its
+/// line and its column (`column`, made only for the message).
+pub(crate) fn dma_number(
+    path: &std::path::Path,
+    line: usize,
+    column: impl Fn() -> crate::error::ColumnRef,
+    field: &str,
+) -> Result<f64, IoError> {
+    let v: f64 = field.parse().map_err(|_| IoError::NotANumber {
+        path: path.to_path_buf(),
+        cell: Box::new(crate::error::CellRef::line(line)),
+        column: column(),
+        text: field.to_string(),
+    })?;
+    if !v.is_finite() {
+        return Err(IoError::NotFinite {
+            path: path.to_path_buf(),
+            cell: Box::new(crate::error::CellRef::line(line)),
+            column: column(),
+            text: field.to_string(),
+        });
+    }
+    Ok(v)
+}
+
+/// The error of a CSV the csv crate cannot read, at its line.
+pub(crate) fn not_csv(path: &std::path::Path, text: &str, error: csv::Error) -> IoError {
+    IoError::NotCsv {
+        path: path.to_path_buf(),
+        line: csv_line(text, error.position()),
+        error,
+    }
+}

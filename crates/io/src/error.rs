@@ -18,6 +18,7 @@ mod fault;
 pub(crate) mod manifest;
 pub(crate) mod master;
 mod parts;
+pub(crate) mod relaxation;
 pub(crate) mod scene;
 mod sheet;
 pub(crate) mod table;
@@ -30,6 +31,7 @@ pub use manifest::{EntryProblem, EntryRef, ManifestError, TomlPlace};
 pub use master::{DmaMasterError, TurnPoint};
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
 use parts::{field_count_tail, found_byte, holders_note, null_expected, place};
+pub use relaxation::RelaxationError;
 pub use scene::SceneError;
 pub use sheet::DmaSheetError;
 pub use table::{TableError, TableIsotherm};
@@ -544,7 +546,8 @@ pub enum IoError {
     /// No `omega` or `f` column.
     #[error(
         "{}: no frequency column: need `omega` (rad/s) or `f` (Hz), optionally with a unit \
-         suffix such as omega_rad_s or f_Hz (the header has: {})",
+         suffix such as omega_rad_s or f_Hz (the header has: {}); stress-relaxation data (`t` \
+         and `E_relax` or `G_relax`) are read by `rollfit master` and `rollfit compare`",
         path.display(),
         header.join(", ")
     )]
@@ -589,6 +592,10 @@ pub enum IoError {
     /// A DMA file that gives no master curve: see [`DmaMasterError`].
     #[error(transparent)]
     Master(Box<DmaMasterError>),
+    /// A stress-relaxation file that cannot be read: see
+    /// [`RelaxationError`].
+    #[error(transparent)]
+    Relaxation(Box<RelaxationError>),
 
     // ------------------------------------------------------------ writing
     /// A number that is not finite in an output table.

@@ -49,6 +49,7 @@ pub mod manifest;
 pub mod material_file;
 pub mod output;
 pub mod pressure_map;
+pub mod relaxation_master;
 pub mod scene;
 pub mod table;
 pub mod text_file;

@@ -9,12 +9,15 @@
 //! back to the same f64, so a scene using the file predicts exactly what
 //! the master curve does.
 
-use rollfit_fit::master::ShiftLaw;
-use rollfit_model::ViscoelasticModulus;
+use std::path::Path;
+
+use rollfit_fit::master::{ShiftFactors, ShiftLaw, ValidMasterSettings};
+use rollfit_model::{Prony, ViscoelasticModulus};
 use serde::Serialize;
 
 use crate::dma_master::DmaMaster;
 use crate::error::{Fault, IoError};
+use crate::relaxation_master::RelaxationBuilt;
 
 #[derive(Serialize)]
 struct MaterialFile {
@@ -69,22 +72,64 @@ struct VerticalPoint {
     log_vertical: f64,
 }
 
+/// What material.toml is written from: the series at T_ref, its shift
+/// and where it came from.
+struct Source<'a> {
+    path: &'a Path,
+    /// "isotherms" or "relaxation isotherms", for the comment.
+    isotherms: &'static str,
+    /// What else a scene may do with the file, for the comment.
+    also: &'static str,
+    points: usize,
+    shift: &'a ShiftFactors,
+    prony: &'a Prony,
+    settings: &'a ValidMasterSettings,
+}
+
 /// The file's text, with a comment header saying where it came from.
 pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
-    let m = &built.master;
-    let prony = &m.fit.prony;
-    let t_ref = built.settings.t_ref();
-    let shift = (m.shift.shifts.len() > 1).then(|| {
+    encode_source(&Source {
+        path: &built.data.path,
+        isotherms: "isotherms",
+        also: " (or use the DMA file itself: [material] model = \"dma\")",
+        points: built.master.points.len(),
+        shift: &built.master.shift,
+        prony: &built.master.fit.prony,
+        settings: &built.settings,
+    })
+}
+
+/// The file of a relaxation master curve: the same tables (the series is
+/// one object in time and frequency, `rollfit_fit::master::relaxation`).
+pub fn encode_relaxation(built: &RelaxationBuilt) -> Result<Vec<u8>, IoError> {
+    encode_source(&Source {
+        path: &built.data.path,
+        isotherms: "relaxation isotherms",
+        // A scene's `model = "dma"` reads frequency sweeps only.
+        also: "",
+        points: built.master.points.len(),
+        shift: &built.master.shift,
+        prony: &built.master.fit.prony,
+        settings: &built.settings,
+    })
+}
+
+fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
+    let shift_factors = source.shift;
+    let prony = source.prony;
+    let settings = source.settings;
+    let t_ref = settings.t_ref();
+    let shift = (shift_factors.shifts.len() > 1).then(|| {
         let mut shift = Shift {
-            model: m.shift.law.name(),
+            model: shift_factors.law.name(),
             t_ref,
             c1: None,
             c2: None,
             t_junction: None,
             activation_energy: None,
             log_shift: None,
-            log_vertical: built.settings.vertical().then(|| {
-                m.shift
+            log_vertical: settings.vertical().then(|| {
+                shift_factors
                     .shifts
                     .iter()
                     .map(|s| VerticalPoint {
@@ -94,18 +139,18 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
                     .collect()
             }),
         };
-        match m.shift.law {
+        match shift_factors.law {
             ShiftLaw::Wlf => {
-                if let Some(w) = m.shift.wlf {
+                if let Some(w) = shift_factors.wlf {
                     shift.c1 = Some(w.c1);
                     shift.c2 = Some(w.c2);
                 }
             }
             ShiftLaw::Arrhenius => {
-                shift.activation_energy = m.shift.arrhenius.map(|a| a.activation_energy);
+                shift.activation_energy = shift_factors.arrhenius.map(|a| a.activation_energy);
             }
             ShiftLaw::WlfArrhenius => {
-                if let Some(w) = m.shift.wlf_arrhenius {
+                if let Some(w) = shift_factors.wlf_arrhenius {
                     shift.c1 = Some(w.c1);
                     shift.c2 = Some(w.c2);
                     shift.t_junction = Some(w.t_junction);
@@ -114,7 +159,7 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
             }
             ShiftLaw::Free | ShiftLaw::Auto => {
                 shift.log_shift = Some(
-                    m.shift
+                    shift_factors
                         .shifts
                         .iter()
                         .map(|s| ShiftPoint {
@@ -141,20 +186,22 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
         source,
     })?;
     let mut text = format!(
-        "# Written by rollfit master from {} ({} isotherms, {} points).\n\
+        "# Written by rollfit master from {} ({} {}, {} points).\n\
          # Young's modulus at T_ref = {t_ref} °C: a Prony series E*(ω) = E0 + Σ H_k iωτ_k/(1 + iωτ_k),\n\
          # E0 = E1 − Σ H_k = {:e} Pa.{}\n\
-         # Copy these tables into a scene file (or use the DMA file itself: [material] model = \"dma\").\n\n",
-        built.data.path.display(),
-        m.shift.shifts.len(),
-        m.points.len(),
+         # Copy these tables into a scene file{}.\n\n",
+        source.path.display(),
+        shift_factors.shifts.len(),
+        source.isotherms,
+        source.points,
         prony.static_modulus(),
-        if built.settings.vertical() && m.shift.shifts.len() > 1 {
+        if settings.vertical() && shift_factors.shifts.len() > 1 {
             "\n# Away from T_ref, E*(ω, T) = b_T E*(ω a_T) with the measured vertical factors \
              log_bT (log10 b_T,\n# linear in T between isotherms, not extrapolated beyond them)."
         } else {
             ""
-        }
+        },
+        source.also
     );
     text.push_str(&body);
     Ok(text.into_bytes())

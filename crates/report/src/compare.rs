@@ -289,7 +289,7 @@ impl MetricRow {
 }
 
 /// RMS and max |·| of a set of errors; `None` for none.
-fn rms_max(errors: &[f64]) -> (Option<f64>, Option<f64>) {
+pub(crate) fn rms_max(errors: &[f64]) -> (Option<f64>, Option<f64>) {
     if errors.is_empty() {
         return (None, None);
     }

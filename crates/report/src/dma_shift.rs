@@ -29,6 +29,8 @@
 //! controller's ±0.02 K scatter should not bend an isotherm, and "the
 //! 150 °C isotherm" is what a user names.
 
+use std::path::Path;
+
 use rollfit_io::FitDir;
 use rollfit_io::dma::{
     DmaData, DmaOptions, DmaPoint, DmaWlf, ISOTHERM_TOLERANCE, Isotherm, isotherms,
@@ -73,7 +75,7 @@ impl ToReference for DmaData {
 }
 
 /// log10 a_T per isotherm and notes for the user.
-type Shifts = (Vec<(f64, f64)>, Vec<String>);
+pub(crate) type Shifts = (Vec<(f64, f64)>, Vec<String>);
 
 /// See the module doc.
 fn to_reference(
@@ -94,12 +96,7 @@ fn to_reference(
             total: data.points.len(),
         });
     }
-    let fit_shift = fit.summary.shift.as_ref();
-    let (log_shifts, notes) = match (options.wlf, fit_shift) {
-        (Some(wlf), _) => dma_wlf_shifts(data, &isotherms, &wlf, fit_shift)?,
-        (None, Some(shift)) => fit_shifts(data, &isotherms, shift)?,
-        (None, None) => as_measured(data, &isotherms)?,
-    };
+    let (log_shifts, notes) = isotherm_shifts(&data.path, &isotherms, fit, options)?;
     let mut points = data.points.clone();
     for (iso, (_, log_shift)) in isotherms.iter().zip(&log_shifts) {
         let factor = 10f64.powf(*log_shift);
@@ -115,21 +112,38 @@ fn to_reference(
     })
 }
 
+/// log10 a_T of each isotherm of the file at `path` towards the fit's
+/// reference state, by the rules of the module doc, with notes; shared by
+/// frequency sweeps and relaxation runs (`crate::relaxation_compare`).
+pub(crate) fn isotherm_shifts(
+    path: &Path,
+    isotherms: &[Isotherm],
+    fit: &FitDir,
+    options: &DmaOptions,
+) -> Result<Shifts, ReportError> {
+    let fit_shift = fit.summary.shift.as_ref();
+    match (options.wlf, fit_shift) {
+        (Some(wlf), _) => dma_wlf_shifts(path, isotherms, &wlf, fit_shift),
+        (None, Some(shift)) => fit_shifts(path, isotherms, shift),
+        (None, None) => as_measured(path, isotherms),
+    }
+}
+
 /// Rule 1: the DMA's own WLF, towards the fit's T_ref (or its own).
 fn dma_wlf_shifts(
-    data: &DmaData,
+    path: &Path,
     isotherms: &[Isotherm],
     wlf: &DmaWlf,
     fit_shift: Option<&ShiftSummary>,
 ) -> Result<Shifts, ReportError> {
-    let file = data.path.display();
+    let file = path.display();
     let target = fit_shift.map_or(wlf.t_ref, |s| s.t_ref);
-    let at_target = dma_log_shift(wlf, target, data)?;
+    let at_target = dma_log_shift(wlf, target, path)?;
     let mut log_shifts = Vec::with_capacity(isotherms.len());
     for iso in isotherms {
         log_shifts.push((
             iso.temperature,
-            dma_log_shift(wlf, iso.temperature, data)? - at_target,
+            dma_log_shift(wlf, iso.temperature, path)? - at_target,
         ));
     }
     let note = match fit_shift {
@@ -147,11 +161,11 @@ fn dma_wlf_shifts(
 
 /// Rule 2: the fit's own shift (a temperature set).
 fn fit_shifts(
-    data: &DmaData,
+    path: &Path,
     isotherms: &[Isotherm],
     shift: &ShiftSummary,
 ) -> Result<Shifts, ReportError> {
-    let file = data.path.display();
+    let file = path.display();
     let listed: Vec<f64> = shift.log_shift.iter().map(|s| s.temperature).collect();
     let (lo, hi) = listed
         .iter()
@@ -171,7 +185,7 @@ fn fit_shifts(
         let log_shift = shift
             .log_shift_at(t)
             .ok_or_else(|| ReportError::OutsideFitShift {
-                path: data.path.clone(),
+                path: path.to_path_buf(),
                 temperature: iso.temperature,
                 model: shift.model.clone(),
                 lo,
@@ -206,28 +220,28 @@ fn fit_shifts(
 }
 
 /// Rule 3: no shift; one temperature (or none) as measured.
-fn as_measured(data: &DmaData, isotherms: &[Isotherm]) -> Result<Shifts, ReportError> {
+fn as_measured(path: &Path, isotherms: &[Isotherm]) -> Result<Shifts, ReportError> {
     match isotherms {
         [] => Ok((Vec::new(), Vec::new())),
         [only] => Ok((
             vec![(only.temperature, 0.0)],
             vec![format!(
                 "{}: one temperature ({:.1} °C) and the fit has none: compared as measured",
-                data.path.display(),
+                path.display(),
                 only.temperature
             )],
         )),
         several => Err(ReportError::NoShift {
-            path: data.path.clone(),
+            path: path.to_path_buf(),
             temperatures: several.iter().map(|i| i.temperature).collect(),
         }),
     }
 }
 
-fn dma_log_shift(wlf: &DmaWlf, t: f64, data: &DmaData) -> Result<f64, ReportError> {
+fn dma_log_shift(wlf: &DmaWlf, t: f64, path: &Path) -> Result<f64, ReportError> {
     wlf.log_shift_at(t)
         .ok_or_else(|| ReportError::BelowDmaWlfPole {
-            path: data.path.clone(),
+            path: path.to_path_buf(),
             temperature: t,
             pole: wlf.t_ref - wlf.c2,
         })

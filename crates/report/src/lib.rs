@@ -19,5 +19,6 @@ pub mod error;
 pub mod fitted_friction;
 pub mod html;
 pub mod plot;
+pub mod relaxation_compare;
 
 pub use error::ReportError;

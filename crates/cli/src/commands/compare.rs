@@ -13,9 +13,11 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use rollfit_io::FitDir;
+use rollfit_io::dma::relaxation::RelaxationData;
 use rollfit_io::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind, WLF_USAGE};
 use rollfit_io::output;
 use rollfit_report::compare::{Comparison, compare};
+use rollfit_report::relaxation_compare::compare_relaxation;
 
 use crate::{hints, stdout};
 
@@ -126,6 +128,9 @@ pub fn comparison(
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
+    if rollfit_io::dma::relaxation::is_relaxation_file(&args.dma) {
+        return run_relaxation(args);
+    }
     let result = comparison(&args.dir, &args.dma, &args.flags)?;
     let mut json = serde_json::to_vec_pretty(&result).context("cannot format compare.json")?;
     json.push(b'\n');
@@ -181,4 +186,49 @@ pub fn table(c: &Comparison) -> String {
         ));
     }
     out
+}
+
+/// `rollfit compare DIR RELAXATION.csv`: the fit's series as E(t) against
+/// the measured relaxation modulus (`rollfit_report::relaxation_compare`,
+/// whose module doc says why in the time domain). compare.json gets the
+/// relaxation keys (`E_relax_rms_rel`, `E_relax_max_rel`,
+/// `log10_E_relax_rms`, …).
+fn run_relaxation(args: &Args) -> Result<()> {
+    let fit = FitDir::read(&args.dir).context("cannot read the fit")?;
+    let data = RelaxationData::read(&args.dma, fit.summary.poisson)
+        .context("cannot read the relaxation file")?;
+    let c = compare_relaxation(&fit, &data, &args.flags.options())
+        .context("cannot compare the fit with the relaxation data")?;
+    let mut json = serde_json::to_vec_pretty(&c).context("cannot format compare.json")?;
+    json.push(b'\n');
+    let target = args.dir.join("compare.json");
+    output::write_atomically(&target, &json)?;
+    for note in &c.notes {
+        eprintln!("note: {note}");
+    }
+    for warning in &c.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let value = |x: Option<f64>| x.map_or("—".to_string(), |x| format!("{x:.4}"));
+    let table = format!(
+        "Relaxation {} ({} moduli), {} points at the fit's reference state, t = {:.3e} … {:.3e} s\n\
+         fit window as times {:.3e} … {:.3e} s; overlap: {} points\n\n\
+         E_relax_rms_rel     {:>10}  RMS relative error of E(t) (the fit's series as E(t))\n\
+         E_relax_max_rel     {:>10}  largest |relative error| of E(t)\n\
+         log10_E_relax_rms   {:>10}  RMS log10 error of E(t), decades\n",
+        c.dma_file,
+        c.modulus_kind,
+        c.dma_points,
+        c.dma_time_range[0],
+        c.dma_time_range[1],
+        c.fit_window_time[0],
+        c.fit_window_time[1],
+        c.n_points,
+        value(c.modulus_rms_rel),
+        value(c.modulus_max_rel),
+        value(c.log10_modulus_rms),
+    );
+    stdout::write_stdout(table.as_bytes())?;
+    eprintln!("wrote {}", target.display());
+    Ok(())
 }

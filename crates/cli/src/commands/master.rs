@@ -24,13 +24,12 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use rollfit_fit::master::pairwise::PairVerdict;
-use rollfit_fit::master::{LawTest, MasterSettings, ShiftLaw};
+use rollfit_fit::master::{MasterSettings, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
 use rollfit_io::dma::DmaPoint;
 use rollfit_io::dma_master::{self, DmaMaster};
 use rollfit_io::fit_dir::columns::{
-    E_LOSS, E_STORAGE, LOG_AT, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
+    E_LOSS, E_STORAGE, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
 };
 use rollfit_io::{csv_text, material_file, output};
 use rollfit_model::ViscoelasticModulus;
@@ -40,6 +39,11 @@ use serde::Serialize;
 
 use crate::commands::compare::{DmaModulus, poisson_source};
 use crate::{hints, progress, stdout};
+
+mod relaxation;
+mod shift_out;
+
+use shift_out::{ShiftJson, shift_csv, shift_text};
 
 /// Arguments of `rollfit master`.
 #[derive(Debug, clap::Args)]
@@ -116,6 +120,9 @@ pub fn run(args: &Args) -> Result<()> {
         law: args.shift.law(),
         vertical: args.vertical,
     };
+    if rollfit_io::dma::relaxation::is_relaxation_file(&args.dma) {
+        return relaxation::run(args, &settings);
+    }
     let kind = args.dma_modulus.map(DmaModulus::kind);
     let (poisson, whose) = poisson_source(args.poisson);
     let spinner = progress::spinner(format!("master curve of {}", args.dma.display()));
@@ -190,35 +197,7 @@ fn encode(
             ]
         }),
     )?;
-    // An empty cell where the data determine no number.
-    let cell = |x: Option<f64>| {
-        x.filter(|x| x.is_finite())
-            .map_or(String::new(), csv_text::number)
-    };
-    let shift_csv = csv_text::csv_text_bytes(
-        &[
-            T,
-            LOG_AT,
-            "log_aT_measured",
-            "log_bT",
-            "points",
-            "log_aT_sigma",
-            "log_aT_measured_sigma",
-            "determined",
-        ],
-        master.shift.shifts.iter().map(|s| {
-            vec![
-                csv_text::number(s.temperature),
-                csv_text::number(s.log_shift),
-                cell(s.log_shift_measured),
-                csv_text::number(s.log_vertical),
-                s.points.to_string(),
-                cell(Some(s.log_shift_sigma)),
-                cell(s.log_shift_measured.map(|_| s.log_shift_measured_sigma)),
-                s.determined.to_string(),
-            ]
-        }),
-    )?;
+    let shift_csv = shift_csv(&master.shift)?;
     let curve = prony_curve(built);
     let modulus_csv = csv_text::csv_bytes(
         // The first columns of a fit's modulus.csv, which the contract fixes.
@@ -336,112 +315,12 @@ struct Summary {
     isotherms: usize,
     points: usize,
     omega_range: [f64; 2],
-    wlf: Option<WlfSummary>,
-    arrhenius: Option<ArrheniusSummary>,
-    wlf_arrhenius: Option<WlfArrheniusSummary>,
-    shifts: Vec<ShiftRow>,
-    pairs: Vec<PairRow>,
+    #[serde(flatten)]
+    shift: ShiftJson,
     prony: PronySummary,
     kramers_kronig: KkSummary,
     warnings: Vec<String>,
     notes: Vec<String>,
-}
-
-#[derive(Serialize)]
-struct WlfSummary {
-    #[serde(rename = "C1")]
-    c1: f64,
-    #[serde(rename = "C2")]
-    c2: f64,
-    #[serde(rename = "C1_sigma")]
-    c1_sigma: Option<f64>,
-    #[serde(rename = "C2_sigma")]
-    c2_sigma: Option<f64>,
-    /// RMS of the measured shifts about the law (NaN → null where the law
-    /// was tried but not applied).
-    rms: Option<f64>,
-    test: TestSummary,
-}
-
-#[derive(Serialize)]
-struct ArrheniusSummary {
-    #[serde(rename = "E_a")]
-    activation_energy: f64,
-    #[serde(rename = "E_a_sigma")]
-    activation_energy_sigma: Option<f64>,
-    rms: Option<f64>,
-    test: TestSummary,
-}
-
-#[derive(Serialize)]
-struct WlfArrheniusSummary {
-    #[serde(rename = "C1")]
-    c1: f64,
-    #[serde(rename = "C2")]
-    c2: f64,
-    #[serde(rename = "T_g")]
-    t_junction: f64,
-    #[serde(rename = "E_a")]
-    activation_energy: f64,
-    #[serde(rename = "C1_sigma")]
-    c1_sigma: Option<f64>,
-    #[serde(rename = "C2_sigma")]
-    c2_sigma: Option<f64>,
-    #[serde(rename = "E_a_sigma")]
-    activation_energy_sigma: Option<f64>,
-    rms: Option<f64>,
-    test: TestSummary,
-}
-
-/// A law's χ² test against the determined pairwise shifts.
-#[derive(Serialize)]
-struct TestSummary {
-    chi2: f64,
-    dof: usize,
-    p_value: Option<f64>,
-    passes: bool,
-}
-
-impl TestSummary {
-    fn of(t: &LawTest) -> TestSummary {
-        TestSummary {
-            chi2: t.chi2,
-            dof: t.dof,
-            p_value: t.p_value,
-            passes: t.passes(),
-        }
-    }
-}
-
-#[derive(Serialize)]
-struct ShiftRow {
-    #[serde(rename = "T")]
-    temperature: f64,
-    #[serde(rename = "log_aT")]
-    log_shift: f64,
-    #[serde(rename = "log_aT_sigma")]
-    log_shift_sigma: Option<f64>,
-    #[serde(rename = "log_aT_measured")]
-    log_shift_measured: Option<f64>,
-    #[serde(rename = "log_aT_measured_sigma")]
-    log_shift_measured_sigma: Option<f64>,
-    determined: bool,
-    #[serde(rename = "log_bT")]
-    log_vertical: f64,
-    points: usize,
-}
-
-/// One pair of isotherms compared.
-#[derive(Serialize)]
-struct PairRow {
-    #[serde(rename = "T_lower")]
-    t_lower: f64,
-    #[serde(rename = "T_upper")]
-    t_upper: f64,
-    /// log10 a_upper − log10 a_lower at the best overlap.
-    shift: f64,
-    sigma: Option<f64>,
-    determined: bool,
 }
 
 #[derive(Serialize)]
@@ -468,11 +347,6 @@ struct KkSummary {
     ratio_loss: f64,
 }
 
-/// A standard error, or None where it is not defined (NaN).
-fn defined(x: f64) -> Option<f64> {
-    x.is_finite().then_some(x)
-}
-
 impl Summary {
     fn of(built: &DmaMaster, kk: &CausalFit, poisson: f64) -> Summary {
         let m = &built.master;
@@ -493,60 +367,7 @@ impl Summary {
                 m.points[0].reduced_omega,
                 m.points[m.points.len() - 1].reduced_omega,
             ],
-            wlf: m.shift.wlf.map(|w| WlfSummary {
-                c1: w.c1,
-                c2: w.c2,
-                c1_sigma: defined(w.c1_sigma),
-                c2_sigma: defined(w.c2_sigma),
-                rms: defined(w.rms),
-                test: TestSummary::of(&w.test),
-            }),
-            arrhenius: m.shift.arrhenius.map(|a| ArrheniusSummary {
-                activation_energy: a.activation_energy,
-                activation_energy_sigma: defined(a.activation_energy_sigma),
-                rms: defined(a.rms),
-                test: TestSummary::of(&a.test),
-            }),
-            wlf_arrhenius: m.shift.wlf_arrhenius.map(|w| WlfArrheniusSummary {
-                c1: w.c1,
-                c2: w.c2,
-                t_junction: w.t_junction,
-                activation_energy: w.activation_energy,
-                c1_sigma: defined(w.sigma[0]),
-                c2_sigma: defined(w.sigma[1]),
-                activation_energy_sigma: defined(w.sigma[2]),
-                rms: defined(w.rms),
-                test: TestSummary::of(&w.test),
-            }),
-            shifts: m
-                .shift
-                .shifts
-                .iter()
-                .map(|s| ShiftRow {
-                    temperature: s.temperature,
-                    log_shift: s.log_shift,
-                    log_shift_sigma: defined(s.log_shift_sigma),
-                    log_shift_measured: s.log_shift_measured,
-                    log_shift_measured_sigma: s
-                        .log_shift_measured
-                        .and_then(|_| defined(s.log_shift_measured_sigma)),
-                    determined: s.determined,
-                    log_vertical: s.log_vertical,
-                    points: s.points,
-                })
-                .collect(),
-            pairs: m
-                .shift
-                .pairs
-                .iter()
-                .map(|p| PairRow {
-                    t_lower: m.shift.shifts[p.lower].temperature,
-                    t_upper: m.shift.shifts[p.upper].temperature,
-                    shift: p.shift,
-                    sigma: defined(p.sigma),
-                    determined: p.verdict == PairVerdict::Determined,
-                })
-                .collect(),
+            shift: ShiftJson::of(&m.shift),
             prony: PronySummary {
                 terms: fit.prony.relaxation_times().len(),
                 static_modulus: fit.prony.static_modulus(),
@@ -577,115 +398,17 @@ impl Summary {
     }
 }
 
-/// "χ² = 12.3 for 9 degrees of freedom, p = 0.21 (passes)".
-fn test_line(t: &LawTest) -> String {
-    match t.p_value {
-        Some(p) => format!(
-            "χ² = {:.2} for {} degrees of freedom, p = {:.2e} ({})",
-            t.chi2,
-            t.dof,
-            p,
-            if t.passes() {
-                "describes the shifts"
-            } else {
-                "does not describe the shifts"
-            }
-        ),
-        None => "no degree of freedom left to test it".into(),
-    }
-}
-
 /// The readable summary of stdout.
 fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
     let m = &built.master;
-    let count = m.shift.shifts.len();
     let mut out = format!(
-        "DMA {} ({}, {} moduli): {} isotherm{}, {} points, T_ref = {} °C, {}{}\n",
+        "DMA {} ({}, {} moduli): {}\n",
         built.data.path.display(),
         built.data.format,
         built.data.kind.name(),
-        count,
-        if count == 1 { "" } else { "s" },
-        m.points.len(),
-        built.settings.t_ref(),
-        if count == 1 {
-            "shift law not determined (one isotherm)".to_string()
-        } else {
-            format!("shift {}", m.shift.law.name())
-        },
-        if built.settings.vertical() {
-            " with vertical factors"
-        } else {
-            ""
-        }
+        shift_out::headline(&m.shift, m.points.len(), &built.settings, "")
     );
-    if count > 1 {
-        out += &format!("Shift law: {}\n", m.shift.reason);
-    }
-    let applied = |law: ShiftLaw| {
-        if m.shift.law == law {
-            "applied"
-        } else {
-            "tried"
-        }
-    };
-    if let Some(w) = m.shift.wlf {
-        out += &format!(
-            "WLF ({}): C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K; {}\n",
-            applied(ShiftLaw::Wlf),
-            w.c1,
-            w.c1_sigma,
-            w.c2,
-            w.c2_sigma,
-            test_line(&w.test)
-        );
-    }
-    if let Some(w) = m.shift.wlf_arrhenius {
-        out += &format!(
-            "WLF–Arrhenius ({}): C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K above T_g = {:.2} °C, \
-             E_a = {:.4e} ± {:.2e} J/mol below; {}\n",
-            applied(ShiftLaw::WlfArrhenius),
-            w.c1,
-            w.sigma[0],
-            w.c2,
-            w.sigma[1],
-            w.t_junction,
-            w.activation_energy,
-            w.sigma[2],
-            test_line(&w.test)
-        );
-    }
-    if let Some(a) = m.shift.arrhenius {
-        out += &format!(
-            "Arrhenius ({}): E_a = {:.4e} ± {:.2e} J/mol; {}\n",
-            applied(ShiftLaw::Arrhenius),
-            a.activation_energy,
-            a.activation_energy_sigma,
-            test_line(&a.test)
-        );
-    }
-    out += "    T (°C)   log10 a_T       ±1σ   measured       ±1σ   log10 b_T   points\n";
-    let number = |x: Option<f64>, width: usize| match x.filter(|x| x.is_finite()) {
-        Some(x) => format!("{x:width$.4}"),
-        None => format!("{:>width$}", "—"),
-    };
-    for s in &m.shift.shifts {
-        out += &format!(
-            "{:10.2} {:11.4} {} {} {} {:11.4} {:8}{}\n",
-            s.temperature,
-            s.log_shift,
-            number(Some(s.log_shift_sigma), 9),
-            number(s.log_shift_measured, 10),
-            number(s.log_shift_measured.map(|_| s.log_shift_measured_sigma), 9),
-            s.log_vertical,
-            s.points,
-            if s.determined {
-                ""
-            } else {
-                "   not determined by the data"
-            }
-        );
-    }
+    out += &shift_text(&m.shift);
     let fit = &m.fit;
     out += &format!(
         "Prony series: {} terms, λ = {:.3e}; RMS misfit E′ {:.4}, E″ {:.4} decades; \

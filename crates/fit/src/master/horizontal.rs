@@ -37,6 +37,53 @@ use super::pairwise::{PairShift, PairVerdict, pair_shift};
 use crate::error::FitError;
 use crate::shift::overlap::Curve;
 
+/// What the isotherms were measured against: frequency sweeps, or
+/// stress-relaxation runs in time ([`super::relaxation`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Domain {
+    /// E*(ω): the curves log E′ and log tan δ against log ω.
+    Frequency,
+    /// E(t): the curve log E(t) against −log t.
+    Time,
+}
+
+impl Domain {
+    /// "frequency" or "time", for messages.
+    pub(crate) fn axis(self) -> &'static str {
+        match self {
+            Domain::Frequency => "frequency",
+            Domain::Time => "time",
+        }
+    }
+
+    /// What more data would be, for messages.
+    pub(crate) fn wider(self) -> &'static str {
+        match self {
+            Domain::Frequency => "more frequencies",
+            Domain::Time => "longer times",
+        }
+    }
+
+    /// What is flat on a plateau, for messages.
+    pub(crate) fn curves(self) -> &'static str {
+        match self {
+            Domain::Frequency => "E′ and tan δ are",
+            Domain::Time => "E(t) is",
+        }
+    }
+}
+
+/// One isotherm as the shift sees it.
+#[derive(Debug, Clone)]
+pub(crate) struct Superposable {
+    /// °C.
+    pub temperature: f64,
+    /// Its points.
+    pub points: usize,
+    /// The curves compared (the modulus's first).
+    pub curves: Vec<Curve>,
+}
+
 /// The pairs of isotherms at ascending temperatures.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Pairs {
@@ -53,7 +100,7 @@ pub(crate) struct Pairs {
 
 /// The curves the shift compares: log10 E′ and log10 tan δ against
 /// log10 ω.
-fn curves(isotherm: &Isotherm) -> [Curve; 2] {
+pub(crate) fn curves(isotherm: &Isotherm) -> Vec<Curve> {
     let points = |y: &dyn Fn(usize) -> f64| {
         Curve::new(
             (0..isotherm.omega.len())
@@ -61,7 +108,7 @@ fn curves(isotherm: &Isotherm) -> [Curve; 2] {
                 .collect(),
         )
     };
-    [
+    vec![
         points(&|i| isotherm.storage[i].log10()),
         points(&|i| (isotherm.loss[i] / isotherm.storage[i]).log10()),
     ]
@@ -69,8 +116,12 @@ fn curves(isotherm: &Isotherm) -> [Curve; 2] {
 
 /// The pairs of `sorted` (ascending, distinct temperatures); refuses a
 /// neighbour pair that does not overlap, naming it.
-pub(crate) fn pairs(sorted: &[&Isotherm], vertical: bool) -> Result<Pairs, FitError> {
-    let all: Vec<[Curve; 2]> = sorted.iter().map(|i| curves(i)).collect();
+pub(crate) fn pairs(
+    sorted: &[Superposable],
+    vertical: bool,
+    domain: Domain,
+) -> Result<Pairs, FitError> {
+    let all: Vec<&[Curve]> = sorted.iter().map(|i| i.curves.as_slice()).collect();
     let mut out = Pairs {
         pairs: Vec::new(),
         chained: vec![0.0],
@@ -82,17 +133,18 @@ pub(crate) fn pairs(sorted: &[&Isotherm], vertical: bool) -> Result<Pairs, FitEr
     // at frequencies 10^s times higher.
     let neighbours: Vec<Option<PairShift>> = (0..all.len().saturating_sub(1))
         .into_par_iter()
-        .map(|k| pair_shift(&all[k], &all[k + 1], vertical, (k, k + 1)))
+        .map(|k| pair_shift(all[k], all[k + 1], vertical, (k, k + 1)))
         .collect();
     for (k, pair) in neighbours.into_iter().enumerate() {
         let pair = pair.ok_or_else(|| {
             FitError::InsufficientData(format!(
-                "the isotherms at {} °C and {} °C do not overlap in frequency once shifted (at \
+                "the isotherms at {} °C and {} °C do not overlap in {} once shifted (at \
                  least a fifth of the warmer one's points, and four, must fall inside the \
-                 colder one's range): measure a temperature between them or over more \
-                 frequencies",
+                 colder one's range): measure a temperature between them or over {}",
                 sorted[k].temperature,
-                sorted[k + 1].temperature
+                sorted[k + 1].temperature,
+                domain.axis(),
+                domain.wider()
             ))
         })?;
         out.chained.push(out.chained[k] + pair.shift);
@@ -104,7 +156,7 @@ pub(crate) fn pairs(sorted: &[&Isotherm], vertical: bool) -> Result<Pairs, FitEr
         .filter(|&k| undetermined(k) || undetermined(k + 1))
         .collect::<Vec<usize>>()
         .into_par_iter()
-        .filter_map(|k| pair_shift(&all[k], &all[k + 2], vertical, (k, k + 2)))
+        .filter_map(|k| pair_shift(all[k], all[k + 2], vertical, (k, k + 2)))
         .collect();
     out.pairs.extend(bridges);
     Ok(out)

@@ -49,6 +49,8 @@ pub mod law_choice;
 mod network;
 pub mod pairwise;
 pub mod prony_fit;
+pub mod relaxation;
+mod relaxation_prony;
 mod shifts;
 pub mod temperature_law;
 
@@ -146,7 +148,15 @@ impl MasterSettings {
         for iso in isotherms {
             check_isotherm(iso)?;
         }
-        let mut temps: Vec<f64> = isotherms.iter().map(|i| i.temperature).collect();
+        self.check_temperatures(isotherms.iter().map(|i| i.temperature).collect())
+    }
+
+    /// The checks of [`MasterSettings::check`] that concern the
+    /// temperatures alone (at least one, each isotherm checked already).
+    pub(crate) fn check_temperatures(
+        &self,
+        mut temps: Vec<f64>,
+    ) -> Result<ValidMasterSettings, FitError> {
         temps.sort_by(f64::total_cmp);
         for pair in temps.windows(2) {
             if pair[0] == pair[1] {
@@ -324,13 +334,7 @@ pub fn build_master_curve(
     let shift = shift_factors(isotherms, settings)?;
     let mut points = Vec::new();
     for iso in isotherms {
-        let s = shift
-            .shifts
-            .iter()
-            .find(|s| s.temperature == iso.temperature)
-            .copied()
-            .ok_or(FitError::Internal("isotherm without a shift"))?;
-        let (a, b) = (10f64.powf(s.log_shift), 10f64.powf(s.log_vertical));
+        let (a, b) = shift.factors_of(iso.temperature)?;
         for i in 0..iso.omega.len() {
             points.push(MasterPoint {
                 reduced_omega: iso.omega[i] * a,
@@ -346,30 +350,50 @@ pub fn build_master_curve(
     let storage: Vec<f64> = points.iter().map(|p| p.storage).collect();
     let loss: Vec<f64> = points.iter().map(|p| p.loss).collect();
     let fit = fit_prony(&omega, &storage, &loss)?;
-    let mut warnings = shift.warnings.clone();
     let lowest = storage.iter().fold(f64::INFINITY, |m, &e| m.min(e));
-    let static_modulus = fit.prony.static_modulus();
-    if static_modulus < 1e-3 * lowest {
-        warnings.push(format!(
-            "the data reach no rubbery plateau: the static modulus E0 = {static_modulus:.3e} Pa is \
-             not determined (the series falls below the smallest measured E′, {lowest:.3e} Pa, \
-             outside the data); μ at speeds below the master curve's range, and static contact \
-             sizes, depend on it"
-        ));
-    }
-    if !fit.converged {
-        warnings.push(
-            "the Prony fit stopped before its convergence test passed; the series is the best \
-             found"
-                .into(),
-        );
-    }
+    let warnings = series_warnings(
+        &shift,
+        (lowest, fit.prony.static_modulus()),
+        fit.converged,
+        ("E′", "outside the data"),
+    );
     Ok(MasterCurve {
         shift,
         points,
         fit,
         warnings,
     })
+}
+
+/// The shift's warnings and the series': no rubbery plateau when the
+/// fitted E0 (`moduli.1`) lies far below the smallest measured modulus
+/// (`moduli.0`, of `words.0`, the series falling below it `words.1`), and
+/// an unconverged fit.
+pub(crate) fn series_warnings(
+    shift: &ShiftFactors,
+    moduli: (f64, f64),
+    converged: bool,
+    words: (&str, &str),
+) -> Vec<String> {
+    let mut warnings = shift.warnings.clone();
+    let (lowest, static_modulus) = moduli;
+    let (measured, beyond) = words;
+    if static_modulus < 1e-3 * lowest {
+        warnings.push(format!(
+            "the data reach no rubbery plateau: the static modulus E0 = {static_modulus:.3e} Pa is \
+             not determined (the series falls below the smallest measured {measured}, \
+             {lowest:.3e} Pa, {beyond}); μ at speeds below the master curve's range, and static \
+             contact sizes, depend on it"
+        ));
+    }
+    if !converged {
+        warnings.push(
+            "the Prony fit stopped before its convergence test passed; the series is the best \
+             found"
+                .into(),
+        );
+    }
+    warnings
 }
 
 #[cfg(test)]

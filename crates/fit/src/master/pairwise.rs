@@ -76,24 +76,26 @@ pub struct PairShift {
 const STEP: f64 = 0.02;
 const RANGE: f64 = 15.0;
 
-/// The shift of `upper` against `lower` (curves log E′ and log tan δ of
-/// each), or None where the pair never overlaps as the rule asks. With
-/// `vertical` the E′ curves may also differ by a constant.
+/// The shift of `upper` against `lower` (the same curves of each: log E′
+/// and log tan δ of a frequency sweep, log E(t) of a relaxation isotherm,
+/// the first one the modulus), or None where the pair never overlaps as
+/// the rule asks. With `vertical` the first curves may also differ by a
+/// constant.
 pub(crate) fn pair_shift(
-    lower: &[Curve; 2],
-    upper: &[Curve; 2],
+    lower: &[Curve],
+    upper: &[Curve],
     vertical: bool,
     indices: (usize, usize),
 ) -> Option<PairShift> {
-    let free_offset = [vertical, false];
+    let free_offset = offsets(lower.len(), vertical);
     let need = (upper[0].x.len() / 5).max(4);
     let parts = |s: f64| mismatch(lower, upper, &free_offset, need, s);
-    let cost = |s: f64| parts(s).map_or(f64::INFINITY, |p| p[0].0 + p[1].0);
+    let cost = |s: f64| parts(s).map_or(f64::INFINITY, |p| total(&p));
 
     let (s0, s_min, s_max) = best_shift(&cost)?;
     let at_optimum = parts(s0)?;
     // χ² weights: (n_k − p_k)/M_k(s₀), the residual scatter as the noise.
-    let weights: Vec<f64> = (0..2)
+    let weights: Vec<f64> = (0..at_optimum.len())
         .map(|k| {
             let (m, n) = at_optimum[k];
             let p = if free_offset[k] { 2.0 } else { 1.0 };
@@ -103,7 +105,9 @@ pub(crate) fn pair_shift(
         })
         .collect();
     let chi2 = |s: f64| -> f64 {
-        parts(s).map_or(f64::INFINITY, |p| weights[0] * p[0].0 + weights[1] * p[1].0)
+        parts(s).map_or(f64::INFINITY, |p| {
+            p.iter().zip(&weights).map(|(q, w)| w * q.0).sum::<f64>()
+        })
     };
     let chi0 = chi2(s0);
     // Where Δχ² first exceeds `level` walking from s₀ towards `end`
@@ -167,19 +171,31 @@ pub(crate) fn pair_shift(
     })
 }
 
-/// Per curve (log E′, log tan δ): the mean squared mismatch of upper(x)
-/// against lower(x + s) (about its mean where the offset is free) and the
-/// overlap count; None where the E′ overlap is shorter than `need` points
-/// or a curve does not overlap.
+/// Whether each curve's offset is free: the modulus's (the first) with
+/// vertical factors, never the others (tan δ, which b_T leaves alone).
+fn offsets(curves: usize, vertical: bool) -> Vec<bool> {
+    (0..curves).map(|k| k == 0 && vertical).collect()
+}
+
+/// The sum of the curves' mean squared mismatches. In curve order from
+/// +0, so that two curves give M_0 + M_1 to the bit.
+fn total(parts: &[(f64, usize)]) -> f64 {
+    parts.iter().fold(0.0, |sum, p| sum + p.0)
+}
+
+/// Per curve (log E′, log tan δ; or log E(t)): the mean squared mismatch
+/// of upper(x) against lower(x + s) (about its mean where the offset is
+/// free) and the overlap count; None where the first curve's overlap is
+/// shorter than `need` points or a curve does not overlap.
 fn mismatch(
-    lower: &[Curve; 2],
-    upper: &[Curve; 2],
-    free_offset: &[bool; 2],
+    lower: &[Curve],
+    upper: &[Curve],
+    free_offset: &[bool],
     need: usize,
     s: f64,
-) -> Option<[(f64, usize); 2]> {
-    let mut out = [(0.0, 0); 2];
-    for k in 0..2 {
+) -> Option<Vec<(f64, usize)>> {
+    let mut out = vec![(0.0, 0); lower.len()];
+    for k in 0..lower.len() {
         // Both ways: the upper points against the lower curve at x + s and
         // the lower points against the upper curve at x − s, so that
         // neither isotherm's sampling decides alone (on a flat overlap
@@ -292,24 +308,24 @@ fn best_shift_in(cost: &dyn Fn(f64) -> f64, s_min: f64, s_max: f64) -> Option<(f
 /// found again over the `allowed` run;
 /// σ² = Σ_samples (n−1)/n Σ_i (s_(i) − s̄)².
 fn jackknife_sigma(
-    lower: &[Curve; 2],
-    upper: &[Curve; 2],
-    free_offset: &[bool; 2],
+    lower: &[Curve],
+    upper: &[Curve],
+    free_offset: &[bool],
     allowed: (f64, f64),
 ) -> f64 {
-    let without = |curves: &[Curve; 2], i: usize| -> [Curve; 2] {
+    let without = |curves: &[Curve], i: usize| -> Vec<Curve> {
         let drop = |c: &Curve| {
             let mut c = c.clone();
             c.x.remove(i);
             c.y.remove(i);
             c
         };
-        [drop(&curves[0]), drop(&curves[1])]
+        curves.iter().map(drop).collect()
     };
     let need = (upper[0].x.len() / 5).max(4);
-    let minimum = |lower: &[Curve; 2], upper: &[Curve; 2]| -> Option<f64> {
+    let minimum = |lower: &[Curve], upper: &[Curve]| -> Option<f64> {
         let cost = |s: f64| {
-            mismatch(lower, upper, free_offset, need, s).map_or(f64::INFINITY, |p| p[0].0 + p[1].0)
+            mismatch(lower, upper, free_offset, need, s).map_or(f64::INFINITY, |p| total(&p))
         };
         // Searched afresh over the whole allowed run, so that a minimum
         // that noise made is free to move.

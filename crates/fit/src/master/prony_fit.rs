@@ -94,14 +94,28 @@ pub struct PronyFit {
     pub converged: bool,
 }
 
+/// What the series is fitted to.
+#[derive(Clone)]
+pub(super) enum Data<'a> {
+    /// ln E′ and ln E″ at reduced ω (rad/s): the module doc.
+    Frequency {
+        omega: &'a [f64],
+        ln_storage: Vec<f64>,
+        ln_loss: Vec<f64>,
+    },
+    /// ln E(t) at reduced t (s): [`super::relaxation_prony`].
+    Time {
+        time: &'a [f64],
+        ln_modulus: Vec<f64>,
+    },
+}
+
 /// The least-squares problem at one λ.
 #[derive(Clone)]
-struct Problem<'a> {
-    omega: &'a [f64],
-    ln_storage: Vec<f64>,
-    ln_loss: Vec<f64>,
-    tau: &'a [f64],
-    lambda: f64,
+pub(super) struct Problem<'a> {
+    pub data: Data<'a>,
+    pub tau: &'a [f64],
+    pub lambda: f64,
 }
 
 /// Residuals and Jacobian at θ.
@@ -111,43 +125,45 @@ struct Evaluation {
 }
 
 impl Problem<'_> {
-    fn data_count(&self) -> usize {
-        2 * self.omega.len()
+    /// Residual rows of the data (before the penalty's).
+    pub(super) fn data_count(&self) -> usize {
+        match &self.data {
+            Data::Frequency { omega, .. } => 2 * omega.len(),
+            Data::Time { time, .. } => time.len(),
+        }
     }
 
     fn evaluate(&self, theta: &[f64]) -> Evaluation {
-        let n = self.omega.len();
+        let count = self.data_count();
         let terms = self.tau.len();
-        let rows = 2 * n + terms.saturating_sub(2);
+        let rows = count + terms.saturating_sub(2);
         let mut residuals = DVector::zeros(rows);
         let mut jacobian = DMatrix::zeros(rows, terms + 1);
         let e0 = theta[0].exp();
         let h: Vec<f64> = theta[1..].iter().map(|t| t.exp()).collect();
-        for i in 0..n {
-            let omega = self.omega[i];
-            let (mut storage, mut loss) = (e0, 0.0);
-            for (k, (&tau, &hk)) in self.tau.iter().zip(&h).enumerate() {
-                let x = omega * tau;
-                let d = 1.0 / (1.0 + x * x);
-                let (s, l) = (hk * x * x * d, hk * x * d);
-                storage += s;
-                loss += l;
-                jacobian[(i, k + 1)] = s;
-                jacobian[(n + i, k + 1)] = l;
-            }
-            // E″ of a series is positive at every ω > 0 (every H_k > 0).
-            let loss = loss.max(f64::MIN_POSITIVE);
-            jacobian[(i, 0)] = e0;
-            for k in 0..=terms {
-                jacobian[(i, k)] /= storage;
-                jacobian[(n + i, k)] /= loss;
-            }
-            residuals[i] = storage.ln() - self.ln_storage[i];
-            residuals[n + i] = loss.ln() - self.ln_loss[i];
+        match &self.data {
+            Data::Frequency {
+                omega,
+                ln_storage,
+                ln_loss,
+            } => frequency_rows(
+                (omega, ln_storage, ln_loss),
+                self.tau,
+                (e0, &h),
+                &mut residuals,
+                &mut jacobian,
+            ),
+            Data::Time { time, ln_modulus } => time_rows(
+                (time, ln_modulus),
+                self.tau,
+                (e0, &h),
+                &mut residuals,
+                &mut jacobian,
+            ),
         }
         let root = self.lambda.sqrt();
         for k in 0..terms.saturating_sub(2) {
-            let row = 2 * n + k;
+            let row = count + k;
             residuals[row] = root * (theta[k + 1] - 2.0 * theta[k + 2] + theta[k + 3]);
             jacobian[(row, k + 1)] = root;
             jacobian[(row, k + 2)] = -2.0 * root;
@@ -183,6 +199,64 @@ impl Problem<'_> {
             // the discrepancy principle.
             random_signs: true,
         }
+    }
+}
+
+/// The rows of ln E′ (0..n) and ln E″ (n..2n) at θ = (ln E0, ln H_k).
+fn frequency_rows(
+    (omega, ln_storage, ln_loss): (&[f64], &[f64], &[f64]),
+    tau: &[f64],
+    (e0, h): (f64, &[f64]),
+    residuals: &mut DVector<f64>,
+    jacobian: &mut DMatrix<f64>,
+) {
+    let n = omega.len();
+    let terms = tau.len();
+    for i in 0..n {
+        let omega = omega[i];
+        let (mut storage, mut loss) = (e0, 0.0);
+        for (k, (&tau, &hk)) in tau.iter().zip(h).enumerate() {
+            let x = omega * tau;
+            let d = 1.0 / (1.0 + x * x);
+            let (s, l) = (hk * x * x * d, hk * x * d);
+            storage += s;
+            loss += l;
+            jacobian[(i, k + 1)] = s;
+            jacobian[(n + i, k + 1)] = l;
+        }
+        // E″ of a series is positive at every ω > 0 (every H_k > 0).
+        let loss = loss.max(f64::MIN_POSITIVE);
+        jacobian[(i, 0)] = e0;
+        for k in 0..=terms {
+            jacobian[(i, k)] /= storage;
+            jacobian[(n + i, k)] /= loss;
+        }
+        residuals[i] = storage.ln() - ln_storage[i];
+        residuals[n + i] = loss.ln() - ln_loss[i];
+    }
+}
+
+/// The rows of ln E(t) at θ: E(t) = E0 + Σ H_k e^(−t/τ_k), so
+/// ∂ln E/∂ln H_k = H_k e^(−t/τ_k)/E and ∂ln E/∂ln E0 = E0/E.
+fn time_rows(
+    (time, ln_modulus): (&[f64], &[f64]),
+    tau: &[f64],
+    (e0, h): (f64, &[f64]),
+    residuals: &mut DVector<f64>,
+    jacobian: &mut DMatrix<f64>,
+) {
+    for (i, &t) in time.iter().enumerate() {
+        let mut modulus = e0;
+        jacobian[(i, 0)] = e0;
+        for (k, (&tau, &hk)) in tau.iter().zip(h).enumerate() {
+            let term = hk * (-t / tau).exp();
+            modulus += term;
+            jacobian[(i, k + 1)] = term;
+        }
+        for k in 0..=tau.len() {
+            jacobian[(i, k)] /= modulus;
+        }
+        residuals[i] = modulus.ln() - ln_modulus[i];
     }
 }
 
@@ -293,33 +367,19 @@ fn start(omega: &[f64], storage: &[f64], loss: &[f64], tau: &[f64]) -> Vec<f64> 
         .collect()
 }
 
-/// Fits a causal, smooth Prony series to E′, E″ (Pa, > 0) at reduced
-/// frequencies `omega` (rad/s, > 0); see the module doc.
-pub fn fit_prony(omega: &[f64], storage: &[f64], loss: &[f64]) -> Result<PronyFit, FitError> {
-    let n = omega.len();
-    if n < 3 || storage.len() != n || loss.len() != n {
-        return Err(FitError::InsufficientData(format!(
-            "a Prony series needs at least three points with E′ and E″ (got {n})"
-        )));
-    }
-    let omega_lo = omega.iter().fold(f64::INFINITY, |m, &w| m.min(w));
-    let omega_hi = omega.iter().fold(0.0f64, |m, &w| m.max(w));
-    let tau = tau_grid(omega_lo, omega_hi);
-    let mut problem = Problem {
-        omega,
-        ln_storage: storage.iter().map(|s| s.ln()).collect(),
-        ln_loss: loss.iter().map(|l| l.ln()).collect(),
-        tau: &tau,
-        lambda: 0.0,
-    };
+/// The series at the λ the marginal likelihood chooses (module doc):
+/// a warm-started path of decreasing λ from `start`, a golden-section
+/// refinement in ln λ, and a final tight minimisation. Returns (θ, λ,
+/// converged). Shared by the frequency and the time-domain fits.
+pub(super) fn regularised(problem: &mut Problem<'_>, start: Vec<f64>) -> (Vec<f64>, f64, bool) {
     let count = problem.data_count();
     let rule = LambdaRule::MarginalLikelihood;
-    let mut from = start(omega, storage, loss, &tau);
+    let mut from = start;
     let score = |t: &Trial| t.criterion(rule, count);
     let mut trials: Vec<Trial> = Vec::new();
     for exponent in LAMBDA_PATH.rev() {
         problem.lambda = 10f64.powi(exponent);
-        let (theta, _) = minimize(&problem, &from, 1e-6);
+        let (theta, _) = minimize(problem, &from, 1e-6);
         from = theta.clone();
         trials.push(problem.trial(theta));
         // Past the minimum by two decades of rising criterion (as the
@@ -343,7 +403,7 @@ pub fn fit_prony(omega: &[f64], storage: &[f64], loss: &[f64]) -> Result<PronyFi
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let mut evaluate = |ln_lambda: f64, from: &[f64]| -> Trial {
         problem.lambda = ln_lambda.exp();
-        let (theta, _) = minimize(&problem, from, 1e-6);
+        let (theta, _) = minimize(problem, from, 1e-6);
         problem.trial(theta)
     };
     let mut c = evaluate(b - g * (b - a), &chosen.theta);
@@ -365,27 +425,64 @@ pub fn fit_prony(omega: &[f64], storage: &[f64], loss: &[f64]) -> Result<PronyFi
         }
     }
     problem.lambda = chosen.lambda;
-    let (theta, converged) = minimize(&problem, &chosen.theta, 1e-10);
+    let (theta, converged) = minimize(problem, &chosen.theta, 1e-10);
+    (theta, chosen.lambda, converged)
+}
+
+/// Fits a causal, smooth Prony series to E′, E″ (Pa, > 0) at reduced
+/// frequencies `omega` (rad/s, > 0); see the module doc.
+pub fn fit_prony(omega: &[f64], storage: &[f64], loss: &[f64]) -> Result<PronyFit, FitError> {
+    let n = omega.len();
+    if n < 3 || storage.len() != n || loss.len() != n {
+        return Err(FitError::InsufficientData(format!(
+            "a Prony series needs at least three points with E′ and E″ (got {n})"
+        )));
+    }
+    let omega_lo = omega.iter().fold(f64::INFINITY, |m, &w| m.min(w));
+    let omega_hi = omega.iter().fold(0.0f64, |m, &w| m.max(w));
+    let tau = tau_grid(omega_lo, omega_hi);
+    let mut problem = Problem {
+        data: Data::Frequency {
+            omega,
+            ln_storage: storage.iter().map(|s| s.ln()).collect(),
+            ln_loss: loss.iter().map(|l| l.ln()).collect(),
+        },
+        tau: &tau,
+        lambda: 0.0,
+    };
+    let from = start(omega, storage, loss, &tau);
+    let (theta, lambda, converged) = regularised(&mut problem, from);
+    let (prony, misfit) = series_of(&problem, &theta, &[0..n, n..2 * n])?;
+    Ok(PronyFit {
+        prony,
+        lambda,
+        rule: LambdaRule::MarginalLikelihood,
+        misfit_storage: misfit[0],
+        misfit_loss: misfit[1],
+        converged,
+    })
+}
+
+/// The series of θ on the problem's τ grid, and the RMS log10 misfit
+/// (decades) of each range of its data rows.
+pub(super) fn series_of(
+    problem: &Problem<'_>,
+    theta: &[f64],
+    ranges: &[std::ops::Range<usize>],
+) -> Result<(Prony, Vec<f64>), FitError> {
     let h: Vec<f64> = theta[1..].iter().map(|t| t.exp()).collect();
     let sum: f64 = h.iter().sum();
     // Data without a rubbery plateau (a liquid, or isotherms that stop
     // short of it) drive ln E0 down without bound; a floor far below any
     // measured modulus keeps E1 − Σ H representable.
     let e0 = theta[0].exp().max(STATIC_FLOOR * sum);
-    let prony = Prony::new(e0 + sum, h, tau.clone())?;
-    let e = problem.evaluate(&theta);
+    let prony = Prony::new(e0 + sum, h, problem.tau.to_vec())?;
+    let e = problem.evaluate(theta);
     let rms = |rows: std::ops::Range<usize>| {
         let len = rows.len() as f64;
         (rows.map(|i| e.residuals[i].powi(2)).sum::<f64>() / len).sqrt() / std::f64::consts::LN_10
     };
-    Ok(PronyFit {
-        prony,
-        lambda: chosen.lambda,
-        rule,
-        misfit_storage: rms(0..n),
-        misfit_loss: rms(n..2 * n),
-        converged,
-    })
+    Ok((prony, ranges.iter().cloned().map(rms).collect()))
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 //! anchored at T_ref and the values applied (the module doc of
 //! [`super`], steps 1–3).
 
+use super::horizontal::{Domain, Superposable};
 use super::temperature_law::{self, ArrheniusFit, WlfArrheniusFit, WlfFit};
 use super::{Isotherm, ShiftLaw, ValidMasterSettings, horizontal, law_choice, network, pairwise};
 use crate::error::FitError;
@@ -78,6 +79,16 @@ impl ShiftFactors {
         }
     }
 
+    /// (a_T, b_T) applied to the isotherm at `t` (°C, one of `shifts`).
+    pub(crate) fn factors_of(&self, t: f64) -> Result<(f64, f64), FitError> {
+        let s = self
+            .shifts
+            .iter()
+            .find(|s| s.temperature == t)
+            .ok_or(FitError::Internal("isotherm without a shift"))?;
+        Ok((10f64.powf(s.log_shift), 10f64.powf(s.log_vertical)))
+    }
+
     /// 1σ of the law at `t` (NaN for "free").
     pub fn law_sigma_at(&self, t: f64) -> f64 {
         match self.law {
@@ -98,24 +109,44 @@ pub fn shift_factors(
     isotherms: &[Isotherm],
     settings: &ValidMasterSettings,
 ) -> Result<ShiftFactors, FitError> {
-    let mut sorted: Vec<&Isotherm> = isotherms.iter().collect();
+    let input: Vec<Superposable> = isotherms
+        .iter()
+        .map(|iso| Superposable {
+            temperature: iso.temperature,
+            points: iso.omega.len(),
+            curves: horizontal::curves(iso),
+        })
+        .collect();
+    superpose(input, settings, Domain::Frequency)
+}
+
+/// Shift factors of isotherms given as the curves the shift compares
+/// (frequency sweeps or relaxation runs, `domain`).
+pub(crate) fn superpose(
+    mut sorted: Vec<Superposable>,
+    settings: &ValidMasterSettings,
+    domain: Domain,
+) -> Result<ShiftFactors, FitError> {
     sorted.sort_by(|a, b| a.temperature.total_cmp(&b.temperature));
     let temps: Vec<f64> = sorted.iter().map(|i| i.temperature).collect();
     let t_ref = settings.t_ref;
     if sorted.len() == 1 {
-        return Ok(single(t_ref, sorted[0]));
+        return Ok(single(t_ref, &sorted[0]));
     }
-    let found = horizontal::pairs(&sorted, settings.vertical)?;
+    let found = horizontal::pairs(&sorted, settings.vertical, domain)?;
     let network = network::solve(&found.pairs, &temps, t_ref).ok_or_else(|| {
         FitError::InsufficientData(format!(
-            "no shift between the isotherms ({} °C) is determined by the data: either E′ and \
-             tan δ are flat across them (a glassy or rubbery plateau), so any shift fits about \
+            "no shift between the isotherms ({} °C) is determined by the data: either {} \
+             flat across them (a glassy or rubbery plateau), so any shift fits about \
              equally well, or neighbouring isotherms overlap too little (their best overlap \
-             lies at the edge of the frequency range the overlap rule allows: a fifth of an \
+             lies at the edge of the {} range the overlap rule allows: a fifth of an \
              isotherm's points, and four, inside its neighbour's range); measure isotherms \
-             through the transition, closer in temperature or over more frequencies, or give \
+             through the transition, closer in temperature or over {}, or give \
              the shifts in the scene's [material.shift]",
-            list_temperatures(&temps)
+            list_temperatures(&temps),
+            domain.curves(),
+            domain.axis(),
+            domain.wider()
         ))
     })?;
     let observations: Vec<temperature_law::PairObservation> = network
@@ -157,8 +188,9 @@ pub fn shift_factors(
         factors.warnings.push(format!(
             "the shifts of the isotherms at {} °C are not determined by the data (their overlap \
              with the others is flat, as on a glassy or rubbery plateau, or ends at the edge of \
-             the frequency range): {}",
+             the {} range): {}",
             list_temperatures(&undetermined),
+            domain.axis(),
             if factors.law == ShiftLaw::Free {
                 "they are placed where they overlap their neighbours best, which the data do not \
                  fix"
@@ -173,7 +205,7 @@ pub fn shift_factors(
         .enumerate()
         .map(|(k, iso)| IsothermShift {
             temperature: iso.temperature,
-            points: iso.omega.len(),
+            points: iso.points,
             determined: network.determined[k],
             log_shift_measured: placed.measured[k].map(|m| m.0),
             log_shift_measured_sigma: placed.measured[k].map_or(f64::INFINITY, |m| m.1),
@@ -186,7 +218,7 @@ pub fn shift_factors(
 }
 
 /// One isotherm: its own master curve, unshifted.
-fn single(t_ref: f64, isotherm: &Isotherm) -> ShiftFactors {
+fn single(t_ref: f64, isotherm: &Superposable) -> ShiftFactors {
     let t = isotherm.temperature;
     ShiftFactors {
         t_ref,
@@ -199,7 +231,7 @@ fn single(t_ref: f64, isotherm: &Isotherm) -> ShiftFactors {
         ),
         shifts: vec![IsothermShift {
             temperature: t,
-            points: isotherm.omega.len(),
+            points: isotherm.points,
             determined: true,
             log_shift_measured: Some(0.0),
             log_shift_measured_sigma: 0.0,

@@ -21,8 +21,8 @@ use std::path::Path;
 
 use super::form::{FormRead, Place, RawPoint};
 use super::header::{self, Column, Header};
-use crate::csv_columns::csv_line;
-use crate::error::{CellRef, ColumnRef, IoError};
+use crate::csv_columns::{csv_line, dma_number, not_csv};
+use crate::error::{ColumnRef, IoError};
 
 /// The columns only DMA files have, defined with the other shared names.
 pub use crate::columns::{F, G_LOSS, G_STORAGE};
@@ -124,21 +124,7 @@ fn row(
         ));
     }
     let value = |c: &Column| -> Result<f64, IoError> {
-        let field = &record[c.index];
-        let v: f64 = field.parse().map_err(|_| IoError::NotANumber {
-            path: path.to_path_buf(),
-            cell: Box::new(CellRef::line(line)),
-            column: c.reference.clone(),
-            text: field.to_string(),
-        })?;
-        if !v.is_finite() {
-            return Err(IoError::NotFinite {
-                path: path.to_path_buf(),
-                cell: Box::new(CellRef::line(line)),
-                column: c.reference.clone(),
-                text: field.to_string(),
-            });
-        }
+        let v = dma_number(path, line, || c.reference.clone(), &record[c.index])?;
         Ok(c.convert(v))
     };
     Ok(RawPoint {
@@ -148,12 +134,4 @@ fn row(
         loss: value(&header.loss)?,
         temperature: header.temperature.as_ref().map(&value).transpose()?,
     })
-}
-
-fn not_csv(path: &Path, text: &str, error: csv::Error) -> IoError {
-    IoError::NotCsv {
-        path: path.to_path_buf(),
-        line: csv_line(text, error.position()),
-        error,
-    }
 }

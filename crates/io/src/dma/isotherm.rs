@@ -23,10 +23,15 @@ pub struct Isotherm {
 
 /// The isotherms of `points` (those with a temperature), ascending.
 pub fn isotherms(points: &[DmaPoint]) -> Vec<Isotherm> {
-    let mut order: Vec<(usize, f64)> = points
-        .iter()
+    group_temperatures(points.iter().map(|p| p.temperature))
+}
+
+/// The isotherms of points with these temperatures (those with one),
+/// ascending; `points` of each index the sequence.
+pub fn group_temperatures(temperatures: impl Iterator<Item = Option<f64>>) -> Vec<Isotherm> {
+    let mut order: Vec<(usize, f64)> = temperatures
         .enumerate()
-        .filter_map(|(i, p)| p.temperature.map(|t| (i, t)))
+        .filter_map(|(i, t)| t.map(|t| (i, t)))
         .collect();
     order.sort_by(|a, b| a.1.total_cmp(&b.1));
     let mut groups: Vec<(Vec<usize>, Vec<f64>)> = Vec::new();

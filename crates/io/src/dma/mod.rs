@@ -62,12 +62,13 @@ mod form;
 mod header;
 mod isotherm;
 mod point;
+pub mod relaxation;
 mod sheet;
 pub mod trios;
 
 use crate::data::workbook::is_workbook;
 use form::{FormRead, Place};
-pub use isotherm::{ISOTHERM_TOLERANCE, Isotherm, isotherms};
+pub use isotherm::{ISOTHERM_TOLERANCE, Isotherm, group_temperatures, isotherms};
 pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind, WLF_USAGE};
 
 /// A DMA file read, its moduli as Young's moduli in Pa.

@@ -99,6 +99,19 @@ impl Prony {
         &self.relaxation_times
     }
 
+    /// The relaxation modulus E(t) = E0 + Σ H_k e^(−t/τ_k), Pa, at time
+    /// t ≥ 0 (s): the response to a unit step of strain, whose Fourier
+    /// transform is E*(ω) (Ferry 1980, ch. 3). E(0) = E1, E(∞) = E0.
+    pub fn relaxation_modulus(&self, t: f64) -> f64 {
+        self.static_modulus()
+            + self
+                .strengths
+                .iter()
+                .zip(&self.relaxation_times)
+                .map(|(h, tau)| h * (-t / tau).exp())
+                .sum::<f64>()
+    }
+
     /// Number of terms n.
     pub fn len(&self) -> usize {
         self.strengths.len()

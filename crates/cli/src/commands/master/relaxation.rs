@@ -1,0 +1,211 @@
+//! `rollfit master` on a stress-relaxation file (E(t) or G(t) against t,
+//! several temperatures): the isotherms superposed in log t with the shift
+//! machinery of the frequency sweeps (t_r = t/a_T), a smooth Prony series
+//! E(t) = E0 + Σ H_k e^(−t/τ_k) fitted to the master curve
+//! (`rollfit_fit::master::relaxation`), and the same material.toml.
+//!
+//! Writes, to DIR as a whole (nothing on an error):
+//! - master.csv: every point at the reference state — t (t/a_T, s),
+//!   E_relax (Young's, Pa, divided by b_T), T (°C), t_measured (s);
+//! - shift.csv: as for frequency sweeps;
+//! - relaxation.csv: the series' E(t) over the data's reduced times, t,
+//!   E_relax;
+//! - modulus.csv: the same series as E′, E″, tan δ over ω = 1/t of the
+//!   data's reduced times (omega, E_storage, E_loss, tan_delta);
+//! - material.toml: as for frequency sweeps;
+//! - master.json: `domain` = "time", `time_range`, `omega_range`, the shift
+//!   keys of a frequency master.json, `prony` with `misfit_relaxation`.
+//!
+//! No picture yet, and no Kramers–Kronig floor (E(t) has no second
+//! component to check against).
+
+use anyhow::{Context, Result};
+use rollfit_io::columns::{E_RELAX, TIME, TIME_MEASURED};
+use rollfit_io::fit_dir::columns::{MODULUS_COLUMNS, MODULUS_CSV, T};
+use rollfit_io::relaxation_master::{self, RelaxationBuilt};
+use rollfit_io::{csv_text, material_file, output};
+use rollfit_model::ViscoelasticModulus;
+use serde::Serialize;
+
+use super::shift_out::{ShiftJson, headline, shift_csv, shift_text};
+use super::{Args, CURVE_PER_DECADE};
+use crate::stdout;
+
+/// Runs `rollfit master` on a relaxation file (DIR already checked).
+pub(super) fn run(args: &Args, settings: &rollfit_fit::master::MasterSettings) -> Result<()> {
+    let (poisson, whose) = crate::commands::compare::poisson_source(args.poisson);
+    let built = relaxation_master::build(&args.dma, poisson, settings)?;
+    if args.dma_modulus.is_some() {
+        eprintln!(
+            "warning: --dma-modulus applies to TRIOS files; a relaxation file says Young's or \
+             shear with its column name (E_relax or G_relax): ignored"
+        );
+    }
+    for note in &built.data.notes {
+        eprintln!("note: {}", note.replace("(the fit's)", whose));
+    }
+    let shift = &built.master.shift;
+    if shift.shifts.len() > 1 {
+        eprintln!("note: shift law {}: {}", shift.law.name(), shift.reason);
+    } else {
+        eprintln!("note: {}", shift.reason);
+    }
+    for warning in &built.master.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let files = encode(&built, poisson)?;
+    let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
+    output::replace_folder(&args.output, &named)?;
+    stdout::write_stdout(summary(&built).as_bytes())?;
+    eprintln!("wrote {}", args.output.display());
+    Ok(())
+}
+
+/// The reduced times of the data, and `count` + 1 log-spaced times over
+/// them.
+fn times(built: &RelaxationBuilt) -> Vec<f64> {
+    let points = &built.master.points;
+    let (lo, hi) = (
+        points[0].reduced_time,
+        points[points.len() - 1].reduced_time,
+    );
+    let decades = (hi / lo).log10().max(0.0);
+    let count = ((decades * CURVE_PER_DECADE).ceil() as usize).max(2);
+    (0..=count)
+        .map(|j| lo * (hi / lo).powf(j as f64 / count as f64))
+        .collect()
+}
+
+/// Every file of DIR, encoded.
+fn encode(built: &RelaxationBuilt, poisson: f64) -> Result<Vec<(&'static str, Vec<u8>)>> {
+    let master = &built.master;
+    let prony = &master.fit.prony;
+    let master_csv = csv_text::csv_bytes(
+        &[TIME, E_RELAX, T, TIME_MEASURED],
+        master
+            .points
+            .iter()
+            .map(|p| vec![p.reduced_time, p.modulus, p.temperature, p.time]),
+    )?;
+    let grid = times(built);
+    let relaxation_csv = csv_text::csv_bytes(
+        &[TIME, E_RELAX],
+        grid.iter().map(|&t| vec![t, prony.relaxation_modulus(t)]),
+    )?;
+    // ω = 1/t over the same range, ascending.
+    let modulus_csv = csv_text::csv_bytes(
+        &MODULUS_COLUMNS[..4],
+        grid.iter().rev().map(|&t| {
+            let e = prony.modulus(1.0 / t);
+            vec![1.0 / t, e.re, e.im, e.im / e.re]
+        }),
+    )?;
+    let mut json = serde_json::to_vec_pretty(&Summary::of(built, poisson))
+        .context("cannot format master.json")?;
+    json.push(b'\n');
+    Ok(vec![
+        ("master.csv", master_csv),
+        ("shift.csv", shift_csv(&master.shift)?),
+        ("relaxation.csv", relaxation_csv),
+        (MODULUS_CSV, modulus_csv),
+        ("material.toml", material_file::encode_relaxation(built)?),
+        ("master.json", json),
+    ])
+}
+
+/// master.json of a relaxation file.
+#[derive(Serialize)]
+struct Summary {
+    dma_file: String,
+    dma_format: &'static str,
+    /// "time": relaxation isotherms.
+    domain: &'static str,
+    modulus_kind: &'static str,
+    poisson: f64,
+    #[serde(rename = "T_ref")]
+    t_ref: f64,
+    shift_law: &'static str,
+    shift_law_asked: &'static str,
+    shift_law_reason: String,
+    vertical: bool,
+    isotherms: usize,
+    points: usize,
+    /// Reduced times of the data, s.
+    time_range: [f64; 2],
+    /// 1/t over them, rad/s: where the series is determined.
+    omega_range: [f64; 2],
+    #[serde(flatten)]
+    shift: ShiftJson,
+    prony: PronySummary,
+    warnings: Vec<String>,
+    notes: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct PronySummary {
+    terms: usize,
+    #[serde(rename = "E0")]
+    static_modulus: f64,
+    #[serde(rename = "E1")]
+    glassy_modulus: f64,
+    lambda: f64,
+    /// RMS log10 misfit of E(t), decades.
+    misfit_relaxation: f64,
+    converged: bool,
+}
+
+impl Summary {
+    fn of(built: &RelaxationBuilt, poisson: f64) -> Summary {
+        let m = &built.master;
+        let (lo, hi) = (
+            m.points[0].reduced_time,
+            m.points[m.points.len() - 1].reduced_time,
+        );
+        Summary {
+            dma_file: built.data.path.display().to_string(),
+            dma_format: "csv-relaxation",
+            domain: "time",
+            modulus_kind: built.data.kind.name(),
+            poisson,
+            t_ref: built.settings.t_ref(),
+            shift_law: m.shift.law.name(),
+            shift_law_asked: built.settings.law().name(),
+            shift_law_reason: m.shift.reason.clone(),
+            vertical: built.settings.vertical(),
+            isotherms: m.shift.shifts.len(),
+            points: m.points.len(),
+            time_range: [lo, hi],
+            omega_range: [1.0 / hi, 1.0 / lo],
+            shift: ShiftJson::of(&m.shift),
+            prony: PronySummary {
+                terms: m.fit.prony.relaxation_times().len(),
+                static_modulus: m.fit.prony.static_modulus(),
+                glassy_modulus: m.fit.prony.glassy_modulus(),
+                lambda: m.fit.lambda,
+                misfit_relaxation: m.fit.misfit,
+                converged: m.fit.converged,
+            },
+            warnings: m.warnings.clone(),
+            notes: built.data.notes.clone(),
+        }
+    }
+}
+
+/// The readable summary of stdout.
+fn summary(built: &RelaxationBuilt) -> String {
+    let m = &built.master;
+    let mut out = format!(
+        "Relaxation {} ({} moduli): {}\n",
+        built.data.path.display(),
+        built.data.kind.name(),
+        headline(&m.shift, m.points.len(), &built.settings, " (t/a_T)")
+    );
+    out += &shift_text(&m.shift);
+    out += &format!(
+        "Prony series: {} terms, λ = {:.3e}; RMS misfit E(t) {:.4} decades\n",
+        m.fit.prony.relaxation_times().len(),
+        m.fit.lambda,
+        m.fit.misfit
+    );
+    out
+}

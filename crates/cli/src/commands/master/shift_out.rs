@@ -1,0 +1,332 @@
+//! The shift factors as `rollfit master` writes them, for frequency
+//! sweeps and relaxation runs alike: shift.csv, the shift keys of
+//! master.json (`wlf`, `arrhenius`, `wlf_arrhenius`, `shifts`, `pairs`)
+//! and the law lines and table of the summary on stdout.
+
+use anyhow::Result;
+use rollfit_fit::master::pairwise::PairVerdict;
+use rollfit_fit::master::{LawTest, ShiftFactors, ShiftLaw, ValidMasterSettings};
+use rollfit_io::csv_text;
+use rollfit_io::fit_dir::columns::{LOG_AT, T};
+use serde::Serialize;
+
+/// The shift keys of master.json, in their order.
+#[derive(Serialize)]
+pub(super) struct ShiftJson {
+    wlf: Option<WlfSummary>,
+    arrhenius: Option<ArrheniusSummary>,
+    wlf_arrhenius: Option<WlfArrheniusSummary>,
+    shifts: Vec<ShiftRow>,
+    pairs: Vec<PairRow>,
+}
+
+impl ShiftJson {
+    pub(super) fn of(shift: &ShiftFactors) -> ShiftJson {
+        ShiftJson {
+            wlf: shift.wlf.map(|w| WlfSummary {
+                c1: w.c1,
+                c2: w.c2,
+                c1_sigma: defined(w.c1_sigma),
+                c2_sigma: defined(w.c2_sigma),
+                rms: defined(w.rms),
+                test: TestSummary::of(&w.test),
+            }),
+            arrhenius: shift.arrhenius.map(|a| ArrheniusSummary {
+                activation_energy: a.activation_energy,
+                activation_energy_sigma: defined(a.activation_energy_sigma),
+                rms: defined(a.rms),
+                test: TestSummary::of(&a.test),
+            }),
+            wlf_arrhenius: shift.wlf_arrhenius.map(|w| WlfArrheniusSummary {
+                c1: w.c1,
+                c2: w.c2,
+                t_junction: w.t_junction,
+                activation_energy: w.activation_energy,
+                c1_sigma: defined(w.sigma[0]),
+                c2_sigma: defined(w.sigma[1]),
+                activation_energy_sigma: defined(w.sigma[2]),
+                rms: defined(w.rms),
+                test: TestSummary::of(&w.test),
+            }),
+            shifts: shift
+                .shifts
+                .iter()
+                .map(|s| ShiftRow {
+                    temperature: s.temperature,
+                    log_shift: s.log_shift,
+                    log_shift_sigma: defined(s.log_shift_sigma),
+                    log_shift_measured: s.log_shift_measured,
+                    log_shift_measured_sigma: s
+                        .log_shift_measured
+                        .and_then(|_| defined(s.log_shift_measured_sigma)),
+                    determined: s.determined,
+                    log_vertical: s.log_vertical,
+                    points: s.points,
+                })
+                .collect(),
+            pairs: shift
+                .pairs
+                .iter()
+                .map(|p| PairRow {
+                    t_lower: shift.shifts[p.lower].temperature,
+                    t_upper: shift.shifts[p.upper].temperature,
+                    shift: p.shift,
+                    sigma: defined(p.sigma),
+                    determined: p.verdict == PairVerdict::Determined,
+                })
+                .collect(),
+        }
+    }
+}
+
+/// shift.csv.
+pub(super) fn shift_csv(shift: &ShiftFactors) -> Result<Vec<u8>> {
+    // An empty cell where the data determine no number.
+    let cell = |x: Option<f64>| {
+        x.filter(|x| x.is_finite())
+            .map_or(String::new(), csv_text::number)
+    };
+    let shift_csv = csv_text::csv_text_bytes(
+        &[
+            T,
+            LOG_AT,
+            "log_aT_measured",
+            "log_bT",
+            "points",
+            "log_aT_sigma",
+            "log_aT_measured_sigma",
+            "determined",
+        ],
+        shift.shifts.iter().map(|s| {
+            vec![
+                csv_text::number(s.temperature),
+                csv_text::number(s.log_shift),
+                cell(s.log_shift_measured),
+                csv_text::number(s.log_vertical),
+                s.points.to_string(),
+                cell(Some(s.log_shift_sigma)),
+                cell(s.log_shift_measured.map(|_| s.log_shift_measured_sigma)),
+                s.determined.to_string(),
+            ]
+        }),
+    )?;
+    Ok(shift_csv)
+}
+
+/// "6 isotherms, 186 points, T_ref = 20 °C, shift wlf" (`law_note` after
+/// the law), with " with vertical factors" where asked.
+pub(super) fn headline(
+    shift: &ShiftFactors,
+    points: usize,
+    settings: &ValidMasterSettings,
+    law_note: &str,
+) -> String {
+    let count = shift.shifts.len();
+    format!(
+        "{} isotherm{}, {} points, T_ref = {} °C, {}{}",
+        count,
+        if count == 1 { "" } else { "s" },
+        points,
+        settings.t_ref(),
+        if count == 1 {
+            "shift law not determined (one isotherm)".to_string()
+        } else {
+            format!("shift {}{law_note}", shift.law.name())
+        },
+        if settings.vertical() {
+            " with vertical factors"
+        } else {
+            ""
+        }
+    )
+}
+
+/// The law lines and the table of shifts of the summary on stdout.
+pub(super) fn shift_text(shift: &ShiftFactors) -> String {
+    let count = shift.shifts.len();
+    let mut out = String::new();
+    if count > 1 {
+        out += &format!("Shift law: {}\n", shift.reason);
+    }
+    let applied = |law: ShiftLaw| {
+        if shift.law == law { "applied" } else { "tried" }
+    };
+    if let Some(w) = shift.wlf {
+        out += &format!(
+            "WLF ({}): C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K; {}\n",
+            applied(ShiftLaw::Wlf),
+            w.c1,
+            w.c1_sigma,
+            w.c2,
+            w.c2_sigma,
+            test_line(&w.test)
+        );
+    }
+    if let Some(w) = shift.wlf_arrhenius {
+        out += &format!(
+            "WLF–Arrhenius ({}): C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K above T_g = {:.2} °C, \
+             E_a = {:.4e} ± {:.2e} J/mol below; {}\n",
+            applied(ShiftLaw::WlfArrhenius),
+            w.c1,
+            w.sigma[0],
+            w.c2,
+            w.sigma[1],
+            w.t_junction,
+            w.activation_energy,
+            w.sigma[2],
+            test_line(&w.test)
+        );
+    }
+    if let Some(a) = shift.arrhenius {
+        out += &format!(
+            "Arrhenius ({}): E_a = {:.4e} ± {:.2e} J/mol; {}\n",
+            applied(ShiftLaw::Arrhenius),
+            a.activation_energy,
+            a.activation_energy_sigma,
+            test_line(&a.test)
+        );
+    }
+    out += "    T (°C)   log10 a_T       ±1σ   measured       ±1σ   log10 b_T   points\n";
+    let number = |x: Option<f64>, width: usize| match x.filter(|x| x.is_finite()) {
+        Some(x) => format!("{x:width$.4}"),
+        None => format!("{:>width$}", "—"),
+    };
+    for s in &shift.shifts {
+        out += &format!(
+            "{:10.2} {:11.4} {} {} {} {:11.4} {:8}{}\n",
+            s.temperature,
+            s.log_shift,
+            number(Some(s.log_shift_sigma), 9),
+            number(s.log_shift_measured, 10),
+            number(s.log_shift_measured.map(|_| s.log_shift_measured_sigma), 9),
+            s.log_vertical,
+            s.points,
+            if s.determined {
+                ""
+            } else {
+                "   not determined by the data"
+            }
+        );
+    }
+    out
+}
+
+#[derive(Serialize)]
+struct WlfSummary {
+    #[serde(rename = "C1")]
+    c1: f64,
+    #[serde(rename = "C2")]
+    c2: f64,
+    #[serde(rename = "C1_sigma")]
+    c1_sigma: Option<f64>,
+    #[serde(rename = "C2_sigma")]
+    c2_sigma: Option<f64>,
+    /// RMS of the measured shifts about the law (NaN → null where the law
+    /// was tried but not applied).
+    rms: Option<f64>,
+    test: TestSummary,
+}
+
+#[derive(Serialize)]
+struct ArrheniusSummary {
+    #[serde(rename = "E_a")]
+    activation_energy: f64,
+    #[serde(rename = "E_a_sigma")]
+    activation_energy_sigma: Option<f64>,
+    rms: Option<f64>,
+    test: TestSummary,
+}
+
+#[derive(Serialize)]
+struct WlfArrheniusSummary {
+    #[serde(rename = "C1")]
+    c1: f64,
+    #[serde(rename = "C2")]
+    c2: f64,
+    #[serde(rename = "T_g")]
+    t_junction: f64,
+    #[serde(rename = "E_a")]
+    activation_energy: f64,
+    #[serde(rename = "C1_sigma")]
+    c1_sigma: Option<f64>,
+    #[serde(rename = "C2_sigma")]
+    c2_sigma: Option<f64>,
+    #[serde(rename = "E_a_sigma")]
+    activation_energy_sigma: Option<f64>,
+    rms: Option<f64>,
+    test: TestSummary,
+}
+
+/// A law's χ² test against the determined pairwise shifts.
+#[derive(Serialize)]
+struct TestSummary {
+    chi2: f64,
+    dof: usize,
+    p_value: Option<f64>,
+    passes: bool,
+}
+
+impl TestSummary {
+    fn of(t: &LawTest) -> TestSummary {
+        TestSummary {
+            chi2: t.chi2,
+            dof: t.dof,
+            p_value: t.p_value,
+            passes: t.passes(),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct ShiftRow {
+    #[serde(rename = "T")]
+    temperature: f64,
+    #[serde(rename = "log_aT")]
+    log_shift: f64,
+    #[serde(rename = "log_aT_sigma")]
+    log_shift_sigma: Option<f64>,
+    #[serde(rename = "log_aT_measured")]
+    log_shift_measured: Option<f64>,
+    #[serde(rename = "log_aT_measured_sigma")]
+    log_shift_measured_sigma: Option<f64>,
+    determined: bool,
+    #[serde(rename = "log_bT")]
+    log_vertical: f64,
+    points: usize,
+}
+
+/// One pair of isotherms compared.
+#[derive(Serialize)]
+struct PairRow {
+    #[serde(rename = "T_lower")]
+    t_lower: f64,
+    #[serde(rename = "T_upper")]
+    t_upper: f64,
+    /// log10 a_upper − log10 a_lower at the best overlap.
+    shift: f64,
+    sigma: Option<f64>,
+    determined: bool,
+}
+
+/// A standard error, or None where it is not defined (NaN).
+fn defined(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+/// "χ² = 12.3 for 9 degrees of freedom, p = 0.21 (passes)".
+fn test_line(t: &LawTest) -> String {
+    match t.p_value {
+        Some(p) => format!(
+            "χ² = {:.2} for {} degrees of freedom, p = {:.2e} ({})",
+            t.chi2,
+            t.dof,
+            p,
+            if t.passes() {
+                "describes the shifts"
+            } else {
+                "does not describe the shifts"
+            }
+        ),
+        None => "no degree of freedom left to test it".into(),
+    }
+}

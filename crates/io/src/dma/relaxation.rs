@@ -1,0 +1,424 @@
+//! The stress-relaxation form of a DMA file (docs/ARCHITECTURE.md,
+//! "Contract", "DMA files"): a CSV of the relaxation modulus E(t) or G(t)
+//! against the time t since a step of strain, optionally at several
+//! temperatures T. A header line, then one point per line; `#` lines are
+//! comments; other columns are ignored.
+//!
+//! | quantity    | columns (first is canonical)                 | units (default first)      |
+//! |-------------|----------------------------------------------|----------------------------|
+//! | time        | `t`, `time` (any case)                       | `s`, `ms`, `min`, `h`      |
+//! | Young's     | `E_relax`, `E(t)`, `E_t`, `E`                | `Pa`, `kPa`, `MPa`, `GPa`  |
+//! | shear       | `G_relax`, `G(t)`, `G_t`, `G`                | `Pa`, `kPa`, `MPa`, `GPa`  |
+//! | temperature | `T`, `temperature` (any case), optional      | `C` (or `°C`), `K`         |
+//!
+//! A unit follows the name after an underscore, or in parentheses or
+//! brackets: `t_s`, `time (s)`, `t [min]`, `E_relax_MPa`, `E(t) (MPa)`,
+//! `G [kPa]`, `T_K`, `T (°C)`. `t` and `T` are told apart by case (time and
+//! temperature); `E`, `G` are case-sensitive as everywhere in rollfit.
+//! A file is this form when its header has a time and a relaxation-modulus
+//! column and no frequency column (`omega…`, `f`, `f_…`): a frequency
+//! sweep's reader ([`super::csv_form`]) is unchanged.
+//!
+//! Shear moduli become Young's with E(t) = 2(1 + ν) G(t) (ν
+//! frequency-independent, as for E*(ω): [`super`]). Checks: t > 0 and E(t)
+//! in (0, 1e13] Pa, every number finite, T in (−273.15, 1000] °C, all rows
+//! with a temperature or none; within each isotherm (grouped as the
+//! frequency form's, [`super::isotherms`]) the times increase in file
+//! order, else the two lines are named.
+
+use std::path::{Path, PathBuf};
+
+use super::header::Column;
+use super::point::ModulusKind;
+use crate::columns::{E_RELAX, G_RELAX, TIME};
+use crate::csv_columns::{csv_line, dma_number, not_csv};
+use crate::error::{ColumnRef, IoError, RelaxationError};
+
+/// One point of a relaxation file, the modulus as Young's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RelaxationPoint {
+    /// Time since the step of strain, s.
+    pub time: f64,
+    /// Young's relaxation modulus E(t), Pa.
+    pub modulus: f64,
+    /// °C, when the file gives one.
+    pub temperature: Option<f64>,
+}
+
+/// A relaxation file read, its moduli as Young's in Pa.
+#[derive(Debug, Clone)]
+pub struct RelaxationData {
+    /// The file.
+    pub path: PathBuf,
+    /// The points in file order.
+    pub points: Vec<RelaxationPoint>,
+    /// The file line (from 1) of each point.
+    pub lines: Vec<usize>,
+    /// What the file held (before conversion to Young's).
+    pub kind: ModulusKind,
+    /// How the file was read where the file said so (shear converted).
+    pub notes: Vec<String>,
+}
+
+/// What a column holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Quantity {
+    Time,
+    Young,
+    Shear,
+    Temperature,
+}
+
+const TIME_UNITS: [(&str, f64, f64); 4] = [
+    ("s", 1.0, 0.0),
+    ("ms", 1e-3, 0.0),
+    ("min", 60.0, 0.0),
+    ("h", 3600.0, 0.0),
+];
+const MODULUS_UNITS: [(&str, f64, f64); 4] = [
+    ("Pa", 1.0, 0.0),
+    ("kPa", 1e3, 0.0),
+    ("MPa", 1e6, 0.0),
+    ("GPa", 1e9, 0.0),
+];
+const TEMPERATURE_UNITS: [(&str, f64, f64); 3] =
+    [("C", 1.0, 0.0), ("°C", 1.0, 0.0), ("K", 1.0, -273.15)];
+
+/// The spellings of each quantity: (name, case-sensitive), longest first
+/// where one is the start of another.
+const SPELLINGS: [(Quantity, &[(&str, bool)]); 4] = [
+    (Quantity::Time, &[("time", false), (TIME, true)]),
+    (
+        Quantity::Young,
+        &[(E_RELAX, true), ("E(t)", true), ("E_t", true), ("E", true)],
+    ),
+    (
+        Quantity::Shear,
+        &[(G_RELAX, true), ("G(t)", true), ("G_t", true), ("G", true)],
+    ),
+    (
+        Quantity::Temperature,
+        &[("temperature", false), ("T", true)],
+    ),
+];
+
+/// The unit of a name's tail after its base: "" (the default), `_X`,
+/// `(X)`, `[X]` (spaces allowed before a bracket), X one of `units`.
+fn unit_of(tail: &str, units: &[(&str, f64, f64)]) -> Option<(f64, f64)> {
+    let tail = tail.trim_start();
+    let unit = if tail.is_empty() {
+        return Some((units[0].1, units[0].2));
+    } else if let Some(u) = tail.strip_prefix('_') {
+        u
+    } else if let Some(u) = tail.strip_prefix('(').and_then(|u| u.strip_suffix(')')) {
+        u.trim()
+    } else {
+        tail.strip_prefix('[')?.strip_suffix(']')?.trim()
+    };
+    units.iter().find(|u| u.0 == unit).map(|u| (u.1, u.2))
+}
+
+/// What column `name` holds, with its map to SI.
+fn recognise(name: &str) -> Option<(Quantity, f64, f64)> {
+    for (quantity, spellings) in SPELLINGS {
+        let units: &[(&str, f64, f64)] = match quantity {
+            Quantity::Time => &TIME_UNITS,
+            Quantity::Young | Quantity::Shear => &MODULUS_UNITS,
+            Quantity::Temperature => &TEMPERATURE_UNITS,
+        };
+        for &(base, exact) in spellings {
+            let Some(head) = name.get(..base.len()) else {
+                continue;
+            };
+            let matches = if exact {
+                head == base
+            } else {
+                head.eq_ignore_ascii_case(base)
+            };
+            if matches && let Some((factor, offset)) = unit_of(&name[base.len()..], units) {
+                return Some((quantity, factor, offset));
+            }
+        }
+    }
+    None
+}
+
+/// Whether a header names a frequency (the frequency form's reader then
+/// takes the file).
+fn is_frequency(name: &str) -> bool {
+    name == "f" || name.starts_with("f_") || name.starts_with("omega")
+}
+
+/// The columns of a relaxation header.
+struct Header {
+    width: usize,
+    time: Column,
+    modulus: Column,
+    kind: ModulusKind,
+    temperature: Option<Column>,
+}
+
+/// The header's relaxation columns; None when it is not a relaxation
+/// header (no time column, or a frequency column).
+fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, RelaxationError> {
+    if names.iter().any(|n| is_frequency(n)) {
+        return Ok(None);
+    }
+    let mut found: Vec<(Quantity, Column)> = Vec::new();
+    for (index, name) in names.iter().enumerate() {
+        if let Some((quantity, factor, offset)) = recognise(name) {
+            found.push((
+                quantity,
+                Column {
+                    index,
+                    reference: ColumnRef::numbered(index + 1, name.as_str()),
+                    factor,
+                    offset,
+                },
+            ));
+        }
+    }
+    let one = |which: &[Quantity], what: &'static str| -> Result<Option<Column>, RelaxationError> {
+        let mut of = found.iter().filter(|(q, _)| which.contains(q));
+        match (of.next(), of.next()) {
+            (Some(a), Some(b)) => Err(RelaxationError::TwoColumns {
+                path: path.to_path_buf(),
+                line,
+                quantity: what,
+                columns: Box::new((a.1.reference.clone(), b.1.reference.clone())),
+            }),
+            (a, _) => Ok(a.map(|c| c.1.clone())),
+        }
+    };
+    let Some(time) = one(&[Quantity::Time], "time")? else {
+        return Ok(None);
+    };
+    let Some(modulus) = one(&[Quantity::Young, Quantity::Shear], "relaxation modulus")? else {
+        return Err(RelaxationError::NoModulusColumn {
+            path: path.to_path_buf(),
+            header: names.to_vec(),
+        });
+    };
+    let kind = match found.iter().find(|(_, c)| c.index == modulus.index) {
+        Some((Quantity::Shear, _)) => ModulusKind::Shear,
+        _ => ModulusKind::Young,
+    };
+    Ok(Some(Header {
+        width: names.len(),
+        time,
+        modulus,
+        kind,
+        temperature: one(&[Quantity::Temperature], "temperature")?,
+    }))
+}
+
+/// The header row of a CSV text: (line, names), or None without one.
+fn header_row(text: &str) -> Option<(usize, Vec<String>)> {
+    let mut reader = crate::csv_columns::reader(text, false, true);
+    for record in reader.records() {
+        let record = record.ok()?;
+        if record.iter().all(str::is_empty) {
+            continue;
+        }
+        let line = csv_line(text, record.position());
+        return Some((line, record.iter().map(str::to_string).collect()));
+    }
+    None
+}
+
+/// Whether `text` is a relaxation file: its header has a time column and
+/// no frequency column (the module doc). A header with a time column but
+/// no modulus is one too (its reading then says what is missing).
+pub fn is_relaxation(text: &str) -> bool {
+    if super::trios::is_lims(text) {
+        return false;
+    }
+    header_row(text)
+        .is_some_and(|(line, names)| !matches!(header(Path::new(""), line, &names), Ok(None)))
+}
+
+/// Whether the file at `path` is a relaxation file; false where it cannot
+/// be read (the frequency form's reader then says why).
+pub fn is_relaxation_file(path: &Path) -> bool {
+    std::fs::read(path)
+        .ok()
+        .and_then(|bytes| super::decode::decode(path, &bytes).ok())
+        .is_some_and(|text| is_relaxation(&text))
+}
+
+impl RelaxationData {
+    /// Reads a relaxation file; shear moduli become Young's with
+    /// `poisson`.
+    pub fn read(path: &Path, poisson: f64) -> Result<RelaxationData, IoError> {
+        if !(poisson > -1.0 && poisson <= 0.5) {
+            return Err(IoError::DmaPoisson {
+                path: path.to_path_buf(),
+                poisson,
+            });
+        }
+        let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let text = super::decode::decode(path, &bytes)?;
+        parse(path, &text, poisson)
+    }
+}
+
+/// Parses the text of a relaxation file (the module doc).
+pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, IoError> {
+    let (line, names) = header_row(text).ok_or_else(|| IoError::NoHeader {
+        path: path.to_path_buf(),
+    })?;
+    let Some(header) = header(path, line, &names)? else {
+        return Err(IoError::NoFrequencyColumn {
+            path: path.to_path_buf(),
+            header: names,
+        });
+    };
+    let factor = match header.kind {
+        ModulusKind::Young => 1.0,
+        ModulusKind::Shear => 2.0 * (1.0 + poisson),
+    };
+    let mut points = Vec::new();
+    let mut lines = Vec::new();
+    let mut reader = crate::csv_columns::reader(text, false, true);
+    for record in reader.records() {
+        let record = record.map_err(|error| not_csv(path, text, error))?;
+        let at = csv_line(text, record.position());
+        if at <= line || record.iter().all(str::is_empty) {
+            continue;
+        }
+        points.push(row(path, at, &header, &record, factor)?);
+        lines.push(at);
+    }
+    if points.is_empty() {
+        return Err(IoError::NoRows {
+            path: path.to_path_buf(),
+        });
+    }
+    check_isotherms(path, &points, &lines)?;
+    let notes = match header.kind {
+        ModulusKind::Young => Vec::new(),
+        ModulusKind::Shear => vec![format!(
+            "{}: shear relaxation modulus G(t) converted to Young's with E = 2(1+ν)G, ν = {poisson} (the fit's)",
+            path.display()
+        )],
+    };
+    Ok(RelaxationData {
+        path: path.to_path_buf(),
+        points,
+        lines,
+        kind: header.kind,
+        notes,
+    })
+}
+
+/// The point of the record on line `line`.
+fn row(
+    path: &Path,
+    line: usize,
+    header: &Header,
+    record: &csv::StringRecord,
+    factor: f64,
+) -> Result<RelaxationPoint, IoError> {
+    if record.len() != header.width {
+        return Err(IoError::FieldCount {
+            path: path.to_path_buf(),
+            line,
+            found: record.len(),
+            expected: header.width,
+            missing: Vec::new(),
+            cut: false,
+        });
+    }
+    let value = |c: &Column| -> Result<f64, IoError> {
+        let v = dma_number(path, line, || c.reference.clone(), &record[c.index])?;
+        Ok(v * c.factor + c.offset)
+    };
+    let time = value(&header.time)?;
+    if time <= 0.0 {
+        return Err(RelaxationError::TimeNotPositive {
+            path: path.to_path_buf(),
+            line,
+            column: header.time.reference.clone(),
+            value: time,
+        }
+        .into());
+    }
+    let modulus = value(&header.modulus)? * factor;
+    if !(modulus > 0.0 && modulus <= 1e13) {
+        return Err(RelaxationError::ModulusOutOfRange {
+            path: path.to_path_buf(),
+            line,
+            column: header.modulus.reference.clone(),
+            value: modulus,
+        }
+        .into());
+    }
+    let temperature = header.temperature.as_ref().map(&value).transpose()?;
+    if let Some(t) = temperature
+        && !(t > -273.15 && t <= 1000.0)
+    {
+        return Err(RelaxationError::TemperatureOutOfRange {
+            path: path.to_path_buf(),
+            line,
+            value: t,
+        }
+        .into());
+    }
+    Ok(RelaxationPoint {
+        time,
+        modulus,
+        temperature,
+    })
+}
+
+/// All rows with a temperature or none; increasing times in each isotherm
+/// (file order), else the two lines where they stop.
+fn check_isotherms(
+    path: &Path,
+    points: &[RelaxationPoint],
+    lines: &[usize],
+) -> Result<(), RelaxationError> {
+    let with_t = points.iter().filter(|p| p.temperature.is_some()).count();
+    if with_t > 0 && with_t < points.len() {
+        return Err(RelaxationError::TemperatureMissing {
+            path: path.to_path_buf(),
+            missing: points.len() - with_t,
+            total: points.len(),
+        });
+    }
+    for (temperature, indices) in groups(points) {
+        let time: Vec<f64> = indices.iter().map(|&i| points[i].time).collect();
+        if let Some(k) = rollfit_fit::master::relaxation::time_turn(&time) {
+            let (a, b) = (indices[k - 1], indices[k]);
+            return Err(RelaxationError::NotIncreasing {
+                path: path.to_path_buf(),
+                temperature,
+                lines: (lines[a], lines[b]),
+                times: (points[a].time, points[b].time),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The isotherms of `points` as (temperature °C, indices in file order);
+/// one at NaN when the file has no temperatures (a master curve puts it at
+/// T_ref).
+pub fn groups(points: &[RelaxationPoint]) -> Vec<(f64, Vec<usize>)> {
+    if points.iter().all(|p| p.temperature.is_none()) {
+        return vec![(f64::NAN, (0..points.len()).collect())];
+    }
+    super::group_temperatures(points.iter().map(|p| p.temperature))
+        .into_iter()
+        .map(|iso| {
+            // File order: the grouping sorts by temperature, and a
+            // controller's scatter would shuffle a run.
+            let mut indices = iso.points;
+            indices.sort_unstable();
+            (iso.temperature, indices)
+        })
+        .collect()
+}

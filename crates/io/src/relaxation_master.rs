@@ -1,0 +1,67 @@
+//! A stress-relaxation file to a master curve: read the file
+//! ([`crate::dma::relaxation`]), group its points into isotherms, and run
+//! `rollfit_fit::master::relaxation` on them (shifts in log t, a smooth
+//! Prony series of E(t)). The twin of [`crate::dma_master`] for frequency
+//! sweeps; `rollfit master` writes the folder, [`crate::material_file`]
+//! its material.toml in the same form.
+
+use std::path::Path;
+
+use rollfit_fit::master::relaxation::{
+    RelaxationIsotherm, RelaxationMaster, build_relaxation_master,
+};
+use rollfit_fit::master::{DEFAULT_T_REF, MasterSettings, ValidMasterSettings};
+
+use crate::dma::relaxation::{RelaxationData, groups};
+use crate::error::{DmaMasterError, IoError};
+
+/// A master curve built from a relaxation file.
+pub struct RelaxationBuilt {
+    /// The file as read (Young's moduli).
+    pub data: RelaxationData,
+    /// The checked settings (T_ref resolved).
+    pub settings: ValidMasterSettings,
+    /// Shift factors, shifted points and the Prony series.
+    pub master: RelaxationMaster,
+}
+
+/// Reads `path` and builds its master curve; `poisson` converts a shear
+/// G(t). Errors name the file and, where one point is at fault, its line.
+pub fn build(
+    path: &Path,
+    poisson: f64,
+    settings: &MasterSettings,
+) -> Result<RelaxationBuilt, IoError> {
+    let data = RelaxationData::read(path, poisson)?;
+    let isotherms: Vec<RelaxationIsotherm> = groups(&data.points)
+        .into_iter()
+        .map(|(temperature, indices)| RelaxationIsotherm {
+            // No temperatures: the file is one curve, taken at T_ref.
+            temperature: if temperature.is_nan() {
+                settings.t_ref.unwrap_or(DEFAULT_T_REF)
+            } else {
+                temperature
+            },
+            time: indices.iter().map(|&i| data.points[i].time).collect(),
+            modulus: indices.iter().map(|&i| data.points[i].modulus).collect(),
+        })
+        .collect();
+    let in_file = |source: DmaMasterError| DmaMasterError::InFile {
+        path: path.to_path_buf(),
+        source: Box::new(source),
+    };
+    let valid = settings
+        .check_relaxation(&isotherms)
+        .map_err(|error| in_file(DmaMasterError::Fit { error }))?;
+    let master = build_relaxation_master(&isotherms, &valid).map_err(|error| {
+        DmaMasterError::MasterCurve {
+            path: path.to_path_buf(),
+            source: Box::new(DmaMasterError::Fit { error }),
+        }
+    })?;
+    Ok(RelaxationBuilt {
+        data,
+        settings: valid,
+        master,
+    })
+}
