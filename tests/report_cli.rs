@@ -47,7 +47,7 @@ fn committed_fit(tmp: &TempDir, name: &str) -> PathBuf {
     fs::create_dir_all(&dir).unwrap();
     for file in ["fit.json", "mu.csv", "modulus.csv"] {
         fs::copy(
-            workspace().join("fits").join(name).join(file),
+            workspace().join("examples/fits").join(name).join(file),
             dir.join(file),
         )
         .unwrap();

@@ -235,7 +235,7 @@ fn swapped_files_get_a_hint() {
     );
     assert!(!fit_dir.exists());
     let dma = root().join("data/hn-rubber-dma.csv");
-    let committed = root().join("fits/hn-rubber");
+    let committed = root().join("examples/fits/hn-rubber");
     let out = rollfit(&[
         OsStr::new("compare"),
         dma.as_os_str(),
