@@ -1,5 +1,6 @@
 //! Speed of a batch (`rollfit batch`): 100 independent single-temperature
-//! fits on a rayon pool of one thread and of two. The issue's target: on 2
+//! fits on a rayon pool of one thread and of two; and eight fits of the
+//! bundled temperature set on two threads (issue 34's throughput). The issue's target: on 2
 //! cores the batch is at least 1.8× faster than on one, and its results are
 //! identical to running the fits one by one.
 //!
@@ -13,13 +14,15 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rayon::prelude::*;
-use rollfit_fit::{FitParams, FitReport, Measurements, ScaleAnchor, ValidFitParams, fit};
+use rollfit_fit::{
+    FitParams, FitReport, Measurements, ScaleAnchor, ShiftKind, ShiftSettings, ValidFitParams, fit,
+};
 use std::hint::black_box;
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use common::{hn_rubber, setup, synthetic};
+use common::{hn_rubber, setup, synthetic, temperature_set};
 
 const FITS: u64 = 100;
 
@@ -74,7 +77,42 @@ fn benches(c: &mut Criterion) {
         });
     }
     group.finish();
+    temperature_sets(c);
 }
+
+/// Issue 34's throughput: fits per minute of the bundled temperature set
+/// (data/hn-rubber-tset.toml: 5 temperatures × 41 speeds, WLF about
+/// 20 °C, |E| at 10 rad/s, the cross-check on, as `rollfit batch` fits
+/// it), eight noise seeds on a pool of two threads. Fits per minute =
+/// 8 × 60 s / the median time.
+fn temperature_sets(c: &mut Criterion) {
+    let params = FitParams {
+        anchor: Some(ScaleAnchor::ModulusAt {
+            omega: 10.0,
+            modulus: 6.26e7,
+        }),
+        shift: ShiftSettings {
+            kind: ShiftKind::Wlf,
+            t_ref: Some(20.0),
+            ..ShiftSettings::default()
+        },
+        ..FitParams::default()
+    }
+    .check(setup())
+    .unwrap();
+    let data: Vec<Measurements> = (0..TEMPERATURE_SETS)
+        .map(|seed| temperature_set(hn_rubber(), &[-20.0, 0.0, 20.0, 40.0, 60.0], 0.01, seed))
+        .collect();
+    let mut group = c.benchmark_group("batch_tset8");
+    group.sample_size(10);
+    group.bench_function("threads2", |b| {
+        b.iter(|| batch(black_box(&data), &params, 2))
+    });
+    group.finish();
+}
+
+/// Temperature sets in the throughput bench.
+const TEMPERATURE_SETS: u64 = 8;
 
 criterion_group!(batch_benches, benches);
 criterion_main!(batch_benches);

@@ -16,6 +16,10 @@
 //! anchor; and the same sweep logged as 10 000 rows (condensed to bins of
 //! 1/20 decade before the fit).
 //!
+//! And issue 34's temperature set: 7 temperatures (−20 … 70 °C) × 21 speeds
+//! (1e-8 … 1 m/s), 1 % noise, σ known, |E| at 10 rad/s as the anchor, the
+//! joint fit with WLF and with free shifts, without the cross-check.
+//!
 //! And `physics = "exact"` (issue 17): 41 speeds over 8 decades around the
 //! friction maximum of a broad rubber (200-term smooth spectrum,
 //! E1/E0 = 1000) under a 5 mm cylinder at 1000 N/m, μ of the exact
@@ -25,7 +29,7 @@
 //! `cargo bench -p rollfit-fit --bench fit -- exact_physics`.
 
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
-use rollfit_fit::{FitParams, Physics, ScaleAnchor, ShiftSettings, fit};
+use rollfit_fit::{FitParams, Physics, ScaleAnchor, ShiftKind, ShiftSettings, fit};
 use rollfit_model::ViscoelasticModulus;
 use std::hint::black_box;
 
@@ -87,6 +91,16 @@ fn benches(c: &mut Criterion) {
         }
         .check(setup())
         .unwrap();
+        group.bench_function(name, |b| b.iter(|| fit(black_box(&set), &params).unwrap()));
+    }
+    // Issue 34's set: 7 temperatures × 21 speeds, WLF and free shifts, the
+    // joint fit alone (its evaluation counts: tests/fit_cost.rs).
+    let set = common::set_7x21(1);
+    for (name, kind) in [
+        ("joint_7x21_wlf", ShiftKind::Wlf),
+        ("joint_7x21_free", ShiftKind::Free),
+    ] {
+        let params = common::set_7x21_params(kind);
         group.bench_function(name, |b| b.iter(|| fit(black_box(&set), &params).unwrap()));
     }
     group.finish();

@@ -4,13 +4,18 @@
 //!    `terms = "auto"`: 1, 2 and 3 per decade, chosen by AICc).
 //! 2. A neutral start: a flat spectrum with E1/E0 = 1000 at the anchored
 //!    (or starting, or 1 MPa) scale.
-//! 3. λ: fixed, or the decreasing path of [`crate::regularization`] with
-//!    warm starts, then refinement.
-//! 4. At the chosen λ, further starts are run: four spectra concentrated in
-//!    a bump at different places of the probed band, and seeded
-//!    perturbations of the neutral start (N(0, 1) in each log-parameter);
-//!    the best V wins.
-//! 5. Curvature, window, determined terms and bands at the optimum.
+//! 3. With an anchor, the starts race at the first λ: the neutral start,
+//!    four spectra concentrated in a bump at different places of the
+//!    probed band, and seeded perturbations of the neutral start (N(0, 1)
+//!    in each log-parameter) each run a few evaluations, and the lowest V
+//!    goes on.
+//! 4. λ: fixed, or the decreasing path of [`crate::regularization`] with
+//!    warm starts moved by the Gauss–Newton predictor, then refinement on
+//!    the linearisation of the fits next to the rule's λ, confirmed by a
+//!    fit there (`linearised.rs`, `lambda.rs`).
+//! 5. Without the race (unanchored fits) or at a fixed λ, the bumps and the
+//!    perturbations are run at the chosen λ; the best V wins.
+//! 6. Curvature, window, determined terms and bands at the optimum.
 //!
 //! Results are deterministic for a given seed: the solvers are
 //! deterministic and the perturbations come from ChaCha8 seeded with it.
@@ -22,7 +27,8 @@
 //!
 //! Where each step lives: the entry [`fit`] and the fits a temperature set
 //! is built from (here); the τ grid and the choice of terms (`terms.rs`);
-//! the starts (`starts.rs`); λ (`lambda.rs`); the solver runs on one grid
+//! the starts (`starts.rs`); λ (`lambda.rs`) and the linearisation it
+//! predicts from (`linearised.rs`); the solver runs on one grid
 //! (`grid.rs`); the analysis of the optimum (`optimum.rs`); the scale
 //! profile of an unanchored fit (`profile.rs`); the fits `shift = "auto"`
 //! compares (`law.rs`); the report (`assemble.rs`).
@@ -33,6 +39,7 @@ mod assemble;
 mod grid;
 mod lambda;
 mod law;
+mod linearised;
 mod optimum;
 mod profile;
 mod starts;

@@ -96,18 +96,15 @@ impl<'s> Starts<'s> {
     }
 
     /// The restarts at the chosen λ, each with the stage that names it in
-    /// the runs: the bumps (unless they were already probed at the path's
-    /// start), then `params.starts − 1` seeded perturbations of the starting
-    /// material.
+    /// the runs: the bumps (unless they already raced at the path's
+    /// start), then the seeded perturbations of [`Starts::perturbations`].
     pub(super) fn restarts(
         &self,
         param: &Parametrization,
         params: &ValidFitParams,
-        bumps_probed: bool,
+        bumps_raced: bool,
     ) -> Result<Vec<(String, Vec<f64>)>, FitError> {
-        let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
-        let normal = Normal::new(0.0, 1.0).map_err(|e| FitError::setting("seed", e.to_string()))?;
-        let bumps = if bumps_probed {
+        let bumps = if bumps_raced {
             Vec::new()
         } else {
             self.bumps(param, params)
@@ -117,19 +114,31 @@ impl<'s> Starts<'s> {
             .enumerate()
             .map(|(k, b)| (format!("bump start {}", k + 1), b))
             .collect();
-        for k in 1..params.starts {
-            // The material only: the starting shift is already close.
-            others.push((
-                format!("random start {k}"),
+        others.extend(
+            self.perturbations(params)?
+                .into_iter()
+                .enumerate()
+                .map(|(k, p)| (format!("random start {}", k + 1), p)),
+        );
+        Ok(others)
+    }
+
+    /// `params.starts − 1` seeded perturbations of the starting material
+    /// (N(0, 1) in each log-parameter), with the starting shift.
+    pub(super) fn perturbations(&self, params: &ValidFitParams) -> Result<Vec<Vec<f64>>, FitError> {
+        let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
+        let normal = Normal::new(0.0, 1.0).map_err(|e| FitError::setting("seed", e.to_string()))?;
+        Ok((1..params.starts)
+            .map(|_| {
+                // The material only: the starting shift is already close.
                 self.with_shift(
                     self.material
                         .iter()
                         .map(|t| t + normal.sample(&mut rng))
                         .collect(),
-                ),
-            ));
-        }
-        Ok(others)
+                )
+            })
+            .collect())
     }
 }
 

@@ -356,3 +356,40 @@ pub fn with_noise(speeds: &[f64], mu: &[f64], noise: f64, seed: u64) -> Measurem
     let sigma: Vec<f64> = mu.iter().map(|m| noise * m).collect();
     Measurements::new(speeds.to_vec(), noisy, Some(sigma), None).unwrap()
 }
+
+/// Issue 34's temperature set: the bundled rubber at 7 temperatures
+/// (−20 … 70 °C in 15 K steps) × 21 speeds (1e-8 … 1 m/s, 0.4 decade
+/// apart) under the WLF truth, 1 % noise (ChaCha8 with `seed`), σ known.
+pub fn set_7x21(seed: u64) -> Measurements {
+    let temperatures: Vec<f64> = (0..7).map(|k| -20.0 + 15.0 * k as f64).collect();
+    let speeds: Vec<f64> = (0..21).map(|i| 1e-8 * 10f64.powf(0.4 * i as f64)).collect();
+    set_with_shifts(
+        hn_rubber(),
+        &temperatures,
+        &speeds,
+        wlf_truth,
+        0.01,
+        seed,
+        true,
+    )
+}
+
+/// The fit of [`set_7x21`]: shift `kind` about 20 °C, |E| at 10 rad/s as
+/// the anchor, no cross-check (the joint fit alone).
+pub fn set_7x21_params(kind: rollfit_fit::ShiftKind) -> rollfit_fit::ValidFitParams {
+    rollfit_fit::FitParams {
+        anchor: Some(rollfit_fit::ScaleAnchor::ModulusAt {
+            omega: 10.0,
+            modulus: hn_rubber().modulus(10.0).norm(),
+        }),
+        shift: rollfit_fit::ShiftSettings {
+            kind,
+            t_ref: Some(20.0),
+            cross_check: false,
+            ..rollfit_fit::ShiftSettings::default()
+        },
+        ..rollfit_fit::FitParams::default()
+    }
+    .check(setup())
+    .unwrap()
+}
