@@ -16,7 +16,7 @@
 //! anchor; and the same sweep logged as 10 000 rows (condensed to bins of
 //! 1/20 decade before the fit).
 //!
-//! And issue 34's temperature set: 7 temperatures (−20 … 70 °C) × 21 speeds
+//! And issue 34's temperature set: 7 temperatures (−25 … 65 °C) × 21 speeds
 //! (1e-8 … 1 m/s), 1 % noise, σ known, |E| at 10 rad/s as the anchor, the
 //! joint fit with WLF and with free shifts, without the cross-check.
 //!

@@ -358,10 +358,10 @@ pub fn with_noise(speeds: &[f64], mu: &[f64], noise: f64, seed: u64) -> Measurem
 }
 
 /// Issue 34's temperature set: the bundled rubber at 7 temperatures
-/// (−20 … 70 °C in 15 K steps) × 21 speeds (1e-8 … 1 m/s, 0.4 decade
+/// (−25 … 65 °C in 15 K steps, T_ref = 20 °C among them) × 21 speeds (1e-8 … 1 m/s, 0.4 decade
 /// apart) under the WLF truth, 1 % noise (ChaCha8 with `seed`), σ known.
 pub fn set_7x21(seed: u64) -> Measurements {
-    let temperatures: Vec<f64> = (0..7).map(|k| -20.0 + 15.0 * k as f64).collect();
+    let temperatures: Vec<f64> = (0..7).map(|k| -25.0 + 15.0 * k as f64).collect();
     let speeds: Vec<f64> = (0..21).map(|i| 1e-8 * 10f64.powf(0.4 * i as f64)).collect();
     set_with_shifts(
         hn_rubber(),
