@@ -24,6 +24,8 @@
 //! function (a [`Fit`]), so that this module does not depend on the driver
 //! that uses it.
 
+#[cfg(test)]
+mod conditioning;
 pub(crate) mod cross_check;
 pub(crate) mod law;
 
