@@ -314,7 +314,7 @@ fn at_lambda_of(
     // bump spectra and the seeded perturbations at this λ on this grid, and
     // the material they would restart (the shift stays at `start`) is the
     // one it rejected them for. On the 7 × 21 set of issue 34 they cost
-    // 190 of the free stage's 200 evaluations and never won.
+    // 190 of the free stage's 195 evaluations and never won.
     fixed.starts = 1;
     let mut outcome = fit_on_grid(data, &fixed, tau, Some(warm), Some(start))?;
     outcome.fit.lambda = LambdaRecord {
