@@ -71,26 +71,28 @@
 //! Every solve after the first at a node is started where the last solve
 //! at that node ended (`ExactRolling::exact_friction_from`; issue 34): the
 //! cylinder's secant from the last root, each of the sphere's grids from
-//! its last contact set and pressures. Between refits the modulus moves
-//! little, so the start is close, and the answer is the cold solve's to
-//! the solvers' own tolerances (tests in crates/model/tests/
-//! exact_warm_start.rs). It saves little in practice — the cylinder's
-//! secant takes one or two evaluations less, the sphere's active-set
-//! iteration about half its operator applications on the finest grid, a
-//! small share of either solve (BENCHMARKS.md) — but costs nothing.
+//! its last contact set and pressures (the coarse first sweep's 96- and
+//! 64-cell grids are the 1e-4 sweeps' two coarser ones). Between refits
+//! the modulus moves little, so the start is close, and the answer is the
+//! cold solve's to the solvers' own tolerances (crates/model/tests/
+//! exact_warm_start.rs). The sphere's active-set iteration, most of a
+//! solve at 1e-4, then needs about half its operator applications: on the
+//! broad rubber at σ = 0.1 % the last sweep cost 3.6 s of CPU against
+//! 9.1 s cold. The cylinder's secant gains nothing measurable.
 //!
-//! The cylinder (0.08 s per solve for a fitted 31-term series, at any
-//! accuracy) solves its first sweep, which only sets where the iteration
-//! starts, at every other node, and each later sweep at every node. Its
-//! error estimate is a second solve on a finer mesh (q + 2 nodes per
-//! panel, about half the cost); only the last sweep's estimates are
-//! reported, and which sweep is last is known only once its change is, so
-//! the sweeps solve without it and the estimates of the last are made
-//! after the loop, from the roots it kept
+//! The cylinder (about 0.03 s per solve for the fitted series of the
+//! bench, at any accuracy) solves its first sweep, which only sets where
+//! the iteration starts, at every other node, and each later sweep at
+//! every node. Its error estimate is a second solve on a finer mesh
+//! (q + 2 nodes per panel, about 0.045 s); only the last sweep's estimates
+//! are reported, and which sweep is last is known only once its change
+//! is, so the sweeps solve without it and the estimates of the last are
+//! made after the loop, from the roots it kept
 //! (`ExactRolling::deferred_estimate`: the same numbers).
 //!
-//! The sphere (1–6 s per solve, three grids of 96 cells and up at 1e-3,
-//! 144 at 1e-4) solves fewer and cheaper:
+//! The sphere (0.2–1 s of CPU per solve for the fitted series of the
+//! bench since issue 34, 0.4–1.5 s before; three grids of 96 cells and up
+//! at 1e-3, 144 at 1e-4) solves fewer and cheaper:
 //!
 //! - The first sweep is solved at 1e-3 ([`COARSE_ACCURACY`]) where a finer
 //!   accuracy is asked. Only the correction a fit used must match the

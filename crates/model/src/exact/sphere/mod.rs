@@ -40,6 +40,9 @@
 //! continuation from higher speeds; where it cycles on a grid the iterate
 //! of least complementarity defect is kept and its defect charged to the
 //! error estimate ([`contact`]).
+//! A solve may instead start each grid from an earlier solve's on the
+//! same grid (a fit's next sweep at the same speed; [`warm`],
+//! [`RollingSphere::solve_from`]), with the same answer.
 //!
 //! Outputs: μ = x̄/R from the pressure centroid (Persson 2010, Section 4),
 //! the approach, the contact outline and the pressure map. As a check, μ
