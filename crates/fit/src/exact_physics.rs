@@ -68,12 +68,31 @@
 //! grid of 20 per decade — on that grid (the nodes); ln r is interpolated
 //! to the rows by cubics in ln v.
 //!
-//! The cylinder (0.13 s per solve for a fitted 32-term series, at any
-//! accuracy) solves its first sweep, which only sets where the iteration
-//! starts, at every other node, and each later sweep at every node.
+//! Every solve after the first at a node is started where the last solve
+//! at that node ended (`ExactRolling::exact_friction_from`; issue 34): the
+//! cylinder's secant from the last root, each of the sphere's grids from
+//! its last contact set and pressures (the coarse first sweep's 96- and
+//! 64-cell grids are the 1e-4 sweeps' two coarser ones). Between refits
+//! the modulus moves little, so the start is close, and the answer is the
+//! cold solve's to the solvers' own tolerances (crates/model/tests/
+//! exact_warm_start.rs). The sphere's active-set iteration, most of a
+//! solve at 1e-4, then needs about half its operator applications: on the
+//! broad rubber at σ = 0.1 % the last sweep cost 3.6 s of CPU against
+//! 9.1 s cold. The cylinder's secant gains nothing measurable.
 //!
-//! The sphere (1–6 s per solve, three grids of 96 cells and up at 1e-3,
-//! 144 at 1e-4) solves fewer and cheaper:
+//! The cylinder (about 0.03 s per solve for the fitted series of the
+//! bench, at any accuracy) solves its first sweep, which only sets where
+//! the iteration starts, at every other node, and each later sweep at
+//! every node. Its error estimate is a second solve on a finer mesh
+//! (q + 2 nodes per panel, about 0.045 s); only the last sweep's estimates
+//! are reported, and which sweep is last is known only once its change
+//! is, so the sweeps solve without it and the estimates of the last are
+//! made after the loop, from the roots it kept
+//! (`ExactRolling::deferred_estimate`: the same numbers).
+//!
+//! The sphere (0.2–1 s of CPU per solve for the fitted series of the
+//! bench since issue 34, 0.4–1.5 s before; three grids of 96 cells and up
+//! at 1e-3, 144 at 1e-4) solves fewer and cheaper:
 //!
 //! - The first sweep is solved at 1e-3 ([`COARSE_ACCURACY`]) where a finer
 //!   accuracy is asked. Only the correction a fit used must match the
@@ -96,7 +115,11 @@
 //! - The exact sphere's cost per solve itself fell (`rollfit_model::exact::
 //!   RollingSphere`: FFT lengths without large prime factors, real-data
 //!   transforms, the grids' influence tables built once per grid shape
-//!   rather than once per solve; BENCHMARKS.md).
+//!   rather than once per solve; BENCHMARKS.md), and fell by half again in
+//!   issue 34: the memory tables' tail integrals beyond the grid, 43 % of
+//!   a solve, evaluate the cell's influence by its multipole form through
+//!   ρ⁻⁵ (one square root) instead of the corner form (eight logarithms),
+//!   to within the corner form's own rounding.
 //!
 //! `exact_solves` counts the solves made; the error estimates reported
 //! are those of the solutions behind the final r (of an earlier sweep at
@@ -123,18 +146,23 @@
 use std::time::Instant;
 
 use rayon::prelude::*;
-use rollfit_model::exact::{ExactFriction, exact_body};
-use rollfit_model::{Prony, Scene, Shape};
+use rollfit_model::exact::{ExactFriction, ExactStart};
+use rollfit_model::{Scene, Shape};
 
+mod material;
 mod nodes;
 
+#[cfg(test)]
+use material::solvable_material;
+pub use material::{MAX_CORRECTION_FACTOR, NEGLIGIBLE_STRENGTH};
+use material::{checked_ln_ratio, exact_of, poisoned, reduced_speeds};
 pub use nodes::interpolate;
 use nodes::{adaptive_fill, solve_nodes, thinned};
 
 use crate::data::Measurements;
 use crate::error::FitError;
 use crate::params::ValidFitParams;
-use crate::report::{FitReport, ModelRecord, PhysicsRecord, RunRecord};
+use crate::report::{FitReport, PhysicsRecord, RunRecord};
 
 /// The most refits with the corrected model after the first, approximate
 /// fit. The correction contracts fast (on a broad rubber by a factor of
@@ -148,23 +176,6 @@ pub const ACCURACY_PER_NOISE: f64 = 0.1;
 /// cylinder claims no better (`rollfit_model::exact::RESOLVED_ERROR`), and
 /// 1e-3 is a tenth of the scatter of a good friction rig.
 pub const ACCURACY_RANGE: (f64, f64) = (1e-5, 1e-3);
-
-/// Strengths below this fraction of E1 are left out of the fitted Prony
-/// series before the exact solves. The smoothness penalty on ln H_k lets
-/// the strengths outside the window fall to 1e-40 E1 and below, and with
-/// such terms the exact cylinder fails without saying so: a fitted,
-/// nearly single-term series with strengths down to 1e-42 E1 gave
-/// μ = 8.5 where Eq. (11) gives 1.8e-5, with an error estimate of 1e-3;
-/// without the terms below 1e-20 E1 the two agreed to 1e-4. Leaving them
-/// out changes E*(ω) by less than their sum, a few 1e-12 relative, far
-/// below the accuracy asked.
-pub const NEGLIGIBLE_STRENGTH: f64 = 1e-12;
-
-/// The largest factor by which μ_exact and Eq. (11)/(17) may differ before
-/// the exact solution is taken to have failed: the approximation is
-/// 4–10 % off near the friction maximum of a broad rubber and closer
-/// elsewhere, so a factor of two is no approximation error.
-pub const MAX_CORRECTION_FACTOR: f64 = 2.0;
 
 /// The approximate fit of corrected rows, with the measured rows for its
 /// sanity checks (`driver::fit_measured`, handed over by the driver, which
@@ -192,7 +203,7 @@ pub(crate) fn defect_correction(
         rows,
         params,
         &report,
-        schedule.first_accuracy,
+        (schedule.first_accuracy, None),
         schedule.first(),
     )?;
     let mut solves = correction.solves;
@@ -209,7 +220,9 @@ pub(crate) fn defect_correction(
             // but was solved less accurately than asked: confirm at the
             // accuracy asked, at the same modulus, before stopping.
             progress.stage("exact sweep, confirming");
-            correction = Correction::at(rows, params, &report, accuracy, schedule.later(None))?;
+            let sweep = schedule.later(None);
+            correction =
+                Correction::at(rows, params, &report, (accuracy, Some(&correction)), sweep)?;
             solves += correction.solves;
             change = correction.largest();
             continue;
@@ -228,11 +241,12 @@ pub(crate) fn defect_correction(
         iterations += 1;
         let sweep = schedule.later(Some(&correction));
         progress.stage(&format!("exact sweep {}", iterations + 1));
-        let updated = Correction::at(rows, params, &report, accuracy, sweep)?;
+        let updated = Correction::at(rows, params, &report, (accuracy, Some(&correction)), sweep)?;
         solves += updated.solves;
         change = updated.change_from(&correction);
         correction = updated;
     }
+    correction.complete_estimates(params, &report)?;
     finish(
         report,
         Finish {
@@ -445,6 +459,9 @@ struct Correction {
     complete: bool,
     /// Exact solves made.
     solves: usize,
+    /// Where the last solve at each node ended (in this sweep or an
+    /// earlier one), to start the next sweep's solve there from.
+    starts: Vec<Option<ExactStart>>,
     /// The largest error the exact solutions estimated for themselves.
     max_error_estimate: f64,
     /// Solutions whose error estimate exceeds the accuracy asked.
@@ -459,43 +476,50 @@ impl Correction {
     /// the exact contact solved in parallel at the rows' distinct reduced
     /// speeds (or a grid, see [`solve_nodes`]; where the `sweep` says),
     /// the approximate model at the same speeds, ln r interpolated to the
-    /// rows.
+    /// rows. The solves are asked for `accuracy` and started where the
+    /// `earlier` correction's solves at the same node ended (a warm start,
+    /// `ExactRolling::exact_friction_from`: the same μ with fewer
+    /// iterations), where it has the same nodes.
     fn at(
         rows: &Measurements,
         params: &ValidFitParams,
         report: &FitReport,
-        accuracy: f64,
+        (accuracy, earlier): (f64, Option<&Correction>),
         sweep: Sweep,
     ) -> Result<Correction, FitError> {
-        let prony = solvable_material(&report.model)?;
+        let (body, prony) = exact_of(params, report, accuracy)?;
         let setup = &params.setup;
-        let g = setup.geometry;
-        let body = exact_body(
-            g.shape,
-            &prony,
-            setup.substrate.poisson,
-            g.radius,
-            g.load,
-            accuracy,
-        )?;
-        let approximate_model = Scene::new(g, setup.substrate, setup.contact, prony)?
+        let approximate_model = Scene::new(setup.geometry, setup.substrate, setup.contact, prony)?
             .with_tolerance(params.model_tolerance)?;
         let reduced = reduced_speeds(rows, report);
         let nodes = solve_nodes(&reduced);
+        let starts = std::sync::Mutex::new(match earlier {
+            Some(e) if e.nodes == nodes => e.starts.clone(),
+            _ => vec![None; nodes.len()],
+        });
         // ln r at a batch of nodes (indices), solved in parallel, with the
-        // solutions' error estimates.
+        // solutions' error estimates; each solve started where the last
+        // one at its node ended, and its own end kept for the next.
         let solve = |at: &[usize]| -> Result<Vec<(f64, f64)>, FitError> {
             let speeds: Vec<f64> = at.iter().map(|&i| nodes[i]).collect();
             params.progress.planned(speeds.len());
-            let exact: Vec<ExactFriction> = speeds
+            let exact: Vec<ExactFriction> = at
                 .par_iter()
-                .map(|&v| {
-                    let solved = body.exact_friction(v).map_err(|e| FitError::ExactPhysics {
-                        speed: v,
-                        problem: e.to_string(),
-                    });
+                .map(|&i| -> Result<ExactFriction, FitError> {
+                    let v = nodes[i];
+                    let start = starts.lock().map_err(|_| poisoned(v))?[i].take();
+                    // The estimate only of the last sweep's solves is
+                    // reported: where it costs a solve of its own (the
+                    // cylinder), it is made once the loop has ended.
+                    let (solved, end) = body
+                        .exact_friction_unestimated_from(v, start.as_ref())
+                        .map_err(|e| FitError::ExactPhysics {
+                            speed: v,
+                            problem: e.to_string(),
+                        })?;
+                    starts.lock().map_err(|_| poisoned(v))?[i] = Some(end);
                     params.progress.solved();
-                    solved
+                    Ok(solved)
                 })
                 .collect::<Result<_, _>>()?;
             let approximate = approximate_model.friction_sweep(&speeds)?;
@@ -546,22 +570,71 @@ impl Correction {
         for (&i, (_, e)) in solved.iter().zip(&found) {
             node_estimates[i] = Some(*e);
         }
-        let estimates = node_estimates.iter().flatten();
-        Ok(Correction {
+        let mut correction = Correction {
             ratio,
             solves: solved.len(),
-            max_error_estimate: estimates
-                .clone()
-                .filter(|e| e.is_finite())
-                .fold(0.0, |m: f64, e| m.max(*e)),
-            uncertain: estimates.clone().filter(|e| **e > accuracy).count(),
-            estimated: estimates.count(),
+            starts: starts.into_inner().map_err(|_| poisoned(nodes[0]))?,
+            max_error_estimate: 0.0,
+            uncertain: 0,
+            estimated: 0,
             nodes,
             ln_ratio,
             estimates: node_estimates,
             accuracy,
             complete,
-        })
+        };
+        correction.tally();
+        Ok(correction)
+    }
+
+    /// The error estimates' summary: the largest, how many exceed the
+    /// accuracy, how many nodes have one.
+    fn tally(&mut self) {
+        let estimates = self.estimates.iter().flatten();
+        self.max_error_estimate = estimates
+            .clone()
+            .filter(|e| e.is_finite())
+            .fold(0.0, |m: f64, e| m.max(*e));
+        self.uncertain = estimates.clone().filter(|e| **e > self.accuracy).count();
+        self.estimated = estimates.count();
+    }
+
+    /// The error estimates the solves behind this (the last) correction
+    /// left out (`ExactRolling::exact_friction_unestimated_from`), made
+    /// now at the modulus of `report`, which those solves were made at:
+    /// the numbers the solves would have given with them.
+    fn complete_estimates(
+        &mut self,
+        params: &ValidFitParams,
+        report: &FitReport,
+    ) -> Result<(), FitError> {
+        let pending: Vec<usize> = (0..self.nodes.len())
+            .filter(|&i| self.estimates[i].is_some_and(f64::is_nan) && self.starts[i].is_some())
+            .collect();
+        if pending.is_empty() {
+            return Ok(());
+        }
+        let (body, _) = exact_of(params, report, self.accuracy)?;
+        let found: Vec<Option<f64>> = pending
+            .par_iter()
+            .map(|&i| {
+                let (v, end) = (self.nodes[i], self.starts[i].as_ref());
+                let estimate = end.map(|end| body.deferred_estimate(v, end)).transpose();
+                estimate
+                    .map(Option::flatten)
+                    .map_err(|e| FitError::ExactPhysics {
+                        speed: v,
+                        problem: e.to_string(),
+                    })
+            })
+            .collect::<Result<_, _>>()?;
+        for (i, estimate) in pending.into_iter().zip(found) {
+            if estimate.is_some() {
+                self.estimates[i] = estimate;
+            }
+        }
+        self.tally();
+        Ok(())
     }
 
     /// max_i |r_i − 1|.
@@ -593,60 +666,14 @@ impl Correction {
     }
 }
 
-/// The fitted Prony series without its negligible terms (strengths below
-/// [`NEGLIGIBLE_STRENGTH`] E1; the largest term is always kept), E0 kept.
-fn solvable_material(m: &ModelRecord) -> Result<Prony, FitError> {
-    let floor = NEGLIGIBLE_STRENGTH * m.glassy_modulus;
-    let largest = m.strengths.iter().copied().fold(0.0, f64::max);
-    let (mut strengths, mut tau, mut dropped) = (Vec::new(), Vec::new(), 0.0);
-    for (&h, &t) in m.strengths.iter().zip(&m.tau) {
-        if h >= floor || h == largest {
-            strengths.push(h);
-            tau.push(t);
-        } else {
-            dropped += h;
-        }
-    }
-    Ok(Prony::new(m.glassy_modulus - dropped, strengths, tau)?)
-}
-
-/// The rows' speeds on the master curve: v·a_T with the fitted shift for a
-/// temperature set.
-fn reduced_speeds(rows: &Measurements, report: &FitReport) -> Vec<f64> {
-    match (&report.shift, rows.temperature()) {
-        (Some(shift), Some(temps)) => rows
-            .speeds()
-            .iter()
-            .zip(temps)
-            .map(|(v, t)| v * 10f64.powf(shift.log_shift_at(*t).unwrap_or(0.0)))
-            .collect(),
-        _ => rows.speeds().to_vec(),
-    }
-}
-
-/// ln(μ_exact/μ_approx) at speed `v`, or the error that the exact
-/// solution has failed (see [`MAX_CORRECTION_FACTOR`]).
-fn checked_ln_ratio(v: f64, exact: f64, approximate: f64) -> Result<f64, FitError> {
-    let r = exact / approximate;
-    if r.is_finite() && r.ln().abs() <= MAX_CORRECTION_FACTOR.ln() {
-        return Ok(r.ln());
-    }
-    Err(FitError::ExactPhysics {
-        speed: v,
-        problem: format!(
-            "μ = {exact:e} where Eq. (11)/(17) gives {approximate:e}; the two differ by far \
-             less than a factor of {MAX_CORRECTION_FACTOR}, so the exact solution has failed \
-             for this modulus (use physics = \"approximate\")"
-        ),
-    })
-}
-
 #[cfg(test)]
 mod tests {
-    use rollfit_model::{ContactSize, Geometry, ModelError, Shape, Substrate};
+    use rollfit_model::exact::exact_body;
+    use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate};
 
     use super::*;
     use crate::params::{FitParams, Physics, RollingSetup};
+    use crate::report::ModelRecord;
 
     fn setup(shape: Shape, film_thickness: Option<f64>) -> RollingSetup {
         RollingSetup {

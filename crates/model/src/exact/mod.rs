@@ -128,7 +128,7 @@ mod pressure_map;
 mod solver;
 mod sphere;
 
-pub use body::{ExactFriction, ExactRolling, exact_body};
+pub use body::{ExactFriction, ExactRolling, ExactStart, exact_body};
 pub use creep::CreepCompliance;
 pub use pressure_map::{CYLINDER_PROFILE_POINTS, ContactPressure, PressureMap};
 pub use sphere::{RollingSphere, SphereSettings, SphereSolution};
@@ -527,15 +527,7 @@ impl RollingCylinder {
         if d.resolved {
             return self.solve_discretised(v, &d);
         }
-        let q = self.settings.panel_nodes;
-        let mut solution = self.solve_graded(v, d.terms, q, GradedStart::Guess(d.half_width))?;
-        let start = GradedStart::Root(solution.half_width());
-        solution.error_estimate = match self.solve_graded(v, d.terms, q + 2, start) {
-            Ok(finer) => (GRADED_SAFETY * (solution.mu / finer.mu - 1.0).abs()).max(GRADED_FLOOR),
-            // No estimate without the finer mesh: the calibrated claim.
-            Err(_) => GRADED_ERROR,
-        };
-        Ok(solution)
+        self.graded_with_estimate(v, d.terms, GradedStart::Guess(d.half_width))
     }
 
     /// The contact at speed `v` on the graded mesh with `order` nodes per

@@ -52,7 +52,7 @@
 
 use std::f64::consts::PI;
 
-use super::cell::{MULTIPOLE_DISTANCE, corner, far_field};
+use super::cell::{FAR_SQUARE_DISTANCE, MULTIPOLE_DISTANCE, corner, far_field, far_field_square};
 use super::element::Element;
 use crate::kernel::quadrature::gauss_legendre_unit;
 
@@ -259,8 +259,9 @@ fn lagrange(nodes: &[f64], k: usize, xi: f64) -> f64 {
 }
 
 /// M(X0, Y; ℓ) = ∫_0^∞ e^{−s} C(X0 + ℓ s, Y) ds for X0 at or beyond the
-/// grid's leading end (C of `element` switches to its far form by itself
-/// far away), by 16-point Gauss–Legendre on panels that double
+/// grid's leading end (C of a square cell by its multipole form from 40
+/// cells on, [`far_potential`]: the tails were about 43 % of a fit's
+/// sphere solve with the corner form, issue 34), by 16-point Gauss–Legendre on panels that double
 /// from the scale on which C changes (ρ0/ℓ) up to width 4, to s = 46 (the
 /// log kernel grows only like ln s there, e^{−46} ln(ℓ s) is negligible).
 /// (`rule`: the 16-point rule on [0, 1], nodes and weights.)
@@ -272,7 +273,7 @@ fn tail(element: Element, x0: f64, y: f64, ell: f64, rule: &(Vec<f64>, Vec<f64>)
         let q = (p + step).min(46.0);
         for (t, w) in rule.0.iter().zip(&rule.1) {
             let s = p + t * (q - p);
-            sum += w * (q - p) * (-s).exp() * element.potential(x0 + ell * s, y);
+            sum += w * (q - p) * (-s).exp() * far_potential(element, x0 + ell * s, y);
         }
         p = q;
         step = (2.0 * step).min(4.0);
@@ -280,11 +281,56 @@ fn tail(element: Element, x0: f64, y: f64, ell: f64, rule: &(Vec<f64>, Vec<f64>)
     sum
 }
 
+/// The element's potential at (x, y), for a square cell from
+/// [`FAR_SQUARE_DISTANCE`] on by its multipole form (the tail integrals'
+/// points all lie beyond the grid, mostly that far).
+fn far_potential(element: Element, x: f64, y: f64) -> f64 {
+    if element == Element::Square && x * x + y * y >= FAR_SQUARE_DISTANCE * FAR_SQUARE_DISTANCE {
+        far_field_square(x, y)
+    } else {
+        element.potential(x, y)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::cell::unit_cell_potential;
     use super::super::strip::unit_strip_potential;
     use super::*;
+
+    /// The tail with the multipole form beyond 40 cells equals the tail
+    /// with the corner form everywhere to 1e-11 (the corner form's own
+    /// rounding there, `cell::tests`), on rows of a 64-cell grid.
+    #[test]
+    fn multipole_tail_matches_the_corner_form() {
+        let rule = gauss_legendre_unit(16);
+        let corner_tail = |x0: f64, y: f64, ell: f64| {
+            let mut step = (x0.hypot(y) / ell).min(1.0) * 0.5;
+            let (mut p, mut sum) = (0.0, 0.0);
+            while p < 46.0 {
+                let q = (p + step).min(46.0);
+                for (t, w) in rule.0.iter().zip(&rule.1) {
+                    let s = p + t * (q - p);
+                    sum += w * (q - p) * (-s).exp() * unit_cell_potential(x0 + ell * s, y);
+                }
+                p = q;
+                step = (2.0 * step).min(4.0);
+            }
+            sum
+        };
+        for y in [0.0, 17.0, 58.0] {
+            for ell in [1e-3, 0.05, 3.0, 40.0, 1e3, 1e5] {
+                let (fast, slow) = (
+                    tail(Element::Square, 87.0, y, ell, &rule),
+                    corner_tail(87.0, y, ell),
+                );
+                assert!(
+                    (fast / slow - 1.0).abs() < 1e-11,
+                    "y {y}, ℓ {ell}: {fast} vs {slow}"
+                );
+            }
+        }
+    }
 
     /// The weights integrate constants and the node polynomials exactly:
     /// Σ W_q = 1 − e^{−1/ℓ}, and Σ W_q ξ_q² = ∫ ξ² e^{−ξ/ℓ}/ℓ.

@@ -40,6 +40,9 @@
 //! continuation from higher speeds; where it cycles on a grid the iterate
 //! of least complementarity defect is kept and its defect charged to the
 //! error estimate ([`contact`]).
+//! A solve may instead start each grid from an earlier solve's on the
+//! same grid (a fit's next sweep at the same speed; [`warm`],
+//! [`RollingSphere::solve_from`]), with the same answer.
 //!
 //! Outputs: μ = x̄/R from the pressure centroid (Persson 2010, Section 4),
 //! the approach, the contact outline and the pressure map. As a check, μ
@@ -84,6 +87,7 @@ mod gmres;
 mod memory;
 mod strip;
 mod table_cache;
+mod warm;
 
 use crate::contact::hertz_contact_size;
 use crate::error::{ModelError, require_positive};
@@ -94,6 +98,7 @@ use contact::{Grid, GridFailure, solve_contact};
 use convolution::Convolution;
 use element::Element;
 use table_cache::cell_table;
+pub use warm::SphereStart;
 
 /// Discretisation settings of the exact sphere.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -327,14 +332,23 @@ impl RollingSphere {
     /// estimate until issue 17, was up to 10 times pessimistic at
     /// moderate speeds and 2 times optimistic at vτ/r0 = 1e-5.
     pub fn solve(&self, v: f64) -> Result<SphereSolution, ModelError> {
-        require_positive("v", v)?;
+        Ok(self.solve_from(v, None)?.0)
+    }
+
+    /// The cells of the three grids of [`Self::solve`], finest first.
+    fn grid_cells(&self) -> [usize; 3] {
         let n1 = self.settings.cells;
         let n2 = (2 * n1).div_ceil(3).max(8);
         let n3 = (2 * n2).div_ceil(3).max(8);
-        let scale = self.expected_radius(v);
-        let (g3, extent) = self.solve_continued(v, n3, 0)?;
-        let (g2, extent) = self.solve_growing(v, scale, n2, extent, Some(&g3))?;
-        let (mut g1, _) = self.solve_growing(v, scale, n1, extent, Some(&g2))?;
+        [n1, n2, n3]
+    }
+
+    /// μ of [`Self::solve`] from the three grid solutions `[g1, g2, g3]`
+    /// (finest first) at speed `v` on the `scale` (m), with its error
+    /// estimate: g1 with the extrapolated μ.
+    fn extrapolated(&self, v: f64, scale: f64, grids: [SphereSolution; 3]) -> SphereSolution {
+        let [mut g1, g2, g3] = grids;
+        let [n1, n2, n3] = self.grid_cells();
         let (mu12, defect12) = extrapolate(&g1, &g2, n1, n2);
         let (mu23, _) = extrapolate(&g2, &g3, n2, n3);
         // The error estimate (see above): next-order Richardson, at least
@@ -356,7 +370,7 @@ impl RollingSphere {
         g1.set_defect = g1.set_defect.max(g2.set_defect).max(g3.set_defect);
         g1.mu = mu12;
         g1.centroid = mu12 * self.radius;
-        Ok(g1)
+        g1
     }
 
     /// The share of the creep compliance Σ c_j whose memory vλ_j is
