@@ -81,9 +81,11 @@
 //! 9.1 s cold. The cylinder's secant gains nothing measurable.
 //!
 //! The cylinder (about 0.03 s per solve for the fitted series of the
-//! bench, at any accuracy) solves its first sweep, which only sets where
-//! the iteration starts, at every other node, and each later sweep at
-//! every node. Its error estimate is a second solve on a finer mesh
+//! bench, at any accuracy) solves every sweep at the accuracy asked and
+//! adaptively, as the sphere does (below); until issue 34 its first sweep
+//! solved every other node and each later one every node (62 solves at
+//! σ = 1 % on the bench's fit against 22–24 now; the study of
+//! tests/exact_physics.rs gives the same errors to 0.01 %). Its error estimate is a second solve on a finer mesh
 //! (q + 2 nodes per panel, about 0.045 s); only the last sweep's estimates
 //! are reported, and which sweep is last is known only once its change
 //! is, so the sweeps solve without it and the estimates of the last are
@@ -157,7 +159,7 @@ use material::solvable_material;
 pub use material::{MAX_CORRECTION_FACTOR, NEGLIGIBLE_STRENGTH};
 use material::{checked_ln_ratio, exact_of, poisoned, reduced_speeds};
 pub use nodes::interpolate;
-use nodes::{adaptive_fill, solve_nodes, thinned};
+use nodes::{adaptive_fill, solve_nodes};
 
 use crate::data::Measurements;
 use crate::error::FitError;
@@ -362,55 +364,43 @@ fn relative_noise(rows: &Measurements, report: &FitReport) -> f64 {
     }
 }
 
-/// Which accuracy and which sweeps the exact solves of one fit use.
+/// Which accuracy the exact solves of one fit use.
 #[derive(Debug, Clone, Copy)]
 struct Schedule {
     /// The accuracy of the first sweep.
     first_accuracy: f64,
-    /// Whether the sweeps are [`Sweep::Adaptive`] rather than
-    /// [`Sweep::First`] and [`Sweep::Full`].
-    adaptive: bool,
 }
 
 impl Schedule {
-    /// The cylinder solves every sweep at the accuracy asked, the first at
-    /// every other speed and the later ones at every speed: its solve
-    /// costs 0.13 s at any accuracy. The sphere's solve costs 1–6 s and
+    /// The cylinder solves every sweep at the accuracy asked: its solve
+    /// costs the same at any accuracy. The sphere's solve costs 1–6 s and
     /// grows steeply with the accuracy (144 cells at 1e-4 cost about three
     /// times 96 cells at 1e-3), so its first sweep, which only sets where
     /// the iteration starts, is solved at [`COARSE_ACCURACY`] (or the
-    /// accuracy asked, if coarser), and every sweep adaptively.
+    /// accuracy asked, if coarser). Every sweep of both is adaptive
+    /// (issue 34 for the cylinder: until then its first sweep solved every
+    /// other node and each later one every node, 62 solves at σ = 1 % on
+    /// the bench's fit, now 22–24 with the study's figures unchanged).
     fn of(shape: Shape, accuracy: f64) -> Schedule {
         match shape {
             Shape::Cylinder => Schedule {
                 first_accuracy: accuracy,
-                adaptive: false,
             },
             Shape::Sphere => Schedule {
                 first_accuracy: accuracy.max(COARSE_ACCURACY),
-                adaptive: true,
             },
         }
     }
 
-    /// The first sweep: every other speed (the cylinder), or adaptive
-    /// (the sphere; at its coarse accuracy, from every fourth speed).
+    /// The first sweep: adaptive from every fourth speed.
     fn first(self) -> Sweep<'static> {
-        if self.adaptive {
-            Sweep::Adaptive(None)
-        } else {
-            Sweep::First
-        }
+        Sweep::Adaptive(None)
     }
 
     /// The sweep after `previous` (the correction the last fit used; none
     /// to confirm r ≡ 1).
     fn later(self, previous: Option<&Correction>) -> Sweep<'_> {
-        if self.adaptive {
-            Sweep::Adaptive(previous)
-        } else {
-            Sweep::Full
-        }
+        Sweep::Adaptive(previous)
     }
 }
 
@@ -425,11 +415,6 @@ pub const INTERPOLATION_SHARE: f64 = 0.5;
 /// Where an exact sweep solves.
 #[derive(Clone, Copy)]
 enum Sweep<'a> {
-    /// The first sweep, at the approximate fit: every other speed of
-    /// [`solve_nodes`] (see [`thinned`]).
-    First,
-    /// Every speed of [`solve_nodes`].
-    Full,
     /// Every fourth speed of [`solve_nodes`] and the last, then, halving
     /// the stride, those where the interpolation's error estimate exceeds
     /// [`INTERPOLATION_SHARE`] of the accuracy (see [`adaptive_fill`]).
@@ -530,24 +515,12 @@ impl Correction {
                 .map(|((&v, x), &a)| Ok((checked_ln_ratio(v, x.mu, a)?, x.error_estimate)))
                 .collect()
         };
-        let all: Vec<usize> = (0..nodes.len()).collect();
-        let first = thinned(all.clone());
-        let base = match sweep {
-            Sweep::Adaptive(base) => {
-                base.filter(|b| b.complete && b.accuracy == accuracy && b.nodes == nodes)
-            }
-            Sweep::First | Sweep::Full => None,
-        };
+        let Sweep::Adaptive(base) = sweep;
+        let base = base.filter(|b| b.complete && b.accuracy == accuracy && b.nodes == nodes);
         let base_ln = |i: usize| base.map_or(0.0, |b| b.ln_ratio[i]);
-        let (solved, found, complete) = match sweep {
-            Sweep::Full => (all.clone(), solve(&all)?, true),
-            Sweep::First => (first.clone(), solve(&first)?, first.len() == nodes.len()),
-            Sweep::Adaptive(_) => {
-                let tolerance = INTERPOLATION_SHARE * accuracy;
-                let (solved, found) = adaptive_fill(&nodes, base_ln, tolerance, &solve)?;
-                (solved, found, true)
-            }
-        };
+        let tolerance = INTERPOLATION_SHARE * accuracy;
+        let (solved, found) = adaptive_fill(&nodes, base_ln, tolerance, &solve)?;
+        let complete = true;
         // What is interpolated: ln r, or ln(r/r') against the base.
         let solved_speeds: Vec<f64> = solved.iter().map(|&i| nodes[i]).collect();
         let solved_values: Vec<f64> = solved
@@ -747,16 +720,16 @@ mod tests {
         assert_eq!(p.relaxation_times(), &[1e-2]);
     }
 
-    /// The cylinder keeps one accuracy and full sweeps; the sphere's
-    /// first sweep is coarse where a finer accuracy is asked.
+    /// The cylinder keeps one accuracy; the sphere's first sweep is
+    /// coarse where a finer accuracy is asked; both sweep adaptively.
     #[test]
     fn only_the_sphere_schedules_a_coarse_first_sweep() {
         let c = Schedule::of(Shape::Cylinder, 1e-4);
-        assert_eq!((c.first_accuracy, c.adaptive), (1e-4, false));
-        assert!(matches!(c.later(None), Sweep::Full));
-        assert!(matches!(c.first(), Sweep::First));
+        assert_eq!(c.first_accuracy, 1e-4);
+        assert!(matches!(c.later(None), Sweep::Adaptive(None)));
+        assert!(matches!(c.first(), Sweep::Adaptive(None)));
         let s = Schedule::of(Shape::Sphere, 1e-4);
-        assert_eq!((s.first_accuracy, s.adaptive), (COARSE_ACCURACY, true));
+        assert_eq!(s.first_accuracy, COARSE_ACCURACY);
         assert!(matches!(s.later(None), Sweep::Adaptive(None)));
         assert!(matches!(s.first(), Sweep::Adaptive(None)));
         assert_eq!(Schedule::of(Shape::Sphere, 1e-3).first_accuracy, 1e-3);

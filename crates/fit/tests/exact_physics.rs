@@ -171,8 +171,13 @@ fn exact_physics_removes_the_model_error_of_eq_11() {
         print_row(&c);
         let p = c.exact.physics.as_ref().unwrap();
         assert_eq!(p.correction.len(), c.exact.mu_fit.len());
-        // The first sweep at every other speed, then all 41 per refit.
-        assert_eq!(p.exact_solves, 21 + 41 * p.iterations, "{p:?}");
+        // Adaptive sweeps: every fourth of the 41 speeds and the last at
+        // least, never all of them.
+        let sweeps = 1 + p.iterations;
+        assert!(
+            p.exact_solves >= 11 * sweeps && p.exact_solves < 41 * sweeps,
+            "{p:?}"
+        );
         failures.extend(check(&c));
         failures.extend(discriminates(&c));
     }
@@ -390,12 +395,16 @@ fn a_temperature_set_is_corrected_at_each_rows_shifted_modulus() {
             .unwrap();
         let r = exact / approximate;
         let (corrected, fitted) = (p.correction[i], report.mu_fit[i]);
+        // Within the accuracy asked: the adaptive sweep interpolates r
+        // between the speeds it solved at (within half the accuracy), and
+        // r itself changes by percents across the set's reduced speeds, so
+        // a correction taken at the wrong modulus or speed is far outside.
         assert!(
-            (corrected / r - 1.0).abs() < 1e-6,
+            (corrected / r - 1.0).abs() < p.accuracy,
             "row {i}: r = {corrected} against {r} at the shifted modulus"
         );
         assert!(
-            (fitted / exact - 1.0).abs() < 1e-5,
+            (fitted / exact - 1.0).abs() < p.accuracy,
             "row {i}: mu_fit {fitted} against the exact {exact}"
         );
     }

@@ -1,8 +1,7 @@
 //! Where a sweep of `physics = "exact"` solves the exact contact, and how
 //! r = μ_exact/μ_approx is carried from the solved speeds to the others:
 //! the nodes (distinct reduced speeds, or a grid for dense data), the
-//! thinned first sweep, the adaptive sweep with its interpolation error
-//! estimate, and the cubic interpolation in ln v (see the parent module's
+//! adaptive sweep with its interpolation error estimate, and the cubic interpolation in ln v (see the parent module's
 //! "Accuracy and cost").
 //!
 //! # References
@@ -34,26 +33,6 @@ pub(super) fn solve_nodes(reduced: &[f64]) -> Vec<f64> {
     grid[0] = lo;
     grid[count - 1] = hi;
     grid
-}
-
-/// The first sweep's speeds: every other one of `nodes` and the last
-/// (when there are at least [`THIN_FROM`]). The first correction only
-/// sets where the iteration starts: its fixed point is made by the full
-/// sweeps that follow, and an error of the first r costs at most another
-/// refit. Interpolated from every other speed of the broad rubber's 41
-/// (0.4 decade apart), ln r was off by at most 2e-4 (cubic), a fifth of
-/// the tolerance at 1 % noise, while the first sweep costs half.
-pub(super) fn thinned<T: Copy>(nodes: Vec<T>) -> Vec<T> {
-    if nodes.len() < THIN_FROM {
-        return nodes;
-    }
-    let last = nodes.len() - 1;
-    nodes
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| i % 2 == 0 || *i == last)
-        .map(|(_, &v)| v)
-        .collect()
 }
 
 /// ln r at one node and the error estimate of the exact solution behind it.
@@ -140,8 +119,9 @@ fn interpolation_error(nodes: &[f64], values: &[f64], x: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The fewest speeds whose first sweep is thinned: fewer leave too few
-/// for a cubic between them.
+/// The fewest nodes an adaptive sweep thins at all (every other one, and
+/// from twice as many every fourth): fewer leave too few for a cubic
+/// between them.
 const THIN_FROM: usize = 12;
 
 /// `values` (given at the increasing `nodes`) at `x`: the node's own value
@@ -222,16 +202,6 @@ mod tests {
         }
         let two = [1e-4, 1e-2];
         assert!((interpolate(&two, &[1.0, 3.0], 1e-3) - 2.0).abs() < 1e-12);
-        let speeds: Vec<f64> = (0..13).map(|i| 10f64.powi(i - 12)).collect();
-        let first = thinned(speeds.clone());
-        assert_eq!(first.len(), 7);
-        assert_eq!(
-            (first[0], first[1], first[6]),
-            (speeds[0], speeds[2], speeds[12])
-        );
-        let even = thinned(speeds[..12].to_vec());
-        assert_eq!((even.len(), even[5], even[6]), (7, speeds[10], speeds[11]));
-        assert_eq!(thinned(speeds[..11].to_vec()).len(), 11);
     }
 
     /// An adaptive sweep solves every fourth node and then only where the
