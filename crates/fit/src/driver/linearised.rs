@@ -127,3 +127,122 @@ impl Linearisation {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::Measurements;
+    use crate::parametrization::Parametrization;
+    use crate::params::{Method, ModulusAnchor};
+    use crate::quality::speed_ordered_groups;
+    use crate::solvers::counting::Counted;
+    use crate::solvers::{Tolerance, run};
+    use rollfit_model::{Prony, Scene, ViscoelasticModulus};
+
+    /// The fit at `lambda` from `from` to the final tolerance: its trial
+    /// (λ, θ and misfit; the rest unused here).
+    fn fitted(objective: &mut Objective<'_>, lambda: f64, from: &[f64]) -> Trial {
+        objective.lambda = lambda;
+        let r = run(
+            Method::LevenbergMarquardt,
+            Counted::new(objective, 5000),
+            from,
+            Tolerance::Final,
+        );
+        let misfit = objective.evaluate(&r.theta, false).unwrap().misfit;
+        Trial {
+            lambda,
+            theta: r.theta,
+            misfit,
+            effective_parameters: 0.0,
+            penalised: 0.0,
+            log_det: 0.0,
+            penalty_rank: 0,
+            free: 0,
+            random_signs: true,
+        }
+    }
+
+    /// The slow oracle: the misfit a fit at a neighbouring λ reaches,
+    /// against the linearisation's prediction from the fit at λ₀. At λ₀
+    /// itself the prediction is the fit (no step); at λ₀·2 and λ₀/2 it is
+    /// within 2 % of the refit's misfit and far closer to it than the
+    /// misfit at λ₀ (which is what "no prediction" would say).
+    #[test]
+    fn predictions_match_refits_at_neighbouring_lambdas() {
+        let setup = crate::params::example_setup();
+        let tau: Vec<f64> = (0..9).map(|k| 10f64.powf(k as f64 - 6.0)).collect();
+        let truth = Prony::new(
+            1e9,
+            tau.iter()
+                .map(|t| 2e8 * (-(t.log10() + 2.0).powi(2) / 4.0).exp())
+                .collect(),
+            tau.clone(),
+        )
+        .unwrap();
+        let speeds: Vec<f64> = (0..25).map(|i| 1e-8 * 10f64.powf(0.3 * i as f64)).collect();
+        let scene = Scene::new(
+            setup.geometry,
+            setup.substrate,
+            setup.contact,
+            truth.clone(),
+        )
+        .unwrap();
+        // A fixed, deterministic 1 % wiggle for noise.
+        let mu: Vec<f64> = scene
+            .friction_sweep(&speeds)
+            .unwrap()
+            .iter()
+            .enumerate()
+            .map(|(i, m)| m * (1.0 + 0.01 * (1.7 * i as f64).sin()))
+            .collect();
+        let sigma = mu.iter().map(|m| 0.01 * m).collect();
+        let data = Measurements::new(speeds, mu, Some(sigma), None).unwrap();
+        let anchor = ModulusAnchor {
+            omega: 0.0,
+            modulus: truth.static_modulus(),
+            source: "E0",
+        };
+        let param = Parametrization::new(tau.clone(), Some(anchor));
+        let start = param.theta_of(truth.static_modulus(), &vec![1e8; tau.len()]);
+        let mut objective = Objective {
+            setup: &setup,
+            data: &data,
+            scales: data.residual_scales(),
+            param,
+            shift: None,
+            lambda: 1.0,
+            e1_max: 1e10,
+            tolerance: 1e-8,
+            vertical: None,
+        };
+        let groups = speed_ordered_groups(&data);
+        let lambda = 10.0;
+        let base = fitted(&mut objective, lambda, &start);
+        objective.lambda = lambda;
+        let e = objective.evaluate(&base.theta, true).unwrap();
+        let linearisation = Linearisation::of(&objective, &base, e).unwrap();
+        let same = linearisation.predict(lambda, &groups);
+        assert!(
+            (same.misfit / base.misfit - 1.0).abs() < 1e-6,
+            "{}",
+            same.misfit
+        );
+        for t in same.theta.iter().zip(&base.theta) {
+            assert!((t.0 - t.1).abs() < 1e-4, "{t:?}");
+        }
+        for other in [2.0 * lambda, 0.5 * lambda] {
+            let predicted = linearisation.predict(other, &groups);
+            let refit = fitted(&mut objective, other, &base.theta);
+            let error = (predicted.misfit / refit.misfit - 1.0).abs();
+            let unpredicted = (base.misfit / refit.misfit - 1.0).abs();
+            assert!(
+                error < 0.02 && error < 0.2 * unpredicted,
+                "λ {other}: predicted {} against the refit's {} (at λ₀ {})",
+                predicted.misfit,
+                refit.misfit,
+                base.misfit
+            );
+        }
+    }
+}
