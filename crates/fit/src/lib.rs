@@ -71,6 +71,7 @@ pub mod driver;
 pub mod error;
 pub mod exact_physics;
 pub mod fit;
+pub mod joint;
 pub mod master;
 pub mod params;
 pub mod progress;
@@ -93,9 +94,10 @@ pub use cancel::Cancel;
 pub use data::Measurements;
 pub use driver::fit;
 pub use error::FitError;
+pub use joint::{DmaRows, JointRecord};
 pub use params::{
-    FitParams, Lambda, Method, ModulusAnchor, Physics, RollingSetup, ScaleAnchor, ShiftKind,
-    ShiftSettings, StartMaterial, TermRule, ValidFitParams,
+    FitParams, FrictionFactor, Lambda, Method, ModulusAnchor, Physics, RollingSetup, ScaleAnchor,
+    ShiftKind, ShiftSettings, StartMaterial, TermRule, ValidFitParams,
 };
 pub use progress::{Observer, Progress};
 pub use quality::FitQuality;

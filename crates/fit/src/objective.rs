@@ -27,8 +27,10 @@ use rollfit_model::{Prony, Scene, VerticalShift};
 
 use crate::data::Measurements;
 use crate::error::FitError;
+use crate::joint::DmaBlock;
 use crate::parametrization::{Mapped, Parametrization};
 use crate::params::RollingSetup;
+use crate::quality::speed_ordered_groups;
 use crate::shift::ShiftParam;
 use crate::vertical::{LoadGroups, scene_under_load};
 
@@ -62,18 +64,22 @@ pub(crate) struct Objective<'a> {
     pub tolerance: f64,
     /// A temperature set's known vertical factors (None: b_T = 1).
     pub vertical: Option<&'a VerticalShift>,
+    /// A joint fit's DMA rows, after the rolling rows ([`crate::joint`]).
+    pub dma: Option<DmaBlock>,
+    /// Whether θ ends with ln κ, the rolling rows' μ being κ μ_th.
+    pub friction_factor: bool,
 }
 
 /// Residuals (and Jacobian) at one θ.
 #[derive(Debug, Clone)]
 pub(crate) struct Evaluation {
-    /// Data residuals, then smoothness, then the bound.
+    /// Data residuals (rolling, then DMA), then smoothness, then the bound.
     pub residuals: DVector<f64>,
     /// ∂residuals/∂θ.
     pub jacobian: Option<DMatrix<f64>>,
     /// μ_th(v_i).
     pub mu: Vec<f64>,
-    /// Σ data residuals² (χ² when σ is measured).
+    /// Σ data residuals² (χ² when σ is measured), rolling and DMA.
     pub misfit: f64,
 }
 
@@ -87,7 +93,37 @@ impl Evaluation {
 impl Objective<'_> {
     /// Rows of the residual vector.
     pub fn residual_count(&self) -> usize {
-        self.data.len() + self.smoothness_count() + 1
+        self.data_rows() + self.smoothness_count() + 1
+    }
+
+    /// Rows of data residuals: the rolling rows, then two per DMA point.
+    pub fn data_rows(&self) -> usize {
+        self.data.len() + self.dma.as_ref().map_or(0, |d| 2 * d.points())
+    }
+
+    /// The data residuals' groups for the runs test: the rolling rows by
+    /// temperature and speed, then each isotherm's E′ and E″ rows by ω.
+    pub fn runs_groups(&self) -> Vec<Vec<usize>> {
+        let mut groups = speed_ordered_groups(self.data);
+        if let Some(d) = &self.dma {
+            let n = self.data.len();
+            for g in d.isotherm_groups() {
+                groups.push(g.iter().map(|i| n + 2 * i).collect());
+                groups.push(g.iter().map(|i| n + 2 * i + 1).collect());
+            }
+        }
+        groups
+    }
+
+    /// Index in θ of ln κ, when κ is fitted.
+    pub fn friction_factor_index(&self) -> Option<usize> {
+        self.friction_factor.then(|| self.free_count() - 1)
+    }
+
+    /// The shift's parameters within θ.
+    fn shift_theta<'t>(&self, theta: &'t [f64]) -> &'t [f64] {
+        let n = self.param.free_count();
+        &theta[n..n + self.shift.as_ref().map_or(0, |s| s.count())]
     }
 
     fn smoothness_count(&self) -> usize {
@@ -96,7 +132,9 @@ impl Objective<'_> {
 
     /// Free parameters: the material's, then the shift's.
     pub fn free_count(&self) -> usize {
-        self.param.free_count() + self.shift.as_ref().map_or(0, |s| s.count())
+        self.param.free_count()
+            + self.shift.as_ref().map_or(0, |s| s.count())
+            + usize::from(self.friction_factor)
     }
 
     /// The speeds at which the master curve is evaluated: the measured ones,
@@ -105,7 +143,7 @@ impl Objective<'_> {
         match &self.shift {
             None => (self.data.speeds().to_vec(), Vec::new()),
             Some(shift) => {
-                let (ln_a, grads) = shift.point_shifts(&theta[self.param.free_count()..]);
+                let (ln_a, grads) = shift.point_shifts(self.shift_theta(theta));
                 let v = self
                     .data
                     .speeds()
@@ -161,6 +199,7 @@ impl Objective<'_> {
             ));
         }
         let rows = self.residual_count();
+        let kappa = self.friction_factor_index().map_or(1.0, |k| theta[k].exp());
         let mut residuals = DVector::zeros(rows);
         let mut jacobian = with_jacobian.then(|| DMatrix::zeros(rows, n_free));
         let mu = if let Some(jac) = jacobian.as_mut() {
@@ -179,13 +218,17 @@ impl Objective<'_> {
                     grad_p[k] = row[k] + row[0];
                 }
                 self.param.pullback(&m, &grad_p, &mut grad_theta);
+                let scale = kappa / self.scales[i];
                 for (j, g) in grad_theta.iter().enumerate() {
-                    jac[(i, j)] = g / self.scales[i];
+                    jac[(i, j)] = g * scale;
                 }
                 if let Some(d_ln_a) = shift_grads.get(i) {
                     for (k, d) in d_ln_a.iter().enumerate() {
-                        jac[(i, n_material + k)] = fj.d_ln_speed[i] * d / self.scales[i];
+                        jac[(i, n_material + k)] = fj.d_ln_speed[i] * d * scale;
                     }
+                }
+                if let Some(k) = self.friction_factor_index() {
+                    jac[(i, k)] = fj.mu[i] * scale;
                 }
             }
             fj.mu
@@ -195,12 +238,29 @@ impl Objective<'_> {
                 None => scene_at(1.0)?.friction_sweep(&speeds)?,
             }
         };
+        let mu: Vec<f64> = mu.into_iter().map(|m| kappa * m).collect();
         let mut misfit = 0.0;
         for i in 0..n_data {
             let r = (mu[i] - self.data.friction()[i]) / self.scales[i];
             residuals[i] = r;
             misfit += r * r;
         }
+        let dma_misfit = match &self.dma {
+            Some(d) => {
+                let shift = self.shift.as_ref().map(|s| (s, self.shift_theta(theta)));
+                d.fill(
+                    &self.param,
+                    &m,
+                    shift,
+                    &mut residuals,
+                    jacobian.as_mut(),
+                    n_data,
+                )?
+            }
+            None => 0.0,
+        };
+        misfit += dma_misfit;
+        let n_data = self.data_rows();
         // Smoothness: √λ (θ_{k+1} − 2θ_k + θ_{k−1}) over the ln H_k.
         let root_lambda = self.lambda.sqrt();
         let first = self.param.first_strength();
@@ -265,6 +325,8 @@ mod tests {
             e1_max,
             tolerance: 1e-10,
             vertical: None,
+            dma: None,
+            friction_factor: false,
         }
     }
 

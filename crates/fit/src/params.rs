@@ -4,6 +4,7 @@
 //! can reach the numerics.
 
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 use rollfit_model::exact::exact_body;
 use rollfit_model::modulus::FreeShift;
@@ -11,6 +12,7 @@ use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate, 
 
 use crate::cancel::Cancel;
 use crate::error::FitError;
+use crate::joint::{DMA_SIGMA_RANGE, DmaRows};
 use crate::progress::Observer;
 
 /// The optimiser.
@@ -156,6 +158,24 @@ pub struct FitParams {
     pub shift: ShiftSettings,
     /// The model's physics: Eq. (11)/(17), or the exact contact.
     pub physics: Physics,
+    /// In a joint fit with DMA data: μ_measured = κ μ_theory with κ = 1 or
+    /// fitted ([`crate::joint`]).
+    pub friction_factor: FrictionFactor,
+    /// In a joint fit: the relative σ of the DMA moduli E′ and E″ (None:
+    /// estimated from the DMA master curve's residuals).
+    pub dma_sigma: Option<f64>,
+}
+
+/// The factor κ in μ_measured = κ μ_theory of a joint fit with DMA data.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrictionFactor {
+    /// κ = 1: the rolling friction is the bulk hysteresis of the DMA's
+    /// material.
+    #[default]
+    One,
+    /// κ fitted with its σ: friction beyond the bulk viscoelasticity shows
+    /// up as κ ≠ 1.
+    Free,
 }
 
 /// The time–temperature shift fitted to a temperature set.
@@ -231,6 +251,8 @@ impl Default for FitParams {
             start: None,
             shift: ShiftSettings::default(),
             physics: Physics::Approximate,
+            friction_factor: FrictionFactor::One,
+            dma_sigma: None,
         }
     }
 }
@@ -289,6 +311,15 @@ pub struct ValidFitParams {
     pub(crate) cancel: Cancel,
     /// Told what the fit does (exact solves); watches only.
     pub(crate) progress: Observer,
+    /// κ of a joint fit.
+    pub(crate) friction_factor: FrictionFactor,
+    /// The relative σ of the DMA moduli, when given.
+    pub(crate) dma_sigma: Option<f64>,
+    /// The DMA isotherms of a joint fit ([`ValidFitParams::with_dma`]).
+    pub(crate) dma: Option<Arc<DmaRows>>,
+    /// Whether an unanchored fit profiles its scale (off for a joint fit's
+    /// rolling part alone, whose χ² is all that is read).
+    pub(crate) profile: bool,
 }
 
 impl ValidFitParams {
@@ -320,6 +351,30 @@ impl ValidFitParams {
     pub fn with_progress(mut self, observer: Observer) -> ValidFitParams {
         self.progress = observer;
         self
+    }
+    /// The same settings for a joint fit with the DMA isotherms `dma`
+    /// ([`crate::joint`]): one master curve and shift law fitted to both.
+    /// The exact physics is refused here (its defect correction acts on the
+    /// rolling rows alone and has not been extended to the DMA part).
+    pub fn with_dma(mut self, dma: DmaRows) -> Result<ValidFitParams, FitError> {
+        if self.physics == Physics::Exact {
+            return Err(FitError::setting(
+                "dma",
+                "a joint fit with DMA data uses the approximate physics (Eq. (11)/(17)); \
+                 physics = \"exact\" is not available with `dma`",
+            ));
+        }
+        self.dma = Some(Arc::new(dma));
+        Ok(self)
+    }
+    /// The DMA isotherms of a joint fit.
+    pub fn dma(&self) -> Option<&DmaRows> {
+        self.dma.as_deref()
+    }
+    /// Whether the modulus scale is fixed by something beside the rolling
+    /// data: an anchor or DMA data.
+    pub(crate) fn scale_fixed(&self) -> bool {
+        self.anchor.is_some() || self.dma.is_some()
     }
 }
 
@@ -363,6 +418,17 @@ impl FitParams {
             check_start(s)?;
         }
         check_shift(&self.shift)?;
+        if let Some(sigma) = self.dma_sigma
+            && !(sigma.is_finite() && (DMA_SIGMA_RANGE.0..=DMA_SIGMA_RANGE.1).contains(&sigma))
+        {
+            return Err(FitError::setting(
+                "dma_sigma",
+                format!(
+                    "{sigma} must lie in 1e-5 … 1: the relative standard deviation of E′ and E″ \
+                     (0.01 for 1 %)"
+                ),
+            ));
+        }
         Ok(ValidFitParams {
             method: self.method,
             terms: self.terms,
@@ -382,6 +448,10 @@ impl FitParams {
             path_top: None,
             cancel: Cancel::default(),
             progress: Observer::default(),
+            friction_factor: self.friction_factor,
+            dma_sigma: self.dma_sigma,
+            dma: None,
+            profile: true,
         })
     }
 

@@ -320,6 +320,10 @@ pub struct FitReport {
     /// with the approximate physics, whose fit.json is unchanged).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub physics: Option<PhysicsRecord>,
+    /// With DMA data (`dma`): the joint fit's account of its two sources
+    /// (absent otherwise, so that fit.json is unchanged).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<crate::joint::JointRecord>,
     /// θ of the shift at the optimum (for refits that continue from it).
     #[serde(skip)]
     pub(crate) shift_theta: Vec<f64>,

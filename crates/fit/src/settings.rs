@@ -55,7 +55,9 @@ use std::str::FromStr;
 use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
 
 use crate::error::FitError;
-use crate::params::{FitParams, Lambda, Method, Physics, RollingSetup, ShiftKind, TermRule};
+use crate::params::{
+    FitParams, FrictionFactor, Lambda, Method, Physics, RollingSetup, ShiftKind, TermRule,
+};
 
 /// What `lambda` takes, for messages.
 const LAMBDA_FORMS: &str =
@@ -165,6 +167,22 @@ impl FromStr for Physics {
     }
 }
 
+impl FromStr for FrictionFactor {
+    type Err = FitError;
+
+    /// `"one"` (κ = 1) or `"free"` (κ fitted).
+    fn from_str(text: &str) -> Result<Self, FitError> {
+        match text.trim() {
+            "one" | "1" => Ok(FrictionFactor::One),
+            "free" => Ok(FrictionFactor::Free),
+            other => Err(FitError::setting(
+                "friction_factor",
+                format!("unknown friction factor {other:?} (use \"one\" or \"free\")"),
+            )),
+        }
+    }
+}
+
 /// A setting's value as a front door found it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SettingValue<'a> {
@@ -207,12 +225,20 @@ pub struct FitSettings {
     pub cross_check: Option<bool>,
     /// `physics`.
     pub physics: Option<Physics>,
+    /// `friction_factor`: κ of a joint fit, `"one"` or `"free"`.
+    pub friction_factor: Option<FrictionFactor>,
+    /// `dma_sigma`: the relative σ of the DMA moduli of a joint fit.
+    pub dma_sigma: Option<f64>,
+    /// `dma`: the DMA file of a joint fit, as written (a front door reads
+    /// it, relative to the file that names it, and hands the isotherms to
+    /// [`crate::ValidFitParams::with_dma`]).
+    pub dma: Option<String>,
     /// The key `terms` was set under, to refuse two spellings of it.
     terms_key: Option<&'static str>,
 }
 
 /// The keys [`FitSettings::set`] knows, canonical spellings first.
-pub const SETTING_KEYS: [&str; 14] = [
+pub const SETTING_KEYS: [&str; 17] = [
     "method",
     "lambda",
     "seed",
@@ -225,6 +251,9 @@ pub const SETTING_KEYS: [&str; 14] = [
     "T_ref",
     "cross_check",
     "physics",
+    "dma",
+    "dma_sigma",
+    "friction_factor",
     "terms_per_decade",
     "tau",
 ];
@@ -306,6 +335,18 @@ impl FitSettings {
                 let name = text_of(key, &value, "\"approximate\" or \"exact\"")?;
                 self.physics = Some(name.parse()?);
             }
+            "friction_factor" => {
+                let name = text_of(key, &value, "\"one\" or \"free\"")?;
+                self.friction_factor = Some(name.parse()?);
+            }
+            "dma_sigma" => self.dma_sigma = Some(number(key, &value)?),
+            "dma" => {
+                let path = text_of(key, &value, "the path of a DMA file")?;
+                if path.trim().is_empty() {
+                    return Err(FitError::setting(key, "the DMA file's path is empty"));
+                }
+                self.dma = Some(path.to_string());
+            }
             other => {
                 return Err(FitError::setting(
                     other,
@@ -348,6 +389,9 @@ impl FitSettings {
             t_ref: self.t_ref.or(below.t_ref),
             cross_check: self.cross_check.or(below.cross_check),
             physics: self.physics.or(below.physics),
+            friction_factor: self.friction_factor.or(below.friction_factor),
+            dma_sigma: self.dma_sigma.or(below.dma_sigma),
+            dma: self.dma.clone().or_else(|| below.dma.clone()),
             terms_key: if self.terms.is_some() {
                 self.terms_key
             } else {
@@ -389,6 +433,9 @@ impl FitSettings {
             "T_ref" => self.t_ref.is_some(),
             "cross_check" => self.cross_check.is_some(),
             "physics" => self.physics.is_some(),
+            "friction_factor" => self.friction_factor.is_some(),
+            "dma_sigma" => self.dma_sigma.is_some(),
+            "dma" => self.dma.is_some(),
             _ => false,
         }
     }
@@ -431,6 +478,12 @@ impl FitSettings {
         }
         if let Some(physics) = self.physics {
             params.physics = physics;
+        }
+        if let Some(factor) = self.friction_factor {
+            params.friction_factor = factor;
+        }
+        if let Some(sigma) = self.dma_sigma {
+            params.dma_sigma = Some(sigma);
         }
     }
 }

@@ -203,6 +203,7 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         shift_cross_check,
         condensed,
         physics: None,
+        joint: None,
         shift_theta: fit.shift_theta,
         curve: fit.curve,
         mu_fit,
@@ -302,10 +303,13 @@ pub(super) fn fitted_friction(
     let setup = &params.setup;
     let scene_at = |factor| scene_under_load(setup, prony.clone(), params.model_tolerance, factor);
     let vertical = fit.shift.as_ref().and(params.shift.vertical.as_ref());
-    match LoadGroups::of(data, vertical)? {
-        Some(groups) => groups.friction_sweep(scene_at, &speeds),
-        None => Ok(scene_at(1.0)?.friction_sweep(&speeds)?),
-    }
+    let mu = match LoadGroups::of(data, vertical)? {
+        Some(groups) => groups.friction_sweep(scene_at, &speeds)?,
+        None => scene_at(1.0)?.friction_sweep(&speeds)?,
+    };
+    // A joint fit's κ: μ_measured = κ μ_theory.
+    let kappa = fit.friction_factor.map_or(1.0, |(k, _)| k);
+    Ok(mu.into_iter().map(|m| kappa * m).collect())
 }
 
 /// The speeds of `data` on the master curve: v·a_T for a temperature set.

@@ -18,10 +18,11 @@
 use crate::analysis::curvature;
 use crate::data::Measurements;
 use crate::error::FitError;
+use crate::joint::DmaBlock;
 use crate::objective::Objective;
 use crate::parametrization::Parametrization;
-use crate::params::{Lambda, ValidFitParams};
-use crate::quality::{RUNS_P_VALUE, runs_test, speed_ordered_groups};
+use crate::params::{FrictionFactor, Lambda, ValidFitParams};
+use crate::quality::{RUNS_P_VALUE, runs_test};
 use crate::regularization::{LambdaRule, Trial};
 use crate::report::RunRecord;
 use crate::solvers::counting::{Abandonment, Counted};
@@ -85,7 +86,7 @@ pub(super) fn solve_on_grid(
     warm: Option<Vec<f64>>,
     set: Option<&ShiftStart>,
 ) -> Result<Optimum, FitError> {
-    let mut grid = GridSolver::new(data, params, tau, set);
+    let mut grid = GridSolver::new(data, params, tau, set)?;
     let material = warm.unwrap_or_else(|| neutral_start(&grid.objective.param, params));
     let range = set.map_or_else(|| data.speed_range(), |s| s.range);
     let starts = Starts::new(material, set, range);
@@ -165,25 +166,45 @@ impl<'a> GridSolver<'a> {
         params: &'a ValidFitParams,
         tau: Vec<f64>,
         set: Option<&ShiftStart>,
-    ) -> Self {
+    ) -> Result<Self, FitError> {
         let param = Parametrization::new(tau, params.anchor);
-        let free = param.free_count() + set.map_or(0, |s| s.param.count());
-        let objective = Objective {
+        let shift = set.map(|s| s.param.clone());
+        let dma = match params.dma.as_deref() {
+            Some(rows) => {
+                let sigma = params.dma_sigma.ok_or(FitError::Internal(
+                    "a joint fit reached its objective without the DMA moduli's σ",
+                ))?;
+                Some(DmaBlock::new(
+                    rows,
+                    shift.as_ref(),
+                    sigma,
+                    params.shift.vertical.as_ref(),
+                )?)
+            }
+            None => None,
+        };
+        let mut objective = Objective {
             setup: &params.setup,
             data,
             scales: data.residual_scales(),
             param,
-            shift: set.map(|s| s.param.clone()),
+            shift,
             lambda: 0.0,
             e1_max: params.e1_max,
             tolerance: params.model_tolerance,
             // Only a temperature set's rows take b_T.
             vertical: set.and(params.shift.vertical.as_ref()),
+            dma,
+            friction_factor: false,
         };
+        objective.friction_factor =
+            objective.dma.is_some() && params.friction_factor == FrictionFactor::Free;
+        let free = objective.free_count();
+        let groups = objective.runs_groups();
         let budget = params
             .max_evaluations
             .unwrap_or_else(|| default_budget(params.method, free));
-        GridSolver {
+        Ok(GridSolver {
             data,
             params,
             objective,
@@ -192,9 +213,9 @@ impl<'a> GridSolver<'a> {
             tolerance: Tolerance::Final,
             runs: Vec::new(),
             path: Vec::new(),
-            groups: speed_ordered_groups(data),
+            groups,
             linearisation: None,
-        }
+        })
     }
 
     /// The fit at `lambda` from `from` as `leg` asks: the trial at the run's
@@ -221,9 +242,9 @@ impl<'a> GridSolver<'a> {
             .as_ref()
             .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
         let known = self.data.sigma().map(|_| 1.0);
-        let c = curvature(jac, self.data.len(), e.misfit, known);
+        let c = curvature(jac, objective.data_rows(), e.misfit, known);
         let bound = e.residuals[e.residuals.len() - 1];
-        let data_residuals = &e.residuals.as_slice()[..self.data.len()];
+        let data_residuals = &e.residuals.as_slice()[..objective.data_rows()];
         let random_signs =
             runs_test(data_residuals, &self.groups).is_none_or(|r| r.p_value >= RUNS_P_VALUE);
         let trial = Trial {
@@ -349,7 +370,7 @@ impl<'a> GridSolver<'a> {
         } else {
             LambdaRule::MarginalLikelihood
         };
-        let n = self.data.len();
+        let n = self.objective.data_rows();
         let mut trials: Vec<(Trial, SolverRun)> = Vec::new();
         let mut criterion = Vec::new();
         // The path is walked at the looser tolerance: its points only

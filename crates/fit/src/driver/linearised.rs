@@ -67,7 +67,7 @@ impl Linearisation {
         let jacobian = e
             .jacobian
             .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
-        let data_count = objective.data.len();
+        let data_count = objective.data_rows();
         Ok(Linearisation {
             lambda: trial.lambda,
             theta: trial.theta.clone(),
@@ -215,6 +215,8 @@ mod tests {
             e1_max: 1e10,
             tolerance: 1e-8,
             vertical: None,
+            dma: None,
+            friction_factor: false,
         };
         let groups = speed_ordered_groups(&data);
         let lambda = 10.0;

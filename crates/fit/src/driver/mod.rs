@@ -37,6 +37,7 @@
 
 mod assemble;
 mod grid;
+mod joint;
 mod lambda;
 mod law;
 mod linearised;
@@ -79,6 +80,12 @@ pub const SCALE_FACTOR_LIMIT: f64 = 3.0;
 /// (17)) directly, with the exact physics by defect correction around such
 /// fits ([`crate::exact_physics`]).
 pub fn fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitReport, FitError> {
+    if params.dma.is_some() {
+        let report = joint::fit_joint(rows, params);
+        params.cancel.check()?;
+        return report;
+    }
+    crate::joint::refuse_without_dma(params)?;
     let report = match params.physics {
         Physics::Approximate => fit_measured(rows, None, params),
         Physics::Exact => {
@@ -249,7 +256,7 @@ fn fit_on_grid(
     set: Option<&ShiftStart>,
 ) -> Result<GridOutcome, FitError> {
     let optimum = solve_on_grid(data, params, tau.clone(), warm, set)?;
-    if params.anchor.is_some() {
+    if params.scale_fixed() || !params.profile {
         return Ok(GridOutcome::new(optimum, None, params.bands));
     }
     let mut profile = profile_scale(data, params, &optimum, set)?;

@@ -12,7 +12,7 @@ use crate::error::FitError;
 use crate::objective::Objective;
 use crate::parametrization::{Mapped, Parametrization};
 use crate::params::{Method, ValidFitParams};
-use crate::quality::{FitQuality, assess, speed_ordered_groups};
+use crate::quality::{FitQuality, assess};
 use crate::regularization::{LambdaRule, Trial};
 use crate::report::{LambdaRecord, ModelRecord, ModulusPoint, RunRecord, ShiftRecord, Window};
 use crate::solvers::{SolverRun, StopReason};
@@ -82,6 +82,8 @@ pub(super) struct Optimum {
     pub curve: Vec<ModulusPoint>,
     /// μ at the data speeds.
     pub mu: Vec<f64>,
+    /// κ and its 1σ, when fitted (a joint fit's `friction_factor`).
+    pub friction_factor: Option<(f64, f64)>,
 }
 
 /// The material at the optimum and its curvature.
@@ -112,18 +114,34 @@ pub(super) fn analyse(
         true => Some(1.0),
         false => chosen.evidence_noise_variance,
     };
-    let c = curvature(jac, data.len(), e.misfit, noise_variance);
+    let n_rows = objective.data_rows();
+    let c = curvature(jac, n_rows, e.misfit, noise_variance);
     let param = &objective.param;
     let n_material = param.free_count();
     let mapped = param.map(&chosen.trial.theta[..n_material]);
     let prony = param.prony(&mapped)?;
-    let (omega_min, omega_max) = probed_window(
+    let (mut omega_min, mut omega_max) = probed_window(
         &params.setup,
         &prony,
         objective.reduced_range(&chosen.trial.theta),
     );
-    let n_shift = chosen.trial.theta.len() - n_material;
+    // A joint fit's DMA points probe E* at their reduced frequencies.
+    if let Some(d) = &objective.dma {
+        let shift = objective
+            .shift
+            .as_ref()
+            .map(|s| (s, &chosen.trial.theta[n_material..]));
+        for w in d.values(&mapped, param.tau(), shift).reduced_omega {
+            omega_min = omega_min.min(w);
+            omega_max = omega_max.max(w);
+        }
+    }
+    let n_shift = objective.shift.as_ref().map_or(0, |s| s.count());
     let shift_theta = chosen.trial.theta[n_material..].to_vec();
+    let friction_factor = objective.friction_factor_index().map(|k| {
+        let value = chosen.trial.theta[k].exp();
+        (value, value * c.covariance[(k, k)].max(0.0).sqrt())
+    });
     let shift = objective.shift.as_ref().map(|s| {
         let mut block = c
             .covariance
@@ -154,10 +172,10 @@ pub(super) fn analyse(
     let model = material.record();
     let curve = material.curve(chosen.less_smoothed.as_deref())?;
     let c = &material.curvature;
-    let mut warnings = fit_warnings(data, params, &chosen, e.misfit, &model);
+    let mut warnings = fit_warnings(n_rows, params, &chosen, e.misfit, &model);
     let fit_quality = assess(
-        &e.residuals.as_slice()[..data.len()],
-        &speed_ordered_groups(data),
+        &e.residuals.as_slice()[..n_rows],
+        &objective.runs_groups(),
         c.effective_parameters,
         sigma_known,
         c.noise_variance.sqrt(),
@@ -179,7 +197,7 @@ pub(super) fn analyse(
         method: chosen.run.method,
         objective: e.objective(),
         misfit: e.misfit,
-        misfit_per_point: e.misfit / data.len() as f64,
+        misfit_per_point: e.misfit / n_rows as f64,
         iterations: chosen.run.iterations,
         stop: chosen.run.stop,
         lambda: LambdaRecord {
@@ -201,6 +219,7 @@ pub(super) fn analyse(
             .collect(),
         curve,
         mu: e.mu,
+        friction_factor,
     })
 }
 
@@ -269,7 +288,7 @@ impl Material<'_> {
 /// The warnings about the chosen fit itself: no convergence,
 /// the noise floor not reached, E1 at its bound, undetermined terms.
 fn fit_warnings(
-    data: &Measurements,
+    n_rows: usize,
     params: &ValidFitParams,
     chosen: &Chosen,
     misfit: f64,
@@ -283,11 +302,11 @@ fn fit_warnings(
             chosen.run.stop.describe()
         ));
     }
-    if chosen.rule == LambdaRule::Discrepancy && misfit > data.len() as f64 * 1.5 {
+    if chosen.rule == LambdaRule::Discrepancy && misfit > n_rows as f64 * 1.5 {
         warnings.push(format!(
             "χ²/N = {:.2} stays above 1 at every λ: the model does not reach the noise floor \
              (underestimated σ, or physics the model lacks)",
-            misfit / data.len() as f64
+            misfit / n_rows as f64
         ));
     }
     if model.glassy_modulus > 0.999 * params.e1_max {

@@ -92,6 +92,10 @@ pub struct PronyFit {
     pub misfit_loss: f64,
     /// Whether the final Levenberg–Marquardt run converged.
     pub converged: bool,
+    /// Effective number of parameters the data fix at the chosen λ (the
+    /// trace of the influence matrix): a joint fit's compatibility test
+    /// counts the DMA part's parameters with it.
+    pub effective_parameters: f64,
 }
 
 /// What the series is fitted to.
@@ -453,6 +457,8 @@ pub fn fit_prony(omega: &[f64], storage: &[f64], loss: &[f64]) -> Result<PronyFi
     let from = start(omega, storage, loss, &tau);
     let (theta, lambda, converged) = regularised(&mut problem, from);
     let (prony, misfit) = series_of(&problem, &theta, &[0..n, n..2 * n])?;
+    problem.lambda = lambda;
+    let effective_parameters = problem.trial(theta).effective_parameters;
     Ok(PronyFit {
         prony,
         lambda,
@@ -460,6 +466,7 @@ pub fn fit_prony(omega: &[f64], storage: &[f64], loss: &[f64]) -> Result<PronyFi
         misfit_storage: misfit[0],
         misfit_loss: misfit[1],
         converged,
+        effective_parameters,
     })
 }
 

@@ -78,7 +78,17 @@ pub(crate) struct ShiftParam {
 impl ShiftParam {
     /// The shift for `data` (≥ 2 temperatures) under `settings`.
     pub(crate) fn new(data: &Measurements, settings: &ShiftSettings) -> Result<Self, FitError> {
-        let temps = distinct_temperatures(data);
+        ShiftParam::over(data, distinct_temperatures(data), settings)
+    }
+
+    /// The shift of `data`'s rows over the temperatures `temps` (ascending
+    /// and distinct, every row's among them, at least one): a joint fit's
+    /// DMA isotherms add temperatures the rolling rows lack.
+    pub(crate) fn over(
+        data: &Measurements,
+        temps: Vec<f64>,
+        settings: &ShiftSettings,
+    ) -> Result<Self, FitError> {
         let column = data.temperature().unwrap_or_default();
         let point_temp = column
             .iter()

@@ -106,6 +106,8 @@ fn free_objective<'a>(
         e1_max: free.e1_max,
         tolerance: 1e-8,
         vertical: None,
+        dma: None,
+        friction_factor: false,
     };
     (objective, theta)
 }

@@ -75,6 +75,11 @@ pub struct FitSummary {
     /// (absent: the approximate physics of Eq. (11)/(17)).
     #[serde(default)]
     pub physics: Option<PhysicsSummary>,
+    /// A joint fit with DMA data (`dma`): each part's χ², the
+    /// compatibility test, κ and the DMA points with the joint curve
+    /// (absent: a fit of rolling data alone).
+    #[serde(default)]
+    pub joint: Option<rollfit_fit::JointRecord>,
     /// The goodness-of-fit verdict, its tests and the noise they assume.
     #[serde(default)]
     pub fit_quality: Option<QualitySummary>,

@@ -31,6 +31,8 @@ fn objective<'a>(setup: &'a crate::params::RollingSetup, data: &'a Measurements)
         e1_max: 1e10,
         tolerance: 1e-6,
         vertical: None,
+        dma: None,
+        friction_factor: false,
     }
 }
 

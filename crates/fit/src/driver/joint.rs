@@ -1,0 +1,287 @@
+//! The joint fit of DMA isotherms and rolling friction ([`crate::joint`]
+//! states the method): the DMA part alone, the rolling part alone, both
+//! together from the DMA part's start, and the account of the parts.
+
+use std::time::Instant;
+
+use rollfit_model::Prony;
+
+use crate::analysis::probed_window;
+use crate::condense::condense;
+use crate::data::Measurements;
+use crate::error::FitError;
+use crate::joint::consistency::{Parts, compatibility, friction_factor, residual_ranges};
+use crate::joint::start::{DmaAlone, JointStart, dma_alone, joint_start};
+use crate::joint::{DmaFitPoint, DmaRows, JointRecord, JointSigma, PartChi2, moduli_at};
+use crate::params::{FrictionFactor, ShiftKind, ValidFitParams};
+use crate::report::FitReport;
+use crate::shift::distinct_temperatures;
+
+use super::assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
+use super::terms::terms_record;
+use super::{fit_measured, fit_on_grid};
+
+/// The joint fit of `rows` and the DMA isotherms of `params`.
+pub(super) fn fit_joint(
+    rows: &Measurements,
+    params: &ValidFitParams,
+) -> Result<FitReport, FitError> {
+    let clock = Instant::now();
+    let dma = params
+        .dma
+        .clone()
+        .ok_or(FitError::Internal("a joint fit without DMA data"))?;
+    let rows = with_temperature(rows, params)?;
+    let condensed = condense(&rows)?;
+    let data = condensed.as_ref().map_or(&rows, |c| &c.data);
+    let alone = dma_alone(&dma, params.dma_sigma)?;
+    let start = joint_start(data, &dma, params, &alone)?;
+    let rolling_alone = fit_measured(data, None, &rolling_params(data, params, &start))?;
+    let (weighted, rolling_sigma) = match data.sigma() {
+        Some(_) => (data.clone(), None),
+        None => {
+            let s = rolling_alone.noise;
+            let sigma = data.friction().iter().map(|m| s * m).collect();
+            let weighted = Measurements::new(
+                data.speeds().to_vec(),
+                data.friction().to_vec(),
+                Some(sigma),
+                data.temperature().map(|t| t.to_vec()),
+            )?;
+            (weighted, Some(s))
+        }
+    };
+    let rolling_unit = rolling_sigma.map_or(1.0, |s| s * s);
+    let mut joint = params.clone();
+    joint.dma_sigma = Some(alone.sigma);
+    joint.starts = 1;
+    joint.shift.kind = start.kind;
+    joint.shift.t_ref = Some(start.t_ref);
+    let outcome = fit_on_grid(
+        &weighted,
+        &joint,
+        start.tau.clone(),
+        Some(start.material.clone()),
+        Some(&start.shift),
+    )?;
+    let parts = Parts {
+        rolling_alone: (
+            rolling_alone.misfit / rolling_unit,
+            rolling_alone.effective_parameters,
+        ),
+        dma_alone: (alone.chi2, alone.parameters),
+        joint: (outcome.fit.misfit, outcome.fit.effective_parameters),
+    };
+    let record = JointAccount {
+        data: &weighted,
+        dma: &dma,
+        params: &joint,
+        alone: &alone,
+        rolling_sigma,
+        parts,
+    }
+    .record(&outcome)?;
+    let sanity = sanity_warnings(&weighted, weighted.friction(), &joint, &outcome.fit)?;
+    let condensed = match &condensed {
+        Some(c) => Some((c, fitted_friction(&rows, &joint, &outcome.fit)?)),
+        None => None,
+    };
+    let mut notes = start.notes;
+    notes.push(record.compatibility.verdict.clone());
+    if let Some(k) = &record.friction_factor {
+        notes.push(format!("friction factor: {}", k.verdict));
+    }
+    let terms = terms_record(&outcome.fit.model.tau, &params.terms, Vec::new());
+    let mut report = assemble(Whole {
+        data: &weighted,
+        params: &joint,
+        set_notes: notes,
+        shift_choice: None,
+        grid: outcome,
+        terms,
+        cross_check: None,
+        sanity,
+        condensed,
+        wall_time_s: 0.0,
+    });
+    if !record.compatibility.compatible {
+        let reason = format!(
+            "the DMA and rolling parts are {}",
+            record.compatibility.verdict
+        );
+        report.fit_quality.reasons.push(reason);
+        if report.fit_quality.verdict == "good" {
+            report.fit_quality.verdict = "poor";
+        }
+    }
+    report.runs = rolling_alone
+        .runs
+        .into_iter()
+        .map(|mut r| {
+            r.stage = format!("rolling alone: {}", r.stage);
+            r
+        })
+        .chain(report.runs)
+        .collect();
+    report.evaluations = report.runs.iter().map(|r| r.evaluations).sum();
+    report.joint = Some(record);
+    report.wall_time_s = clock.elapsed().as_secs_f64();
+    if let Some(what) = report.first_non_finite() {
+        return Err(FitError::NonFinite(what));
+    }
+    Ok(report)
+}
+
+/// The rows with a temperature: their own, or all at T_ref when the
+/// rolling data have no `T` column (a joint fit places them on the DMA's
+/// temperature axis).
+fn with_temperature(
+    rows: &Measurements,
+    params: &ValidFitParams,
+) -> Result<Measurements, FitError> {
+    if rows.temperature().is_some() {
+        return Ok(rows.clone());
+    }
+    let t = params.shift.t_ref.ok_or_else(|| {
+        FitError::setting(
+            "T_ref",
+            "the rolling data have no T column: a joint fit with DMA data needs the \
+             temperature of the rolling measurement (add a T column, or give T_ref, the \
+             temperature the rolling data were measured at)",
+        )
+    })?;
+    Measurements::new(
+        rows.speeds().to_vec(),
+        rows.friction().to_vec(),
+        rows.sigma().map(|s| s.to_vec()),
+        Some(vec![t; rows.len()]),
+    )
+}
+
+/// The settings of the rolling part fitted alone: no DMA, the joint law
+/// (at the joint T_ref unless free shifts need a rolling temperature), no
+/// cross-check and no scale profile (its χ² is what the test needs).
+fn rolling_params(
+    data: &Measurements,
+    params: &ValidFitParams,
+    start: &JointStart,
+) -> ValidFitParams {
+    let mut single = params.clone();
+    single.dma = None;
+    single.dma_sigma = None;
+    single.friction_factor = FrictionFactor::One;
+    single.shift.cross_check = false;
+    single.profile = false;
+    single.shift.kind = start.kind;
+    let rolling_temps = distinct_temperatures(data);
+    single.shift.t_ref = match start.kind {
+        ShiftKind::Free => rolling_temps
+            .iter()
+            .any(|&t| (t - start.t_ref).abs() < 1e-9)
+            .then_some(start.t_ref),
+        _ => Some(start.t_ref),
+    };
+    single
+}
+
+/// What the joint record is made from.
+struct JointAccount<'a> {
+    data: &'a Measurements,
+    dma: &'a DmaRows,
+    params: &'a ValidFitParams,
+    alone: &'a DmaAlone,
+    rolling_sigma: Option<f64>,
+    parts: Parts,
+}
+
+impl JointAccount<'_> {
+    /// The record at the joint optimum `outcome`.
+    fn record(self, outcome: &GridOutcome) -> Result<JointRecord, FitError> {
+        let fit = &outcome.fit;
+        let m = &fit.model;
+        let prony = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
+        let log_shift = |t: f64| {
+            fit.shift
+                .as_ref()
+                .and_then(|s| s.log_shift_at(t))
+                .unwrap_or(0.0)
+        };
+        let log_vertical = |t: f64| {
+            self.params
+                .shift
+                .vertical
+                .as_ref()
+                .map_or(Ok(0.0), |v| v.log10_factor(t))
+        };
+        // Rolling rows: residuals at their contact frequencies.
+        let temps = self.data.temperature().unwrap_or_default();
+        let (mut rolling_omega, mut rolling_residuals) = (Vec::new(), Vec::new());
+        let mut rolling_chi2 = 0.0;
+        for i in 0..self.data.len() {
+            let v = self.data.speeds()[i] * 10f64.powf(log_shift(temps[i]));
+            let sigma = self.data.sigma().map_or(1.0, |s| s[i]);
+            let r = (fit.mu[i] - self.data.friction()[i]) / sigma;
+            rolling_chi2 += r * r;
+            rolling_omega.push(probed_window(&self.params.setup, &prony, (v, v)).0);
+            rolling_residuals.push(r);
+        }
+        let sigma = self.alone.sigma;
+        let mut points = Vec::with_capacity(self.dma.len());
+        let (mut omega, mut r1, mut r2) = (Vec::new(), Vec::new(), Vec::new());
+        let mut dma_chi2 = 0.0;
+        for (t, w, e1, e2) in self.dma.points() {
+            let reduced = w * 10f64.powf(log_shift(t));
+            let b = 10f64.powf(log_vertical(t)?);
+            let (f1, f2) = moduli_at(m.static_modulus, &m.strengths, &m.tau, reduced);
+            let (s1, s2) = ((b * f1 / e1).ln() / sigma, (b * f2 / e2).ln() / sigma);
+            dma_chi2 += s1 * s1 + s2 * s2;
+            omega.push(reduced);
+            r1.push(s1);
+            r2.push(s2);
+            points.push(DmaFitPoint {
+                temperature: t,
+                omega: w,
+                reduced_omega: reduced,
+                storage: e1,
+                loss: e2,
+                storage_fit: b * f1,
+                loss_fit: b * f2,
+            });
+        }
+        let mut residual_ranges_all =
+            residual_ranges("rolling", &rolling_omega, &rolling_residuals);
+        residual_ranges_all.extend(residual_ranges("dma E′", &omega, &r1));
+        residual_ranges_all.extend(residual_ranges("dma E″", &omega, &r2));
+        let friction_factor = fit.friction_factor.map(|(k, s)| friction_factor(k, s));
+        Ok(JointRecord {
+            dma_source: self.dma.source().to_string(),
+            dma_points: self.dma.len(),
+            rolling_points: self.data.len(),
+            sigma: JointSigma {
+                dma: sigma,
+                dma_source: given(self.alone.sigma_given),
+                rolling: self.rolling_sigma,
+                rolling_source: given(self.rolling_sigma.is_none()),
+            },
+            chi2: PartChi2 {
+                rolling_joint: rolling_chi2,
+                dma_joint: dma_chi2,
+                rolling_alone: self.parts.rolling_alone.0,
+                dma_alone: self.parts.dma_alone.0,
+                rolling_alone_parameters: self.parts.rolling_alone.1,
+                dma_alone_parameters: self.parts.dma_alone.1,
+                joint_parameters: self.parts.joint.1,
+            },
+            compatibility: compatibility(&self.parts),
+            friction_factor,
+            residual_ranges: residual_ranges_all,
+            dma: points,
+            notes: Vec::new(),
+        })
+    }
+}
+
+/// "given" or "estimated".
+fn given(yes: bool) -> String {
+    if yes { "given" } else { "estimated" }.to_string()
+}
