@@ -68,6 +68,11 @@ pub(crate) struct Objective<'a> {
     pub dma: Option<DmaBlock>,
     /// Whether θ ends with ln κ, the rolling rows' μ being κ μ_th.
     pub friction_factor: bool,
+    /// Whether the residuals are in units of a known σ (λ by the
+    /// discrepancy principle, noise variance 1), else of weights known up
+    /// to a common noise level (λ and that level by the marginal
+    /// likelihood).
+    pub noise_known: bool,
 }
 
 /// Residuals (and Jacobian) at one θ.
@@ -327,6 +332,7 @@ mod tests {
             vertical: None,
             dma: None,
             friction_factor: false,
+            noise_known: data.sigma().is_some(),
         }
     }
 
@@ -457,6 +463,94 @@ mod tests {
                 let (mut objective, theta) = set_objective(&setup, &data, kind);
                 objective.vertical = vertical;
                 assert_jacobian(&objective, &theta, &format!("{kind:?} {vertical:?}"));
+            }
+        }
+    }
+
+    /// A joint objective (DMA rows at temperatures the rolling rows lack,
+    /// known vertical factors, κ fitted): every column of its Jacobian,
+    /// the DMA rows' and κ's among them, against central finite
+    /// differences, with WLF and free shifts.
+    #[test]
+    fn joint_jacobian_matches_finite_differences() {
+        use crate::joint::{DmaBlock, DmaRows};
+        use crate::master::Isotherm;
+        use crate::params::{ShiftKind, ShiftSettings};
+        let setup = crate::params::example_setup();
+        let data = temperature_set();
+        let isotherm = |t: f64, scale: f64| Isotherm {
+            temperature: t,
+            omega: vec![0.6, 6.0, 60.0, 600.0],
+            storage: vec![3e6 * scale, 5e6 * scale, 2e7 * scale, 9e7 * scale],
+            loss: vec![4e5 * scale, 1e6 * scale, 6e6 * scale, 3e7 * scale],
+        };
+        let rows = DmaRows::new(
+            vec![
+                isotherm(-10.0, 2.0),
+                isotherm(20.0, 1.0),
+                isotherm(45.0, 0.7),
+            ],
+            "test",
+        )
+        .unwrap();
+        let vertical =
+            rollfit_model::VerticalShift::table(20.0, vec![(-10.0, -0.1), (45.0, 0.2)]).unwrap();
+        for kind in [ShiftKind::Wlf, ShiftKind::Free] {
+            let settings = ShiftSettings {
+                kind,
+                t_ref: Some(20.0),
+                ..ShiftSettings::default()
+            };
+            let temps = vec![-10.0, 0.0, 20.0, 45.0];
+            let shift = ShiftParam::over(&data, temps, &settings).unwrap();
+            let tau: Vec<f64> = (0..8).map(|k| 10f64.powf(k as f64 - 6.0)).collect();
+            let param = Parametrization::new(tau, None);
+            let mut theta: Vec<f64> = (0..param.free_count())
+                .map(|k| {
+                    if k == 0 {
+                        14.0
+                    } else {
+                        15.0 + 0.4 * (k as f64).sin()
+                    }
+                })
+                .collect();
+            theta.extend(shift.theta_of_wlf(8.86, 101.6));
+            theta.push(0.2);
+            let block = DmaBlock::new(&rows, Some(&shift), 0.02, Some(&vertical)).unwrap();
+            let mut objective = test_objective(&setup, &data, param, Some(shift), 1e10);
+            objective.dma = Some(block);
+            objective.friction_factor = true;
+            assert_eq!(objective.free_count(), theta.len());
+            assert_eq!(objective.data_rows(), data.len() + 24);
+            assert_jacobian(&objective, &theta, &format!("joint {kind:?}"));
+            // The DMA residuals against the model's own Prony series at
+            // ω a_T, times b_T, and κ against the rolling rows' μ.
+            let e = objective.evaluate(&theta, false).unwrap();
+            let n_material = objective.param.free_count();
+            let prony = objective
+                .param
+                .prony(&objective.param.map(&theta[..n_material]))
+                .unwrap();
+            let s = objective.shift.as_ref().unwrap();
+            let (log_a, _) = s.log_shifts(&theta[n_material..]);
+            let mut row = data.len();
+            for (t, w, e1, e2) in rows.points() {
+                let j = crate::shift::index_of(s.temperatures(), t).unwrap();
+                let b = 10f64.powf(vertical.log10_factor(t).unwrap());
+                let m =
+                    rollfit_model::ViscoelasticModulus::modulus(&prony, w * 10f64.powf(log_a[j]));
+                for (fit, measured) in [(m.re, e1), (m.im, e2)] {
+                    let expected = (b * fit / measured).ln() / 0.02;
+                    assert!((e.residuals[row] - expected).abs() < 1e-9, "row {row}");
+                    row += 1;
+                }
+            }
+            objective.friction_factor = false;
+            let plain = objective
+                .evaluate(&theta[..theta.len() - 1], false)
+                .unwrap();
+            for (k, p) in e.mu.iter().zip(&plain.mu) {
+                assert!((k / p - 0.2f64.exp()).abs() < 1e-12);
             }
         }
     }

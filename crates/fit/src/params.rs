@@ -320,6 +320,10 @@ pub struct ValidFitParams {
     /// Whether an unanchored fit profiles its scale (off for a joint fit's
     /// rolling part alone, whose χ² is all that is read).
     pub(crate) profile: bool,
+    /// λ by the marginal likelihood even with measured σ (a joint fit's
+    /// rolling part alone: the compatibility test compares minima, which
+    /// the discrepancy principle does not give, `crate::joint`).
+    pub(crate) evidence: bool,
 }
 
 impl ValidFitParams {
@@ -370,6 +374,12 @@ impl ValidFitParams {
     /// The DMA isotherms of a joint fit.
     pub fn dma(&self) -> Option<&DmaRows> {
         self.dma.as_deref()
+    }
+    /// Whether the residuals of `data` are in units of a known σ: a σ
+    /// column, outside a joint fit and its parts (module doc of
+    /// `crate::joint`).
+    pub(crate) fn noise_known(&self, data: &crate::data::Measurements) -> bool {
+        data.sigma().is_some() && self.dma.is_none() && !self.evidence
     }
     /// Whether the modulus scale is fixed by something beside the rolling
     /// data: an anchor or DMA data.
@@ -452,6 +462,7 @@ impl FitParams {
             dma_sigma: self.dma_sigma,
             dma: None,
             profile: true,
+            evidence: false,
         })
     }
 

@@ -140,7 +140,6 @@ struct Leg<'s> {
 
 /// The fits on one τ grid: the objective and what their runs share.
 struct GridSolver<'a> {
-    data: &'a Measurements,
     params: &'a ValidFitParams,
     objective: Objective<'a>,
     /// Free parameters: the material's and the shift's.
@@ -196,6 +195,7 @@ impl<'a> GridSolver<'a> {
             vertical: set.and(params.shift.vertical.as_ref()),
             dma,
             friction_factor: false,
+            noise_known: params.noise_known(data),
         };
         objective.friction_factor =
             objective.dma.is_some() && params.friction_factor == FrictionFactor::Free;
@@ -205,7 +205,6 @@ impl<'a> GridSolver<'a> {
             .max_evaluations
             .unwrap_or_else(|| default_budget(params.method, free));
         Ok(GridSolver {
-            data,
             params,
             objective,
             free,
@@ -241,7 +240,7 @@ impl<'a> GridSolver<'a> {
             .jacobian
             .as_ref()
             .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
-        let known = self.data.sigma().map(|_| 1.0);
+        let known = objective.noise_known.then_some(1.0);
         let c = curvature(jac, objective.data_rows(), e.misfit, known);
         let bound = e.residuals[e.residuals.len() - 1];
         let data_residuals = &e.residuals.as_slice()[..objective.data_rows()];
@@ -365,7 +364,7 @@ impl<'a> GridSolver<'a> {
     /// λ by the data: the path walked down from `from` with warm starts,
     /// the rule's λ located on it, and the fit there.
     fn auto_lambda(&mut self, mut from: Vec<f64>) -> Result<LambdaChoice, FitError> {
-        let rule = if self.data.sigma().is_some() {
+        let rule = if self.objective.noise_known {
             LambdaRule::Discrepancy
         } else {
             LambdaRule::MarginalLikelihood
@@ -496,7 +495,7 @@ impl<'a> GridSolver<'a> {
             less_smoothed,
             evidence_noise_variance: choice.evidence_noise_variance,
         };
-        analyse(self.data, self.params, &mut self.objective, chosen)
+        analyse(self.params, &mut self.objective, chosen)
     }
 }
 

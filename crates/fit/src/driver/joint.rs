@@ -71,6 +71,14 @@ pub(super) fn fit_joint(
         ),
         dma_alone: (alone.chi2, alone.parameters),
         joint: (outcome.fit.misfit, outcome.fit.effective_parameters),
+        estimated_dof: estimated_dof(
+            (
+                data.len(),
+                rolling_sigma.is_some(),
+                rolling_alone.effective_parameters,
+            ),
+            (2 * dma.len(), !alone.sigma_given, alone.parameters),
+        ),
     };
     let record = JointAccount {
         data: &weighted,
@@ -172,6 +180,7 @@ fn rolling_params(
     single.friction_factor = FrictionFactor::One;
     single.shift.cross_check = false;
     single.profile = false;
+    single.evidence = true;
     single.shift.kind = start.kind;
     let rolling_temps = distinct_temperatures(data);
     single.shift.t_ref = match start.kind {
@@ -279,6 +288,15 @@ impl JointAccount<'_> {
             notes: Vec::new(),
         })
     }
+}
+
+/// Σ (N − p) over the parts, (N, estimated, p), whose σ was estimated.
+fn estimated_dof(rolling: (usize, bool, f64), dma: (usize, bool, f64)) -> f64 {
+    [rolling, dma]
+        .iter()
+        .filter(|(_, estimated, _)| *estimated)
+        .map(|(n, _, p)| (*n as f64 - p).max(1.0))
+        .sum()
 }
 
 /// "given" or "estimated".

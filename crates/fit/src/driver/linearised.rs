@@ -75,7 +75,7 @@ impl Linearisation {
             residuals: e.residuals,
             jacobian,
             data_count,
-            known_sigma: objective.data.sigma().is_some(),
+            known_sigma: objective.noise_known,
         })
     }
 
@@ -217,6 +217,7 @@ mod tests {
             vertical: None,
             dma: None,
             friction_factor: false,
+            noise_known: true,
         };
         let groups = speed_ordered_groups(&data);
         let lambda = 10.0;

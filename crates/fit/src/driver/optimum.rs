@@ -7,7 +7,6 @@ use nalgebra::DMatrix;
 use rollfit_model::{Prony, ViscoelasticModulus};
 
 use crate::analysis::{Curvature, add_bias, curvature, modulus_point, probed_window};
-use crate::data::Measurements;
 use crate::error::FitError;
 use crate::objective::Objective;
 use crate::parametrization::{Mapped, Parametrization};
@@ -86,6 +85,31 @@ pub(super) struct Optimum {
     pub friction_factor: Option<(f64, f64)>,
 }
 
+/// A joint fit's rolling rows' noise variance at the optimum over the
+/// common one s², at least 1: Helmert's variance component
+/// s_R² = χ²_R/(N_R − p_R), p_R = Σ_{i ∈ R} J_i H⁺ J_iᵀ the rows' share of
+/// the effective parameters. κ is fixed by the rolling rows, whose σ is
+/// often estimated from fewer rows than the DMA's; the common s², set
+/// mostly by the DMA rows, would understate κ's σ when the rolling σ was
+/// estimated low.
+fn rolling_noise_ratio(
+    jac: &DMatrix<f64>,
+    residuals: &nalgebra::DVector<f64>,
+    rolling: usize,
+    c: &Curvature,
+) -> f64 {
+    let s2 = c.noise_variance;
+    let mut share = 0.0;
+    let mut chi2 = 0.0;
+    for i in 0..rolling {
+        let row = jac.row(i);
+        share += (row * &c.covariance * row.transpose())[(0, 0)] / s2;
+        chi2 += residuals[i] * residuals[i];
+    }
+    let variance = chi2 / (rolling as f64 - share).max(1.0);
+    (variance / s2).max(1.0)
+}
+
 /// The material at the optimum and its curvature.
 struct Material<'p> {
     param: &'p Parametrization,
@@ -96,9 +120,8 @@ struct Material<'p> {
 }
 
 /// Curvature, window, determined terms, bands and the record of `chosen`,
-/// the fit of `objective` on `data` under `params`.
+/// the fit of `objective` under `params`.
 pub(super) fn analyse(
-    data: &Measurements,
     params: &ValidFitParams,
     objective: &mut Objective<'_>,
     chosen: Chosen,
@@ -109,7 +132,7 @@ pub(super) fn analyse(
         .jacobian
         .as_ref()
         .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
-    let sigma_known = data.sigma().is_some();
+    let sigma_known = objective.noise_known;
     let noise_variance = match sigma_known {
         true => Some(1.0),
         false => chosen.evidence_noise_variance,
@@ -138,9 +161,19 @@ pub(super) fn analyse(
     }
     let n_shift = objective.shift.as_ref().map_or(0, |s| s.count());
     let shift_theta = chosen.trial.theta[n_material..].to_vec();
+    // κ's σ: the covariance's, scaled by the rolling rows' own noise
+    // level where it exceeds the common one, and widened like the
+    // shifts' by the smoothing bias (the change of κ in the fit at λ/10),
+    // added in quadrature.
     let friction_factor = objective.friction_factor_index().map(|k| {
         let value = chosen.trial.theta[k].exp();
-        (value, value * c.covariance[(k, k)].max(0.0).sqrt())
+        let bias = chosen
+            .less_smoothed
+            .as_ref()
+            .map_or(0.0, |less| less[k].exp() - value);
+        let ratio = rolling_noise_ratio(jac, &e.residuals, objective.data.len(), &c);
+        let variance = ratio * value * value * c.covariance[(k, k)].max(0.0) + bias * bias;
+        (value, variance.sqrt())
     });
     let shift = objective.shift.as_ref().map(|s| {
         let mut block = c
@@ -177,7 +210,9 @@ pub(super) fn analyse(
         &e.residuals.as_slice()[..n_rows],
         &objective.runs_groups(),
         c.effective_parameters,
-        sigma_known,
+        // A joint fit's residuals are in units of each part's σ (given,
+        // or estimated from that part alone): its χ² is judged in them.
+        sigma_known || objective.dma.is_some(),
         c.noise_variance.sqrt(),
     );
     warnings.extend(

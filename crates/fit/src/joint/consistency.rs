@@ -7,12 +7,22 @@
 //!
 //!   Δχ² = χ²_joint − χ²_R,alone − χ²_D,alone  ~  χ²(p_R + p_D − p_J)
 //!
-//! when both parts measure one material: Δχ² counts only the misfit that
+//! when both parts measure one material (χ² in units of each part's σ):
+//! Δχ² counts only the misfit that
 //! sharing the parameters forces, whatever each part's own goodness of fit
 //! (a poor part alone does not make the pair incompatible). Effective
 //! parameters (traces of the influence matrices) stand in for parameter
 //! counts under the smoothness penalty; the degrees of freedom are at
-//! least one. The parts are called incompatible at p < [`P_VALUE`].
+//! least one. Where a part's σ is estimated from its fit alone
+//! (σ² = χ²_alone/(N − p) of that part in the units of its weights), Δχ²
+//! is measured in an estimated unit, and the test is Snedecor's F,
+//!
+//!   F = (Δχ²/d₁)/(Σ χ²_alone/d₂) ~ F(d₁, d₂),  d₁ = p_R + p_D − p_J,  d₂ = Σ (N − p)
+//!
+//! over the parts whose σ is estimated (with the χ² in those units ≈ d₂ by
+//! construction, F ≈ Δχ²/d₁ and its tail is the χ² test's, widened for
+//! the estimate's own scatter). The parts are called incompatible at
+//! p < [`P_VALUE`].
 //!
 //! The friction factor κ (μ_measured = κ μ_theory, fitted with
 //! `friction_factor = "free"`) absorbs a dissipation that the bulk
@@ -33,7 +43,7 @@
 //!   rubber: the importance of deformation losses", Proc. Phys. Soc. 71
 //!   (1958) 989–1001.
 
-use statrs::distribution::{ChiSquared, ContinuousCDF};
+use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor};
 
 use super::record::{Compatibility, FrictionFactorRecord, ResidualRange};
 
@@ -46,13 +56,20 @@ pub(crate) struct Parts {
     pub dma_alone: (f64, f64),
     /// χ² of both parts at the joint optimum, and its effective parameters.
     pub joint: (f64, f64),
+    /// N − p of the parts whose σ was estimated from their fit alone (0:
+    /// every σ given).
+    pub estimated_dof: f64,
 }
 
 /// The parameter goodness-of-fit test (module doc).
 pub(crate) fn compatibility(parts: &Parts) -> Compatibility {
     let statistic = (parts.joint.0 - parts.rolling_alone.0 - parts.dma_alone.0).max(0.0);
     let dof = (parts.rolling_alone.1 + parts.dma_alone.1 - parts.joint.1).max(1.0);
-    let p_value = ChiSquared::new(dof).map_or(f64::NAN, |d| 1.0 - d.cdf(statistic));
+    let p_value = if parts.estimated_dof > 0.0 {
+        FisherSnedecor::new(dof, parts.estimated_dof).map_or(f64::NAN, |d| d.sf(statistic / dof))
+    } else {
+        ChiSquared::new(dof).map_or(f64::NAN, |d| d.sf(statistic))
+    };
     let compatible = !(p_value < P_VALUE);
     let verdict = if compatible {
         format!(
@@ -144,6 +161,7 @@ mod tests {
             rolling_alone: (40.0, 8.0),
             dma_alone: (100.0, 14.0),
             joint: (joint, 16.0),
+            estimated_dof: 0.0,
         };
         // dof = 8 + 14 − 16 = 6, median ≈ 5.35.
         let c = compatibility(&parts(145.35));

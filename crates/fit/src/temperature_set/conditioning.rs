@@ -108,6 +108,7 @@ fn free_objective<'a>(
         vertical: None,
         dma: None,
         friction_factor: false,
+        noise_known: data.sigma().is_some(),
     };
     (objective, theta)
 }

@@ -33,6 +33,7 @@ fn objective<'a>(setup: &'a crate::params::RollingSetup, data: &'a Measurements)
         vertical: None,
         dma: None,
         friction_factor: false,
+        noise_known: data.sigma().is_some(),
     }
 }
 
