@@ -27,9 +27,19 @@
 //! the exact solves on both cores (rayon), the rest as above; and the same
 //! under a 5 mm ball at 1 N with 1 % and 0.1 % noise. Run alone:
 //! `cargo bench -p rollfit-fit --bench fit -- exact_physics`.
+//!
+//! And issue 35's joint fit of DMA isotherms and rolling friction: the
+//! two-process truth of tests/joint.rs, six isotherms × ten frequencies
+//! (1 % noise) and four temperatures × twelve speeds (2 % noise, no σ
+//! column, no anchor), `shift = "auto"` at 20 °C, with κ = 1 and with κ
+//! fitted; the whole joint fit (the DMA master curve, the rolling part
+//! alone, both together). Run alone, on one core:
+//! `taskset -c 1 cargo bench -p rollfit-fit --bench fit -- joint_dma`.
 
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
-use rollfit_fit::{FitParams, Physics, ScaleAnchor, ShiftKind, ShiftSettings, fit};
+use rollfit_fit::{
+    DmaRows, FitParams, FrictionFactor, Physics, ScaleAnchor, ShiftKind, ShiftSettings, fit,
+};
 use rollfit_model::ViscoelasticModulus;
 use std::hint::black_box;
 
@@ -166,5 +176,33 @@ fn exact_physics(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(fit_benches, benches);
+fn joint_benches(c: &mut Criterion) {
+    use common::joint_case::{dma_isotherms, rolling, truth};
+    let truth = truth();
+    let isotherms = dma_isotherms(&truth, 0.01, 1);
+    let rows = rolling(&truth, 1.0, 101);
+    let mut group = c.benchmark_group("fit");
+    group.sample_size(10);
+    for (name, friction_factor) in [
+        ("joint_dma_6x10_rolling_4x12", FrictionFactor::One),
+        ("joint_dma_6x10_rolling_4x12_kappa", FrictionFactor::Free),
+    ] {
+        let params = FitParams {
+            shift: ShiftSettings {
+                t_ref: Some(20.0),
+                ..ShiftSettings::default()
+            },
+            friction_factor,
+            ..FitParams::default()
+        }
+        .check(setup())
+        .unwrap()
+        .with_dma(DmaRows::new(isotherms.clone(), "synthetic").unwrap())
+        .unwrap();
+        group.bench_function(name, |b| b.iter(|| fit(black_box(&rows), &params).unwrap()));
+    }
+    group.finish();
+}
+
+criterion_group!(fit_benches, benches, joint_benches);
 criterion_main!(fit_benches);

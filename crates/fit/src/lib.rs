@@ -67,6 +67,7 @@
 pub mod cancel;
 pub mod condense;
 pub mod data;
+pub mod dma_rows;
 pub mod driver;
 pub mod error;
 pub mod exact_physics;

@@ -265,8 +265,28 @@ impl Objective<'_> {
             None => 0.0,
         };
         misfit += dma_misfit;
+        self.penalties(theta, &m, &mut residuals, jacobian.as_mut());
+        Ok(Evaluation {
+            residuals,
+            jacobian,
+            mu,
+            misfit,
+        })
+    }
+
+    /// The smoothness rows, √λ (θ_{k+1} − 2θ_k + θ_{k−1}) over the ln H_k,
+    /// after the data rows, and the glassy-modulus bound in the last row,
+    /// with their Jacobian when given.
+    fn penalties(
+        &self,
+        theta: &[f64],
+        m: &Mapped,
+        residuals: &mut DVector<f64>,
+        mut jacobian: Option<&mut DMatrix<f64>>,
+    ) {
         let n_data = self.data_rows();
-        // Smoothness: √λ (θ_{k+1} − 2θ_k + θ_{k−1}) over the ln H_k.
+        let rows = self.residual_count();
+        let n_material = self.param.free_count();
         let root_lambda = self.lambda.sqrt();
         let first = self.param.first_strength();
         for k in 0..self.smoothness_count() {
@@ -292,18 +312,12 @@ impl Objective<'_> {
             if let Some(jac) = jacobian.as_mut() {
                 let ones = vec![1.0; self.param.terms() + 1];
                 let mut d = vec![0.0; n_material];
-                self.param.pullback(&m, &ones, &mut d);
+                self.param.pullback(m, &ones, &mut d);
                 for (j, dj) in d.iter().enumerate() {
                     jac[(row, j)] = BOUND_WEIGHT * slope * dj / e1;
                 }
             }
         }
-        Ok(Evaluation {
-            residuals,
-            jacobian,
-            mu,
-            misfit,
-        })
     }
 }
 

@@ -11,8 +11,8 @@ use rollfit_model::modulus::FreeShift;
 use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate, VerticalShift};
 
 use crate::cancel::Cancel;
+use crate::dma_rows::DmaRows;
 use crate::error::FitError;
-use crate::joint::{DMA_SIGMA_RANGE, DmaRows};
 use crate::progress::Observer;
 
 /// The optimiser.
@@ -165,6 +165,10 @@ pub struct FitParams {
     /// estimated from the DMA master curve's residuals).
     pub dma_sigma: Option<f64>,
 }
+
+/// Accepted relative standard deviations of E′ and E″ (`dma_sigma`): from
+/// 1e-5 (beyond any DMA) to 1 (a factor e, no measurement).
+pub const DMA_SIGMA_RANGE: (f64, f64) = (1e-5, 1.0);
 
 /// The factor κ in μ_measured = κ μ_theory of a joint fit with DMA data.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

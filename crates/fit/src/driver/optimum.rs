@@ -85,6 +85,48 @@ pub(super) struct Optimum {
     pub friction_factor: Option<(f64, f64)>,
 }
 
+/// κ and its 1σ, when fitted: the covariance's σ, scaled by the rolling
+/// rows' own noise level where it exceeds the common one
+/// ([`rolling_noise_ratio`]), and widened like the shifts' by the
+/// smoothing bias (the change of κ in the fit at λ/10), added in
+/// quadrature.
+fn friction_factor(
+    objective: &Objective<'_>,
+    chosen: &Chosen,
+    jac: &DMatrix<f64>,
+    residuals: &nalgebra::DVector<f64>,
+    c: &Curvature,
+) -> Option<(f64, f64)> {
+    let k = objective.friction_factor_index()?;
+    let value = chosen.trial.theta[k].exp();
+    let bias = chosen
+        .less_smoothed
+        .as_ref()
+        .map_or(0.0, |less| less[k].exp() - value);
+    let ratio = rolling_noise_ratio(jac, residuals, objective.data.len(), c);
+    let variance = ratio * value * value * c.covariance[(k, k)].max(0.0) + bias * bias;
+    Some((value, variance.sqrt()))
+}
+
+/// The probed window `window` (rad/s), widened to a joint fit's DMA points
+/// at their reduced frequencies: they probe E* there.
+fn with_dma_window(
+    objective: &Objective<'_>,
+    theta: &[f64],
+    mapped: &Mapped,
+    window: (f64, f64),
+) -> (f64, f64) {
+    let Some(d) = &objective.dma else {
+        return window;
+    };
+    let n_material = objective.param.free_count();
+    let shift = objective.shift.as_ref().map(|s| (s, &theta[n_material..]));
+    d.values(mapped, objective.param.tau(), shift)
+        .reduced_omega
+        .iter()
+        .fold(window, |(lo, hi), &w| (lo.min(w), hi.max(w)))
+}
+
 /// A joint fit's rolling rows' noise variance at the optimum over the
 /// common one s², at least 1: Helmert's variance component
 /// s_R² = χ²_R/(N_R − p_R), p_R = Σ_{i ∈ R} J_i H⁺ J_iᵀ the rows' share of
@@ -143,38 +185,15 @@ pub(super) fn analyse(
     let n_material = param.free_count();
     let mapped = param.map(&chosen.trial.theta[..n_material]);
     let prony = param.prony(&mapped)?;
-    let (mut omega_min, mut omega_max) = probed_window(
+    let window = probed_window(
         &params.setup,
         &prony,
         objective.reduced_range(&chosen.trial.theta),
     );
-    // A joint fit's DMA points probe E* at their reduced frequencies.
-    if let Some(d) = &objective.dma {
-        let shift = objective
-            .shift
-            .as_ref()
-            .map(|s| (s, &chosen.trial.theta[n_material..]));
-        for w in d.values(&mapped, param.tau(), shift).reduced_omega {
-            omega_min = omega_min.min(w);
-            omega_max = omega_max.max(w);
-        }
-    }
+    let (omega_min, omega_max) = with_dma_window(objective, &chosen.trial.theta, &mapped, window);
     let n_shift = objective.shift.as_ref().map_or(0, |s| s.count());
     let shift_theta = chosen.trial.theta[n_material..].to_vec();
-    // κ's σ: the covariance's, scaled by the rolling rows' own noise
-    // level where it exceeds the common one, and widened like the
-    // shifts' by the smoothing bias (the change of κ in the fit at λ/10),
-    // added in quadrature.
-    let friction_factor = objective.friction_factor_index().map(|k| {
-        let value = chosen.trial.theta[k].exp();
-        let bias = chosen
-            .less_smoothed
-            .as_ref()
-            .map_or(0.0, |less| less[k].exp() - value);
-        let ratio = rolling_noise_ratio(jac, &e.residuals, objective.data.len(), &c);
-        let variance = ratio * value * value * c.covariance[(k, k)].max(0.0) + bias * bias;
-        (value, variance.sqrt())
-    });
+    let friction_factor = friction_factor(objective, &chosen, jac, &e.residuals, &c);
     let shift = objective.shift.as_ref().map(|s| {
         let mut block = c
             .covariance

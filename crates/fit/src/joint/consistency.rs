@@ -70,7 +70,8 @@ pub(crate) fn compatibility(parts: &Parts) -> Compatibility {
     } else {
         ChiSquared::new(dof).map_or(f64::NAN, |d| d.sf(statistic))
     };
-    let compatible = !(p_value < P_VALUE);
+    // A test that could not be made (NaN) is no evidence against the pair.
+    let compatible = p_value.is_nan() || p_value >= P_VALUE;
     let verdict = if compatible {
         format!(
             "compatible: fitted together the parts lose Δχ² = {statistic:.1} against {dof:.1} \

@@ -54,16 +54,16 @@
 pub(crate) mod consistency;
 mod record;
 mod residuals;
-mod rows;
 pub(crate) mod start;
 
+pub use crate::dma_rows::{DMA_MODULUS_RANGE, DMA_OMEGA_RANGE, DmaRows};
+pub use crate::params::DMA_SIGMA_RANGE;
 pub use record::{
     Compatibility, DmaFitPoint, FrictionFactorRecord, JointRecord, JointSigma, PartChi2,
     ResidualRange,
 };
 pub(crate) use residuals::DmaBlock;
 pub(crate) use residuals::moduli_at;
-pub use rows::{DMA_MODULUS_RANGE, DMA_OMEGA_RANGE, DMA_SIGMA_RANGE, DmaRows};
 
 use crate::error::FitError;
 use crate::params::{FrictionFactor, ValidFitParams};

@@ -27,7 +27,7 @@ use crate::error::FitError;
 use crate::parametrization::{Mapped, Parametrization};
 use crate::shift::{ShiftParam, index_of};
 
-use super::DmaRows;
+use crate::dma_rows::DmaRows;
 
 /// The DMA rows of a joint objective, ready for evaluation.
 #[derive(Debug, Clone)]
@@ -153,8 +153,8 @@ impl DmaBlock {
             storage: Vec::with_capacity(self.points()),
             loss: Vec::with_capacity(self.points()),
         };
-        for i in 0..self.points() {
-            let w = self.omega[i] * ln_a[i].exp();
+        for (i, shift) in ln_a.iter().enumerate() {
+            let w = self.omega[i] * shift.exp();
             let (e1, e2) = moduli(m, tau, w);
             let b = self.ln_vertical[i].exp();
             out.reduced_omega.push(w);

@@ -1,4 +1,5 @@
-//! The DMA isotherms of a joint fit, validated once (issue 35).
+//! The DMA isotherms of a joint fit ([`crate::joint`], issue 35), validated
+//! once, as [`crate::data`] validates the rolling rows.
 
 use crate::data::TEMPERATURE_RANGE;
 use crate::error::FitError;
@@ -11,10 +12,6 @@ pub const DMA_MODULUS_RANGE: (f64, f64) = (1.0, 1e13);
 /// Accepted angular frequencies, rad/s: a DMA sweep spans 1e-3 … 1e3 Hz;
 /// the range leaves room for reduced frequencies without overflowing a_T.
 pub const DMA_OMEGA_RANGE: (f64, f64) = (1e-8, 1e8);
-
-/// Accepted relative standard deviations of E′ and E″ (`dma_sigma`): from
-/// 1e-5 (beyond any DMA) to 1 (a factor e, no measurement).
-pub const DMA_SIGMA_RANGE: (f64, f64) = (1e-5, 1.0);
 
 /// DMA isotherms in Young's moduli, each point a measurement of the master
 /// curve at its reduced frequency ω a_T (`source` names the file in
