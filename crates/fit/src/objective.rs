@@ -223,17 +223,19 @@ impl Objective<'_> {
                     grad_p[k] = row[k] + row[0];
                 }
                 self.param.pullback(&m, &grad_p, &mut grad_theta);
-                let scale = kappa / self.scales[i];
+                // κ multiplies the quotients (κ = 1 leaves them bit for
+                // bit as without a friction factor).
+                let s = self.scales[i];
                 for (j, g) in grad_theta.iter().enumerate() {
-                    jac[(i, j)] = g * scale;
+                    jac[(i, j)] = kappa * (g / s);
                 }
                 if let Some(d_ln_a) = shift_grads.get(i) {
                     for (k, d) in d_ln_a.iter().enumerate() {
-                        jac[(i, n_material + k)] = fj.d_ln_speed[i] * d * scale;
+                        jac[(i, n_material + k)] = kappa * (fj.d_ln_speed[i] * d / s);
                     }
                 }
                 if let Some(k) = self.friction_factor_index() {
-                    jac[(i, k)] = fj.mu[i] * scale;
+                    jac[(i, k)] = kappa * (fj.mu[i] / s);
                 }
             }
             fj.mu

@@ -163,6 +163,25 @@ fn study_both_sources() {
                 e[0].0, e[0].1, e[1].0, e[1].1, e[2].0, e[2].1
             );
         }
+        let (bands_t, bands_e) = common::band_coverage(&c.joint, &truth(), 2.0);
+        let shifts = c.joint.shift.as_ref().map_or(&[][..], |s| s.log_shifts());
+        let shifts_covered = shifts
+            .iter()
+            .filter(|l| (l.log_shift - wlf_truth(l.temperature)).abs() <= 2.0 * l.log_shift_sigma)
+            .count();
+        for l in shifts {
+            println!(
+                "    T {:6.1}: log a_T {:+.4} truth {:+.4} σ {:.4}",
+                l.temperature,
+                l.log_shift,
+                wlf_truth(l.temperature),
+                l.log_shift_sigma
+            );
+        }
+        println!(
+            "  2σ coverage: tan δ band {bands_t:.2}, |E| band {bands_e:.2}, log a_T {shifts_covered}/{}",
+            shifts.len()
+        );
         if let Some(rollfit_fit::ShiftRecord::Wlf {
             c1, c2, log_shift, ..
         }) = &c.joint.shift

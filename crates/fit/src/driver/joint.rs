@@ -52,6 +52,14 @@ pub(super) fn fit_joint(
         }
     };
     let rolling_unit = rolling_sigma.map_or(1.0, |s| s * s);
+    let joint_rolling_chi2 = |fit: &super::optimum::Optimum| -> f64 {
+        (0..weighted.len())
+            .map(|i| {
+                let sigma = weighted.sigma().map_or(1.0, |s| s[i]);
+                ((fit.mu[i] - weighted.friction()[i]) / sigma).powi(2)
+            })
+            .sum()
+    };
     let mut joint = params.clone();
     joint.dma_sigma = Some(alone.sigma);
     joint.starts = 1;
@@ -64,12 +72,17 @@ pub(super) fn fit_joint(
         Some(start.material.clone()),
         Some(&start.shift),
     )?;
+    // A part alone fits its own rows at least as well as the joint
+    // optimum does, which is one of its candidates (up to κ): an alone fit
+    // that stopped above it (a local minimum; rows that κ alone explains)
+    // counts at the joint's value, so that Δχ² measures the sharing only.
+    let joint_dma_chi2 = outcome.fit.misfit - joint_rolling_chi2(&outcome.fit);
     let parts = Parts {
         rolling_alone: (
-            rolling_alone.misfit / rolling_unit,
+            (rolling_alone.misfit / rolling_unit).min(joint_rolling_chi2(&outcome.fit)),
             rolling_alone.effective_parameters,
         ),
-        dma_alone: (alone.chi2, alone.parameters),
+        dma_alone: (alone.chi2.min(joint_dma_chi2), alone.parameters),
         joint: (outcome.fit.misfit, outcome.fit.effective_parameters),
         estimated_dof: estimated_dof(
             (
