@@ -274,6 +274,7 @@ fn the_joint_pictures_render_with_their_axes_legends_and_temperatures() {
     );
 
     let residuals = all.iter().find(|p| p.name == "joint_residuals").unwrap();
+    assert_contains(&residuals.caption, &["σ = 2.000 % of E, given"]);
     let image = check(residuals);
     let text = svg_text(residuals);
     assert_contains(

@@ -61,8 +61,8 @@ impl Figure for JointResidualsFigure<'_> {
 
     fn caption(&self) -> String {
         format!(
-            "Residuals of the joint fit in units of each part's σ: above, the DMA points' ln(E_fit/E_meas)/σ (σ = {} relative, {}) for E′ (filled) and E″ (open) against ω a_T, coloured by isotherm temperature; below, the rolling rows' (μ_fit − μ_meas)/σ against v·a_T, one colour per temperature. Dashed lines at ±{MISS_SIGMA}σ: a run beyond them is where the parts disagree.",
-            super::format_tick(self.joint.sigma.dma),
+            "Residuals of the joint fit in units of each part's σ: above, the DMA points' ln(E_fit/E_meas)/σ (σ = {:.3} % of E, {}) for E′ (filled) and E″ (open) against ω a_T, coloured by isotherm temperature; below, the rolling rows' (μ_fit − μ_meas)/σ against v·a_T, one colour per temperature. Dashed lines at ±{MISS_SIGMA}σ: a run beyond them is where the parts disagree.",
+            100.0 * self.joint.sigma.dma,
             self.joint.sigma.dma_source,
         )
     }
