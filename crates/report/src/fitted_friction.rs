@@ -14,6 +14,11 @@
 //! temperature's measured speeds with [`DENSE_POINTS`] log-spaced speeds:
 //! the model, not an interpolant, between the points.
 //!
+//! A joint fit with DMA data that fitted the friction factor κ
+//! (fit.json's `joint.friction_factor`) describes μ_measured = κ μ_theory:
+//! its mu.csv's `mu_fit` carries κ, and so does the curve here
+//! ([`friction_factor`]).
+//!
 //! The scene is not in the fit folder; the caller reads it (fit.json's
 //! `input.scene`) and hands over what the curve needs ([`RollingScene`]).
 //! A scene edited since the fit would draw another curve, so the same
@@ -28,7 +33,7 @@
 use rollfit_fit::exact_physics::interpolate;
 use rollfit_fit::vertical::{load_factor, scene_under_load};
 use rollfit_fit::{FitParams, RollingSetup};
-use rollfit_io::fit_dir::{FitDir, FrictionRow};
+use rollfit_io::fit_dir::{FitDir, FitSummary, FrictionRow};
 use rollfit_io::scene::log_spaced;
 use rollfit_model::{Prony, VerticalShift};
 
@@ -108,6 +113,16 @@ impl FittedLine {
     }
 }
 
+/// The friction factor κ a joint fit multiplies the model's μ by
+/// (μ_measured = κ μ_theory): fit.json's `joint.friction_factor`, else 1.
+pub fn friction_factor(summary: &FitSummary) -> f64 {
+    summary
+        .joint
+        .as_ref()
+        .and_then(|j| j.friction_factor.as_ref())
+        .map_or(1.0, |k| k.value)
+}
+
 /// Rows of mu.csv grouped by temperature (one group without a T column),
 /// in the file's order of first appearance, each sorted by speed.
 pub fn temperature_groups(rows: &[FrictionRow]) -> Vec<(Option<f64>, Vec<FrictionRow>)> {
@@ -157,13 +172,17 @@ fn group_curve(
     };
     let model = scene_under_load(&scene.setup, prony.clone(), scene.tolerance, factor)
         .map_err(|e| failed(e.to_string()))?;
+    // κ is 1 but for a joint fit that fitted it; times 1 leaves every
+    // other fit's curve as it was, to the bit.
+    let kappa = friction_factor(&fit.summary);
     // μ at v·a_T, written as the fit writes it so that the speeds agree to
     // the bit.
     let sweep = |speeds: &[f64]| -> Result<Vec<f64>, ReportError> {
         let reduced: Vec<f64> = speeds.iter().map(|v| v * 10f64.powf(log_shift)).collect();
-        model
+        let mu = model
             .friction_sweep(&reduced)
-            .map_err(|e| failed(e.to_string()))
+            .map_err(|e| failed(e.to_string()))?;
+        Ok(mu.into_iter().map(|m| kappa * m).collect())
     };
     let correction = ExactCorrection::of(fit, members);
 

@@ -3,14 +3,19 @@
 //! the fit — convergence, the goodness-of-fit verdict with its tests and
 //! noise, and a flagged modulus scale ([`quality`]) — followed by the fit's
 //! table, the warnings, the pictures, its parameters and their uncertainty
-//! and, when DMA data were given, the comparison metrics.
+//! and, when DMA data were given, the comparison metrics. A joint fit of
+//! DMA and rolling data gets its own section before the pictures
+//! ([`joint`]).
 
 use std::fmt::Write as _;
 
+mod joint;
 mod quality;
 
+pub use joint::DISAGREE_SIGMA;
+
 use crate::compare::Comparison;
-use crate::plot::Picture;
+use crate::plot::{JOINT_PICTURES, Picture};
 use rollfit_io::fit_dir::FitDir;
 
 /// The page's style: readable without any external resource.
@@ -115,6 +120,13 @@ pub fn report_html(
             num(shift.t_ref)
         );
     }
+    if let Some(joint) = &s.joint {
+        let _ = write!(
+            meta,
+            "; a <a href=\"#joint\">joint fit with the DMA data</a> <code>{}</code>",
+            escape(&joint.dma_source)
+        );
+    }
     let _ = writeln!(page, "<p class=\"meta\">{meta}.</p>");
 
     // stop_reason reads "converged (…)" or says why not; the box says it once.
@@ -140,15 +152,15 @@ pub fn report_html(
     if let Some(section) = comparison {
         page.push_str(&comparison_table(section));
     }
+    if let Some(joint) = &s.joint {
+        page.push_str(&joint::section(joint, pictures));
+    }
     page.push_str("<h2>Pictures</h2>\n");
-    for p in pictures {
-        let _ = writeln!(
-            page,
-            "<figure id=\"{name}\">\n{svg}\n<figcaption>{caption} (Also <a href=\"{name}.png\">{name}.png</a>, <a href=\"{name}.svg\">{name}.svg</a>.)</figcaption>\n</figure>",
-            name = p.name,
-            svg = inline_svg(&p.svg),
-            caption = escape(&p.caption)
-        );
+    for p in pictures
+        .iter()
+        .filter(|p| !JOINT_PICTURES.contains(&p.name))
+    {
+        figure(&mut page, p);
     }
     page.push_str("<h2>Parameters</h2>\n");
     page.push_str(&parameter_table(fit));
@@ -158,6 +170,17 @@ pub fn report_html(
         env!("CARGO_PKG_VERSION")
     );
     page
+}
+
+/// A picture as a figure: inline SVG, its caption and links to its files.
+fn figure(out: &mut String, p: &Picture) {
+    let _ = writeln!(
+        out,
+        "<figure id=\"{name}\">\n{svg}\n<figcaption>{caption} (Also <a href=\"{name}.png\">{name}.png</a>, <a href=\"{name}.svg\">{name}.svg</a>.)</figcaption>\n</figure>",
+        name = p.name,
+        svg = inline_svg(&p.svg),
+        caption = escape(&p.caption)
+    );
 }
 
 /// An SVG document as an element inside HTML: without an XML declaration.

@@ -19,7 +19,10 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axes::{lg, linear_range, log_axis, log_range};
-use super::parts::{dashed_key, legend_box, place_legend, plot_size, runs};
+use super::parts::{
+    ColouredPoint, dashed_key, draw_storage_loss, isotherms, legend_box, place_legend, plot_size,
+    runs,
+};
 use super::{DrawResult, Figure, draw_legend, draw_mesh, draw_shift_mesh, format_tick, style};
 
 /// Width of the left column (master curve and tan δ), px.
@@ -89,15 +92,7 @@ pub struct DmaMasterFigure<'a> {
 impl DmaMasterFigure<'_> {
     /// The isotherms' temperatures, °C, increasing, each once.
     fn isotherms(&self) -> Vec<f64> {
-        let mut ts: Vec<f64> = self
-            .points
-            .iter()
-            .map(|p| p.temperature)
-            .filter(|t| t.is_finite())
-            .collect();
-        ts.sort_by(f64::total_cmp);
-        ts.dedup();
-        ts
+        isotherms(self.points.iter().map(|p| p.temperature))
     }
 
     /// Whether there is a shift to show: at least two shift factors or a
@@ -130,7 +125,7 @@ impl DmaMasterFigure<'_> {
 }
 
 /// The colour of an isotherm at `t` °C between the coldest and the warmest.
-fn isotherm_colour(t: f64, coldest: f64, warmest: f64) -> RGBColor {
+pub(crate) fn isotherm_colour(t: f64, coldest: f64, warmest: f64) -> RGBColor {
     if warmest > coldest {
         style::cold_to_warm((t - coldest) / (warmest - coldest))
     } else {
@@ -146,7 +141,7 @@ fn text_style(size: u32, h: HPos, v: VPos) -> TextStyle<'static> {
 }
 
 /// "20 °C".
-fn celsius(t: f64) -> String {
+pub(crate) fn celsius(t: f64) -> String {
     format!("{} °C", format_tick(t))
 }
 
@@ -202,7 +197,7 @@ impl Figure for DmaMasterFigure<'_> {
 }
 
 /// (log10 ω a_T, log10 value, colour) of the measured points.
-type ColouredPoints = Vec<(f64, f64, RGBColor)>;
+type ColouredPoints = Vec<ColouredPoint>;
 
 /// What the two left panels draw, in log10 coordinates, and their shared
 /// frequency axis.
@@ -317,21 +312,7 @@ impl DmaMasterFigure<'_> {
             &format!("{s}′, {s}″ (Pa)"),
             true,
         )?;
-        chart
-            .draw_series(
-                storage
-                    .iter()
-                    .map(|&(x, y, c)| Circle::new((x, y), 3, c.filled())),
-            )?
-            .label(storage_label)
-            .legend(|(x, y)| Circle::new((x + 10, y), 4, style::MEASURED.filled()));
-        chart
-            .draw_series(
-                loss.iter()
-                    .map(|&(x, y, c)| TriangleMarker::new((x, y), 5, c.stroke_width(1))),
-            )?
-            .label(loss_label)
-            .legend(|(x, y)| TriangleMarker::new((x + 10, y), 5, style::MEASURED.stroke_width(1)));
+        draw_storage_loss(&mut chart, storage, loss, (storage_label, loss_label))?;
         // The Prony curves on top of the points: they are what the points
         // are judged against.
         for (i, run) in fit_storage.iter().enumerate() {

@@ -102,8 +102,21 @@ impl Figure for FrictionFigure<'_> {
                 "the fit (line)",
             )
         };
+        let kappa = match self
+            .fit
+            .summary
+            .joint
+            .as_ref()
+            .and_then(|j| j.friction_factor.as_ref())
+        {
+            Some(k) => format!(
+                "; the fit is κ times the model's μ, κ = {:.4} ± {:.4} fitted jointly with DMA data",
+                k.value, k.sigma
+            ),
+            None => String::new(),
+        };
         format!(
-            "{points} and {lines}, {}; relative residuals (μ_fit − μ_meas)/μ_meas at the data below; {line}.",
+            "{points} and {lines}, {}; relative residuals (μ_fit − μ_meas)/μ_meas at the data below; {line}{kappa}.",
             verdict_phrase(&self.fit.summary)
         )
     }

@@ -14,6 +14,8 @@ pub mod convergence;
 pub mod dma_master;
 pub mod forward_sweep;
 pub mod friction;
+pub mod joint_master;
+pub mod joint_residuals;
 pub mod master_curve;
 mod parts;
 pub mod pressure_map;
@@ -235,9 +237,14 @@ where
     Ok(())
 }
 
+/// The pictures of a joint fit of DMA and rolling data, which the page
+/// shows in their own section.
+pub const JOINT_PICTURES: [&str; 2] = ["joint_master", "joint_residuals"];
+
 /// Every picture of a fit, in reading order: friction, master curve,
-/// spectrum, convergence, and for a temperature set the master friction
-/// curve and the shift. `dma` holds DMA points at the reference state;
+/// spectrum, convergence, for a temperature set the master friction
+/// curve and the shift, and for a joint fit with DMA data the joint master
+/// curve and the residuals of both parts ([`JOINT_PICTURES`]). `dma` holds DMA points at the reference state;
 /// `line` is the fitted μ(v) friction.png draws
 /// ([`crate::fitted_friction::FittedLine::of`]).
 pub fn pictures(
@@ -254,6 +261,13 @@ pub fn pictures(
     if fit.is_temperature_set() {
         pictures.push(render(&temperature_set::MasterFrictionFigure { fit })?);
         pictures.push(render(&temperature_set::ShiftFigure { fit })?);
+    }
+    if let Some(joint) = &fit.summary.joint {
+        pictures.push(render(&joint_master::JointMasterFigure::of(fit, joint))?);
+        pictures.push(render(&joint_residuals::JointResidualsFigure {
+            fit,
+            joint,
+        })?);
     }
     Ok(pictures)
 }

@@ -1,13 +1,15 @@
-//! Small parts shared by the forward-sweep and DMA-master pictures: lines
-//! broken where a value cannot be drawn, a dashed legend key, and the choice
-//! of the legend's corner.
+//! Small parts shared by the forward-sweep, DMA-master and joint pictures:
+//! lines broken where a value cannot be drawn, a dashed legend key, the
+//! choice of the legend's corner, and isotherms' E′ and E″ markers in their
+//! temperature's colour.
 
 use std::ops::Range;
 
 use plotters::element::ComposedElement;
 use plotters::prelude::*;
 
-use super::SeriesLabelPosition;
+use super::axes::LogAxis;
+use super::{DrawResult, SeriesLabelPosition, style};
 
 /// A pixel position, plotters' backend coordinate.
 pub(crate) type Pixel = (i32, i32);
@@ -160,6 +162,51 @@ pub(crate) fn place_legend(
         corner: SeriesLabelPosition::UpperLeft,
         y: y.start..(y.end + span(y) * h / (1.0 - h)),
     }
+}
+
+/// The temperatures of `points`, °C, increasing, each once (non-finite
+/// ones left out): the isotherms.
+pub(crate) fn isotherms(points: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut ts: Vec<f64> = points.filter(|t| t.is_finite()).collect();
+    ts.sort_by(f64::total_cmp);
+    ts.dedup();
+    ts
+}
+
+/// (log10 x, y, colour) of a point drawn in its isotherm's colour.
+pub(crate) type ColouredPoint = (f64, f64, RGBColor);
+
+/// E′ as filled circles and E″ as open triangles, each point in its
+/// isotherm's colour, with their legend `labels` (E′, E″) keyed in the
+/// measured colour: the markers of the DMA master curve, wherever its
+/// points are drawn.
+pub(crate) fn draw_storage_loss<'a, DB, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<LogAxis, Y>>,
+    storage: &[ColouredPoint],
+    loss: &[ColouredPoint],
+    labels: (String, String),
+) -> DrawResult
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    Y: Ranged<ValueType = f64>,
+{
+    chart
+        .draw_series(
+            storage
+                .iter()
+                .map(|&(x, y, c)| Circle::new((x, y), 3, c.filled())),
+        )?
+        .label(labels.0)
+        .legend(|(x, y)| Circle::new((x + 10, y), 4, style::MEASURED.filled()));
+    chart
+        .draw_series(
+            loss.iter()
+                .map(|&(x, y, c)| TriangleMarker::new((x, y), 5, c.stroke_width(1))),
+        )?
+        .label(labels.1)
+        .legend(|(x, y)| TriangleMarker::new((x + 10, y), 5, style::MEASURED.stroke_width(1)));
+    Ok(())
 }
 
 #[cfg(test)]
