@@ -472,6 +472,7 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &FitSettings, force: bool) -> 
         scene: &entry.scene,
         data: &entry.data,
         sheet: entry.sheet.as_deref(),
+        dma: entry.dma.as_deref(),
         dir: &folder,
         settings,
         usage: "in the manifest, scene = \"SCENE.toml\" and data = \"DATA.csv\"",
