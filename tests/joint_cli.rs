@@ -117,7 +117,7 @@ fn scene_dma_is_relative_to_the_scene_and_kappa_is_fitted() {
     );
     let stderr = text(&out.stderr);
     assert!(out.status.success(), "{stderr}");
-    assert!(stderr.contains("friction factor κ = "), "{stderr}");
+    assert!(stderr.contains("  friction factor: κ = "), "{stderr}");
     let joint = joint_record(&dir.path().join("out"));
     let source = joint["dma_source"].as_str().unwrap();
     assert_eq!(Path::new(source), Path::new("scenes").join("dma.csv"));

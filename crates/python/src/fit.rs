@@ -181,6 +181,11 @@ pub fn fit(
             params.anchor = Some(anchor(&key, &value)?);
             continue;
         }
+        // The joint fit's keywords take None for "not given" (their stubs'
+        // defaults).
+        if value.is_none() && matches!(key.as_str(), "dma" | "dma_sigma" | "friction_factor") {
+            continue;
+        }
         // A path of `dma` may be a pathlib.Path.
         let path = (key == "dma" && !value.is_instance_of::<PyString>())
             .then(|| value.extract::<PathBuf>().ok())

@@ -52,7 +52,7 @@ def test_scene_dma_is_the_cli_s(cli, tmp_path):
     # Relative to the scene file's folder, not to the current one.
     assert result.joint["dma_source"] == DMA
     assert "friction_factor" not in result.joint
-    assert python_fit(SCENE, starts=1).joint is None
+    assert python_fit(SCENE, starts=1, dma=None, friction_factor=None).joint is None
 
 
 def test_joint_settings_and_files_are_checked():

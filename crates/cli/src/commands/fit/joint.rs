@@ -105,10 +105,8 @@ pub fn summary_lines(joint: &JointRecord) -> String {
     );
     text += &format!("  {}\n", joint.compatibility.verdict);
     if let Some(k) = &joint.friction_factor {
-        text += &format!(
-            "  friction factor κ = {:.4} ± {:.4}: {}\n",
-            k.value, k.sigma, k.verdict
-        );
+        // The verdict states κ and its σ.
+        text += &format!("  friction factor: {}\n", k.verdict);
     }
     text
 }
