@@ -146,6 +146,24 @@ fn anchor(key: &str, value: &Bound<'_, PyAny>) -> PyResult<ScaleAnchor> {
     })
 }
 
+/// A setting keyword's value; None for a joint fit's keyword given as
+/// None ("not given", the stubs' default). The path of `dma` may be a
+/// pathlib.Path.
+fn keyword_value(key: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Value>> {
+    if value.is_none() && matches!(key, "dma" | "dma_sigma" | "friction_factor") {
+        return Ok(None);
+    }
+    let path = (key == "dma" && !value.is_instance_of::<PyString>())
+        .then(|| value.extract::<PathBuf>().ok())
+        .flatten()
+        .map(|p| Value::Text(p.display().to_string()));
+    path.or_else(|| Value::of(value)).map(Some).ok_or_else(|| {
+        value_error_text(format!(
+            "fit setting `{key}`: expected text, a number, true/false or a list of numbers"
+        ))
+    })
+}
+
 /// Fits the master curve E*(ω) to measured μ(v): speeds v (m/s), friction
 /// coefficients mu, optional standard deviations sigma of μ and
 /// temperatures T (°C; several make a temperature set). Settings as in a
@@ -181,24 +199,11 @@ pub fn fit(
             params.anchor = Some(anchor(&key, &value)?);
             continue;
         }
-        // The joint fit's keywords take None for "not given" (their stubs'
-        // defaults).
-        if value.is_none() && matches!(key.as_str(), "dma" | "dma_sigma" | "friction_factor") {
-            continue;
+        if let Some(owned) = keyword_value(&key, &value)? {
+            given
+                .set(&key, owned.setting())
+                .map_err(|e| value_error(&e))?;
         }
-        // A path of `dma` may be a pathlib.Path.
-        let path = (key == "dma" && !value.is_instance_of::<PyString>())
-            .then(|| value.extract::<PathBuf>().ok())
-            .flatten()
-            .map(|p| Value::Text(p.display().to_string()));
-        let owned = path.or_else(|| Value::of(&value)).ok_or_else(|| {
-            value_error_text(format!(
-                "fit setting `{key}`: expected text, a number, true/false or a list of numbers"
-            ))
-        })?;
-        given
-            .set(&key, owned.setting())
-            .map_err(|e| value_error(&e))?;
     }
     if anchors.len() > 1 {
         return Err(value_error_text(format!(
