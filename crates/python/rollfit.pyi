@@ -161,6 +161,11 @@ class FitResult:
         "arrhenius" or "free", its constants and log10 a_T per temperature
         with its 1σ (None where the data do not determine it)."""
     @property
+    def joint(self) -> dict[str, Any] | None:
+        """A joint fit with DMA data (`dma`), as fit.json's `joint`: each
+        part's χ² joint and alone, the compatibility test, κ if fitted,
+        the DMA points with the joint curve; None without DMA data."""
+    @property
     def warnings(self) -> list[str]: ...
     @property
     def converged(self) -> bool: ...
@@ -201,14 +206,22 @@ def fit(
     T: _Floats | None = None,
     *,
     data_file: str | None = None,
+    dma: _Path | None = None,
+    dma_sigma: float | None = None,
+    friction_factor: Literal["one", "free"] | None = None,
     **settings: Any,
 ) -> FitResult:
     """Fits E*(ω) to μ(v) (m/s); sigma: 1σ of μ; T: °C. Settings as in a
     scene's [fit] table (method, lambda, seed, starts, terms,
     max_evaluations, tolerance, E1_max, shift, T_ref, cross_check, physics,
     terms_per_decade, tau; anchors E0, E_at, contact_radius; shift is
-    "auto", the default, "wlf", "arrhenius" or "free"). Raises
-    ValueError with the CLI's message for a bad value; Ctrl-C interrupts."""
+    "auto", the default, "wlf", "arrhenius" or "free"). dma: a DMA file
+    (relative to the current folder; else the scene file's [fit] dma)
+    fitted jointly, with dma_sigma (relative σ of E′, E″) and
+    friction_factor; the result's `joint` then says whether both describe
+    one material. Raises ValueError with the CLI's message for a bad
+    value, OSError for a DMA file that cannot be read; Ctrl-C
+    interrupts."""
 
 def read_data(path: _Path, sheet: str | None = None) -> dict[str, Any]:
     """A measurement file as `rollfit fit` reads it: v (m/s), mu, sigma, T (°C), notes, warnings."""

@@ -148,13 +148,14 @@ mod tests {
     use std::path::PathBuf;
 
     use clap::{CommandFactory, Parser};
-    use rollfit_fit::{Method, Physics, ShiftKind};
+    use rollfit_fit::{FrictionFactor, Method, Physics, ShiftKind};
 
     use super::{Cli, Command};
 
     /// Every option of every command that takes a value allows hyphen
     /// values, except those whose value cannot be a number: paths, names
-    /// (sheet, solver, physics, shift law) and fixed choices.
+    /// (sheet, solver, physics, shift law, friction factor) and fixed
+    /// choices.
     #[test]
     fn every_numeric_option_takes_a_leading_minus() {
         let not_numbers = [
@@ -163,6 +164,7 @@ mod tests {
             TypeId::of::<Method>(),
             TypeId::of::<Physics>(),
             TypeId::of::<ShiftKind>(),
+            TypeId::of::<FrictionFactor>(),
         ];
         let cli = Cli::command();
         let mut checked = 0;

@@ -25,9 +25,10 @@ pub struct DmaMaster {
 }
 
 /// Reads `path` (of a workbook the sheet `sheet`, default the first) and
-/// builds its master curve. `poisson` converts shear moduli
-/// (E = 2(1+ν)G); `kind` overrides a TRIOS file's shear/tensile decision. Errors ([`DmaMasterError`]) name the file and, where one
-/// point is at fault, its line.
+/// builds its master curve ([`read_isotherms`], then the master-curve fit).
+/// `poisson` converts shear moduli (E = 2(1+ν)G); `kind` overrides a TRIOS
+/// file's shear/tensile decision. Errors ([`DmaMasterError`]) name the
+/// file and, where one point is at fault, its line.
 pub fn build(
     path: &Path,
     poisson: f64,
@@ -35,21 +36,68 @@ pub fn build(
     sheet: Option<&str>,
     settings: &MasterSettings,
 ) -> Result<DmaMaster, IoError> {
-    let options = DmaOptions { kind, wlf: None };
-    let data = DmaData::read_sheet(path, poisson, &options, sheet)
-        .map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
+    // No temperatures: the file is one curve, taken at T_ref.
+    let untimed = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
+    let DmaIsotherms {
+        data, isotherms, ..
+    } = read_isotherms(path, poisson, kind, sheet, Some(untimed))?;
     let in_file = |source: DmaMasterError| DmaMasterError::InFile {
         path: path.to_path_buf(),
         source: Box::new(source),
     };
+    let valid = settings
+        .check(&isotherms)
+        .map_err(|error| in_file(DmaMasterError::Fit { error }))?;
+    let master =
+        build_master_curve(&isotherms, &valid).map_err(|error| DmaMasterError::MasterCurve {
+            path: path.to_path_buf(),
+            source: Box::new(DmaMasterError::Fit { error }),
+        })?;
+    Ok(DmaMaster {
+        data,
+        settings: valid,
+        master,
+    })
+}
+
+/// A DMA file read and grouped into isotherms.
+pub struct DmaIsotherms {
+    /// The file as read (Young's moduli).
+    pub data: DmaData,
+    /// The isotherms, ascending in temperature, each in file order.
+    pub isotherms: Vec<Isotherm>,
+    /// For each isotherm, the indices of its points in `data.points` (and
+    /// `data.lines`), in the isotherm's order.
+    pub indices: Vec<Vec<usize>>,
+}
+
+/// Reads `path` (of a workbook the sheet `sheet`, default the first) and
+/// groups its points into isotherms ([`isotherms`]), refusing an isotherm
+/// whose frequencies do not run one way: what `rollfit master`, a scene's
+/// `model = "dma"` and a joint fit's `dma` share. `poisson` converts shear
+/// moduli (E = 2(1+ν)G); `kind` overrides a TRIOS file's shear/tensile
+/// decision. A file without temperatures is one isotherm at `untimed`
+/// (None: refused, [`DmaMasterError::NoTemperature`]). Errors name the
+/// file and, where one point is at fault, its line.
+pub fn read_isotherms(
+    path: &Path,
+    poisson: f64,
+    kind: Option<ModulusKind>,
+    sheet: Option<&str>,
+    untimed: Option<f64>,
+) -> Result<DmaIsotherms, IoError> {
+    let options = DmaOptions { kind, wlf: None };
+    let data = DmaData::read_sheet(path, poisson, &options, sheet)
+        .map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
     let with_t = data
         .points
         .iter()
         .filter(|p| p.temperature.is_some())
         .count();
     let groups: Vec<(f64, Vec<usize>)> = if with_t == 0 {
-        // No temperatures: the file is one curve, taken at T_ref.
-        let t = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
+        let t = untimed.ok_or_else(|| DmaMasterError::NoTemperature {
+            path: path.to_path_buf(),
+        })?;
         vec![(t, (0..data.points.len()).collect())]
     } else if with_t < data.points.len() {
         return Err(DmaMasterError::TemperatureMissing {
@@ -72,7 +120,10 @@ pub fn build(
     };
     let mut sets = Vec::with_capacity(groups.len());
     for (temperature, indices) in &groups {
-        check_monotone(&data, *temperature, indices).map_err(in_file)?;
+        check_monotone(&data, *temperature, indices).map_err(|source| DmaMasterError::InFile {
+            path: path.to_path_buf(),
+            source: Box::new(source),
+        })?;
         let point = |i: &usize| data.points[*i];
         sets.push(Isotherm {
             temperature: *temperature,
@@ -81,18 +132,10 @@ pub fn build(
             loss: indices.iter().map(|i| point(i).loss).collect(),
         });
     }
-    let valid = settings
-        .check(&sets)
-        .map_err(|error| in_file(DmaMasterError::Fit { error }))?;
-    let master =
-        build_master_curve(&sets, &valid).map_err(|error| DmaMasterError::MasterCurve {
-            path: path.to_path_buf(),
-            source: Box::new(DmaMasterError::Fit { error }),
-        })?;
-    Ok(DmaMaster {
+    Ok(DmaIsotherms {
         data,
-        settings: valid,
-        master,
+        isotherms: sets,
+        indices: groups.into_iter().map(|(_, indices)| indices).collect(),
     })
 }
 

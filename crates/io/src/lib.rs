@@ -5,8 +5,9 @@
 //!   sections checked and turned into the model's objects;
 //! - [`manifest`]: the batch manifest of `rollfit batch`;
 //! - [`dma_master`]: a DMA file made a master curve (`rollfit master`, a
-//!   scene's `model = "dma"`), and [`material_file`]: the material.toml
-//!   `rollfit master` writes;
+//!   scene's `model = "dma"`), [`dma_joint`]: a DMA file as the isotherms
+//!   of a joint fit (`dma = FILE`), and [`material_file`]: the
+//!   material.toml `rollfit master` writes;
 //! - [`data`]: measured rolling friction, text (`,`, `;` or tab, decimal
 //!   commas, any common encoding) or a workbook, with header aliases and
 //!   units converted to SI;
@@ -42,6 +43,7 @@ pub mod csv_columns;
 pub mod csv_text;
 pub mod data;
 pub mod dma;
+pub mod dma_joint;
 pub mod dma_master;
 pub mod error;
 pub mod fit_dir;

@@ -2,19 +2,24 @@
 //! "Contract", "Commands", and "Data flow", `batch`): which fits to run.
 //!
 //! ```toml
-//! [defaults]              # optional: method, lambda, seed, starts, terms, physics
+//! [defaults]              # optional: the settings below
 //! starts = 1
 //! [[entry]]
 //! name = "hn-rubber"      # unique, [A-Za-z0-9._-]+: the result folder
 //! scene = "hn-rubber.toml"
 //! data = "hn-rubber.csv"
 //! # sheet = "Run 1"     # optional: the sheet of a workbook data file
-//! # optional: method, lambda, seed, starts, terms, physics
+//! # dma = "dma.csv"     # optional: a joint fit with these DMA isotherms
+//! # optional: method, lambda, seed, starts, terms, physics, dma_sigma,
+//! # friction_factor
 //! ```
 //!
-//! Paths are relative to the manifest's folder. The settings are those of
-//! the `fit` flags (`--method`, `--lambda`, `--seed`, `--starts`,
-//! `--terms`, `--physics`), spelled as in a scene's `[fit]` and read by the same parser,
+//! Paths are relative to the manifest's folder: `scene`, `data` and `dma`
+//! (an entry's own, else `[defaults]`'s, the DMA file of a joint fit,
+//! which overrides the scene's `[fit] dma`). The settings are those of the
+//! `fit` flags (`--method`, `--lambda`, `--seed`, `--starts`, `--terms`,
+//! `--physics`, `--dma-sigma`, `--friction-factor`), spelled as in a
+//! scene's `[fit]` and read by the same parser,
 //! [`FitSettings::set`] (through the scene reader's `fit_settings`):
 //! names and `"auto"` as strings, numbers as numbers (or as strings, e.g.
 //! `terms = "2/decade"`).
@@ -42,10 +47,22 @@ use crate::error::{EntryProblem, EntryRef, IoError, ManifestError, TomlPlace};
 use crate::scene::fit_settings::{Key, TableSettings, join};
 
 /// The settings a manifest takes: those of the `fit` flags.
-const SETTINGS: [&str; 6] = ["method", "lambda", "seed", "starts", "terms", "physics"];
+const SETTINGS: [&str; 8] = [
+    "method",
+    "lambda",
+    "seed",
+    "starts",
+    "terms",
+    "physics",
+    "dma_sigma",
+    "friction_factor",
+];
+
+/// The keys of `[defaults]`: the DMA file, then the settings.
+const DEFAULTS_KEYS: [&str; 9] = join(["dma"], SETTINGS);
 
 /// The keys of an `[[entry]]`: its own, then the settings.
-const ENTRY_KEYS: [&str; 10] = join(["name", "scene", "data", "sheet"], SETTINGS);
+const ENTRY_KEYS: [&str; 13] = join(["name", "scene", "data", "sheet", "dma"], SETTINGS);
 
 /// A checked manifest.
 #[derive(Debug, Clone)]
@@ -69,6 +86,10 @@ pub struct Entry {
     pub data: PathBuf,
     /// The sheet of a workbook data file (None: the first).
     pub sheet: Option<String>,
+    /// The DMA file of a joint fit (the entry's `dma`, else `[defaults]`'s),
+    /// resolved against the manifest's folder; None: the scene's `[fit]
+    /// dma`, if any.
+    pub dma: Option<PathBuf>,
     /// The entry's own settings (over the defaults and the flags).
     pub settings: FitSettings,
 }
@@ -98,11 +119,11 @@ fn check(text: &str, base: &Path) -> Result<Manifest, ManifestError> {
         place: error.span().and_then(|span| locate_entry(text, span.start)),
         error: Box::new(error),
     })?;
-    let defaults = raw.defaults.map(|d| d.0).unwrap_or_default();
+    let (defaults, default_dma) = raw.defaults.map(|d| (d.0, d.1)).unwrap_or_default();
     if raw.entry.is_empty() {
         return Err(ManifestError::NoEntries);
     }
-    let entries = check_entries(text, base, raw.entry)?;
+    let entries = check_entries(text, base, raw.entry, default_dma.as_ref())?;
     Ok(Manifest { defaults, entries })
 }
 
@@ -111,6 +132,7 @@ fn check_entries(
     text: &str,
     base: &Path,
     raw_entries: Vec<Spanned<RawEntry>>,
+    default_dma: Option<&Spanned<String>>,
 ) -> Result<Vec<Entry>, ManifestError> {
     let total = raw_entries.len();
     let mut problems = Vec::new();
@@ -178,6 +200,16 @@ fn check_entries(
         };
         let scene = file("scene", &raw_entry.scene);
         let data = file("data", &raw_entry.data);
+        let dma = match raw_entry.dma.as_ref().or(default_dma) {
+            Some(dma) => match file("dma", &Some(dma.clone())) {
+                Some(path) => Some(path),
+                None => {
+                    complete = false;
+                    None
+                }
+            },
+            None => None,
+        };
         if let (true, Some(name), Some(scene), Some(data)) = (complete, name, scene, data) {
             entries.push(Entry {
                 index,
@@ -185,6 +217,7 @@ fn check_entries(
                 scene,
                 data,
                 sheet: raw_entry.sheet.take(),
+                dma,
                 settings: std::mem::take(&mut raw_entry.settings),
             });
         }
@@ -308,8 +341,8 @@ struct RawManifest {
     entry: Vec<Spanned<RawEntry>>,
 }
 
-/// `[defaults]`: settings only.
-struct Defaults(FitSettings);
+/// `[defaults]`: the settings and the DMA file of every entry without one.
+struct Defaults(FitSettings, Option<Spanned<String>>);
 
 impl<'de> Deserialize<'de> for Defaults {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
@@ -321,10 +354,14 @@ impl<'de> Deserialize<'de> for Defaults {
             }
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Defaults, A::Error> {
                 let mut settings = TableSettings::new("");
-                while let Some(key) = map.next_key_seed(Key(&SETTINGS))? {
-                    map.next_value_seed(settings.value_of(key))?;
+                let mut dma = None;
+                while let Some(key) = map.next_key_seed(Key(&DEFAULTS_KEYS))? {
+                    match key {
+                        "dma" => dma = Some(map.next_value()?),
+                        setting => map.next_value_seed(settings.value_of(setting))?,
+                    }
                 }
-                Ok(Defaults(settings.finish()))
+                Ok(Defaults(settings.finish(), dma))
             }
         }
         deserializer.deserialize_map(DefaultsVisitor)
@@ -339,6 +376,7 @@ struct RawEntry {
     scene: Option<Spanned<String>>,
     data: Option<Spanned<String>>,
     sheet: Option<String>,
+    dma: Option<Spanned<String>>,
     settings: FitSettings,
 }
 
@@ -359,6 +397,7 @@ impl<'de> Deserialize<'de> for RawEntry {
                         "scene" => entry.scene = Some(map.next_value()?),
                         "data" => entry.data = Some(map.next_value()?),
                         "sheet" => entry.sheet = Some(map.next_value()?),
+                        "dma" => entry.dma = Some(map.next_value()?),
                         setting => map.next_value_seed(settings.value_of(setting))?,
                     }
                 }
@@ -455,6 +494,63 @@ mod tests {
         let err =
             crate::chain(&parse(&format!("{entry}terms_per_decade = 2\n"), &base).unwrap_err());
         assert!(err.contains("unknown field `terms_per_decade`"), "{err}");
+    }
+
+    /// `dma` (an entry's own, else `[defaults]`'s) is resolved against the
+    /// manifest's folder and must exist; the joint settings are settings.
+    #[test]
+    fn dma_of_an_entry_and_of_the_defaults() {
+        let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+        let entry = |name: &str| {
+            format!(
+                "[[entry]]\nname = \"{name}\"\nscene = \"hn-rubber-tset.toml\"\n\
+                 data = \"hn-rubber-tset.csv\"\n"
+            )
+        };
+        let text = format!(
+            "[defaults]\ndma = \"hn-rubber-dma-isotherms.csv\"\ndma_sigma = 0.02\n{}{}\
+             dma = \"hn-rubber-dma.csv\"\nfriction_factor = \"free\"\n",
+            entry("a"),
+            entry("b")
+        );
+        let read = parse(&text, &base).unwrap();
+        assert_eq!(
+            read.entries[0].dma.as_deref(),
+            Some(base.join("hn-rubber-dma-isotherms.csv").as_path())
+        );
+        assert_eq!(
+            read.entries[1].dma.as_deref(),
+            Some(base.join("hn-rubber-dma.csv").as_path())
+        );
+        assert_eq!(read.defaults.dma_sigma, Some(0.02));
+        assert_eq!(
+            read.entries[1].settings.friction_factor,
+            Some(rollfit_fit::FrictionFactor::Free)
+        );
+        assert!(parse(&entry("c"), &base).unwrap().entries[0].dma.is_none());
+        let err = crate::chain(
+            &parse(&format!("{}dma = \"absent.csv\"\n", entry("a")), &base).unwrap_err(),
+        );
+        for fragment in [
+            "entry \"a\"",
+            "line 5",
+            "dma file",
+            "absent.csv",
+            "does not exist",
+        ] {
+            assert!(err.contains(fragment), "{fragment:?} in {err}");
+        }
+        let err = crate::chain(
+            &parse(
+                &format!("{}friction_factor = \"kappa\"\n", entry("a")),
+                &base,
+            )
+            .unwrap_err(),
+        );
+        assert!(
+            err.contains("`friction_factor`") && err.contains("line 5"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -17,6 +17,12 @@
 //! `rollfit_fit::Cancel` flag, which ends the worker at its next solver
 //! run.
 //!
+//! With DMA isotherms (the keyword `dma`, a path relative to the current
+//! folder, or the scene file's `[fit] dma`, relative to its folder) the fit
+//! is the joint fit of both (issue 35): the file is read by
+//! `rollfit_io::dma_joint::read`, as `rollfit fit --dma` reads it, and the
+//! result's `joint` is fit.json's `joint` record.
+//!
 //! The result keeps the report and the fit folder's three files encoded
 //! by `rollfit_io::fit_dir::FitFiles`, the encoder `rollfit fit` uses:
 //! `save(dir)` writes the same folder, `to_dict()` is fit.json.
@@ -32,10 +38,12 @@ use std::time::Duration;
 
 use num_complex::Complex64;
 use numpy::PyArray1;
+use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyString};
 use rollfit_fit::{
     Cancel, FitError, FitReport, FitSettings, Measurements, ScaleAnchor, SettingValue,
+    ValidFitParams,
 };
 use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
@@ -138,15 +146,35 @@ fn anchor(key: &str, value: &Bound<'_, PyAny>) -> PyResult<ScaleAnchor> {
     })
 }
 
+/// A setting keyword's value; None for a joint fit's keyword given as
+/// None ("not given", the stubs' default). The path of `dma` may be a
+/// pathlib.Path.
+fn keyword_value(key: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Value>> {
+    if value.is_none() && matches!(key, "dma" | "dma_sigma" | "friction_factor") {
+        return Ok(None);
+    }
+    let path = (key == "dma" && !value.is_instance_of::<PyString>())
+        .then(|| value.extract::<PathBuf>().ok())
+        .flatten()
+        .map(|p| Value::Text(p.display().to_string()));
+    path.or_else(|| Value::of(value)).map(Some).ok_or_else(|| {
+        value_error_text(format!(
+            "fit setting `{key}`: expected text, a number, true/false or a list of numbers"
+        ))
+    })
+}
+
 /// Fits the master curve E*(ω) to measured μ(v): speeds v (m/s), friction
 /// coefficients mu, optional standard deviations sigma of μ and
 /// temperatures T (°C; several make a temperature set). Settings as in a
 /// scene's [fit] table (method, lambda, seed, starts, terms,
 /// max_evaluations, tolerance, E1_max, shift, T_ref, cross_check, physics,
-/// terms_per_decade, tau; anchors E0 (Pa), E_at = {"omega": rad/s, "E":
-/// Pa}, contact_radius = {"v": m/s, "r": m}) override the scene's; shift
-/// is "auto" (the default: the law the data support), "wlf", "arrhenius"
-/// or "free".
+/// terms_per_decade, tau, dma, dma_sigma, friction_factor; anchors E0
+/// (Pa), E_at = {"omega": rad/s, "E": Pa}, contact_radius = {"v": m/s,
+/// "r": m}) override the scene's; shift is "auto" (the default: the law
+/// the data support), "wlf", "arrhenius" or "free". dma (a path, relative
+/// to the current folder; else the scene file's [fit] dma) makes the fit
+/// a joint fit with those DMA isotherms.
 /// data_file names the data in fit.json (default "<python>").
 #[pyfunction]
 #[pyo3(signature = (scene, v, mu, sigma = None, T = None, *, data_file = None, **settings))]
@@ -171,14 +199,11 @@ pub fn fit(
             params.anchor = Some(anchor(&key, &value)?);
             continue;
         }
-        let owned = Value::of(&value).ok_or_else(|| {
-            value_error_text(format!(
-                "fit setting `{key}`: expected text, a number, true/false or a list of numbers"
-            ))
-        })?;
-        given
-            .set(&key, owned.setting())
-            .map_err(|e| value_error(&e))?;
+        if let Some(owned) = keyword_value(&key, &value)? {
+            given
+                .set(&key, owned.setting())
+                .map_err(|e| value_error(&e))?;
+        }
     }
     if anchors.len() > 1 {
         return Err(value_error_text(format!(
@@ -188,6 +213,7 @@ pub fn fit(
     }
     given.check().map_err(|e| value_error(&e))?;
     given.apply(&mut params);
+    let t_ref = params.shift.t_ref;
 
     let speeds = floats(&v)?;
     let friction = floats(&mu)?;
@@ -207,6 +233,7 @@ pub fn fit(
             (_, Some(path)) => value_error_text(format!("scene file {path}: {e}")),
             (_, None) => value_error(&e),
         })?;
+    let valid = with_dma(scene, &given, valid, t_ref)?;
 
     // The fit on a worker thread; this one waits with the GIL released and
     // wakes every SIGNAL_CHECK to let Python handle Ctrl-C.
@@ -261,6 +288,44 @@ pub fn fit(
         files,
         master,
     })
+}
+
+/// `valid` as a joint fit with the DMA file of the keyword `dma` (relative
+/// to the current folder) or of the scene file's `[fit] dma`; unchanged
+/// without either. A file without temperatures is taken at `t_ref`.
+fn with_dma(
+    scene: &PyScene,
+    given: &FitSettings,
+    valid: ValidFitParams,
+    t_ref: Option<f64>,
+) -> PyResult<ValidFitParams> {
+    let (path, keyword) = match (&given.dma, &scene.dma) {
+        (Some(path), _) => (PathBuf::from(path), true),
+        (None, Some(path)) => (path.clone(), false),
+        (None, None) => return Ok(valid),
+    };
+    if !path.is_file() {
+        let whose = if keyword {
+            "dma is relative to the current folder".to_string()
+        } else {
+            format!(
+                "[fit] dma is relative to the folder of scene file {}",
+                scene.source.as_deref().unwrap_or("?")
+            )
+        };
+        let what = if path.exists() {
+            "is not a file"
+        } else {
+            "does not exist"
+        };
+        return Err(PyOSError::new_err(format!(
+            "DMA file {} {what} ({whose})",
+            path.display()
+        )));
+    }
+    let read = rollfit_io::dma_joint::read(&path, scene.setup.substrate.poisson, t_ref)
+        .map_err(|e| io_error(&e))?;
+    valid.with_dma(read.rows).map_err(|e| value_error(&e))
 }
 
 /// A measurement file read as `rollfit fit` reads it (text or workbook,
@@ -388,6 +453,16 @@ impl FitResult {
     fn shift<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let all = json_to_python(py, self.fit_json())?;
         all.call_method1("get", ("shift",))
+    }
+
+    /// A joint fit's account of its DMA and rolling parts, as in fit.json's
+    /// `joint` (each part's χ² joint and alone, the compatibility test, κ
+    /// if fitted, the DMA points with the joint curve), None without DMA
+    /// data.
+    #[getter]
+    fn joint<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let all = json_to_python(py, self.fit_json())?;
+        all.call_method1("get", ("joint",))
     }
 
     /// Things the user must know (fit.json's `warnings`).

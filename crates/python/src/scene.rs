@@ -52,6 +52,9 @@ pub struct PyScene {
     pub(crate) params: FitParams,
     /// The scene file, as given (fit.json's `input.scene`).
     pub(crate) source: Option<String>,
+    /// `[fit] dma` of a scene file, resolved against its folder: the DMA
+    /// isotherms of a joint fit (issue 35), read when `fit` runs.
+    pub(crate) dma: Option<PathBuf>,
     /// `[sweep]` speeds of a scene file, m/s.
     speeds: Option<Vec<f64>>,
     /// What the readers of a scene file's tables said.
@@ -157,6 +160,7 @@ impl PyScene {
             material,
             params,
             source: None,
+            dma: None,
             speeds: None,
             notes: Vec::new(),
         })
@@ -243,6 +247,7 @@ impl PyScene {
             material: None,
             params,
             source: Some(path.display().to_string()),
+            dma: file.dma_file(base_dir),
             speeds,
             notes: notes.into_inner(),
         })

@@ -62,8 +62,9 @@ pub const SUMMARY_COLUMNS: [&str; 11] = [
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Manifest (TOML): optional [defaults] (method, lambda, seed, starts,
-    /// terms, physics) and one [[entry]] per fit with name, scene and data (paths
-    /// relative to the manifest's folder) and optional settings.
+    /// terms, physics, dma_sigma, friction_factor, dma) and one [[entry]]
+    /// per fit with name, scene and data (paths relative to the manifest's
+    /// folder), optional dma (DMA isotherms of a joint fit) and settings.
     pub manifest: PathBuf,
     /// Folder for the results: DIR/<entry name>/ per entry and
     /// DIR/summary.csv. Default: fits/<MANIFEST file stem>.
@@ -472,6 +473,7 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &FitSettings, force: bool) -> 
         scene: &entry.scene,
         data: &entry.data,
         sheet: entry.sheet.as_deref(),
+        dma: entry.dma.as_deref(),
         dir: &folder,
         settings,
         usage: "in the manifest, scene = \"SCENE.toml\" and data = \"DATA.csv\"",

@@ -9,14 +9,19 @@
 //! DIR/mu.csv (as one folder swap) and a summary on stderr. A fit that does
 //! not converge, or does not describe its data, writes nothing and fails,
 //! unless `--allow-unconverged` or `--allow-poor-fit`.
+//!
+//! With DMA isotherms (`--dma FILE`, or the scene's `[fit] dma`), the fit
+//! is the joint fit of both (issue 35, [`joint`]): one master curve and
+//! shift law for the DMA moduli and the rolling friction, and a summary
+//! block that says whether the two describe one material.
 
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use anyhow::{Context, Result, anyhow, bail};
 use rollfit_fit::{
-    FitError, FitReport, FitSettings, Lambda, Method, Physics, PhysicsRecord, RollingSetup,
-    ShiftKind, ShiftRecord, TermRule,
+    FitError, FitReport, FitSettings, FrictionFactor, Lambda, Method, Physics, PhysicsRecord,
+    RollingSetup, ShiftKind, ShiftRecord, TermRule,
 };
 use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
 use rollfit_io::output;
@@ -26,6 +31,8 @@ use rollfit_io::data::read_sheet;
 use rollfit_io::scene as scene_file;
 
 use crate::{hints, progress};
+
+mod joint;
 
 /// Arguments of `rollfit fit`.
 #[derive(Debug, clap::Args)]
@@ -42,6 +49,12 @@ pub struct Args {
     /// The sheet of a workbook DATA to read (default: the first).
     #[arg(long, value_name = "NAME")]
     pub sheet: Option<String>,
+    /// DMA isotherms (any form `rollfit master` reads; shear moduli
+    /// converted with the scene's ν) fitted jointly with DATA: one master
+    /// curve for both, and a test of whether they describe one material.
+    /// Relative to the current folder; overrides [fit] dma.
+    #[arg(long, value_name = "DMAFILE")]
+    pub dma: Option<PathBuf>,
     /// Folder for fit.json, modulus.csv and mu.csv (created if missing).
     /// Default: fits/<DATA file stem>.
     #[arg(short, long, value_name = "DIR")]
@@ -102,6 +115,16 @@ pub struct Settings {
     /// wlf, arrhenius or free. Overrides [fit] shift.
     #[arg(long, value_name = "auto|wlf|arrhenius|free", value_parser = setting::<ShiftKind>)]
     pub shift: Option<ShiftKind>,
+    /// In a joint fit with DMA data: the relative standard deviation of
+    /// E′ and E″ (0.01 for 1 %; default: estimated from the DMA data).
+    /// Overrides [fit] dma_sigma.
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
+    pub dma_sigma: Option<f64>,
+    /// In a joint fit with DMA data: μ_measured = κ μ_theory with κ = 1
+    /// ("one", the default) or fitted ("free"). Overrides [fit]
+    /// friction_factor.
+    #[arg(long, value_name = "one|free", value_parser = setting::<FrictionFactor>)]
+    pub friction_factor: Option<FrictionFactor>,
 }
 
 impl Settings {
@@ -115,6 +138,8 @@ impl Settings {
         settings.terms = self.terms.clone();
         settings.physics = self.physics;
         settings.shift = self.shift;
+        settings.dma_sigma = self.dma_sigma;
+        settings.friction_factor = self.friction_factor;
         settings
     }
 }
@@ -146,6 +171,7 @@ pub fn run(args: &Args) -> Result<()> {
         scene: &args.scene,
         data: &args.data,
         sheet: args.sheet.as_deref(),
+        dma: args.dma.as_deref(),
         dir: &dir,
         settings: &args.settings.fit_settings(),
         usage: USAGE,
@@ -243,6 +269,9 @@ pub struct Job<'a> {
     pub data: &'a Path,
     /// The sheet of a workbook data file (None: the first).
     pub sheet: Option<&'a str>,
+    /// The DMA file of a joint fit (`--dma`, a manifest's `dma`), over the
+    /// scene's `[fit] dma`.
+    pub dma: Option<&'a Path>,
     pub dir: &'a Path,
     /// Over the scene's `[fit]`: the flags (for a batch, also the
     /// manifest's settings, checked when the manifest was read).
@@ -308,12 +337,24 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     let data = table
         .measurements()
         .with_context(|| format!("data file {}", data_path.display()))?;
+    let t_ref = params.shift.t_ref;
     let valid = params.check(setup).map_err(|e| match &e {
-        FitError::InvalidSetting { key, .. } if job.settings.gives(key) => {
-            anyhow!("command line: --{}: {e}", key)
+        FitError::InvalidSetting { key, .. } => {
+            anyhow!(
+                "{}: {e}",
+                joint::setting_origin(job.settings, key, scene_path)
+            )
         }
         _ => anyhow!("scene file {}: {e}", scene_path.display()),
     })?;
+    // The DMA file of a joint fit, read after the rolling data.
+    let valid = match joint::dma_file(job.dma, &file, scene_path) {
+        Some(dma) => {
+            let poisson = setup.substrate.poisson;
+            joint::with_dma(valid, dma, poisson, t_ref, scene_path, &log)?
+        }
+        None => valid,
+    };
 
     log(&format!(
         "fitting {} point(s) of {} with scene {}: {}",
@@ -335,6 +376,13 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     }
     let report = fitted.map_err(|e| match e {
         FitError::InsufficientData(why) => anyhow!("data file {}: {why}", data_path.display()),
+        // The settings only a joint fit reads, refused without DMA data.
+        FitError::InvalidSetting { ref key, .. } if key != "dma" => {
+            anyhow!(
+                "{}: {e}",
+                joint::setting_origin(job.settings, key, scene_path)
+            )
+        }
         other => anyhow!(
             "fitting data file {} with scene file {}: {other}",
             data_path.display(),
@@ -480,6 +528,9 @@ pub fn summary(report: &FitReport, dir: &Path, written: bool) -> String {
     }
     if let Some(p) = &report.physics {
         text += &physics_line(p);
+    }
+    if let Some(j) = &report.joint {
+        text += &joint::summary_lines(j);
     }
     for warning in &report.warnings {
         text += &format!("warning: {warning}\n");

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-use super::IoError;
+use super::{IoError, RowRef};
 
 /// A point of an isotherm where its sweep turns, as a message names it:
 /// `line 13: ω = 5.2e0 rad/s`, or `point 7: …` where the file has no line
@@ -54,6 +54,22 @@ pub enum DmaMasterError {
         missing: usize,
         /// Points in all.
         total: usize,
+    },
+    /// A file without temperatures where no temperature stands in for them
+    /// (a joint fit without `T_ref`).
+    #[error(
+        "DMA file {}: no point has a temperature: a joint fit places each DMA point at its \
+         temperature; add a T column, or give `T_ref` (the temperature of this one curve)",
+        path.display()
+    )]
+    NoTemperature { path: PathBuf },
+    /// What the fit library refused about one point (the source), at its
+    /// place in the file.
+    #[error("DMA file {}, {row}", path.display())]
+    AtPoint {
+        path: PathBuf,
+        row: RowRef,
+        source: Box<DmaMasterError>,
     },
     /// What is wrong with the isotherms or the settings (the source).
     #[error("DMA file {}", path.display())]

@@ -8,6 +8,7 @@
 //! (docs/ARCHITECTURE.md, "Contract", "Scene file").
 
 use std::fmt;
+use std::path::{Path, PathBuf};
 
 use rollfit_fit::{FitParams, FitSettings, RollingSetup, ScaleAnchor};
 use rollfit_model::{Scene, StandardLinearSolid};
@@ -25,7 +26,7 @@ use crate::error::{IoError, SceneError};
 /// The keys of `[fit]`: the scale anchors, then the fit settings
 /// ([`rollfit_fit::settings::SETTING_KEYS`], in the order messages have
 /// always listed them).
-pub const FIT_KEYS: [&str; 17] = [
+pub const FIT_KEYS: [&str; 20] = [
     "E0",
     "E_at",
     "contact_radius",
@@ -43,6 +44,9 @@ pub const FIT_KEYS: [&str; 17] = [
     "T_ref",
     "cross_check",
     "physics",
+    "dma",
+    "dma_sigma",
+    "friction_factor",
 ];
 
 /// `[fit]`: scale anchors and fit settings; forward only validates them.
@@ -172,6 +176,16 @@ impl FitSection {
 }
 
 impl SceneFile {
+    /// The DMA file of a joint fit, `[fit] dma`, resolved against
+    /// `base_dir` (the scene file's folder, as a `table` material's file
+    /// is); None without one. [`FitSettings::apply`] leaves it out of the
+    /// fit parameters: the command reads it ([`crate::dma_joint::read`])
+    /// and hands the isotherms to `ValidFitParams::with_dma`.
+    pub fn dma_file(&self, base_dir: &Path) -> Option<PathBuf> {
+        let dma = self.fit.as_ref()?.settings.dma.as_deref()?;
+        Some(base_dir.join(dma))
+    }
+
     /// Builds the inverse problem's settings: the rolling set-up (checked
     /// by the model, errors prefixed with their section), the `[fit]`
     /// table (defaults where absent) and, for an "sls" or "prony"

@@ -469,3 +469,26 @@ fn the_fit_law_is_auto_unless_the_scene_names_one() {
     let overridden = format!("{wlf}[fit]\nshift = \"auto\"\n");
     assert_eq!(kind(&overridden), rollfit_fit::ShiftKind::Auto);
 }
+
+/// `[fit] dma` is kept as written and resolved against the scene's folder;
+/// the joint settings are fit settings of `[fit]`.
+#[test]
+fn fit_dma_is_relative_to_the_scene_folder() {
+    let file = parse(&format!(
+        "{SLS}[fit]\ndma = \"dma/iso.csv\"\ndma_sigma = 0.01\nfriction_factor = \"free\"\n"
+    ))
+    .unwrap();
+    assert_eq!(
+        file.dma_file(Path::new("scenes")),
+        Some(Path::new("scenes").join("dma/iso.csv"))
+    );
+    let (_, params) = file.fit_setup().unwrap();
+    assert_eq!(params.dma_sigma, Some(0.01));
+    assert_eq!(params.friction_factor, rollfit_fit::FrictionFactor::Free);
+    assert_eq!(parse(SLS).unwrap().dma_file(Path::new("scenes")), None);
+    let err = crate::chain(&parse(&format!("{SLS}[fit]\ndma_sigma = 2\n")).unwrap_err());
+    assert!(
+        err.contains("`dma_sigma`") && err.contains("line 16"),
+        "{err}"
+    );
+}

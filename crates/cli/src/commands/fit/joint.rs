@@ -1,0 +1,112 @@
+//! The joint fit of `rollfit fit` and `rollfit batch` (issue 35): which
+//! DMA file a job uses, reading it, and the summary's lines about the two
+//! parts.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Result, anyhow, bail};
+use rollfit_fit::{FitSettings, JointRecord, ValidFitParams};
+use rollfit_io::dma_joint;
+use rollfit_io::scene::SceneFile;
+
+/// Where a joint fit's DMA file was named, for messages.
+pub enum DmaOrigin {
+    /// `--dma` (or a batch manifest's `dma`), relative to the current
+    /// folder (the manifest's paths are resolved when it is read).
+    Given,
+    /// The scene's `[fit] dma`, relative to the scene file's folder.
+    Scene,
+}
+
+/// The DMA file of a job: `given` (the flag or the manifest) over the
+/// scene's `[fit] dma`.
+pub fn dma_file(
+    given: Option<&Path>,
+    scene: &SceneFile,
+    scene_path: &Path,
+) -> Option<(PathBuf, DmaOrigin)> {
+    match given {
+        Some(path) => Some((path.to_path_buf(), DmaOrigin::Given)),
+        None => scene
+            .dma_file(scene_path.parent().unwrap_or(Path::new("")))
+            .map(|path| (path, DmaOrigin::Scene)),
+    }
+}
+
+/// Reads the DMA file `path` (shear moduli converted with `poisson`, a
+/// file without temperatures taken at `t_ref`) and makes `valid` a joint
+/// fit with it; `log` receives how the file was read. `usage` names where
+/// `dma` came from when the fit refuses it (`--dma`, or the scene file).
+pub fn with_dma(
+    valid: ValidFitParams,
+    (path, origin): (PathBuf, DmaOrigin),
+    poisson: f64,
+    t_ref: Option<f64>,
+    scene_path: &Path,
+    log: &impl Fn(&str),
+) -> Result<ValidFitParams> {
+    if !path.is_file() {
+        let (what, whose) = match origin {
+            DmaOrigin::Given => ("--dma", "the current folder".to_string()),
+            DmaOrigin::Scene => (
+                "[fit] dma",
+                format!("the folder of scene file {}", scene_path.display()),
+            ),
+        };
+        bail!(
+            "DMA file {} {} ({what} is relative to {whose})",
+            path.display(),
+            if path.exists() {
+                "is not a file"
+            } else {
+                "does not exist"
+            }
+        );
+    }
+    let read = dma_joint::read(&path, poisson, t_ref)?;
+    for note in &read.notes {
+        log(&format!("note: {note}"));
+    }
+    for warning in &read.warnings {
+        log(&format!("warning: {warning}"));
+    }
+    valid.with_dma(read.rows).map_err(|e| match origin {
+        DmaOrigin::Given => anyhow!("--dma {}: {e}", path.display()),
+        DmaOrigin::Scene => anyhow!("scene file {}: {e}", scene_path.display()),
+    })
+}
+
+/// A setting the fit refused under `key`, where the user gave it: the
+/// command line (its flag, spelled with dashes) when `settings` gives it,
+/// else the scene file.
+pub fn setting_origin(settings: &FitSettings, key: &str, scene_path: &Path) -> String {
+    if settings.gives(key) {
+        format!("command line: --{}", key.replace('_', "-"))
+    } else {
+        format!("scene file {}", scene_path.display())
+    }
+}
+
+/// The summary's block about a joint fit: each part's χ² together and
+/// alone, the compatibility verdict and κ if fitted.
+pub fn summary_lines(joint: &JointRecord) -> String {
+    let chi2 = &joint.chi2;
+    let mut text = format!(
+        "joint fit with DMA file {} ({} DMA points, {} rolling rows; DMA σ {:.2} % {}):\n",
+        joint.dma_source,
+        joint.dma_points,
+        joint.rolling_points,
+        100.0 * joint.sigma.dma,
+        joint.sigma.dma_source
+    );
+    text += &format!(
+        "  χ² rolling {:.1} joint / {:.1} alone; χ² DMA {:.1} joint / {:.1} alone\n",
+        chi2.rolling_joint, chi2.rolling_alone, chi2.dma_joint, chi2.dma_alone
+    );
+    text += &format!("  {}\n", joint.compatibility.verdict);
+    if let Some(k) = &joint.friction_factor {
+        // The verdict states κ and its σ.
+        text += &format!("  friction factor: {}\n", k.verdict);
+    }
+    text
+}

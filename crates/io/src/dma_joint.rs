@@ -1,0 +1,87 @@
+//! The DMA file of a joint fit (issue 35; `dma = FILE` in a scene's
+//! `[fit]` or a batch manifest, `rollfit fit --dma FILE`, the Python
+//! module's `dma=` keyword): read and grouped into isotherms by
+//! [`crate::dma_master::read_isotherms`], as `rollfit master` reads a DMA
+//! file, then checked by the fit library ([`DmaRows::new`]). Where the
+//! library refuses one point, the message names its line in the file.
+
+use std::path::Path;
+
+use rollfit_fit::joint::{DMA_MODULUS_RANGE, DMA_OMEGA_RANGE};
+use rollfit_fit::master::Isotherm;
+use rollfit_fit::{DmaRows, FitError};
+
+use crate::dma_master::{DmaIsotherms, read_isotherms};
+use crate::error::{DmaMasterError, IoError, RowRef};
+
+/// The DMA isotherms of a joint fit and what reading the file said.
+#[derive(Debug, Clone)]
+pub struct JointDma {
+    /// The isotherms, checked (source: the path as displayed).
+    pub rows: DmaRows,
+    /// How the file was read where the file said so (shear converted).
+    pub notes: Vec<String>,
+    /// Points dropped and decisions taken while reading.
+    pub warnings: Vec<String>,
+}
+
+/// Reads the DMA file `path` for a joint fit: any form
+/// [`crate::dma::DmaData::read_sheet`] accepts (a workbook's first sheet),
+/// shear moduli converted with `poisson` (the scene's ν). A file without
+/// temperatures is one isotherm at `t_ref` (the fit's `T_ref`; refused
+/// without one). Errors name the file and, where one point is at fault,
+/// its line.
+pub fn read(path: &Path, poisson: f64, t_ref: Option<f64>) -> Result<JointDma, IoError> {
+    let read = read_isotherms(path, poisson, None, None, t_ref)?;
+    let source = path.display().to_string();
+    // Each isotherm alone first, so that a point the library refuses is
+    // found in the isotherm it named.
+    for (isotherm, indices) in read.isotherms.iter().zip(&read.indices) {
+        DmaRows::new(vec![isotherm.clone()], source.as_str())
+            .map_err(|error| refused(&read, Some((isotherm, indices)), error))?;
+    }
+    let rows = DmaRows::new(read.isotherms.clone(), source)
+        .map_err(|error| refused(&read, None, error))?;
+    let DmaIsotherms { data, .. } = read;
+    Ok(JointDma {
+        rows,
+        notes: data.notes,
+        warnings: data.warnings,
+    })
+}
+
+/// The library's refusal, behind the file and, where `isotherm` has a
+/// point outside the library's ranges (or only one point), that point's
+/// line.
+fn refused(
+    read: &DmaIsotherms,
+    isotherm: Option<(&Isotherm, &Vec<usize>)>,
+    error: FitError,
+) -> IoError {
+    let path = read.data.path.clone();
+    let source = Box::new(DmaMasterError::Fit { error });
+    let outside = |x: f64, (lo, hi): (f64, f64)| !(x.is_finite() && x >= lo && x <= hi);
+    let point = isotherm.and_then(|(iso, indices)| {
+        let k = (0..iso.omega.len())
+            .find(|&k| {
+                outside(iso.omega[k], DMA_OMEGA_RANGE)
+                    || outside(iso.storage[k], DMA_MODULUS_RANGE)
+                    || outside(iso.loss[k], DMA_MODULUS_RANGE)
+            })
+            .or((iso.omega.len() == 1).then_some(0))?;
+        indices.get(k).copied()
+    });
+    let line = point.and_then(|i| read.data.lines.get(i).copied());
+    match line {
+        Some(number) => DmaMasterError::AtPoint {
+            path,
+            row: RowRef {
+                sheet: read.data.sheet.clone(),
+                number: number as u64,
+            },
+            source,
+        },
+        None => DmaMasterError::InFile { path, source },
+    }
+    .into()
+}
