@@ -14,7 +14,7 @@ use crate::joint::consistency::{Parts, compatibility, friction_factor, residual_
 use crate::joint::start::{DmaAlone, JointStart, dma_alone, joint_start};
 use crate::joint::{DmaFitPoint, DmaRows, JointRecord, JointSigma, PartChi2, moduli_at};
 use crate::params::{FrictionFactor, ShiftKind, ValidFitParams};
-use crate::report::FitReport;
+use crate::report::{FitReport, RunRecord};
 use crate::shift::distinct_temperatures;
 
 use super::assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
@@ -37,29 +37,8 @@ pub(super) fn fit_joint(
     let alone = dma_alone(&dma, params.dma_sigma)?;
     let start = joint_start(data, &dma, params, &alone)?;
     let rolling_alone = fit_measured(data, None, &rolling_params(data, params, &start))?;
-    let (weighted, rolling_sigma) = match data.sigma() {
-        Some(_) => (data.clone(), None),
-        None => {
-            let s = rolling_alone.noise;
-            let sigma = data.friction().iter().map(|m| s * m).collect();
-            let weighted = Measurements::new(
-                data.speeds().to_vec(),
-                data.friction().to_vec(),
-                Some(sigma),
-                data.temperature().map(|t| t.to_vec()),
-            )?;
-            (weighted, Some(s))
-        }
-    };
+    let (weighted, rolling_sigma) = weighted_rows(data, &rolling_alone)?;
     let rolling_unit = rolling_sigma.map_or(1.0, |s| s * s);
-    let joint_rolling_chi2 = |fit: &super::optimum::Optimum| -> f64 {
-        (0..weighted.len())
-            .map(|i| {
-                let sigma = weighted.sigma().map_or(1.0, |s| s[i]);
-                ((fit.mu[i] - weighted.friction()[i]) / sigma).powi(2)
-            })
-            .sum()
-    };
     let mut joint = params.clone();
     joint.dma_sigma = Some(alone.sigma);
     joint.starts = 1;
@@ -76,10 +55,11 @@ pub(super) fn fit_joint(
     // optimum does, which is one of its candidates (up to κ): an alone fit
     // that stopped above it (a local minimum; rows that κ alone explains)
     // counts at the joint's value, so that Δχ² measures the sharing only.
-    let joint_dma_chi2 = outcome.fit.misfit - joint_rolling_chi2(&outcome.fit);
+    let joint_rolling_chi2 = rolling_chi2(&weighted, &outcome.fit);
+    let joint_dma_chi2 = outcome.fit.misfit - joint_rolling_chi2;
     let parts = Parts {
         rolling_alone: (
-            (rolling_alone.misfit / rolling_unit).min(joint_rolling_chi2(&outcome.fit)),
+            (rolling_alone.misfit / rolling_unit).min(joint_rolling_chi2),
             rolling_alone.effective_parameters,
         ),
         dma_alone: (alone.chi2.min(joint_dma_chi2), alone.parameters),
@@ -107,9 +87,13 @@ pub(super) fn fit_joint(
         Some(c) => Some((c, fitted_friction(&rows, &joint, &outcome.fit)?)),
         None => None,
     };
+    // What the user must know goes to the warnings: incompatible parts and
+    // an unexplained κ (the record and the summary state the rest).
     let mut notes = start.notes;
-    notes.push(record.compatibility.verdict.clone());
-    if let Some(k) = &record.friction_factor {
+    if !record.compatibility.compatible {
+        notes.push(record.compatibility.verdict.clone());
+    }
+    if let Some(k) = record.friction_factor.as_ref().filter(|k| k.unexplained) {
         notes.push(format!("friction factor: {}", k.verdict));
     }
     let terms = terms_record(&outcome.fit.model.tau, &params.terms, Vec::new());
@@ -125,25 +109,8 @@ pub(super) fn fit_joint(
         condensed,
         wall_time_s: 0.0,
     });
-    if !record.compatibility.compatible {
-        let reason = format!(
-            "the DMA and rolling parts are {}",
-            record.compatibility.verdict
-        );
-        report.fit_quality.reasons.push(reason);
-        if report.fit_quality.verdict == "good" {
-            report.fit_quality.verdict = "poor";
-        }
-    }
-    report.runs = rolling_alone
-        .runs
-        .into_iter()
-        .map(|mut r| {
-            r.stage = format!("rolling alone: {}", r.stage);
-            r
-        })
-        .chain(report.runs)
-        .collect();
+    mark_incompatible(&mut report, &record);
+    report.runs = rolling_runs(rolling_alone.runs, report.runs);
     report.evaluations = report.runs.iter().map(|r| r.evaluations).sum();
     report.joint = Some(record);
     report.wall_time_s = clock.elapsed().as_secs_f64();
@@ -151,6 +118,63 @@ pub(super) fn fit_joint(
         return Err(FitError::NonFinite(what));
     }
     Ok(report)
+}
+
+/// The rows weighted by their σ: their own, or the rolling fit alone's
+/// relative noise times μ (returned too) when they have no σ column.
+fn weighted_rows(
+    data: &Measurements,
+    rolling_alone: &FitReport,
+) -> Result<(Measurements, Option<f64>), FitError> {
+    if data.sigma().is_some() {
+        return Ok((data.clone(), None));
+    }
+    let s = rolling_alone.noise;
+    let sigma = data.friction().iter().map(|m| s * m).collect();
+    let weighted = Measurements::new(
+        data.speeds().to_vec(),
+        data.friction().to_vec(),
+        Some(sigma),
+        data.temperature().map(|t| t.to_vec()),
+    )?;
+    Ok((weighted, Some(s)))
+}
+
+/// Σ ((μ_fit − μ)/σ)² over the rolling rows of `fit`.
+fn rolling_chi2(weighted: &Measurements, fit: &super::optimum::Optimum) -> f64 {
+    (0..weighted.len())
+        .map(|i| {
+            let sigma = weighted.sigma().map_or(1.0, |s| s[i]);
+            ((fit.mu[i] - weighted.friction()[i]) / sigma).powi(2)
+        })
+        .sum()
+}
+
+/// Incompatible parts make a "good" verdict "poor", with the reason.
+fn mark_incompatible(report: &mut FitReport, record: &JointRecord) {
+    if record.compatibility.compatible {
+        return;
+    }
+    let reason = format!(
+        "the DMA and rolling parts are {}",
+        record.compatibility.verdict
+    );
+    report.fit_quality.reasons.push(reason);
+    if report.fit_quality.verdict == "good" {
+        report.fit_quality.verdict = "poor";
+    }
+}
+
+/// The rolling fit alone's runs, staged as such, before the joint fit's.
+fn rolling_runs(alone: Vec<RunRecord>, joint: Vec<RunRecord>) -> Vec<RunRecord> {
+    alone
+        .into_iter()
+        .map(|mut r| {
+            r.stage = format!("rolling alone: {}", r.stage);
+            r
+        })
+        .chain(joint)
+        .collect()
 }
 
 /// The rows with a temperature: their own, or all at T_ref when the
