@@ -21,7 +21,7 @@ use std::path::Path;
 
 use super::form::{FormRead, Place, RawPoint};
 use super::header::{self, Column, Header};
-use crate::csv_columns::{csv_line, dma_number, not_csv};
+use crate::csv_columns::{LineIndex, dma_number, not_csv};
 use crate::error::{ColumnRef, IoError};
 
 /// The columns only DMA files have, defined with the other shared names.
@@ -30,6 +30,7 @@ pub use crate::columns::{F, G_LOSS, G_STORAGE};
 /// Parses the CSV text of `path`.
 pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
     let mut reader = crate::csv_columns::reader(text, false, true);
+    let lines = LineIndex::new(text);
     let mut records = reader.records();
     let (header_line, names): (usize, Vec<String>) = loop {
         match records.next() {
@@ -41,7 +42,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
             Some(Err(e)) => return Err(not_csv(path, text, e)),
             Some(Ok(r)) if r.iter().all(str::is_empty) => continue,
             Some(Ok(r)) => {
-                let line = csv_line(text, r.position());
+                let line = lines.csv_line(r.position());
                 break (line, r.iter().map(str::to_string).collect());
             }
         }
@@ -53,7 +54,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
         Some(Ok(r))
             if header::is_units_row(&names, &r.iter().map(str::to_string).collect::<Vec<_>>()) =>
         {
-            let line = csv_line(text, r.position());
+            let line = lines.csv_line(r.position());
             let cells = r.iter().map(str::to_string).collect();
             records.next();
             Some((line, cells))
@@ -81,7 +82,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
     let mut points = Vec::new();
     for record in records {
         let record = record.map_err(|e| not_csv(path, text, e))?;
-        let line = csv_line(text, record.position());
+        let line = lines.csv_line(record.position());
         if record.iter().all(str::is_empty) {
             continue;
         }

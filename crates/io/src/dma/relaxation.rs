@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 use super::header::Column;
 use super::point::ModulusKind;
 use crate::columns::{E_RELAX, G_RELAX, TIME};
-use crate::csv_columns::{csv_line, dma_number, not_csv};
+use crate::csv_columns::{LineIndex, csv_line, dma_number, not_csv};
 use crate::error::{ColumnRef, IoError, RelaxationError};
 
 /// One point of a relaxation file, the modulus as Young's.
@@ -283,9 +283,10 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
     let mut points = Vec::new();
     let mut lines = Vec::new();
     let mut reader = crate::csv_columns::reader(text, false, true);
+    let index = LineIndex::new(text);
     for record in reader.records() {
         let record = record.map_err(|error| not_csv(path, text, error))?;
-        let at = csv_line(text, record.position());
+        let at = index.csv_line(record.position());
         if at <= line || record.iter().all(str::is_empty) {
             continue;
         }

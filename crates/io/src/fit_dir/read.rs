@@ -9,7 +9,7 @@ use super::columns::{
     E_LOSS, E_LOSS_SIGMA, E_STORAGE, E_STORAGE_SIGMA, EXACT_CORRECTION, MU_FIT, MU_MEASURED, OMEGA,
     SIGMA, T, TAN_DELTA, TAN_DELTA_SIGMA, V, V_REDUCED,
 };
-use crate::csv_columns::csv_line;
+use crate::csv_columns::LineIndex;
 use crate::error::{CellRef, ColumnRef, IoError};
 use crate::text_file::read_utf8_file;
 
@@ -140,15 +140,16 @@ impl Table {
 
     fn parse(path: &Path, text: &str) -> Result<Table, IoError> {
         let mut reader = crate::csv_columns::reader(text, false, true);
+        let lines = LineIndex::new(text);
         let mut header: Option<Vec<String>> = None;
         let mut rows = Vec::new();
         for record in reader.records() {
             let record = record.map_err(|error| IoError::NotCsv {
                 path: path.to_path_buf(),
-                line: csv_line(text, error.position()),
+                line: lines.csv_line(error.position()),
                 error,
             })?;
-            let line = csv_line(text, record.position());
+            let line = lines.csv_line(record.position());
             if record.iter().all(str::is_empty) {
                 continue;
             }

@@ -12,7 +12,7 @@ use std::f64::consts::PI;
 
 use super::ModulusTable;
 use crate::columns::F;
-use crate::csv_columns::{self, csv_line};
+use crate::csv_columns::{self, LineIndex};
 use crate::error::{IoError, TableError};
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA};
 
@@ -51,10 +51,11 @@ pub fn parse(text: &str) -> Result<ModulusTable, IoError> {
         notes: Vec::new(),
     };
     let mut previous_line = 0;
+    let lines = LineIndex::new(text);
     for record in reader.records() {
         let record = record.map_err(|source| TableError::MalformedRow { source })?;
         // Counted as the DMA reader counts (comments, blank lines, CRLF).
-        let line = csv_line(text, record.position()) as u64;
+        let line = lines.csv_line(record.position()) as u64;
         let values = row(&record, line, &columns, &names)?;
         let omega = match frequency {
             Frequency::Angular => values[0],
