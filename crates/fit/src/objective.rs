@@ -393,6 +393,15 @@ mod tests {
         }
     }
 
+    /// The master curve's Prony series at θ (its material part).
+    fn prony_at(objective: &Objective<'_>, theta: &[f64]) -> Prony {
+        let n_material = objective.param.free_count();
+        objective
+            .param
+            .prony(&objective.param.map(&theta[..n_material]))
+            .unwrap()
+    }
+
     /// Every column of the residual Jacobian at `theta` against central
     /// finite differences; `case` names the case in a failure.
     fn assert_jacobian(objective: &Objective<'_>, theta: &[f64], case: &str) {
@@ -543,10 +552,7 @@ mod tests {
             // ω a_T, times b_T, and κ against the rolling rows' μ.
             let e = objective.evaluate(&theta, false).unwrap();
             let n_material = objective.param.free_count();
-            let prony = objective
-                .param
-                .prony(&objective.param.map(&theta[..n_material]))
-                .unwrap();
+            let prony = prony_at(&objective, &theta);
             let s = objective.shift.as_ref().unwrap();
             let (log_a, _) = s.log_shifts(&theta[n_material..]);
             let mut row = data.len();
@@ -584,11 +590,7 @@ mod tests {
         let (mut objective, theta) = set_objective(&setup, &data, crate::params::ShiftKind::Wlf);
         objective.vertical = Some(&vertical);
         let e = objective.evaluate(&theta, false).unwrap();
-        let n_material = objective.param.free_count();
-        let prony = objective
-            .param
-            .prony(&objective.param.map(&theta[..n_material]))
-            .unwrap();
+        let prony = prony_at(&objective, &theta);
         let (reduced, _) = objective.reduced_speeds(&theta);
         let (speeds, temps) = (data.speeds(), data.temperature().unwrap());
         for i in 0..speeds.len() {

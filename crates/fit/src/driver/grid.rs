@@ -182,7 +182,8 @@ impl<'a> GridSolver<'a> {
             }
             None => None,
         };
-        let mut objective = Objective {
+        let friction_factor = dma.is_some() && params.friction_factor == FrictionFactor::Free;
+        let objective = Objective {
             setup: &params.setup,
             data,
             scales: data.residual_scales(),
@@ -194,11 +195,9 @@ impl<'a> GridSolver<'a> {
             // Only a temperature set's rows take b_T.
             vertical: set.and(params.shift.vertical.as_ref()),
             dma,
-            friction_factor: false,
+            friction_factor,
             noise_known: params.noise_known(data),
         };
-        objective.friction_factor =
-            objective.dma.is_some() && params.friction_factor == FrictionFactor::Free;
         let free = objective.free_count();
         let groups = objective.runs_groups();
         let budget = params
