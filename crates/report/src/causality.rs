@@ -85,6 +85,7 @@
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
+use rollfit_fit::master::condense::condense;
 use rollfit_io::dma::DmaPoint;
 
 use crate::error::ReportError;
@@ -174,17 +175,47 @@ pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
     let omega_lo = points.iter().map(|p| p.omega).fold(f64::INFINITY, f64::min);
     let omega_hi = points.iter().map(|p| p.omega).fold(0.0, f64::max);
     let tau = tau_grid(omega_lo, omega_hi);
-    let n = points.len();
+    // Thousands of points: their bins of 1/50 decade, each row weighted by
+    // √(its count), as the master curve's series is fitted (module doc of
+    // `rollfit_fit::master::condense`); the misfits below are still the
+    // points'.
+    let (omega, storage, loss): (Vec<f64>, Vec<f64>, Vec<f64>) = (
+        points.iter().map(|p| p.omega).collect(),
+        points.iter().map(|p| p.storage).collect(),
+        points.iter().map(|p| p.loss).collect(),
+    );
+    let condensed = condense(&omega, &storage, &loss);
+    let (omega, storage, loss, root_count) = match &condensed {
+        Some(c) => (
+            c.omega.as_slice(),
+            c.storage.as_slice(),
+            c.loss.as_slice(),
+            c.count.iter().map(|n| n.sqrt()).collect(),
+        ),
+        None => (
+            omega.as_slice(),
+            storage.as_slice(),
+            loss.as_slice(),
+            vec![1.0; omega.len()],
+        ),
+    };
+    let n = omega.len();
     let columns = tau.len() + 1;
     // Rows 0..n: E′ relative residuals, n..2n: E″; column 0 is E0.
     let mut a = DMatrix::<f64>::zeros(2 * n, columns);
-    for (i, p) in points.iter().enumerate() {
-        a[(i, 0)] = 1.0 / p.storage;
+    for i in 0..n {
+        a[(i, 0)] = 1.0 / storage[i];
         for (k, t) in tau.iter().enumerate() {
-            let x = p.omega * t;
+            let x = omega[i] * t;
             let d = 1.0 + x * x;
-            a[(i, k + 1)] = x * x / d / p.storage;
-            a[(n + i, k + 1)] = x / d / p.loss;
+            a[(i, k + 1)] = x * x / d / storage[i];
+            a[(n + i, k + 1)] = x / d / loss[i];
+        }
+    }
+    if condensed.is_some() {
+        for i in 0..n {
+            a.row_mut(i).scale_mut(root_count[i]);
+            a.row_mut(n + i).scale_mut(root_count[i]);
         }
     }
     // Unit columns: the moduli span decades, and the active-set test
@@ -199,7 +230,11 @@ pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
     if a.iter().any(|x| !x.is_finite()) {
         return Err(ReportError::ModuliOutOfRange);
     }
-    let b = DVector::from_element(2 * n, 1.0);
+    let b = if condensed.is_some() {
+        DVector::from_iterator(2 * n, root_count.iter().chain(&root_count).copied())
+    } else {
+        DVector::from_element(2 * n, 1.0)
+    };
     let x = nnls(&a, &b);
     let scaled: Vec<f64> = x
         .iter()
@@ -233,8 +268,9 @@ pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
             fit.max_misfit_loss = (r_loss.abs(), *p);
         }
     }
-    fit.misfit_storage = (storage / n as f64).sqrt();
-    fit.misfit_loss = (loss / n as f64).sqrt();
+    let count = points.len() as f64;
+    fit.misfit_storage = (storage / count).sqrt();
+    fit.misfit_loss = (loss / count).sqrt();
     let at = |p: &DmaPoint| match p.temperature {
         Some(t) => format!("ω a_T = {:.3e} rad/s, measured at {t:.1} °C", p.omega),
         None => format!("ω = {:.3e} rad/s", p.omega),

@@ -32,7 +32,8 @@
 //! 4. The data are shifted with the applied a_T (so that the Prony series
 //!    at T_ref and the law together reproduce every isotherm, as a scene
 //!    will use them) and the measured b_T.
-//! 5. [`prony_fit`]: a causal Prony series on the shifted points.
+//! 5. [`prony_fit`]: a causal Prony series on the shifted points (on
+//!    bins of 1/50 decade when they are thousands, [`condense`]).
 //!
 //! Settings are checked before any numerics run
 //! ([`MasterSettings::check`] gives [`ValidMasterSettings`]).
@@ -43,6 +44,7 @@
 //! - J. Dealy, D. Plazek, "Time–temperature superposition — a users
 //!   guide", Rheology Bulletin 78(2) (2009) 16–31.
 
+pub mod condense;
 pub(crate) mod horizontal;
 mod isotherm;
 pub mod law_choice;

@@ -19,6 +19,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axes::{lg, linear_range, log_axis, log_range};
+use super::marker_density::drawn_points;
 use super::parts::{
     ColouredPoint, dashed_key, draw_storage_loss, isotherms, legend_box, place_legend, plot_size,
     runs,
@@ -214,9 +215,9 @@ struct Curves {
 
 impl Curves {
     fn of(figure: &DmaMasterFigure, colour: &dyn Fn(f64) -> RGBColor) -> Self {
+        let drawn = drawn_points(figure.points, |p| p.temperature);
         let points = |value: &dyn Fn(&ShiftedPoint) -> f64| -> ColouredPoints {
-            figure
-                .points
+            drawn
                 .iter()
                 .filter_map(|p| Some((lg(p.reduced_omega)?, lg(value(p))?, colour(p.temperature))))
                 .collect()

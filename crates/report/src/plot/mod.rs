@@ -16,6 +16,7 @@ pub mod forward_sweep;
 pub mod friction;
 pub mod joint_master;
 pub mod joint_residuals;
+mod marker_density;
 pub mod master_curve;
 mod parts;
 pub mod pressure_map;
