@@ -1211,3 +1211,107 @@ fn a_joint_fits_dma_file_is_read_as_the_master_curve_reads_it() {
         &["single.csv", &format!("line {last}"), "at least two"],
     );
 }
+
+// ---------------------------------------------------------------- dialects
+
+/// The comma file of two isotherms and the same points as a lab's
+/// spreadsheet writes them: `;` with decimal commas, tabs, a title line
+/// above the header, a units row below it, CRLF line ends (issue 36, item
+/// 7). Each reads to the comma file's points; lines stay the file's own.
+#[test]
+fn dma_csv_in_every_dialect_reads_the_same_points() {
+    let dir = TempDir::new("dialects");
+    let points = reference_points();
+    let rows = |sep: &str, comma: bool| -> String {
+        let mut text = String::new();
+        for t in [20.0, 30.0] {
+            for &(w, s, l) in &points {
+                let cells = [w / (2.0 * PI), s, l, t].map(|v| {
+                    let v = format!("{v:e}");
+                    if comma { v.replace('.', ",") } else { v }
+                });
+                text.push_str(&cells.join(sep));
+                text.push('\n');
+            }
+        }
+        text
+    };
+    let comma = format!("f,E_storage,E_loss,T\n{}", rows(",", false));
+    let reference =
+        DmaData::read(&dir.write("comma.csv", &comma), 0.5, &DmaOptions::default()).unwrap();
+    let variants = [
+        (
+            "semicolon.csv",
+            format!("f;E_storage;E_loss;T\n{}", rows(";", true)),
+            0,
+            "`;`",
+        ),
+        (
+            "tab.txt",
+            format!("f\tE_storage\tE_loss\tT\n{}", rows("\t", false)),
+            0,
+            "tabs",
+        ),
+        (
+            "title.csv",
+            format!(
+                "DMA export, sample A-1\nf;E_storage;E_loss;T\n{}",
+                rows(";", true)
+            ),
+            1,
+            "header on line 2; the 1 line above it (titles) ignored",
+        ),
+        (
+            "units.csv",
+            format!(
+                "Eplexor export\n\nf;E';E'';T\n[Hz];[Pa];[Pa];[°C]\n{}",
+                rows(";", true)
+            ),
+            3,
+            "header on line 3",
+        ),
+        ("crlf.csv", comma.replace('\n', "\r\n"), 0, ""),
+    ];
+    for (name, text, shift, note) in variants {
+        let path = dir.write(name, &text);
+        let data = DmaData::read(&path, 0.5, &DmaOptions::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(data.points.len(), reference.points.len(), "{name}");
+        for (p, q) in data.points.iter().zip(&reference.points) {
+            assert!(relative(p.omega, q.omega) < 1e-15, "{name}: {p:?} vs {q:?}");
+            assert!(relative(p.storage, q.storage) < 1e-15, "{name}: {p:?}");
+            assert!(relative(p.loss, q.loss) < 1e-15, "{name}: {p:?}");
+            assert_eq!(p.temperature, q.temperature, "{name}");
+        }
+        let lines: Vec<usize> = reference.lines.iter().map(|l| l + shift).collect();
+        assert_eq!(data.lines, lines, "{name}");
+        assert_eq!(data.temperatures(), [20.0, 30.0], "{name}");
+        assert!(
+            data.notes.iter().any(|n| n.contains(note)) || note.is_empty() && data.notes.is_empty(),
+            "{name}: {:?}",
+            data.notes
+        );
+    }
+}
+
+/// What the dialect cannot decide is refused at its line: decimal commas
+/// in a comma-separated file (a field count off), a thousands separator.
+#[test]
+fn dma_csv_dialects_it_cannot_decide_are_refused_at_their_line() {
+    let dir = TempDir::new("undecided");
+    let path = dir.write("commas.csv", "f,E_storage,E_loss,T\n1,5,2,3e6,1e5,20\n");
+    let text = error_text(DmaData::read(&path, 0.5, &DmaOptions::default()));
+    assert_contains(
+        &text,
+        &["commas.csv, line 2: 6 fields, but the header has 4 columns"],
+    );
+    let path = dir.write(
+        "thousands.csv",
+        "# export\nf;E_storage;E_loss;T\n1;2,3e6;1e5;20\n1,5;1.234,5;1e5;20\n",
+    );
+    let text = error_text(DmaData::read(&path, 0.5, &DmaOptions::default()));
+    assert_contains(
+        &text,
+        &["thousands.csv, line 4: column 2 (E_storage): \"1.234,5\" is not a number"],
+    );
+}

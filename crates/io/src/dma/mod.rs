@@ -197,7 +197,8 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
             let read = trios::parse(path, &text, options)?;
             return Ok((read, "trios-lims", None, Vec::new()));
         }
-        (csv_form::parse(path, &text)?, "csv", None, Vec::new())
+        let (read, notes) = csv_form::parse(path, &text)?;
+        (read, "csv", None, notes)
     };
     if options.kind.is_some_and(|k| k != read.kind) {
         read.warnings.push(format!(
