@@ -208,5 +208,10 @@ fn row(
         storage: value(&header.storage)?,
         loss: value(&header.loss)?,
         temperature: header.temperature.as_ref().map(&value).transpose()?,
+        step: header
+            .step
+            .as_ref()
+            .map(|c| record[c.index].to_string())
+            .filter(|s| !s.is_empty()),
     })
 }

@@ -185,6 +185,7 @@ fn read_rows(place: &Place, rows: &[Row], header: &Header) -> Result<FormRead, I
                     storage,
                     loss,
                     temperature: temperature.flatten(),
+                    step: header.step.as_ref().and_then(|c| step_label(row, c)),
                 });
             }
             _ => skipped.push(row.number),
@@ -204,6 +205,12 @@ fn read_rows(place: &Place, rows: &[Row], header: &Header) -> Result<FormRead, I
         ));
     }
     header.form(place.path, points, warnings)
+}
+
+/// The label of the step column `c` in `row` (None: empty).
+fn step_label(row: &Row, c: &Column) -> Option<String> {
+    let label = row.cells.get(c.index)?.name();
+    (!label.is_empty()).then_some(label)
 }
 
 /// The value of column `c` in `row` (number `number`), in SI; None for no
