@@ -1315,3 +1315,37 @@ fn dma_csv_dialects_it_cannot_decide_are_refused_at_their_line() {
         &["thousands.csv, line 4: column 2 (E_storage): \"1.234,5\" is not a number"],
     );
 }
+
+/// A step column groups what the temperatures alone would join: two
+/// sweeps at 20.0 and 20.6 °C, one isotherm by their 0.6 K gap, two by
+/// their `Segment` (issue 36, item 6); a workbook's `Set` alike.
+#[test]
+fn a_step_column_groups_the_isotherms() {
+    let dir = TempDir::new("steps");
+    let rows = "1,2e6,2e5,20.0,A\n10,3e6,3e5,20.1,A\n1,2.1e6,2e5,20.6,B\n10,3.1e6,3e5,20.5,B\n";
+    let plain = dir.write("plain.csv", format!("f,E_storage,E_loss,T,label\n{rows}"));
+    let data = DmaData::read(&plain, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.steps, None);
+    assert_eq!(data.temperatures().len(), 1);
+    let stepped = dir.write(
+        "stepped.csv",
+        format!("f,E_storage,E_loss,T,Segment\n{rows}"),
+    );
+    let data = DmaData::read(&stepped, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.steps.as_deref(), Some(&[0, 0, 1, 1][..]));
+    let grouping = data.grouping();
+    assert_eq!(grouping.isotherms.len(), 2);
+    assert_eq!(grouping.isotherms[1].points, [2, 3]);
+    assert!((grouping.isotherms[1].temperature - 20.55).abs() < 1e-12);
+    let book = xlsx(&[(
+        "Data",
+        vec![
+            texts(&["Set", "f", "E'", "E''", "T"]),
+            vec![X::N(1.0), X::N(1.0), X::N(2e6), X::N(2e5), X::N(20.0)],
+            vec![X::N(2.0), X::N(1.0), X::N(2e6), X::N(2e5), X::N(20.6)],
+        ],
+    )]);
+    let path = dir.write("sets.xlsx", book);
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.temperatures().len(), 2);
+}
