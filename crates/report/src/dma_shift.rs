@@ -210,10 +210,18 @@ fn fit_shifts(
             shift.t_ref, shift.model
         ));
     }
+    // A temperature ramp's points are grouped by exact temperature: list
+    // the range, not thousands of them.
+    extrapolated.dedup();
+    let listed = match extrapolated.as_slice() {
+        [first, .., last] if extrapolated.len() > 8 => {
+            format!("{first} … {last} °C ({} temperatures)", extrapolated.len())
+        }
+        all => format!("{} °C", all.join(", ")),
+    };
     if !extrapolated.is_empty() {
         notes.push(format!(
-            "{file}: isotherms at {} °C lie outside the fit's temperatures ({lo} to {hi} °C): the fit's {} law is extrapolated there",
-            extrapolated.join(", "),
+            "{file}: isotherms at {listed} lie outside the fit's temperatures ({lo} to {hi} °C): the fit's {} law is extrapolated there",
             if shift.model == "arrhenius" { "Arrhenius" } else { "WLF" }
         ));
     }
