@@ -213,7 +213,7 @@ fn fit_shifts(
     // A temperature ramp's points are grouped by exact temperature: list
     // the range, not thousands of them.
     extrapolated.dedup();
-    let listed = match extrapolated.as_slice() {
+    let shown = match extrapolated.as_slice() {
         [first, .., last] if extrapolated.len() > 8 => {
             format!("{first} … {last} °C ({} temperatures)", extrapolated.len())
         }
@@ -221,7 +221,7 @@ fn fit_shifts(
     };
     if !extrapolated.is_empty() {
         notes.push(format!(
-            "{file}: isotherms at {listed} lie outside the fit's temperatures ({lo} to {hi} °C): the fit's {} law is extrapolated there",
+            "{file}: isotherms at {shown} lie outside the fit's temperatures ({lo} to {hi} °C): the fit's {} law is extrapolated there",
             if shift.model == "arrhenius" { "Arrhenius" } else { "WLF" }
         ));
     }
