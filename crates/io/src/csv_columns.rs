@@ -185,15 +185,6 @@ pub(crate) fn dma_number(
     Ok(v)
 }
 
-/// The error of a CSV the csv crate cannot read, at its line.
-pub(crate) fn not_csv(path: &std::path::Path, text: &str, error: csv::Error) -> IoError {
-    IoError::NotCsv {
-        path: path.to_path_buf(),
-        line: csv_line(text, error.position()),
-        error,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

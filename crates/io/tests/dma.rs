@@ -1349,3 +1349,21 @@ fn a_step_column_groups_the_isotherms() {
     let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
     assert_eq!(data.temperatures().len(), 2);
 }
+
+/// A stress-relaxation CSV in the shared dialect: `;` with decimal commas
+/// under a title line reads to the comma file's points, at its own lines.
+#[test]
+fn relaxation_csv_in_the_semicolon_dialect_reads_the_same_points() {
+    use rollfit_io::dma::relaxation::{RelaxationData, is_relaxation};
+    let dir = TempDir::new("relaxation-dialect");
+    let comma = "t_s,E_relax_MPa,T\n0.1,12.5,20\n1,10.25,20\n10,8.5,20\n";
+    let semicolon = format!(
+        "Relaxation test, sample B\n{}",
+        comma.replace(',', ";").replace('.', ",")
+    );
+    assert!(is_relaxation(&semicolon));
+    let a = RelaxationData::read(&dir.write("comma.csv", comma), 0.5).unwrap();
+    let b = RelaxationData::read(&dir.write("semicolon.csv", &semicolon), 0.5).unwrap();
+    assert_eq!(a.points, b.points);
+    assert_eq!(b.lines, [3, 4, 5]);
+}

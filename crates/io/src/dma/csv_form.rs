@@ -38,22 +38,14 @@ pub use crate::columns::{F, G_LOSS, G_STORAGE};
 /// Parses the CSV text of `path`: the points, and notes on how the file
 /// was read (its delimiter, title lines).
 pub(crate) fn parse(path: &Path, text: &str) -> Result<(FormRead, Vec<String>), IoError> {
-    let all = dialect::lines(text);
-    let found = dialect::detect(all.clone(), super::sheet::is_header);
-    let mut notes = Vec::new();
     // No header the vocabulary knows: the first line is read as one, for
     // the message naming what it lacks.
-    let (delimiter, start) = match &found {
-        Some(found) => (found.delimiter, found.line.start),
-        None => match all.clone().next() {
-            Some(first) => (dialect::likeliest(first.text), first.start),
-            None => {
-                return Err(IoError::NoHeader {
-                    path: path.to_path_buf(),
-                });
-            }
-        },
+    let Some((delimiter, start, found)) = dialect_of(text, super::sheet::is_header) else {
+        return Err(IoError::NoHeader {
+            path: path.to_path_buf(),
+        });
     };
+    let mut notes = Vec::new();
     if let Some(found) = &found {
         if found.index > 0 {
             notes.push(format!(
@@ -148,6 +140,43 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<(FormRead, Vec<String>), 
     Ok((header.form(path, points, warnings)?, notes))
 }
 
+/// The number in `field` of column `c` on line `line`, with a decimal
+/// comma where `decimal_comma` allows one: the one reading of a DMA CSV
+/// cell, for frequency sweeps and relaxation runs alike.
+pub(super) fn number(
+    path: &Path,
+    line: usize,
+    c: &Column,
+    field: &str,
+    decimal_comma: bool,
+) -> Result<f64, IoError> {
+    match parse_number(&Cell::text(field), decimal_comma) {
+        Ok(Some(number)) => Ok(number.value),
+        // The error as for any cell that is not a finite number.
+        _ => dma_number(path, line, || c.reference.clone(), field),
+    }
+}
+
+/// The delimiter of a DMA CSV and the byte where its header starts, by the
+/// shared dialect detection ([`dialect::detect`]) with `is_header`; None
+/// for a text without a line. Without a header the vocabulary knows, the
+/// first line, split by the delimiter it holds most of.
+pub(super) fn dialect_of(
+    text: &str,
+    is_header: impl Fn(&crate::data::cell::Row) -> bool,
+) -> Option<(char, usize, Option<dialect::Found<'_>>)> {
+    let all = dialect::lines(text);
+    let found = dialect::detect(all.clone(), is_header);
+    let (delimiter, start) = match &found {
+        Some(found) => (found.delimiter, found.line.start),
+        None => {
+            let first = all.clone().next()?;
+            (dialect::likeliest(first.text), first.start)
+        }
+    };
+    Some((delimiter, start, found))
+}
+
 /// Where a record is and how its numbers read.
 struct Row {
     /// Its line in the file.
@@ -194,12 +223,7 @@ fn row(
         ));
     }
     let value = |c: &Column| -> Result<f64, IoError> {
-        let field = &record[c.index];
-        let v = match parse_number(&Cell::text(field), decimal_comma) {
-            Ok(Some(number)) => number.value,
-            // The error as for any cell that is not a finite number.
-            _ => dma_number(path, line, || c.reference.clone(), field)?,
-        };
+        let v = number(path, line, c, &record[c.index], decimal_comma)?;
         Ok(c.convert(v))
     };
     Ok(RawPoint {
