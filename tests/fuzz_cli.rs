@@ -1,6 +1,7 @@
 //! Structured fuzzing of every input kind of the `rollfit` binary (issue
 //! 14): scenes (through `forward` and `fit`), data files, batch manifests,
-//! DMA CSV files and TRIOS exports (through `compare`) and fit folders
+//! DMA CSV files (`,`, or `;` with decimal commas) and TRIOS exports
+//! (through `compare`), temperature ramps (through `master`), fit folders
 //! (through `report` and `compare`), each mutated from a valid file by a
 //! seeded sequence of structured edits (numbers replaced by extreme or
 //! malformed values, lines deleted, duplicated, swapped or inserted,
@@ -69,19 +70,25 @@ enum Kind {
     FitFolderReport,
     /// A fit folder's file through `compare`.
     FitFolderCompare,
+    /// A DMA CSV with `;` and decimal commas through `compare` (issue 36).
+    DmaSemicolon,
+    /// A temperature ramp through `master` (issue 36).
+    DmaRamp,
 }
 
 /// How many of every 100 cases are of each kind: the fits are the slow
 /// ones.
-const MIX: [(Kind, usize); 8] = [
+const MIX: [(Kind, usize); 10] = [
     (Kind::SceneForward, 20),
     (Kind::SceneFit, 7),
     (Kind::Data, 16),
     (Kind::Manifest, 4),
-    (Kind::DmaCsv, 15),
-    (Kind::Trios, 15),
+    (Kind::DmaCsv, 10),
+    (Kind::Trios, 12),
     (Kind::FitFolderReport, 8),
     (Kind::FitFolderCompare, 15),
+    (Kind::DmaSemicolon, 5),
+    (Kind::DmaRamp, 3),
 ];
 
 fn kind_of(i: usize) -> Kind {
@@ -394,6 +401,24 @@ fn fixtures(root: &Path) {
     fs::write(root.join("scene.toml"), small_scene(8)).unwrap();
     fs::write(root.join("manifest.toml"), MANIFEST).unwrap();
     fs::copy(repo.join("data/hn-rubber-dma.csv"), root.join("dma.csv")).unwrap();
+    // The same sweep as a German spreadsheet writes it, and a temperature
+    // ramp at two frequencies (issue 36).
+    let dma = fs::read_to_string(root.join("dma.csv")).unwrap();
+    let semicolon: String = dma
+        .lines()
+        .map(|l| match l.starts_with('#') {
+            true => format!("{l}\n"),
+            false => format!("{}\n", l.replace(',', ";").replace('.', ",")),
+        })
+        .collect();
+    fs::write(root.join("dma-semicolon.csv"), semicolon).unwrap();
+    let mut ramp = String::from("f,E_storage,E_loss,T\n");
+    for k in 0..=2000 {
+        for (f, s) in [(1.0, 2e6), (10.0, 3e6)] {
+            ramp += &format!("{f},{s:e},{:e},{:.1}\n", 0.2 * s, -50.0 + 0.1 * k as f64);
+        }
+    }
+    fs::write(root.join("ramp.csv"), ramp).unwrap();
     fs::copy(
         repo.join("crates/io/tests/fixtures/trios_tensile.txt"),
         root.join("trios.txt"),
@@ -481,6 +506,21 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
             mutated(name, &mut rng);
             with_base(&dir);
             (vec!["compare", "out", name], "out", name)
+        }
+        Kind::DmaSemicolon | Kind::DmaRamp => {
+            let name = match kind {
+                Kind::DmaRamp => "ramp.csv",
+                _ => "dma-semicolon.csv",
+            };
+            fs::copy(root.join(name), dir.join(name)).unwrap();
+            mutated(name, &mut rng);
+            match kind {
+                Kind::DmaRamp => (vec!["master", name, "-o", "master"], "master", name),
+                _ => {
+                    with_base(&dir);
+                    (vec!["compare", "out", name], "out", name)
+                }
+            }
         }
         Kind::FitFolderReport | Kind::FitFolderCompare => {
             with_base(&dir);

@@ -11,7 +11,18 @@ use crate::error::IoError;
 /// finds it itself); `flexible`: rows may differ in length (the caller
 /// checks them with line numbers of its own).
 pub fn reader(text: &str, headed: bool, flexible: bool) -> csv::Reader<&[u8]> {
+    reader_with(text, headed, flexible, ',')
+}
+
+/// [`reader`] with `delimiter` (an ASCII character) between the cells.
+pub fn reader_with(
+    text: &str,
+    headed: bool,
+    flexible: bool,
+    delimiter: char,
+) -> csv::Reader<&[u8]> {
     csv::ReaderBuilder::new()
+        .delimiter(u8::try_from(delimiter).unwrap_or(b','))
         .comment(Some(b'#'))
         .trim(csv::Trim::All)
         .has_headers(headed)
@@ -136,6 +147,17 @@ impl<'t> LineIndex<'t> {
         }
         self.line_of(i)
     }
+
+    /// [`LineIndex::csv_line`] of a record read from the text's tail
+    /// from byte `start` (a reader started at a header below title lines).
+    pub fn csv_line_after(&self, start: usize, position: Option<&csv::Position>) -> usize {
+        let Some(position) = position else {
+            return 0;
+        };
+        let mut shifted = position.clone();
+        shifted.set_byte(position.byte() + start as u64);
+        self.csv_line(Some(&shifted))
+    }
 }
 
 /// A cell of a DMA file's CSV as a finite number, or the error naming its
@@ -161,15 +183,6 @@ pub(crate) fn dma_number(
         });
     }
     Ok(v)
-}
-
-/// The error of a CSV the csv crate cannot read, at its line.
-pub(crate) fn not_csv(path: &std::path::Path, text: &str, error: csv::Error) -> IoError {
-    IoError::NotCsv {
-        path: path.to_path_buf(),
-        line: csv_line(text, error.position()),
-        error,
-    }
 }
 
 #[cfg(test)]

@@ -11,7 +11,7 @@ use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
 
-use crate::dma::{DmaData, DmaOptions, ModulusKind, isotherms};
+use crate::dma::{DmaData, DmaOptions, ISOTHERM_GAP, ISOTHERM_SPAN, ModulusKind, range};
 use crate::error::{DmaMasterError, IoError, TurnPoint};
 
 /// A master curve built from a DMA file.
@@ -22,6 +22,10 @@ pub struct DmaMaster {
     pub settings: ValidMasterSettings,
     /// Shift factors, shifted points and the Prony series.
     pub master: MasterCurve,
+    /// The lowest and highest measured temperature of each isotherm (°C,
+    /// in the order of the isotherms; empty for a file without
+    /// temperatures).
+    pub ranges: Vec<(f64, f64)>,
 }
 
 /// Reads `path` (of a workbook the sheet `sheet`, default the first) and
@@ -39,8 +43,14 @@ pub fn build(
     // No temperatures: the file is one curve, taken at T_ref.
     let untimed = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
     let DmaIsotherms {
-        data, isotherms, ..
+        data,
+        isotherms,
+        indices,
     } = read_isotherms(path, poisson, kind, sheet, Some(untimed))?;
+    let ranges = match data.points.iter().any(|p| p.temperature.is_some()) {
+        true => indices.iter().map(|i| range(&data.points, i)).collect(),
+        false => Vec::new(),
+    };
     let in_file = |source: DmaMasterError| DmaMasterError::InFile {
         path: path.to_path_buf(),
         source: Box::new(source),
@@ -57,6 +67,7 @@ pub fn build(
         data,
         settings: valid,
         master,
+        ranges,
     })
 }
 
@@ -72,7 +83,8 @@ pub struct DmaIsotherms {
 }
 
 /// Reads `path` (of a workbook the sheet `sheet`, default the first) and
-/// groups its points into isotherms ([`isotherms`]), refusing an isotherm
+/// groups its points into isotherms ([`crate::dma::isotherm`]: by step,
+/// else by temperature), refusing a temperature ramp and an isotherm
 /// whose frequencies do not run one way: what `rollfit master`, a scene's
 /// `model = "dma"` and a joint fit's `dma` share. `poisson` converts shear
 /// moduli (E = 2(1+ν)G); `kind` overrides a TRIOS file's shear/tensile
@@ -107,7 +119,21 @@ pub fn read_isotherms(
         }
         .into());
     } else {
-        isotherms(&data.points)
+        let grouping = data.grouping();
+        if let Some(ramp) = grouping.ramp {
+            return Err(DmaMasterError::Ramp {
+                path: path.to_path_buf(),
+                count: ramp.count,
+                low: ramp.low,
+                high: ramp.high,
+                widest_gap: ramp.widest_gap,
+                gap: ISOTHERM_GAP,
+                span: ISOTHERM_SPAN,
+            }
+            .into());
+        }
+        grouping
+            .isotherms
             .into_iter()
             .map(|iso| {
                 // File order: the grouping sorts by temperature, and a

@@ -1211,3 +1211,159 @@ fn a_joint_fits_dma_file_is_read_as_the_master_curve_reads_it() {
         &["single.csv", &format!("line {last}"), "at least two"],
     );
 }
+
+// ---------------------------------------------------------------- dialects
+
+/// The comma file of two isotherms and the same points as a lab's
+/// spreadsheet writes them: `;` with decimal commas, tabs, a title line
+/// above the header, a units row below it, CRLF line ends (issue 36, item
+/// 7). Each reads to the comma file's points; lines stay the file's own.
+#[test]
+fn dma_csv_in_every_dialect_reads_the_same_points() {
+    let dir = TempDir::new("dialects");
+    let points = reference_points();
+    let rows = |sep: &str, comma: bool| -> String {
+        let mut text = String::new();
+        for t in [20.0, 30.0] {
+            for &(w, s, l) in &points {
+                let cells = [w / (2.0 * PI), s, l, t].map(|v| {
+                    let v = format!("{v:e}");
+                    if comma { v.replace('.', ",") } else { v }
+                });
+                text.push_str(&cells.join(sep));
+                text.push('\n');
+            }
+        }
+        text
+    };
+    let comma = format!("f,E_storage,E_loss,T\n{}", rows(",", false));
+    let reference =
+        DmaData::read(&dir.write("comma.csv", &comma), 0.5, &DmaOptions::default()).unwrap();
+    let variants = [
+        (
+            "semicolon.csv",
+            format!("f;E_storage;E_loss;T\n{}", rows(";", true)),
+            0,
+            "`;`",
+        ),
+        (
+            "tab.txt",
+            format!("f\tE_storage\tE_loss\tT\n{}", rows("\t", false)),
+            0,
+            "tabs",
+        ),
+        (
+            "title.csv",
+            format!(
+                "DMA export, sample A-1\nf;E_storage;E_loss;T\n{}",
+                rows(";", true)
+            ),
+            1,
+            "header on line 2; the 1 line above it (titles) ignored",
+        ),
+        (
+            "units.csv",
+            format!(
+                "Eplexor export\n\nf;E';E'';T\n[Hz];[Pa];[Pa];[°C]\n{}",
+                rows(";", true)
+            ),
+            3,
+            "header on line 3",
+        ),
+        ("crlf.csv", comma.replace('\n', "\r\n"), 0, ""),
+    ];
+    for (name, text, shift, note) in variants {
+        let path = dir.write(name, &text);
+        let data = DmaData::read(&path, 0.5, &DmaOptions::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(data.points.len(), reference.points.len(), "{name}");
+        for (p, q) in data.points.iter().zip(&reference.points) {
+            assert!(relative(p.omega, q.omega) < 1e-15, "{name}: {p:?} vs {q:?}");
+            assert!(relative(p.storage, q.storage) < 1e-15, "{name}: {p:?}");
+            assert!(relative(p.loss, q.loss) < 1e-15, "{name}: {p:?}");
+            assert_eq!(p.temperature, q.temperature, "{name}");
+        }
+        let lines: Vec<usize> = reference.lines.iter().map(|l| l + shift).collect();
+        assert_eq!(data.lines, lines, "{name}");
+        assert_eq!(data.temperatures(), [20.0, 30.0], "{name}");
+        assert!(
+            data.notes.iter().any(|n| n.contains(note)) || note.is_empty() && data.notes.is_empty(),
+            "{name}: {:?}",
+            data.notes
+        );
+    }
+}
+
+/// What the dialect cannot decide is refused at its line: decimal commas
+/// in a comma-separated file (a field count off), a thousands separator.
+#[test]
+fn dma_csv_dialects_it_cannot_decide_are_refused_at_their_line() {
+    let dir = TempDir::new("undecided");
+    let path = dir.write("commas.csv", "f,E_storage,E_loss,T\n1,5,2,3e6,1e5,20\n");
+    let text = error_text(DmaData::read(&path, 0.5, &DmaOptions::default()));
+    assert_contains(
+        &text,
+        &["commas.csv, line 2: 6 fields, but the header has 4 columns"],
+    );
+    let path = dir.write(
+        "thousands.csv",
+        "# export\nf;E_storage;E_loss;T\n1;2,3e6;1e5;20\n1,5;1.234,5;1e5;20\n",
+    );
+    let text = error_text(DmaData::read(&path, 0.5, &DmaOptions::default()));
+    assert_contains(
+        &text,
+        &["thousands.csv, line 4: column 2 (E_storage): \"1.234,5\" is not a number"],
+    );
+}
+
+/// A step column groups what the temperatures alone would join: two
+/// sweeps at 20.0 and 20.6 °C, one isotherm by their 0.6 K gap, two by
+/// their `Segment` (issue 36, item 6); a workbook's `Set` alike.
+#[test]
+fn a_step_column_groups_the_isotherms() {
+    let dir = TempDir::new("steps");
+    let rows = "1,2e6,2e5,20.0,A\n10,3e6,3e5,20.1,A\n1,2.1e6,2e5,20.6,B\n10,3.1e6,3e5,20.5,B\n";
+    let plain = dir.write("plain.csv", format!("f,E_storage,E_loss,T,label\n{rows}"));
+    let data = DmaData::read(&plain, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.steps, None);
+    assert_eq!(data.temperatures().len(), 1);
+    let stepped = dir.write(
+        "stepped.csv",
+        format!("f,E_storage,E_loss,T,Segment\n{rows}"),
+    );
+    let data = DmaData::read(&stepped, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.steps.as_deref(), Some(&[0, 0, 1, 1][..]));
+    let grouping = data.grouping();
+    assert_eq!(grouping.isotherms.len(), 2);
+    assert_eq!(grouping.isotherms[1].points, [2, 3]);
+    assert!((grouping.isotherms[1].temperature - 20.55).abs() < 1e-12);
+    let book = xlsx(&[(
+        "Data",
+        vec![
+            texts(&["Set", "f", "E'", "E''", "T"]),
+            vec![X::N(1.0), X::N(1.0), X::N(2e6), X::N(2e5), X::N(20.0)],
+            vec![X::N(2.0), X::N(1.0), X::N(2e6), X::N(2e5), X::N(20.6)],
+        ],
+    )]);
+    let path = dir.write("sets.xlsx", book);
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.temperatures().len(), 2);
+}
+
+/// A stress-relaxation CSV in the shared dialect: `;` with decimal commas
+/// under a title line reads to the comma file's points, at its own lines.
+#[test]
+fn relaxation_csv_in_the_semicolon_dialect_reads_the_same_points() {
+    use rollfit_io::dma::relaxation::{RelaxationData, is_relaxation};
+    let dir = TempDir::new("relaxation-dialect");
+    let comma = "t_s,E_relax_MPa,T\n0.1,12.5,20\n1,10.25,20\n10,8.5,20\n";
+    let semicolon = format!(
+        "Relaxation test, sample B\n{}",
+        comma.replace(',', ";").replace('.', ",")
+    );
+    assert!(is_relaxation(&semicolon));
+    let a = RelaxationData::read(&dir.write("comma.csv", comma), 0.5).unwrap();
+    let b = RelaxationData::read(&dir.write("semicolon.csv", &semicolon), 0.5).unwrap();
+    assert_eq!(a.points, b.points);
+    assert_eq!(b.lines, [3, 4, 5]);
+}

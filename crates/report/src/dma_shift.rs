@@ -24,7 +24,8 @@
 //!    error asking for `--dma-wlf`: without a shift they do not form one
 //!    curve.
 //!
-//! Points are grouped into isotherms ([`rollfit_io::dma::isotherms`]) and
+//! Points are grouped into isotherms ([`rollfit_io::dma::isotherm`]; the
+//! points of a temperature ramp by exact temperature) and
 //! each isotherm is shifted rigidly with its mean temperature: a
 //! controller's ±0.02 K scatter should not bend an isotherm, and "the
 //! 150 °C isotherm" is what a user names.
@@ -32,9 +33,7 @@
 use std::path::Path;
 
 use rollfit_io::FitDir;
-use rollfit_io::dma::{
-    DmaData, DmaOptions, DmaPoint, DmaWlf, ISOTHERM_TOLERANCE, Isotherm, isotherms,
-};
+use rollfit_io::dma::{DmaData, DmaOptions, DmaPoint, DmaWlf, ISOTHERM_TOLERANCE, Isotherm};
 use rollfit_io::fit_dir::ShiftSummary;
 
 use crate::error::ReportError;
@@ -83,7 +82,9 @@ fn to_reference(
     fit: &FitDir,
     options: &DmaOptions,
 ) -> Result<Shifted, ReportError> {
-    let isotherms = isotherms(&data.points);
+    // A ramp's points are grouped by exact temperature: each shifted at
+    // its own.
+    let isotherms = data.grouping().isotherms;
     let without = data
         .points
         .iter()
@@ -209,10 +210,18 @@ fn fit_shifts(
             shift.t_ref, shift.model
         ));
     }
+    // A temperature ramp's points are grouped by exact temperature: list
+    // the range, not thousands of them.
+    extrapolated.dedup();
+    let shown = match extrapolated.as_slice() {
+        [first, .., last] if extrapolated.len() > 8 => {
+            format!("{first} … {last} °C ({} temperatures)", extrapolated.len())
+        }
+        all => format!("{} °C", all.join(", ")),
+    };
     if !extrapolated.is_empty() {
         notes.push(format!(
-            "{file}: isotherms at {} °C lie outside the fit's temperatures ({lo} to {hi} °C): the fit's {} law is extrapolated there",
-            extrapolated.join(", "),
+            "{file}: isotherms at {shown} lie outside the fit's temperatures ({lo} to {hi} °C): the fit's {} law is extrapolated there",
             if shift.model == "arrhenius" { "Arrhenius" } else { "WLF" }
         ));
     }

@@ -157,6 +157,39 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// An isotherm's spread (K, max − min) above which the summary names it:
+/// a controller holds ±0.1 K, so more is worth a look.
+const WIDE_ISOTHERM: f64 = 0.5;
+
+/// How the points were grouped: "9 isotherms: −20.0 … 60.0 °C (each within
+/// ±0.1 K)", naming the isotherms that spread over [`WIDE_ISOTHERM`];
+/// nothing for a file without temperatures.
+fn isotherms_line(ranges: &[(f64, f64)]) -> String {
+    let (Some(first), Some(last)) = (ranges.first(), ranges.last()) else {
+        return String::new();
+    };
+    let mean = |r: &(f64, f64)| 0.5 * (r.0 + r.1);
+    let half = ranges.iter().map(|r| 0.5 * (r.1 - r.0)).fold(0.0, f64::max);
+    let count = match ranges.len() {
+        1 => "1 isotherm".to_string(),
+        n => format!("{n} isotherms"),
+    };
+    let mut line = format!(
+        "{count}: {:.1} … {:.1} °C (each within ±{half:.1} K)",
+        mean(first),
+        mean(last)
+    );
+    let wide: Vec<String> = ranges
+        .iter()
+        .filter(|r| r.1 - r.0 > WIDE_ISOTHERM)
+        .map(|r| format!("{:.1} … {:.1} °C", r.0, r.1))
+        .collect();
+    if !wide.is_empty() {
+        line += &format!("; spread over {WIDE_ISOTHERM} K: {}", wide.join(", "));
+    }
+    line + "\n"
+}
+
 /// The best causal fit of the shifted points (the causality check of
 /// `compare`): the floor the smooth Prony series' misfit is measured
 /// against.
@@ -313,6 +346,9 @@ struct Summary {
     shift_law_reason: String,
     vertical: bool,
     isotherms: usize,
+    /// The lowest and highest measured temperature of each isotherm, °C.
+    #[serde(rename = "isotherm_T_ranges")]
+    isotherm_ranges: Vec<[f64; 2]>,
     points: usize,
     omega_range: [f64; 2],
     #[serde(flatten)]
@@ -362,6 +398,7 @@ impl Summary {
             shift_law_reason: m.shift.reason.clone(),
             vertical: built.settings.vertical(),
             isotherms: m.shift.shifts.len(),
+            isotherm_ranges: built.ranges.iter().map(|r| [r.0, r.1]).collect(),
             points: m.points.len(),
             omega_range: [
                 m.points[0].reduced_omega,
@@ -408,6 +445,7 @@ fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
         built.data.kind.name(),
         shift_out::headline(&m.shift, m.points.len(), &built.settings, "")
     );
+    out += &isotherms_line(&built.ranges);
     out += &shift_text(&m.shift);
     let fit = &m.fit;
     out += &format!(

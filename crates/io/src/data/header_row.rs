@@ -21,20 +21,17 @@ pub(super) fn classify(row: &Row) -> Vec<Header> {
         .collect()
 }
 
-/// The index of the header row: the first row naming a speed and a
-/// friction column, searched until the first row of numbers.
+/// Whether `row` names a speed and a friction column: the header.
+pub(super) fn is_header(row: &Row) -> bool {
+    let names = classify(row);
+    let has = |q: Quantity| names.iter().any(|h| h.quantity() == Some(q));
+    has(Quantity::Speed) && has(Quantity::Friction)
+}
+
+/// The index of the header row of a sheet: the first row naming a speed
+/// and a friction column, searched until the first row of numbers.
 pub(super) fn find_header(rows: &[Row]) -> Option<usize> {
-    for (i, row) in rows.iter().enumerate() {
-        if row.is_numeric() {
-            return None;
-        }
-        let names = classify(row);
-        let has = |q: Quantity| names.iter().any(|h| h.quantity() == Some(q));
-        if has(Quantity::Speed) && has(Quantity::Friction) {
-            return Some(i);
-        }
-    }
-    None
+    super::dialect::header_index(rows, |row| *row, is_header).map(|(i, _)| i)
 }
 
 /// A column read: where, its header as written, what and in which unit.

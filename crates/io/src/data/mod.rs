@@ -50,6 +50,7 @@
 //! missing list the columns found.
 
 pub(crate) mod cell;
+pub(crate) mod dialect;
 mod header_row;
 mod headers;
 pub(crate) mod quantity;

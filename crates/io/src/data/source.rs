@@ -65,6 +65,9 @@ impl Source {
 
     /// Whether `0,5` is a number: not with a comma between the columns.
     pub fn decimal_comma(&self) -> bool {
-        !matches!(self, Source::Text { delimiter: ',' })
+        match self {
+            Source::Text { delimiter } => super::dialect::decimal_comma(*delimiter),
+            Source::Sheet { .. } => true,
+        }
     }
 }

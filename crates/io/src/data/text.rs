@@ -2,65 +2,37 @@
 //! data"): decoded as UTF-8 (a byte-order mark is ignored), UTF-16 with a
 //! byte-order mark, or else Latin-1 (with a note naming the first line
 //! that is not UTF-8); CR, CRLF and LF line ends; `#` comments and blank
-//! lines left out; cells separated by `,`, `;` or tab — the delimiter that
-//! gives a header, the widest one of several — and double quotes around a
-//! cell removed (`""` inside is `"`).
+//! lines left out; cells separated by `,`, `;` or tab, with title lines
+//! above the header, as [`super::dialect`] detects them (shared with DMA
+//! CSV); double quotes around a cell removed (`""` inside is `"`).
 
 use super::DataTable;
-use super::cell::{Cell, Row, is_comment_or_blank};
-use super::header_row::find_header;
+use super::cell::Row;
+use super::dialect::{self, Line, split_line};
+use super::header_row::is_header;
 use super::rows::table;
 use super::source::Source;
 use crate::error::DataError;
-
-/// The delimiters tried, in order of preference on a tie.
-const DELIMITERS: [char; 3] = ['\t', ';', ','];
 
 /// Parses and checks a text measurement.
 pub(super) fn parse_bytes(bytes: &[u8]) -> Result<DataTable, DataError> {
     let mut notes = Vec::new();
     let text = decode(bytes, &mut notes)?;
-    let text = text.replace("\r\n", "\n").replace('\r', "\n");
-    let lines: Vec<(u64, &str)> = text
-        .split('\n')
-        .enumerate()
-        .filter(|(_, line)| !is_comment_or_blank(line))
-        .map(|(i, line)| (i as u64 + 1, line))
-        .collect();
-    if lines.is_empty() {
+    let lines: Vec<Line> = dialect::lines(&text).collect();
+    let Some(first) = lines.first() else {
         return Err(DataError::Empty);
-    }
-    let split = |delimiter: char| -> Vec<Row> {
-        lines
-            .iter()
-            .map(|&(number, line)| Row {
-                number,
-                cells: split_line(line, delimiter),
-            })
-            .collect()
     };
-    // The delimiter that gives a header; of several, the widest header.
-    let mut best: Option<(char, Vec<Row>, usize, usize)> = None;
-    for delimiter in DELIMITERS {
-        let rows = split(delimiter);
-        if let Some(header) = find_header(&rows) {
-            let width = rows[header].cells.iter().filter(|c| !c.is_empty()).count();
-            if best.as_ref().is_none_or(|b| width > b.3) {
-                best = Some((delimiter, rows, header, width));
-            }
-        }
-    }
-    let (delimiter, rows, header) = match best {
-        Some((delimiter, rows, header, _)) => (delimiter, rows, Some(header)),
-        None => {
-            let first = lines[0].1;
-            let delimiter = DELIMITERS
-                .into_iter()
-                .max_by_key(|d| first.matches(*d).count())
-                .unwrap_or(',');
-            (delimiter, split(delimiter), None)
-        }
+    let (delimiter, header) = match dialect::detect(lines.iter().copied(), is_header) {
+        Some(found) => (found.delimiter, Some(found.index)),
+        None => (dialect::likeliest(first.text), None),
     };
+    let rows: Vec<Row> = lines
+        .iter()
+        .map(|line| Row {
+            number: line.number,
+            cells: split_line(line.text, delimiter),
+        })
+        .collect();
     table(&Source::Text { delimiter }, &rows, header, notes)
 }
 
@@ -103,37 +75,4 @@ fn decode_8bit(bytes: &[u8], notes: &mut Vec<String>) -> String {
             bytes.iter().map(|&b| char::from(b)).collect()
         }
     }
-}
-
-/// The cells of a text line: separated by `delimiter`, each trimmed, with
-/// double quotes around a cell removed (`""` in a quoted cell is `"`).
-fn split_line(line: &str, delimiter: char) -> Vec<Cell> {
-    let mut cells = Vec::new();
-    let mut current = String::new();
-    let mut quoted = false;
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        if quoted {
-            if c == '"' {
-                if chars.peek() == Some(&'"') {
-                    current.push('"');
-                    chars.next();
-                } else {
-                    quoted = false;
-                }
-            } else {
-                current.push(c);
-            }
-        } else if c == delimiter {
-            cells.push(Cell::text(&current));
-            current.clear();
-        } else if c == '"' && current.trim().is_empty() {
-            current.clear();
-            quoted = true;
-        } else {
-            current.push(c);
-        }
-    }
-    cells.push(Cell::text(&current));
-    cells
 }

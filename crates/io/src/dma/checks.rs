@@ -21,16 +21,20 @@ const MIN_STORAGE: f64 = 1e-3;
 
 /// The checks common to all forms: ω > 0, E′ > 0 (errors); E″ ≤ 0 (point
 /// dropped with a warning); at least one point left. Multiplies the moduli
-/// by `factor` (2(1+ν) for shear). Returns the points kept and their lines.
+/// by `factor` (2(1+ν) for shear). Returns the points kept, their lines
+/// and their steps (numbered in order of appearance; `None` unless every
+/// point kept has one).
 pub(super) fn check_points(
     place: &Place,
     raw: Vec<RawPoint>,
     names: &FieldNames,
     factor: f64,
     warnings: &mut Vec<String>,
-) -> Result<(Vec<DmaPoint>, Vec<usize>), IoError> {
+) -> Result<Checked, IoError> {
     let mut points = Vec::with_capacity(raw.len());
     let mut lines = Vec::with_capacity(raw.len());
+    let mut labels: Vec<String> = Vec::new();
+    let mut steps: Option<Vec<u32>> = Some(Vec::new());
     let mut dropped = 0usize;
     let path = place.path;
     for p in raw {
@@ -55,6 +59,14 @@ pub(super) fn check_points(
             temperature: p.temperature,
         });
         lines.push(p.line);
+        steps = steps.zip(p.step).map(|(mut steps, label)| {
+            let id = labels.iter().position(|l| *l == label).unwrap_or_else(|| {
+                labels.push(label);
+                labels.len() - 1
+            });
+            steps.push(u32::try_from(id).unwrap_or(u32::MAX));
+            steps
+        });
     }
     if points.is_empty() {
         let path = path.to_path_buf();
@@ -64,8 +76,11 @@ pub(super) fn check_points(
             IoError::NoDataPoints { path }
         });
     }
-    Ok((points, lines))
+    Ok((points, lines, steps))
 }
+
+/// The points kept, their lines and steps (see [`check_points`]).
+pub(super) type Checked = (Vec<DmaPoint>, Vec<usize>, Option<Vec<u32>>);
 
 /// The errors of one point (see [`check_points`]).
 fn check_point(

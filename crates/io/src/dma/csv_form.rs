@@ -3,6 +3,12 @@
 //! per line; `#` lines are comments, columns other than the ones
 //! [`super::header`] names are ignored (they need not even be numbers).
 //!
+//! The dialect is the measured-data reader's ([`crate::data::dialect`]):
+//! cells separated by `,`, `;` or tab, the header the first line naming a
+//! frequency, a storage and a loss modulus (title lines above it are
+//! skipped, with a note), and decimal commas (`1,5;2,3e6`) read with `;` or
+//! tab between the cells.
+//!
 //! The columns, their names and units are [`super::header`]'s, shared
 //! with workbooks: frequency `omega` (rad/s) or `f` (Hz), storage and loss
 //! `E_storage`, `E_loss` (Young's) or `G_storage`, `G_loss` (shear),
@@ -21,16 +27,53 @@ use std::path::Path;
 
 use super::form::{FormRead, Place, RawPoint};
 use super::header::{self, Column, Header};
-use crate::csv_columns::{LineIndex, dma_number, not_csv};
+use crate::csv_columns::{LineIndex, dma_number};
+use crate::data::cell::{Cell, parse_number};
+use crate::data::dialect;
 use crate::error::{ColumnRef, IoError};
 
 /// The columns only DMA files have, defined with the other shared names.
 pub use crate::columns::{F, G_LOSS, G_STORAGE};
 
-/// Parses the CSV text of `path`.
-pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
-    let mut reader = crate::csv_columns::reader(text, false, true);
+/// Parses the CSV text of `path`: the points, and notes on how the file
+/// was read (its delimiter, title lines).
+pub(crate) fn parse(path: &Path, text: &str) -> Result<(FormRead, Vec<String>), IoError> {
+    // No header the vocabulary knows: the first line is read as one, for
+    // the message naming what it lacks.
+    let Some((delimiter, start, found)) = dialect_of(text, super::sheet::is_header) else {
+        return Err(IoError::NoHeader {
+            path: path.to_path_buf(),
+        });
+    };
+    let mut notes = Vec::new();
+    if let Some(found) = &found {
+        if found.index > 0 {
+            notes.push(format!(
+                "{}: header on line {}; the {} line{} above it (titles) ignored",
+                path.display(),
+                found.line.number,
+                found.index,
+                if found.index == 1 { "" } else { "s" }
+            ));
+        }
+        if delimiter != ',' {
+            notes.push(format!(
+                "{}: columns separated by {}, decimal commas allowed",
+                path.display(),
+                if delimiter == ';' { "`;`" } else { "tabs" }
+            ));
+        }
+    }
+    let decimal_comma = dialect::decimal_comma(delimiter);
+    let body = &text[start..];
+    let mut reader = crate::csv_columns::reader_with(body, false, true, delimiter);
     let lines = LineIndex::new(text);
+    let line_of = |position: Option<&csv::Position>| lines.csv_line_after(start, position);
+    let not_csv = |e: csv::Error| IoError::NotCsv {
+        path: path.to_path_buf(),
+        line: line_of(e.position()),
+        error: e,
+    };
     let mut records = reader.records();
     let (header_line, names): (usize, Vec<String>) = loop {
         match records.next() {
@@ -39,10 +82,10 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
                     path: path.to_path_buf(),
                 });
             }
-            Some(Err(e)) => return Err(not_csv(path, text, e)),
+            Some(Err(e)) => return Err(not_csv(e)),
             Some(Ok(r)) if r.iter().all(str::is_empty) => continue,
             Some(Ok(r)) => {
-                let line = lines.csv_line(r.position());
+                let line = line_of(r.position());
                 break (line, r.iter().map(str::to_string).collect());
             }
         }
@@ -54,7 +97,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
         Some(Ok(r))
             if header::is_units_row(&names, &r.iter().map(str::to_string).collect::<Vec<_>>()) =>
         {
-            let line = lines.csv_line(r.position());
+            let line = line_of(r.position());
             let cells = r.iter().map(str::to_string).collect();
             records.next();
             Some((line, cells))
@@ -81,27 +124,82 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<FormRead, IoError> {
         .filter(|&n| n > 0);
     let mut points = Vec::new();
     for record in records {
-        let record = record.map_err(|e| not_csv(path, text, e))?;
-        let line = lines.csv_line(record.position());
+        let record = record.map_err(not_csv)?;
+        let line = line_of(record.position());
         if record.iter().all(str::is_empty) {
             continue;
         }
         let cut = unterminated == Some(line);
-        points.push(row(path, line, cut, &header, &record, &mut warnings)?);
+        let at = Row {
+            line,
+            cut,
+            decimal_comma,
+        };
+        points.push(row(path, at, &header, &record, &mut warnings)?);
     }
-    header.form(path, points, warnings)
+    Ok((header.form(path, points, warnings)?, notes))
 }
 
-/// The point of the record on line `line`; `last_and_cut`: the record is
-/// the file's last line and has no line break.
-fn row(
+/// The number in `field` of column `c` on line `line`, with a decimal
+/// comma where `decimal_comma` allows one: the one reading of a DMA CSV
+/// cell, for frequency sweeps and relaxation runs alike.
+pub(super) fn number(
     path: &Path,
     line: usize,
-    last_and_cut: bool,
+    c: &Column,
+    field: &str,
+    decimal_comma: bool,
+) -> Result<f64, IoError> {
+    match parse_number(&Cell::text(field), decimal_comma) {
+        Ok(Some(number)) => Ok(number.value),
+        // The error as for any cell that is not a finite number.
+        _ => dma_number(path, line, || c.reference.clone(), field),
+    }
+}
+
+/// The delimiter of a DMA CSV and the byte where its header starts, by the
+/// shared dialect detection ([`dialect::detect`]) with `is_header`; None
+/// for a text without a line. Without a header the vocabulary knows, the
+/// first line, split by the delimiter it holds most of.
+pub(super) fn dialect_of(
+    text: &str,
+    is_header: impl Fn(&crate::data::cell::Row) -> bool,
+) -> Option<(char, usize, Option<dialect::Found<'_>>)> {
+    let all = dialect::lines(text);
+    let found = dialect::detect(all.clone(), is_header);
+    let (delimiter, start) = match &found {
+        Some(found) => (found.delimiter, found.line.start),
+        None => {
+            let first = all.clone().next()?;
+            (dialect::likeliest(first.text), first.start)
+        }
+    };
+    Some((delimiter, start, found))
+}
+
+/// Where a record is and how its numbers read.
+struct Row {
+    /// Its line in the file.
+    line: usize,
+    /// The record is the file's last line and has no line break.
+    cut: bool,
+    /// A number may have a decimal comma (`;` or tab between the cells).
+    decimal_comma: bool,
+}
+
+/// The point of the record at `at`.
+fn row(
+    path: &Path,
+    at: Row,
     header: &Header,
     record: &csv::StringRecord,
     warnings: &mut Vec<String>,
 ) -> Result<RawPoint, IoError> {
+    let Row {
+        line,
+        cut: last_and_cut,
+        decimal_comma,
+    } = at;
     let width = header.names.len();
     if record.len() != width {
         let missing = header.names[record.len().min(width)..]
@@ -125,7 +223,7 @@ fn row(
         ));
     }
     let value = |c: &Column| -> Result<f64, IoError> {
-        let v = dma_number(path, line, || c.reference.clone(), &record[c.index])?;
+        let v = number(path, line, c, &record[c.index], decimal_comma)?;
         Ok(c.convert(v))
     };
     Ok(RawPoint {
@@ -134,5 +232,10 @@ fn row(
         storage: value(&header.storage)?,
         loss: value(&header.loss)?,
         temperature: header.temperature.as_ref().map(&value).transpose()?,
+        step: header
+            .step
+            .as_ref()
+            .map(|c| record[c.index].to_string())
+            .filter(|s| !s.is_empty()),
     })
 }

@@ -16,6 +16,9 @@ pub(crate) struct RawPoint {
     pub loss: f64,
     /// °C.
     pub temperature: Option<f64>,
+    /// The step (segment, set) it was measured in, as the file labels it,
+    /// when the file has a step column.
+    pub step: Option<String>,
 }
 
 /// The columns (or variables) of the three moduli fields, for messages.

@@ -10,6 +10,7 @@
 //! | storage     | `E_storage`, `E'`; shear `G_storage`, `G'` | Pa, kPa, MPa, GPa, N/mm² |
 //! | loss        | `E_loss`, `E''`; shear `G_loss`, `G''` | as storage                   |
 //! | temperature | `T`, `temp`, `temperature` (optional)  | °C, K                        |
+//! | step        | `Step`, `Set`, `Segment` (optional)    | a label: which points form one isotherm |
 //!
 //! A unit is given in one of three ways: a suffix after an underscore
 //! (`f_Hz`, `omega_rad_s`, `E_loss_MPa`, `T_K`; the CSV spellings, case as
@@ -45,6 +46,8 @@ enum Quantity {
     Storage(ModulusKind),
     Loss(ModulusKind),
     Temperature,
+    /// The step, set or segment of a temperature programme: a label.
+    Step,
 }
 
 impl Quantity {
@@ -54,6 +57,7 @@ impl Quantity {
             Quantity::Omega | Quantity::Frequency => "a frequency",
             Quantity::Storage(_) | Quantity::Loss(_) => "a modulus",
             Quantity::Temperature => "a temperature",
+            Quantity::Step => "a step",
         }
     }
 
@@ -63,6 +67,7 @@ impl Quantity {
             Quantity::Omega | Quantity::Frequency => "Hz, kHz, mHz, rad/s",
             Quantity::Storage(_) | Quantity::Loss(_) => "Pa, kPa, MPa, GPa, N/mm²",
             Quantity::Temperature => "°C, K",
+            Quantity::Step => "none",
         }
     }
 
@@ -101,6 +106,8 @@ impl Quantity {
                 "K" => Some((1.0, -273.15)),
                 _ => None,
             },
+            // A label; whatever a units row writes above it.
+            Quantity::Step => Some((1.0, 0.0)),
         }
     }
 }
@@ -120,7 +127,14 @@ const CANONICAL: [(&str, Quantity, &[&str]); 7] = [
 const MODULUS_SUFFIXES: [&str; 4] = ["Pa", "kPa", "MPa", "GPa"];
 
 /// The names instruments write (lower case, primes as `'`, no spaces).
-const ALIASES: [(&str, Quantity); 14] = [
+const ALIASES: [(&str, Quantity); 21] = [
+    ("step", Quantity::Step),
+    ("stepnumber", Quantity::Step),
+    ("stepno.", Quantity::Step),
+    ("set", Quantity::Step),
+    ("segment", Quantity::Step),
+    ("seg", Quantity::Step),
+    ("segmentnumber", Quantity::Step),
     ("freq", Quantity::Frequency),
     ("frequency", Quantity::Frequency),
     ("frequenz", Quantity::Frequency),
@@ -240,6 +254,8 @@ pub(super) struct Header {
     pub storage: Column,
     pub loss: Column,
     pub temperature: Option<Column>,
+    /// A step (set, segment) column: which points form one isotherm.
+    pub step: Option<Column>,
 }
 
 impl Header {
@@ -423,6 +439,7 @@ fn assemble(
         }
     };
     let temperature = one("temperature", &[Quantity::Temperature])?;
+    let step = one("step", &[Quantity::Step])?;
     Ok(Header {
         names,
         both,
@@ -431,5 +448,6 @@ fn assemble(
         storage,
         loss,
         temperature,
+        step,
     })
 }

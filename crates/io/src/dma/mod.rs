@@ -29,7 +29,8 @@
 //! so E′ = 2(1+ν) G′, E″ = 2(1+ν) G″ and tan δ is unchanged.
 //!
 //! Points at several temperatures are grouped into isotherms
-//! ([`isotherms`]); moving them to a fit's reference state is the report
+//! ([`isotherm`]: by a step column, else by gaps over 1 K between their
+//! temperatures, never into one spanning more than 2 K); moving them to a fit's reference state is the report
 //! crate's (`rollfit_report::dma_shift`), building a master curve of them
 //! the fit crate's (`rollfit_fit::master`).
 //!
@@ -60,7 +61,7 @@ pub mod csv_form;
 pub mod decode;
 mod form;
 mod header;
-mod isotherm;
+pub mod isotherm;
 mod point;
 pub mod relaxation;
 mod sheet;
@@ -68,7 +69,10 @@ pub mod trios;
 
 use crate::data::workbook::is_workbook;
 use form::{FormRead, Place};
-pub use isotherm::{ISOTHERM_TOLERANCE, Isotherm, group_temperatures, isotherms};
+pub use isotherm::{
+    Grouping, ISOTHERM_GAP, ISOTHERM_SPAN, ISOTHERM_TOLERANCE, Isotherm, Ramp, group, group_steps,
+    group_temperatures, isotherms, range,
+};
 pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind, WLF_USAGE};
 
 /// A DMA file read, its moduli as Young's moduli in Pa.
@@ -81,6 +85,10 @@ pub struct DmaData {
     /// The file line (from 1) of each entry of `points`, same order: for
     /// messages about a point. In a workbook, the row of the sheet.
     pub lines: Vec<usize>,
+    /// The step (set, segment) of each point, numbered from 0 in order of
+    /// appearance, when the file has a step column with a label for every
+    /// point: it groups the isotherms ([`DmaData::grouping`]).
+    pub steps: Option<Vec<u32>>,
     /// The sheet read, for a workbook (`None`: a text file).
     pub sheet: Option<String>,
     /// What the file held (before conversion to Young's).
@@ -147,11 +155,13 @@ impl DmaData {
             path,
             sheet: sheet.as_deref(),
         };
-        let (points, lines) = checks::check_points(&place, raw, &names, factor, &mut warnings)?;
+        let (points, lines, steps) =
+            checks::check_points(&place, raw, &names, factor, &mut warnings)?;
         Ok(DmaData {
             path: path.to_path_buf(),
             points,
             lines,
+            steps,
             sheet,
             kind,
             format,
@@ -160,11 +170,25 @@ impl DmaData {
         })
     }
 
-    /// The measured temperatures grouped into isotherms (°C, ascending):
-    /// points within [`ISOTHERM_TOLERANCE`] of their neighbour belong to
-    /// one isotherm, whose temperature is their mean.
+    /// The points grouped into isotherms, by step where the file has a
+    /// step column, else by the gaps between their temperatures, and the
+    /// temperature ramp that formed none, if any (the rule: [`isotherm`]).
+    pub fn grouping(&self) -> Grouping {
+        match &self.steps {
+            Some(steps) => {
+                let temperatures: Vec<Option<f64>> =
+                    self.points.iter().map(|p| p.temperature).collect();
+                group_steps(&temperatures, steps)
+            }
+            None => group(self.points.iter().map(|p| p.temperature)),
+        }
+    }
+
+    /// The isotherms' temperatures (°C, ascending; see
+    /// [`DmaData::grouping`]).
     pub fn temperatures(&self) -> Vec<f64> {
-        isotherms(&self.points)
+        self.grouping()
+            .isotherms
             .iter()
             .map(|i| i.temperature)
             .collect()
@@ -197,7 +221,8 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
             let read = trios::parse(path, &text, options)?;
             return Ok((read, "trios-lims", None, Vec::new()));
         }
-        (csv_form::parse(path, &text)?, "csv", None, Vec::new())
+        let (read, notes) = csv_form::parse(path, &text)?;
+        (read, "csv", None, notes)
     };
     if options.kind.is_some_and(|k| k != read.kind) {
         read.warnings.push(format!(

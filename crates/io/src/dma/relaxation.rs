@@ -2,7 +2,9 @@
 //! "Contract", "DMA files"): a CSV of the relaxation modulus E(t) or G(t)
 //! against the time t since a step of strain, optionally at several
 //! temperatures T. A header line, then one point per line; `#` lines are
-//! comments; other columns are ignored.
+//! comments; other columns are ignored. The dialect is the frequency
+//! form's ([`super::csv_form`]): `,`, `;` or tab between the cells, title
+//! lines above the header, decimal commas with `;` or tab.
 //!
 //! | quantity    | columns (first is canonical)                 | units (default first)      |
 //! |-------------|----------------------------------------------|----------------------------|
@@ -31,7 +33,7 @@ use std::path::{Path, PathBuf};
 use super::header::Column;
 use super::point::ModulusKind;
 use crate::columns::{E_RELAX, G_RELAX, TIME};
-use crate::csv_columns::{LineIndex, csv_line, dma_number, not_csv};
+use crate::csv_columns::LineIndex;
 use crate::error::{ColumnRef, IoError, RelaxationError};
 
 /// One point of a relaxation file, the modulus as Young's.
@@ -212,16 +214,28 @@ fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, 
     }))
 }
 
-/// The header row of a CSV text: (line, names), or None without one.
-fn header_row(text: &str) -> Option<(usize, Vec<String>)> {
-    let mut reader = crate::csv_columns::reader(text, false, true);
+/// The header row of a CSV text in the shared dialect
+/// ([`super::csv_form::dialect_of`]: `,`, `;` or tab, title lines above
+/// it): (line, names, delimiter, byte where the header starts), or None
+/// without one.
+fn header_row(text: &str) -> Option<(usize, Vec<String>, char, usize)> {
+    let is_header = |row: &crate::data::cell::Row| {
+        !matches!(
+            header(Path::new(""), 0, &super::sheet::texts(row)),
+            Ok(None)
+        )
+    };
+    let (delimiter, start, _) = super::csv_form::dialect_of(text, is_header)?;
+    let mut reader = crate::csv_columns::reader_with(&text[start..], false, true, delimiter);
+    let index = LineIndex::new(text);
     for record in reader.records() {
         let record = record.ok()?;
         if record.iter().all(str::is_empty) {
             continue;
         }
-        let line = csv_line(text, record.position());
-        return Some((line, record.iter().map(str::to_string).collect()));
+        let line = index.csv_line_after(start, record.position());
+        let names = record.iter().map(str::to_string).collect();
+        return Some((line, names, delimiter, start));
     }
     None
 }
@@ -234,7 +248,7 @@ pub fn is_relaxation(text: &str) -> bool {
         return false;
     }
     header_row(text)
-        .is_some_and(|(line, names)| !matches!(header(Path::new(""), line, &names), Ok(None)))
+        .is_some_and(|(line, names, ..)| !matches!(header(Path::new(""), line, &names), Ok(None)))
 }
 
 /// Whether the file at `path` is a relaxation file; false where it cannot
@@ -267,7 +281,7 @@ impl RelaxationData {
 
 /// Parses the text of a relaxation file (the module doc).
 pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, IoError> {
-    let (line, names) = header_row(text).ok_or_else(|| IoError::NoHeader {
+    let (line, names, delimiter, start) = header_row(text).ok_or_else(|| IoError::NoHeader {
         path: path.to_path_buf(),
     })?;
     let Some(header) = header(path, line, &names)? else {
@@ -282,15 +296,20 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
     };
     let mut points = Vec::new();
     let mut lines = Vec::new();
-    let mut reader = crate::csv_columns::reader(text, false, true);
+    let mut reader = crate::csv_columns::reader_with(&text[start..], false, true, delimiter);
     let index = LineIndex::new(text);
+    let decimal_comma = crate::data::dialect::decimal_comma(delimiter);
     for record in reader.records() {
-        let record = record.map_err(|error| not_csv(path, text, error))?;
-        let at = index.csv_line(record.position());
+        let record = record.map_err(|error| IoError::NotCsv {
+            path: path.to_path_buf(),
+            line: index.csv_line_after(start, error.position()),
+            error,
+        })?;
+        let at = index.csv_line_after(start, record.position());
         if at <= line || record.iter().all(str::is_empty) {
             continue;
         }
-        points.push(row(path, at, &header, &record, factor)?);
+        points.push(row(path, (at, decimal_comma), &header, &record, factor)?);
         lines.push(at);
     }
     if points.is_empty() {
@@ -318,7 +337,7 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
 /// The point of the record on line `line`.
 fn row(
     path: &Path,
-    line: usize,
+    (line, decimal_comma): (usize, bool),
     header: &Header,
     record: &csv::StringRecord,
     factor: f64,
@@ -334,7 +353,7 @@ fn row(
         });
     }
     let value = |c: &Column| -> Result<f64, IoError> {
-        let v = dma_number(path, line, || c.reference.clone(), &record[c.index])?;
+        let v = super::csv_form::number(path, line, c, &record[c.index], decimal_comma)?;
         Ok(v * c.factor + c.offset)
     };
     let time = value(&header.time)?;

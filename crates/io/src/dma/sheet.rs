@@ -27,6 +27,7 @@ use std::path::Path;
 use super::form::{FormRead, Place, RawPoint};
 use super::header::{self, Column, Header};
 use crate::data::cell::{Cell, NotNumber, Row, parse_number};
+use crate::data::dialect::header_index;
 use crate::data::workbook::{Book, has_workbook_extension};
 use crate::error::{DataError, DmaSheetError, IoError, RowsRef};
 
@@ -105,7 +106,7 @@ fn row_number(row: &Row) -> usize {
 }
 
 /// The cells of `row` as header texts ("" for an empty cell).
-fn texts(row: &Row) -> Vec<String> {
+pub(super) fn texts(row: &Row) -> Vec<String> {
     row.cells.iter().map(Cell::name).collect()
 }
 
@@ -113,9 +114,12 @@ fn texts(row: &Row) -> Vec<String> {
 /// frequency, a storage and a loss modulus, searched until the first row
 /// of numbers.
 fn find_header(rows: &[Row]) -> Option<usize> {
-    rows.iter()
-        .take_while(|row| !row.is_numeric())
-        .position(|row| header::is_header(&texts(row)))
+    header_index(rows, |row| *row, is_header).map(|(i, _)| i)
+}
+
+/// Whether `row` names a frequency, a storage and a loss modulus.
+pub(super) fn is_header(row: &Row) -> bool {
+    header::is_header(&texts(row))
 }
 
 /// The cells of the row of `rows` most like a header: of the rows above
@@ -181,6 +185,7 @@ fn read_rows(place: &Place, rows: &[Row], header: &Header) -> Result<FormRead, I
                     storage,
                     loss,
                     temperature: temperature.flatten(),
+                    step: header.step.as_ref().and_then(|c| step_label(row, c)),
                 });
             }
             _ => skipped.push(row.number),
@@ -200,6 +205,12 @@ fn read_rows(place: &Place, rows: &[Row], header: &Header) -> Result<FormRead, I
         ));
     }
     header.form(place.path, points, warnings)
+}
+
+/// The label of the step column `c` in `row` (None: empty).
+fn step_label(row: &Row, c: &Column) -> Option<String> {
+    let label = row.cells.get(c.index)?.name();
+    (!label.is_empty()).then_some(label)
 }
 
 /// The value of column `c` in `row` (number `number`), in SI; None for no

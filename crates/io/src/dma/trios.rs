@@ -333,6 +333,7 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
                 Some(t) => Some(value(t)?),
                 None => step_temperature,
             },
+            step: None,
         });
     }
     let names = FieldNames {

@@ -63,6 +63,26 @@ pub enum DmaMasterError {
         path.display()
     )]
     NoTemperature { path: PathBuf },
+    /// Temperatures that chain into no isotherm: a temperature sweep
+    /// (crate::dma::isotherm).
+    #[error(
+        "DMA file {}: this looks like a temperature ramp, not isotherms: {count} points from \
+         {low:.2} to {high:.2} °C with no gap over {gap} K between neighbouring temperatures \
+         (the widest is {widest_gap:.2} K), where an isotherm spans at most {span} K. A \
+         temperature sweep at fixed frequency is not a set of isotherms: rollfit master needs \
+         frequency sweeps at several fixed temperatures (a column `Step`, `Set` or `Segment` \
+         says which points form one)",
+        path.display()
+    )]
+    Ramp {
+        path: PathBuf,
+        count: usize,
+        low: f64,
+        high: f64,
+        widest_gap: f64,
+        gap: f64,
+        span: f64,
+    },
     /// What the fit library refused about one point (the source), at its
     /// place in the file.
     #[error("DMA file {}, {row}", path.display())]
