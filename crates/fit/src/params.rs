@@ -392,6 +392,32 @@ impl ValidFitParams {
     }
 }
 
+/// Accepted moduli of the fit's bound and anchors (`E1_max`, `E0`,
+/// `E_at.E`), Pa: 1 kPa, a decade below the softest rubber
+/// (`sanity::MIN_RUBBER_MODULUS`), to 1 TPa, diamond's Young's modulus and
+/// ten times the stiffest glassy polymer (`sanity::MAX_GLASSY_MODULUS`).
+/// Outside, the fit's numbers leave the floating-point range before any
+/// check can name the key (`E1_max = 1e-300`: "effective_parameters =
+/// NaN").
+pub const MODULUS_SETTING_RANGE: (f64, f64) = (1e3, 1e12);
+
+/// `value` of `key` within [`MODULUS_SETTING_RANGE`].
+fn modulus(key: &str, value: f64) -> Result<f64, FitError> {
+    let value = positive(key, value)?;
+    let (lo, hi) = MODULUS_SETTING_RANGE;
+    if (lo..=hi).contains(&value) {
+        Ok(value)
+    } else {
+        Err(FitError::setting(
+            key,
+            format!(
+                "{value:e} Pa must lie between {lo:e} and {hi:e} Pa (a decade below the softest \
+                 rubber, and diamond's modulus): is it in Pa?"
+            ),
+        ))
+    }
+}
+
 fn positive(key: &str, value: f64) -> Result<f64, FitError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
@@ -420,7 +446,7 @@ impl FitParams {
     /// `physics = "exact"`. [`crate::FitSettings::check`] checks the
     /// settings as they are read, against a neutral set-up.
     pub(crate) fn check_ranges(self, setup: RollingSetup) -> Result<ValidFitParams, FitError> {
-        let e1_max = positive("E1_max", self.e1_max)?;
+        let e1_max = modulus("E1_max", self.e1_max)?;
         let anchor = match self.anchor {
             None => None,
             Some(anchor) => Some(reduce_anchor(anchor, &setup, e1_max)?),
@@ -502,7 +528,7 @@ fn reduce_anchor(
 ) -> Result<ModulusAnchor, FitError> {
     let a = match anchor {
         ScaleAnchor::StaticModulus(e0) => {
-            let e0 = positive("E0", e0)?;
+            let e0 = modulus("E0", e0)?;
             ModulusAnchor {
                 omega: 0.0,
                 modulus: e0,
@@ -511,11 +537,13 @@ fn reduce_anchor(
         }
         ScaleAnchor::ModulusAt { omega, modulus } => ModulusAnchor {
             omega: positive("E_at.omega", omega)?,
-            modulus: positive("E_at.E", modulus)?,
+            modulus: self::modulus("E_at.E", modulus)?,
             source: "E_at",
         },
         ScaleAnchor::ContactRadius { speed, radius } => contact_anchor(speed, radius, setup)?,
     };
+    // A contact radius implies a modulus through Hertz: the same range.
+    modulus(a.source, a.modulus)?;
     if a.modulus >= e1_max {
         return Err(FitError::setting(
             a.source,
