@@ -729,3 +729,93 @@ fn relaxation_times_that_turn_are_refused() {
     assert_failure(&out, &["turn.csv", "line 38", "line 39", "20.00 °C"]);
     assert!(!dir.exists(), "a folder was written on error");
 }
+
+/// `temps` isotherms of 15 frequencies over 0.1…100 Hz (Young's, Pa)
+/// with E′, E″ from `moduli` of (T, f) and relative noise `noise`.
+fn gate_csv(temps: &[f64], noise: f64, moduli: impl Fn(f64, f64) -> (f64, f64)) -> String {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let mut out = String::from("T,f,E_storage,E_loss\n");
+    for &t in temps {
+        for i in 0..15 {
+            let f = 0.1 * 10f64.powf(3.0 * i as f64 / 14.0);
+            let (s, l) = moduli(t, f);
+            let s = s * (1.0 + noise * normal.sample(&mut rng));
+            let l = l * (1.0 + noise * normal.sample(&mut rng));
+            out += &format!("{t},{f:e},{s:e},{l:e}\n");
+        }
+    }
+    out
+}
+
+/// Runs `master` into a folder that holds an earlier result: a poor
+/// curve fails with `expected` in its message and leaves the folder as it
+/// was; with --allow-poor-fit it is written, master.json's "quality"
+/// "poor" with the reasons.
+fn refused_then_allowed(dma: &Path, tmp: &TempDir, expected: &[&str]) {
+    let dir = tmp.path().join("master");
+    fs::create_dir_all(&dir).unwrap();
+    fs::write(dir.join("master.json"), "earlier\n").unwrap();
+    let before = common::snapshot(&dir);
+    let out = master(dma, &dir, &[]);
+    let stderr = assert_failure(&out, expected);
+    assert!(
+        stderr.contains("the master curve is poor") && stderr.contains("--allow-poor-fit"),
+        "{stderr}"
+    );
+    assert_eq!(common::snapshot(&dir), before, "the folder changed");
+    succeed(master(dma, &dir, &["--allow-poor-fit"]));
+    let json: serde_json::Value =
+        serde_json::from_slice(&fs::read(dir.join("master.json")).unwrap()).unwrap();
+    assert_eq!(json["quality"]["verdict"], "poor", "{json}");
+    let reasons = json["quality"]["reasons"].as_array().unwrap();
+    assert!(
+        reasons
+            .iter()
+            .any(|r| r.as_str().unwrap().contains(expected[0])),
+        "{reasons:?}"
+    );
+}
+
+/// Issue 36, item 3: isotherms with E″ = 1e6 E′ (no causal solid has
+/// them) are refused by the Kramers–Kronig floor, not written with a
+/// warning.
+#[test]
+fn noncausal_isotherms_are_refused() {
+    let tmp = TempDir::new("gate-noncausal");
+    let temps = [0.0, 10.0, 20.0, 30.0, 40.0];
+    let csv = gate_csv(&temps, 0.0, |t, f| {
+        let w = 2.0 * std::f64::consts::PI * f * 10f64.powf(wlf(t));
+        let storage = 1e6 * (1.0 + (w / 1e2).powf(0.3));
+        (storage, 1e6 * storage)
+    });
+    let dma = tmp.write("noncausal.csv", &csv);
+    refused_then_allowed(
+        &dma,
+        &tmp,
+        &[
+            "the shifted data are not causal",
+            "decades RMS to E″",
+            "E″ not tan δ",
+        ],
+    );
+}
+
+/// Issue 36, item 3: nine isotherms with the same flat moduli (0.1 %
+/// scatter) determine no shift worth the name: refused, naming the
+/// undetermined shifts and what would fix them.
+#[test]
+fn flat_isotherms_are_refused() {
+    let tmp = TempDir::new("gate-flat");
+    let temps: Vec<f64> = (0..9).map(|k| 10.0 * k as f64).collect();
+    let dma = tmp.write("flat.csv", &gate_csv(&temps, 1e-3, |_, _| (1e9, 1e8)));
+    refused_then_allowed(
+        &dma,
+        &tmp,
+        &[
+            "the shifts are not determined by the overlap",
+            "of 9 isotherms",
+            "measure isotherms through the transition",
+        ],
+    );
+}

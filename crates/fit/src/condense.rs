@@ -32,7 +32,7 @@
 
 use serde::Serialize;
 
-use crate::data::Measurements;
+use crate::data::{MIN_RELATIVE_SIGMA, Measurements};
 use crate::error::FitError;
 
 /// Bins per decade of speed.
@@ -156,6 +156,19 @@ pub fn condense(data: &Measurements) -> Result<Option<Condensed>, FitError> {
     }
     let scatter =
         (data.sigma().is_none() && dof >= MIN_SCATTER_DOF).then(|| (ss / dof as f64).sqrt());
+    if let Some(s) = scatter
+        && s < MIN_RELATIVE_SIGMA
+    {
+        // Copies of the same rows (a list tiled, a file pasted twice) have
+        // a scatter of rounding errors: σ from it would be a number the
+        // user never gave, and one no point can claim.
+        return Err(FitError::InsufficientData(format!(
+            "the {n} rows repeat {} speeds (bins of 1/{BINS_PER_DECADE} decade) with μ identical \
+             to {s:.1e} of μ: the noise cannot be estimated from the scatter of repeated rows \
+             when they are copies; give a sigma column (sigma= in Python) or remove the copies",
+            bins.len()
+        )));
+    }
     let sigma = match (data.sigma(), scatter) {
         (Some(_), _) => Some(sigma),
         (None, Some(s)) => Some(

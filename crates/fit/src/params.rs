@@ -3,17 +3,21 @@
 //! [`ValidFitParams`] against the rolling set-up, so that no invalid setting
 //! can reach the numerics.
 
-use std::f64::consts::PI;
 use std::sync::Arc;
 
 use rollfit_model::exact::exact_body;
 use rollfit_model::modulus::FreeShift;
-use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Shape, Substrate, VerticalShift};
+use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Substrate, VerticalShift};
 
 use crate::cancel::Cancel;
 use crate::dma_rows::DmaRows;
 use crate::error::FitError;
 use crate::progress::Observer;
+
+mod anchor;
+
+pub use anchor::MODULUS_SETTING_RANGE;
+use anchor::{modulus, reduce_anchor};
 
 /// The optimiser.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -420,7 +424,7 @@ impl FitParams {
     /// `physics = "exact"`. [`crate::FitSettings::check`] checks the
     /// settings as they are read, against a neutral set-up.
     pub(crate) fn check_ranges(self, setup: RollingSetup) -> Result<ValidFitParams, FitError> {
-        let e1_max = positive("E1_max", self.e1_max)?;
+        let e1_max = modulus("E1_max", self.e1_max)?;
         let anchor = match self.anchor {
             None => None,
             Some(anchor) => Some(reduce_anchor(anchor, &setup, e1_max)?),
@@ -491,80 +495,6 @@ impl FitParams {
         }
         Ok(())
     }
-}
-
-/// The scale anchor as a known |E| at one frequency, which must lie below
-/// E1_max.
-fn reduce_anchor(
-    anchor: ScaleAnchor,
-    setup: &RollingSetup,
-    e1_max: f64,
-) -> Result<ModulusAnchor, FitError> {
-    let a = match anchor {
-        ScaleAnchor::StaticModulus(e0) => {
-            let e0 = positive("E0", e0)?;
-            ModulusAnchor {
-                omega: 0.0,
-                modulus: e0,
-                source: "E0",
-            }
-        }
-        ScaleAnchor::ModulusAt { omega, modulus } => ModulusAnchor {
-            omega: positive("E_at.omega", omega)?,
-            modulus: positive("E_at.E", modulus)?,
-            source: "E_at",
-        },
-        ScaleAnchor::ContactRadius { speed, radius } => contact_anchor(speed, radius, setup)?,
-    };
-    if a.modulus >= e1_max {
-        return Err(FitError::setting(
-            a.source,
-            format!(
-                "the anchored modulus {:e} Pa is not below E1_max = {e1_max:e} Pa",
-                a.modulus
-            ),
-        ));
-    }
-    Ok(a)
-}
-
-/// |E| from a contact radius `radius` measured at rolling speed `speed`:
-/// Hertz inverted for |E_eff|.
-fn contact_anchor(
-    speed: f64,
-    radius: f64,
-    setup: &RollingSetup,
-) -> Result<ModulusAnchor, FitError> {
-    let speed = positive("contact_radius.v", speed)?;
-    let radius = positive("contact_radius.r", radius)?;
-    let g = setup.geometry;
-    if radius >= g.radius {
-        return Err(FitError::setting(
-            "contact_radius.r",
-            format!(
-                "{radius} m is not smaller than the body's radius {} m: \
-                 Hertz contact does not apply",
-                g.radius
-            ),
-        ));
-    }
-    let nu = setup.substrate.poisson;
-    let plane_strain = 1.0 - nu * nu;
-    // Invert Hertz for |E_eff| at the contact's own frequency
-    // ω = v/r (the centre of the band v/r … 20 v/r it probes).
-    let e_eff = match g.shape {
-        Shape::Sphere => 0.75 * g.load * g.radius / radius.powi(3),
-        Shape::Cylinder => 4.0 * g.load * g.radius / (PI * radius * radius),
-    };
-    let omega = match setup.contact {
-        ContactSize::Dynamic => speed / radius,
-        ContactSize::Static => 0.0,
-    };
-    Ok(ModulusAnchor {
-        omega,
-        modulus: e_eff * plane_strain,
-        source: "contact_radius",
-    })
 }
 
 /// The relaxation-time rule.

@@ -10,6 +10,29 @@ use crate::modulus::ViscoelasticModulus;
 /// to a kilometre (beyond it the ratios of contact size to R underflow).
 pub const RADIUS_RANGE: (f64, f64) = (1e-9, 1e3);
 
+/// Accepted loads on a sphere, N: a nanonewton (the forces of the smallest
+/// colloidal-probe rolling experiments; below it a continuum contact of a
+/// body of at least a nanometre carries too little to measure) to 1e8 N,
+/// four decades above the heaviest plausible rolling load (`fit::sanity`
+/// warns from 1e4 N; crane wheels carry about 1e6 N). Outside these the
+/// numerics fail without naming the load (1e-300 N: "friction quadrature
+/// needs too many nodes"; 1e300 N: a contact of 1e97 m).
+pub const SPHERE_LOAD_RANGE: (f64, f64) = (1e-9, 1e8);
+
+/// Accepted loads per length on a cylinder, N/m: a micronewton per metre
+/// (a nanonewton on a millimetre roller, the sphere's floor) to 1e10 N/m,
+/// four decades above the plausible bound (`fit::sanity` warns from
+/// 1e6 N/m).
+pub const CYLINDER_LOAD_RANGE: (f64, f64) = (1e-6, 1e10);
+
+/// Accepted film thicknesses d, m: a nanometre (a few molecular layers;
+/// below it a film is no continuum) to a kilometre, the radius's range.
+/// No bound relative to the radius is needed: films of 1e-12 R and of
+/// 1e12 R solve (measured: a 1 nm film under a 1 km sphere and cylinder, a
+/// 1 km film under a 1 nm sphere); 1e-300 m took 17 s to fail in the
+/// contact map.
+pub const THICKNESS_RANGE: (f64, f64) = (1e-9, 1e3);
+
 /// Default relative tolerance of the friction quadrature.
 pub const DEFAULT_TOLERANCE: f64 = 1e-6;
 
@@ -43,6 +66,32 @@ pub struct Scene<M> {
     tolerance: f64,
 }
 
+/// The load's hard range ([`SPHERE_LOAD_RANGE`], [`CYLINDER_LOAD_RANGE`]),
+/// the one rule every front door applies through [`Scene::new`].
+pub fn check_load(shape: Shape, load: f64) -> Result<(), ModelError> {
+    let (range, unit, what) = match shape {
+        Shape::Sphere => (SPHERE_LOAD_RANGE, "N", "a force"),
+        Shape::Cylinder => (CYLINDER_LOAD_RANGE, "N/m", "a force per length"),
+    };
+    if (range.0..=range.1).contains(&load) {
+        return Ok(());
+    }
+    Err(ModelError::parameter(
+        "load",
+        load,
+        &format!(
+            "must lie between {:e} and {:e} {unit} for a {} ({what}; the smallest measurable \
+             rolling load and four decades above the largest plausible one): is it in {unit}?",
+            range.0,
+            range.1,
+            match shape {
+                Shape::Sphere => "sphere",
+                Shape::Cylinder => "cylinder",
+            }
+        ),
+    ))
+}
+
 impl<M: ViscoelasticModulus> Scene<M> {
     /// Checks every parameter and builds the scene with the default tolerance.
     pub fn new(
@@ -63,7 +112,16 @@ impl<M: ViscoelasticModulus> Scene<M> {
         }
         if let Some(d) = substrate.film_thickness {
             require_positive("thickness", d)?;
+            if !(THICKNESS_RANGE.0..=THICKNESS_RANGE.1).contains(&d) {
+                return Err(ModelError::parameter(
+                    "thickness",
+                    d,
+                    "must lie between 1e-9 m and 1000 m, a nanometre (below it a film is no \
+                     continuum) and a kilometre (is it in m?)",
+                ));
+            }
         }
+        check_load(geometry.shape, geometry.load)?;
         let e0 = material.static_modulus();
         require_positive("static modulus E(0)", e0)?;
         if !(RADIUS_RANGE.0..=RADIUS_RANGE.1).contains(&geometry.radius) {

@@ -4,11 +4,29 @@
 
 use num_complex::Complex64;
 use numpy::{PyArray1, PyArrayLike1};
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
-/// A 1-D float64 array argument (a list or any array-like of float64).
-pub type Floats<'py> = PyArrayLike1<'py, f64, numpy::AllowTypeChange>;
+/// A 1-D float64 array argument (a list or any array-like of reals,
+/// converted to float64). Complex values are refused: NumPy would drop
+/// their imaginary parts with only a ComplexWarning, where the command
+/// line reads no such number. pyo3 adds the argument's name ("complex
+/// values: … while processing 'v'").
+pub struct Floats<'py>(PyArrayLike1<'py, f64, numpy::AllowTypeChange>);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Floats<'py> {
+    type Error = PyErr;
+
+    fn extract(ob: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        let numpy = ob.py().import("numpy")?;
+        if numpy.call_method1("iscomplexobj", (ob,))?.is_truthy()? {
+            return Err(PyTypeError::new_err(
+                "complex values: give real numbers (the imaginary parts would be dropped)",
+            ));
+        }
+        Ok(Floats(ob.extract()?))
+    }
+}
 
 /// `ValueError` with an error's whole chain of causes.
 pub fn value_error(error: &dyn std::error::Error) -> PyErr {
@@ -47,7 +65,20 @@ fn is_os_failure(error: &(dyn std::error::Error + 'static)) -> bool {
 /// The values of a 1-D array argument, copied (the array may change while
 /// the GIL is released).
 pub fn floats(array: &Floats<'_>) -> PyResult<Vec<f64>> {
-    Ok(array.as_array().iter().copied().collect())
+    Ok(array.0.as_array().iter().copied().collect())
+}
+
+/// The speeds of argument `name` (m/s), each checked as the data reader
+/// and a scene's `[sweep]` check them (`rollfit_fit::data::column_requirement`,
+/// 1e-15 … 1000 m/s, finite).
+pub fn speeds(name: &str, array: &Floats<'_>) -> PyResult<Vec<f64>> {
+    let values = floats(array)?;
+    for (i, &v) in values.iter().enumerate() {
+        if let Some(requirement) = rollfit_fit::data::column_requirement("v", v) {
+            return Err(value_error_text(format!("{name}[{i}] = {v:e}: {requirement}")));
+        }
+    }
+    Ok(values)
 }
 
 /// A float64 NumPy array.

@@ -26,7 +26,7 @@ use rollfit_io::scene::{self as scene_file, ContactName, DynScene, ForwardRung};
 use rollfit_model::{ContactSize, Geometry, Prony, Scene, Shape, Substrate, ViscoelasticModulus};
 
 use crate::convert::{
-    Floats, array, complex_array, floats, io_error, value_error, value_error_text,
+    Floats, array, complex_array, floats, io_error, speeds, value_error, value_error_text,
 };
 use crate::material::Material;
 
@@ -258,7 +258,7 @@ impl PyScene {
     /// shared grid; the GIL is released while it runs.
     fn mu<'py>(&self, py: Python<'py>, v: Floats<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let scene = self.with_material()?;
-        let speeds = floats(&v)?;
+        let speeds = speeds("v", &v)?;
         let mu = py
             .detach(|| scene.friction_sweep(&speeds))
             .map_err(|e| value_error(&e))?;
@@ -281,7 +281,7 @@ impl PyScene {
                  scene file's \"sls\", \"prony\" or \"dma\" material without a temperature)",
             )
         })?;
-        let speeds = floats(&v)?;
+        let speeds = speeds("v", &v)?;
         let result = py
             .detach(|| scene.friction_with_gradient(&speeds))
             .map_err(|e| value_error(&e))?;

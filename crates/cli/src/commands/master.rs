@@ -20,10 +20,16 @@
 //!   with its constants, standard errors and χ² test, the pairwise shifts
 //!   with their errors, λ, misfits and the Kramers–Kronig floor, warnings);
 //! - master.png and master.svg: the shifted isotherms with the series.
+//!
+//! A master curve whose verdict (`rollfit_fit::master::quality`: data no
+//! causal series can follow, a series that misses them, shifts the data
+//! do not determine) is poor writes nothing and fails, unless
+//! `--allow-poor-fit`, as `fit` does with a poor fit.
 
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use rollfit_fit::master::quality::{MasterQuality, Misfits};
 use rollfit_fit::master::{MasterSettings, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
 use rollfit_io::dma::DmaPoint;
@@ -80,6 +86,11 @@ pub struct Args {
     /// from the file).
     #[arg(long = "dma-modulus", value_enum, value_name = "KIND")]
     pub dma_modulus: Option<DmaModulus>,
+    /// Write the master curve even when its verdict is poor (data no
+    /// causal series can follow, or shifts the data do not determine);
+    /// master.json's "quality" then says "poor", with the reasons.
+    #[arg(long)]
+    pub allow_poor_fit: bool,
 }
 
 /// `--shift`.
@@ -149,7 +160,12 @@ pub fn run(args: &Args) -> Result<()> {
     for warning in &causal.warnings {
         eprintln!("warning: {warning}");
     }
-    let files = encode(&built, &causal, poisson)?;
+    let quality = built.master.quality(Misfits {
+        storage: causal.misfit_storage,
+        loss: causal.misfit_loss,
+    });
+    gate(&quality, args)?;
+    let files = encode(&built, &causal, poisson, &quality)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
     output::replace_folder(&args.output, &named)?;
     stdout::write_stdout(summary(&built, &causal).as_bytes())?;
@@ -190,6 +206,30 @@ fn isotherms_line(ranges: &[(f64, f64)]) -> String {
     line + "\n"
 }
 
+/// Refuses a poor master curve unless `--allow-poor-fit` (then says it is
+/// kept); before anything is encoded or written, so DIR stays as it was.
+fn gate(quality: &MasterQuality, args: &Args) -> Result<()> {
+    if quality.is_good() {
+        return Ok(());
+    }
+    if args.allow_poor_fit {
+        eprintln!(
+            "warning: the master curve is poor: {}; written because of --allow-poor-fit \
+             (master.json's \"quality\")",
+            quality.reasons.join("; ")
+        );
+        return Ok(());
+    }
+    anyhow::bail!(
+        "DMA file {}: the master curve is poor: {}; nothing was written to {} (give \
+         --allow-poor-fit to write it, marked \"quality\": {{\"verdict\": \"poor\"}} in \
+         master.json)",
+        args.dma.display(),
+        quality.reasons.join("; "),
+        args.output.display()
+    )
+}
+
 /// The best causal fit of the shifted points (the causality check of
 /// `compare`): the floor the smooth Prony series' misfit is measured
 /// against.
@@ -215,6 +255,7 @@ fn encode(
     built: &DmaMaster,
     causal: &CausalFit,
     poisson: f64,
+    quality: &MasterQuality,
 ) -> Result<Vec<(&'static str, Vec<u8>)>> {
     let master = &built.master;
     let master_csv = csv_text::csv_bytes(
@@ -238,7 +279,7 @@ fn encode(
         curve.iter().map(|&(w, s, l)| vec![w, s, l, l / s]),
     )?;
     let material = material_file::encode(built)?;
-    let mut json = serde_json::to_vec_pretty(&Summary::of(built, causal, poisson))
+    let mut json = serde_json::to_vec_pretty(&Summary::of(built, causal, poisson, quality))
         .context("cannot format master.json")?;
     json.push(b'\n');
     let points: Vec<figure::ShiftedPoint> = master
@@ -355,6 +396,8 @@ struct Summary {
     shift: ShiftJson,
     prony: PronySummary,
     kramers_kronig: KkSummary,
+    /// The gate's verdict ("good", or "poor" with reasons).
+    quality: MasterQuality,
     warnings: Vec<String>,
     notes: Vec<String>,
 }
@@ -384,7 +427,7 @@ struct KkSummary {
 }
 
 impl Summary {
-    fn of(built: &DmaMaster, kk: &CausalFit, poisson: f64) -> Summary {
+    fn of(built: &DmaMaster, kk: &CausalFit, poisson: f64, quality: &MasterQuality) -> Summary {
         let m = &built.master;
         let fit = &m.fit;
         Summary {
@@ -422,6 +465,7 @@ impl Summary {
                 ratio_storage: fit.misfit_storage / kk.misfit_storage,
                 ratio_loss: fit.misfit_loss / kk.misfit_loss,
             },
+            quality: quality.clone(),
             warnings: built
                 .data
                 .warnings

@@ -51,6 +51,7 @@ pub mod law_choice;
 mod network;
 pub mod pairwise;
 pub mod prony_fit;
+pub mod quality;
 pub mod relaxation;
 mod relaxation_prony;
 mod shifts;

@@ -20,6 +20,7 @@
 //! component to check against).
 
 use anyhow::{Context, Result};
+use rollfit_fit::master::quality::MasterQuality;
 use rollfit_io::columns::{E_RELAX, TIME, TIME_MEASURED};
 use rollfit_io::fit_dir::columns::{MODULUS_COLUMNS, MODULUS_CSV, T};
 use rollfit_io::relaxation_master::{self, RelaxationBuilt};
@@ -53,7 +54,10 @@ pub(super) fn run(args: &Args, settings: &rollfit_fit::master::MasterSettings) -
     for warning in &built.master.warnings {
         eprintln!("warning: {warning}");
     }
-    let files = encode(&built, poisson)?;
+    // No Kramers–Kronig floor for E(t): the shifts alone are judged.
+    let quality = rollfit_fit::master::quality::assess(&built.master.shift, None);
+    super::gate(&quality, args)?;
+    let files = encode(&built, poisson, &quality)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
     output::replace_folder(&args.output, &named)?;
     stdout::write_stdout(summary(&built).as_bytes())?;
@@ -77,7 +81,11 @@ fn times(built: &RelaxationBuilt) -> Vec<f64> {
 }
 
 /// Every file of DIR, encoded.
-fn encode(built: &RelaxationBuilt, poisson: f64) -> Result<Vec<(&'static str, Vec<u8>)>> {
+fn encode(
+    built: &RelaxationBuilt,
+    poisson: f64,
+    quality: &MasterQuality,
+) -> Result<Vec<(&'static str, Vec<u8>)>> {
     let master = &built.master;
     let prony = &master.fit.prony;
     let master_csv = csv_text::csv_bytes(
@@ -100,7 +108,7 @@ fn encode(built: &RelaxationBuilt, poisson: f64) -> Result<Vec<(&'static str, Ve
             vec![1.0 / t, e.re, e.im, e.im / e.re]
         }),
     )?;
-    let mut json = serde_json::to_vec_pretty(&Summary::of(built, poisson))
+    let mut json = serde_json::to_vec_pretty(&Summary::of(built, poisson, quality))
         .context("cannot format master.json")?;
     json.push(b'\n');
     Ok(vec![
@@ -137,6 +145,8 @@ struct Summary {
     #[serde(flatten)]
     shift: ShiftJson,
     prony: PronySummary,
+    /// The gate's verdict (the shifts alone).
+    quality: MasterQuality,
     warnings: Vec<String>,
     notes: Vec<String>,
 }
@@ -155,7 +165,7 @@ struct PronySummary {
 }
 
 impl Summary {
-    fn of(built: &RelaxationBuilt, poisson: f64) -> Summary {
+    fn of(built: &RelaxationBuilt, poisson: f64, quality: &MasterQuality) -> Summary {
         let m = &built.master;
         let (lo, hi) = (
             m.points[0].reduced_time,
@@ -185,6 +195,7 @@ impl Summary {
                 misfit_relaxation: m.fit.misfit,
                 converged: m.fit.converged,
             },
+            quality: quality.clone(),
             warnings: m.warnings.clone(),
             notes: built.data.notes.clone(),
         }
