@@ -175,51 +175,10 @@ pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
     let omega_lo = points.iter().map(|p| p.omega).fold(f64::INFINITY, f64::min);
     let omega_hi = points.iter().map(|p| p.omega).fold(0.0, f64::max);
     let tau = tau_grid(omega_lo, omega_hi);
-    // Thousands of points: their bins of 1/50 decade, each row weighted by
-    // √(its count), as the master curve's series is fitted (module doc of
-    // `rollfit_fit::master::condense`); the misfits below are still the
-    // points'.
-    let (omega, storage, loss): (Vec<f64>, Vec<f64>, Vec<f64>) = (
-        points.iter().map(|p| p.omega).collect(),
-        points.iter().map(|p| p.storage).collect(),
-        points.iter().map(|p| p.loss).collect(),
-    );
-    let condensed = condense(&omega, &storage, &loss);
-    let (omega, storage, loss, root_count) = match &condensed {
-        Some(c) => (
-            c.omega.as_slice(),
-            c.storage.as_slice(),
-            c.loss.as_slice(),
-            c.count.iter().map(|n| n.sqrt()).collect(),
-        ),
-        None => (
-            omega.as_slice(),
-            storage.as_slice(),
-            loss.as_slice(),
-            vec![1.0; omega.len()],
-        ),
-    };
-    let n = omega.len();
-    let columns = tau.len() + 1;
-    // Rows 0..n: E′ relative residuals, n..2n: E″; column 0 is E0.
-    let mut a = DMatrix::<f64>::zeros(2 * n, columns);
-    for i in 0..n {
-        a[(i, 0)] = 1.0 / storage[i];
-        for (k, t) in tau.iter().enumerate() {
-            let x = omega[i] * t;
-            let d = 1.0 + x * x;
-            a[(i, k + 1)] = x * x / d / storage[i];
-            a[(n + i, k + 1)] = x / d / loss[i];
-        }
-    }
-    if condensed.is_some() {
-        for i in 0..n {
-            a.row_mut(i).scale_mut(root_count[i]);
-            a.row_mut(n + i).scale_mut(root_count[i]);
-        }
-    }
+    let (mut a, b) = relative_rows(points, &tau);
     // Unit columns: the moduli span decades, and the active-set test
     // compares gradient components across columns.
+    let columns = tau.len() + 1;
     let norms: Vec<f64> = (0..columns).map(|k| a.column(k).norm()).collect();
     for (k, norm) in norms.iter().enumerate() {
         if *norm > 0.0 {
@@ -230,11 +189,6 @@ pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
     if a.iter().any(|x| !x.is_finite()) {
         return Err(ReportError::ModuliOutOfRange);
     }
-    let b = if condensed.is_some() {
-        DVector::from_iterator(2 * n, root_count.iter().chain(&root_count).copied())
-    } else {
-        DVector::from_element(2 * n, 1.0)
-    };
     let x = nnls(&a, &b);
     let scaled: Vec<f64> = x
         .iter()
@@ -290,6 +244,59 @@ pub fn check(points: &[DmaPoint]) -> Result<CausalFit, ReportError> {
         }
     }
     Ok(fit)
+}
+
+/// The NNLS system of the module doc for `points` on the grid `tau`: rows
+/// 0..n are E′'s relative residuals, n..2n E″'s, column 0 is E0. Thousands
+/// of points give their bins of 1/50 decade, each row weighted by √(its
+/// count), as the master curve's series is fitted (module doc of
+/// `rollfit_fit::master::condense`).
+fn relative_rows(points: &[DmaPoint], tau: &[f64]) -> (DMatrix<f64>, DVector<f64>) {
+    let (omega, storage, loss): (Vec<f64>, Vec<f64>, Vec<f64>) = (
+        points.iter().map(|p| p.omega).collect(),
+        points.iter().map(|p| p.storage).collect(),
+        points.iter().map(|p| p.loss).collect(),
+    );
+    let condensed = condense(&omega, &storage, &loss);
+    let (omega, storage, loss, root_count) = match &condensed {
+        Some(c) => (
+            c.omega.as_slice(),
+            c.storage.as_slice(),
+            c.loss.as_slice(),
+            c.count.iter().map(|n| n.sqrt()).collect(),
+        ),
+        None => (
+            omega.as_slice(),
+            storage.as_slice(),
+            loss.as_slice(),
+            vec![1.0; omega.len()],
+        ),
+    };
+    let n = omega.len();
+    let columns = tau.len() + 1;
+    // Rows 0..n: E′ relative residuals, n..2n: E″; column 0 is E0.
+    let mut a = DMatrix::<f64>::zeros(2 * n, columns);
+    for i in 0..n {
+        a[(i, 0)] = 1.0 / storage[i];
+        for (k, t) in tau.iter().enumerate() {
+            let x = omega[i] * t;
+            let d = 1.0 + x * x;
+            a[(i, k + 1)] = x * x / d / storage[i];
+            a[(n + i, k + 1)] = x / d / loss[i];
+        }
+    }
+    if condensed.is_some() {
+        for (i, &weight) in root_count.iter().enumerate() {
+            a.row_mut(i).scale_mut(weight);
+            a.row_mut(n + i).scale_mut(weight);
+        }
+    }
+    let b = if condensed.is_some() {
+        DVector::from_iterator(2 * n, root_count.iter().chain(&root_count).copied())
+    } else {
+        DVector::from_element(2 * n, 1.0)
+    };
+    (a, b)
 }
 
 /// Non-negative least squares, min ‖A x − b‖₂ subject to x ≥ 0, by the

@@ -125,6 +125,7 @@ const ISOTHERM_BINS_PER_DECADE: f64 = 10.0;
 /// - cost: a pair's shift is a scan of the overlap per trial shift and a
 ///   jackknife of refits; thousands of frequencies an isotherm (issue 36)
 ///   made that minutes, bins make it independent of the count.
+///
 /// The bin means carry the points' information about a shift of curves
 /// that vary on the scale of a decade: their scatter is the points'
 /// reduced by √n, and the shift's σ is measured from it.

@@ -211,9 +211,12 @@ impl Problem<'_> {
     }
 }
 
+/// Reduced ω, ln E′, ln E″ and the rows' weights √n_b (None: 1).
+type FrequencyData<'a> = (&'a [f64], &'a [f64], &'a [f64], Option<&'a [f64]>);
+
 /// The rows of ln E′ (0..n) and ln E″ (n..2n) at θ = (ln E0, ln H_k).
 fn frequency_rows(
-    (omega, ln_storage, ln_loss, root_count): (&[f64], &[f64], &[f64], Option<&[f64]>),
+    (omega, ln_storage, ln_loss, root_count): FrequencyData<'_>,
     tau: &[f64],
     (e0, h): (f64, &[f64]),
     residuals: &mut DVector<f64>,

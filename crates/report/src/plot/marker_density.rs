@@ -30,7 +30,7 @@ pub(crate) fn drawn_points<P>(points: &[P], temperature: impl Fn(&P) -> f64) -> 
             let stride = counts[&key].div_ceil(MARKERS_PER_ISOTHERM);
             let index = seen.entry(key).or_default();
             *index += 1;
-            (*index - 1) % stride == 0
+            (*index - 1).is_multiple_of(stride)
         })
         .collect()
 }
