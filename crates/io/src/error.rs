@@ -15,6 +15,7 @@ use thiserror::Error;
 mod boxed;
 pub(crate) mod data;
 mod fault;
+mod input;
 pub(crate) mod manifest;
 pub(crate) mod master;
 mod parts;
@@ -27,6 +28,7 @@ mod trios;
 pub use boxed::{DmaUnknownUnit, DuplicateQuantity, UnknownUnit};
 pub use data::{CellRef, ColumnName, DataError, RowRef, RowsRef, column_letter};
 pub use fault::Fault;
+pub use input::InputError;
 pub use manifest::{EntryProblem, EntryRef, ManifestError, TomlPlace};
 pub use master::{DmaMasterError, TurnPoint};
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
@@ -577,6 +579,9 @@ pub enum IoError {
     Trios(Box<TriosError>),
 
     // ------------------------------------------------------------ data, tables
+    /// An input file refused before it is read: see [`InputError`].
+    #[error(transparent)]
+    Input(Box<InputError>),
     /// A measured-data file that cannot be read: see [`DataError`].
     #[error(transparent)]
     Data(Box<DataError>),

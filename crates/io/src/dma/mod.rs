@@ -178,7 +178,7 @@ type Form = (FormRead, &'static str, Option<String>, Vec<String>);
 /// Reads `path` in its form: a workbook's sheet `sheet`, else decoded
 /// text as TRIOS LIMS or CSV.
 fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<Form, IoError> {
-    let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+    let bytes = crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;

@@ -240,10 +240,13 @@ pub fn is_relaxation(text: &str) -> bool {
 /// Whether the file at `path` is a relaxation file; false where it cannot
 /// be read (the frequency form's reader then says why).
 pub fn is_relaxation_file(path: &Path) -> bool {
-    std::fs::read(path)
-        .ok()
-        .and_then(|bytes| super::decode::decode(path, &bytes).ok())
-        .is_some_and(|text| is_relaxation(&text))
+    crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+    .ok()
+    .and_then(|bytes| super::decode::decode(path, &bytes).ok())
+    .is_some_and(|text| is_relaxation(&text))
 }
 
 impl RelaxationData {
@@ -256,7 +259,7 @@ impl RelaxationData {
                 poisson,
             });
         }
-        let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+        let bytes = crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
             path: path.to_path_buf(),
             source,
         })?;

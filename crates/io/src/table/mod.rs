@@ -86,9 +86,12 @@ pub fn read_sheet(
     kind: Option<ModulusKind>,
     sheet: Option<&str>,
 ) -> Result<ModulusTable, IoError> {
-    let bytes = std::fs::read(path).map_err(|source| TableError::Read {
-        path: path.to_path_buf(),
-        source,
+    let bytes = crate::input_file::read_input(path, "modulus table", |source| {
+        TableError::Read {
+            path: path.to_path_buf(),
+            source,
+        }
+        .into()
     })?;
     if sheet.is_some() || crate::data::workbook::is_workbook(path, &bytes) {
         return dma_form::read(path, poisson, kind, sheet, false);
