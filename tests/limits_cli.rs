@@ -201,3 +201,48 @@ fn a_malformed_limit_is_refused_naming_the_variable() {
         assert!(!out.exists());
     }
 }
+
+/// Item 10: one range of Poisson's ratio, [0, 0.5], at every entry point,
+/// with one message naming the key or flag.
+const POISSON_RANGE: &str = "outside [0, 0.5]: Poisson's ratio of rubber is 0.5 (incompressible)";
+
+#[test]
+fn poisson_below_0_or_above_half_is_refused_alike_in_a_scene_and_by_master() {
+    let dir = TempDir::new("poisson");
+    for nu in ["-0.3", "0.7"] {
+        let scene = dir.write(
+            "scene.toml",
+            &format!(
+                "[geometry]\nshape = \"sphere\"\nradius = 0.005\nload = 1.0\n\n\
+                 [substrate]\npoisson = {nu}\n\n\
+                 [material]\nmodel = \"sls\"\nE0 = 1e6\nE1 = 1e8\ntau = 1e-3\n\n\
+                 [sweep]\nv_min = 1e-6\nv_max = 1e-2\ncount = 3\n"
+            ),
+        );
+        let output = run(&[&"forward", &scene]);
+        assert_failure(
+            &output,
+            &[
+                "scene.toml",
+                &format!("[substrate]: poisson = {nu} {POISSON_RANGE}"),
+            ],
+        );
+        let out = dir.path().join("master");
+        let output = run(&[
+            &"master",
+            &bundled("hn-rubber-dma.csv"),
+            &"--poisson",
+            &nu,
+            &"-o",
+            &out,
+        ]);
+        let stderr = assert_failure(
+            &output,
+            &[&format!(
+                "invalid value '{nu}' for '--poisson <POISSON>': poisson = {nu} {POISSON_RANGE}"
+            )],
+        );
+        assert_eq!(output.status.code(), Some(2), "{stderr}");
+        assert!(!out.exists());
+    }
+}

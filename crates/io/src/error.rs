@@ -275,12 +275,13 @@ pub enum IoError {
         /// What serde_json said (without its position).
         message: String,
     },
-    /// Poisson's ratio outside (−1, 0.5].
-    #[error("{}: poisson = {value}: Poisson's ratio must lie in (−1, 0.5]", place(path, *line))]
+    /// Poisson's ratio outside [0, 0.5] (`rollfit_model::POISSON_RANGE`).
+    #[error("{}: {problem}", place(path, *line))]
     PoissonOutOfRange {
         path: PathBuf,
         line: Option<usize>,
-        value: f64,
+        /// The ratio and the range (shown, not a source).
+        problem: rollfit_model::PoissonOutOfRange,
     },
     /// WLF C1 ≤ 0.
     #[error("{}: shift.C1 = {value}: the WLF constant C1 must be > 0", place(path, *line))]
@@ -436,13 +437,17 @@ pub enum IoError {
     },
 
     // ------------------------------------------------------------ DMA files
-    /// The fit's Poisson's ratio cannot convert shear moduli.
+    /// A Poisson's ratio, given with the DMA file, that cannot convert
+    /// its shear moduli.
     #[error(
-        "the fit's Poisson's ratio {poisson} is outside (−1, 0.5]: cannot convert the shear \
-         moduli of {} to Young's moduli",
+        "{problem} (the ratio converting shear moduli of {} to Young's moduli)",
         path.display()
     )]
-    DmaPoisson { path: PathBuf, poisson: f64 },
+    DmaPoisson {
+        path: PathBuf,
+        /// The ratio and the range (shown, not a source).
+        problem: rollfit_model::PoissonOutOfRange,
+    },
     /// ω ≤ 0.
     #[error("{}, {row}: {column}: frequency {value} is not positive", path.display())]
     FrequencyNotPositive {

@@ -112,13 +112,11 @@ impl DmaData {
         options: &DmaOptions,
         sheet: Option<&str>,
     ) -> Result<DmaData, IoError> {
-        if !(poisson > -1.0 && poisson <= 0.5) {
-            // Not the DMA file's fault: say whose number it is.
-            return Err(IoError::DmaPoisson {
-                path: path.to_path_buf(),
-                poisson,
-            });
-        }
+        // Not the DMA file's fault: said as the number's own.
+        rollfit_model::check_poisson(poisson).map_err(|problem| IoError::DmaPoisson {
+            path: path.to_path_buf(),
+            problem,
+        })?;
         let (read, format, sheet, mut notes) = read_form(path, options, sheet)?;
         let FormRead {
             points: raw,

@@ -253,12 +253,10 @@ impl RelaxationData {
     /// Reads a relaxation file; shear moduli become Young's with
     /// `poisson`.
     pub fn read(path: &Path, poisson: f64) -> Result<RelaxationData, IoError> {
-        if !(poisson > -1.0 && poisson <= 0.5) {
-            return Err(IoError::DmaPoisson {
-                path: path.to_path_buf(),
-                poisson,
-            });
-        }
+        rollfit_model::check_poisson(poisson).map_err(|problem| IoError::DmaPoisson {
+            path: path.to_path_buf(),
+            problem,
+        })?;
         let bytes = crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
             path: path.to_path_buf(),
             source,

@@ -50,7 +50,7 @@ pub enum TableError {
     /// Shear moduli and a Poisson's ratio that cannot convert them.
     #[error(
         "modulus table {}: holds shear moduli G′, G″; converting them to Young's moduli \
-         (E = 2(1+ν)G) needs [substrate] poisson in (−1, 0.5], not {poisson}",
+         (E = 2(1+ν)G) needs [substrate] poisson in [0, 0.5], not {poisson}",
         path.display()
     )]
     ShearWithoutPoisson { path: PathBuf, poisson: f64 },
