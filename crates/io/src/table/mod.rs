@@ -38,6 +38,7 @@
 mod contact_map;
 mod dma_form;
 mod plain;
+mod storage_rise;
 
 use std::path::Path;
 
@@ -81,6 +82,19 @@ pub fn read(path: &Path, poisson: f64, kind: Option<ModulusKind>) -> Result<Modu
 /// [`read`], with the sheet of a workbook to read (`None`: the first); a
 /// workbook is the DMA reader's.
 pub fn read_sheet(
+    path: &Path,
+    poisson: f64,
+    kind: Option<ModulusKind>,
+    sheet: Option<&str>,
+) -> Result<ModulusTable, IoError> {
+    let table = read_form(path, poisson, kind, sheet)?;
+    storage_rise::check(path, &table)?;
+    Ok(table)
+}
+
+/// The table at `path` in its form (the module doc), before the checks
+/// every form shares.
+fn read_form(
     path: &Path,
     poisson: f64,
     kind: Option<ModulusKind>,
