@@ -275,12 +275,11 @@ pub enum IoError {
         /// What serde_json said (without its position).
         message: String,
     },
-    /// Poisson's ratio outside [0, 0.5] (`rollfit_model::POISSON_RANGE`).
+    /// Poisson's ratio outside [0, 0.5] (`problem`: shown, not a source).
     #[error("{}: {problem}", place(path, *line))]
     PoissonOutOfRange {
         path: PathBuf,
         line: Option<usize>,
-        /// The ratio and the range (shown, not a source).
         problem: rollfit_model::PoissonOutOfRange,
     },
     /// WLF C1 ≤ 0.
@@ -438,14 +437,10 @@ pub enum IoError {
 
     // ------------------------------------------------------------ DMA files
     /// A Poisson's ratio, given with the DMA file, that cannot convert
-    /// its shear moduli.
-    #[error(
-        "{problem} (the ratio converting shear moduli of {} to Young's moduli)",
-        path.display()
-    )]
+    /// its shear moduli (`problem`: shown, not a source).
+    #[error("{problem} (converting shear moduli of {} to Young's)", path.display())]
     DmaPoisson {
         path: PathBuf,
-        /// The ratio and the range (shown, not a source).
         problem: rollfit_model::PoissonOutOfRange,
     },
     /// ω ≤ 0.
