@@ -746,7 +746,7 @@ fn poisson_above_one_half_is_rejected() {
     assert_rejected(
         &scene,
         &[],
-        &["[substrate]", "poisson = 0.6", "between 0 and 0.5"],
+        &["[substrate]: poisson = 0.6 outside [0, 0.5]: Poisson's ratio of rubber is 0.5"],
     );
 }
 
@@ -756,7 +756,7 @@ fn negative_poisson_is_rejected() {
     assert_rejected(
         &scene,
         &[],
-        &["[substrate]", "poisson = -0.1", "between 0 and 0.5"],
+        &["[substrate]: poisson = -0.1 outside [0, 0.5]: Poisson's ratio of rubber is 0.5"],
     );
 }
 

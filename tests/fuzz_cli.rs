@@ -74,12 +74,16 @@ enum Kind {
     DmaSemicolon,
     /// A temperature ramp through `master` (issue 36).
     DmaRamp,
+    /// Data or DMA file without a size (issue 36): a link to /dev/zero, a
+    /// FIFO, a sparse 2 GiB file; refused before it is read.
+    Unsized,
 }
 
 /// How many of every 100 cases are of each kind: the fits are the slow
 /// ones.
-const MIX: [(Kind, usize); 10] = [
-    (Kind::SceneForward, 20),
+const MIX: [(Kind, usize); 11] = [
+    (Kind::SceneForward, 17),
+    (Kind::Unsized, 3),
     (Kind::SceneFit, 7),
     (Kind::Data, 16),
     (Kind::Manifest, 4),
@@ -522,6 +526,29 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
                 }
             }
         }
+        Kind::Unsized => {
+            with_base(&dir);
+            let name = ["data.csv", "dma.csv"][rng.random_range(0..2)];
+            let path = dir.join(name);
+            fs::remove_file(&path).unwrap();
+            let fifo = || {
+                Command::new("mkfifo")
+                    .arg(&path)
+                    .status()
+                    .is_ok_and(|s| s.success())
+            };
+            match rng.random_range(0..3) {
+                0 => std::os::unix::fs::symlink("/dev/zero", &path).unwrap(),
+                1 if fifo() => {}
+                _ => fs::File::create(&path).unwrap().set_len(2 << 30).unwrap(),
+            }
+            let args = if name == "data.csv" {
+                vec!["fit", "scene.toml", "data.csv", "-o", "out"]
+            } else {
+                vec!["compare", "out", "dma.csv"]
+            };
+            (args, "out", name)
+        }
         Kind::FitFolderReport | Kind::FitFolderCompare => {
             with_base(&dir);
             let file = ["fit.json", "mu.csv", "modulus.csv"][rng.random_range(0..3)];
@@ -548,6 +575,9 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
     }
     match result.code {
         Some(0) => {
+            if kind == Kind::Unsized {
+                problems.push(format!("{what}: a file without a size was read"));
+            }
             for p in non_finite_outputs(&dir.join(output)) {
                 problems.push(format!("{what}: exit 0 with a non-finite output: {p}"));
             }

@@ -36,7 +36,11 @@ pub fn looks(path: &Path) -> Looks {
         return Looks::Folder;
     }
     let mut head = Vec::new();
-    if let Ok(file) = std::fs::File::open(path) {
+    // Only a regular file is opened: opening a FIFO blocks (the reader
+    // has refused it already, io::input_file).
+    if path.metadata().is_ok_and(|m| m.is_file())
+        && let Ok(file) = std::fs::File::open(path)
+    {
         let _ = file.take(PEEK).read_to_end(&mut head);
     }
     // A read cut inside a character is judged on the whole characters.

@@ -20,6 +20,12 @@ use clap::{Parser, Subcommand};
 
 /// Rolling friction on viscoelastic solids: predict μ(v) from a modulus, or
 /// recover the modulus from μ(v).
+///
+/// Input files (scenes, data, DMA files, modulus tables, manifests, fit
+/// folders) are read whole: each must be a regular file (not a FIFO or a
+/// device such as /dev/zero) of at most 1 GiB. The environment variable
+/// ROLLFIT_MAX_INPUT_BYTES sets another limit, in bytes or with K, M, G or
+/// T (powers of 1024): ROLLFIT_MAX_INPUT_BYTES=4G.
 #[derive(Debug, Parser)]
 #[command(name = "rollfit", version)]
 struct Cli {

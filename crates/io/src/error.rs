@@ -15,6 +15,7 @@ use thiserror::Error;
 mod boxed;
 pub(crate) mod data;
 mod fault;
+mod input;
 pub(crate) mod manifest;
 pub(crate) mod master;
 mod parts;
@@ -27,6 +28,7 @@ mod trios;
 pub use boxed::{DmaUnknownUnit, DuplicateQuantity, UnknownUnit};
 pub use data::{CellRef, ColumnName, DataError, RowRef, RowsRef, column_letter};
 pub use fault::Fault;
+pub use input::InputError;
 pub use manifest::{EntryProblem, EntryRef, ManifestError, TomlPlace};
 pub use master::{DmaMasterError, TurnPoint};
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
@@ -273,12 +275,12 @@ pub enum IoError {
         /// What serde_json said (without its position).
         message: String,
     },
-    /// Poisson's ratio outside (−1, 0.5].
-    #[error("{}: poisson = {value}: Poisson's ratio must lie in (−1, 0.5]", place(path, *line))]
+    /// Poisson's ratio outside [0, 0.5] (`problem`: shown, not a source).
+    #[error("{}: {problem}", place(path, *line))]
     PoissonOutOfRange {
         path: PathBuf,
         line: Option<usize>,
-        value: f64,
+        problem: rollfit_model::PoissonOutOfRange,
     },
     /// WLF C1 ≤ 0.
     #[error("{}: shift.C1 = {value}: the WLF constant C1 must be > 0", place(path, *line))]
@@ -434,13 +436,13 @@ pub enum IoError {
     },
 
     // ------------------------------------------------------------ DMA files
-    /// The fit's Poisson's ratio cannot convert shear moduli.
-    #[error(
-        "the fit's Poisson's ratio {poisson} is outside (−1, 0.5]: cannot convert the shear \
-         moduli of {} to Young's moduli",
-        path.display()
-    )]
-    DmaPoisson { path: PathBuf, poisson: f64 },
+    /// A Poisson's ratio, given with the DMA file, that cannot convert
+    /// its shear moduli (`problem`: shown, not a source).
+    #[error("{problem} (converting shear moduli of {} to Young's)", path.display())]
+    DmaPoisson {
+        path: PathBuf,
+        problem: rollfit_model::PoissonOutOfRange,
+    },
     /// ω ≤ 0.
     #[error("{}, {row}: {column}: frequency {value} is not positive", path.display())]
     FrequencyNotPositive {
@@ -577,6 +579,9 @@ pub enum IoError {
     Trios(Box<TriosError>),
 
     // ------------------------------------------------------------ data, tables
+    /// An input file refused before it is read: see [`InputError`].
+    #[error(transparent)]
+    Input(Box<InputError>),
     /// A measured-data file that cannot be read: see [`DataError`].
     #[error(transparent)]
     Data(Box<DataError>),

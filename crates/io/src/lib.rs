@@ -23,6 +23,8 @@
 //!   the fit folder's;
 //! - [`pressure_map`]: the pressure maps of the exact rolling contact that
 //!   `rollfit forward` writes beside its CSV, their file and column names;
+//! - [`input_file`]: every input file's bytes, refused unopened when it is
+//!   no regular file and read no further than the size limit;
 //! - [`csv_text`], [`csv_columns`], [`text_file`]: CSV text as rollfit
 //!   writes it, what the CSV readers share, UTF-8 text with the place of a
 //!   bad byte;
@@ -47,6 +49,7 @@ pub mod dma_joint;
 pub mod dma_master;
 pub mod error;
 pub mod fit_dir;
+pub mod input_file;
 pub mod manifest;
 pub mod material_file;
 pub mod output;

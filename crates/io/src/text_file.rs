@@ -12,12 +12,13 @@
 use std::path::Path;
 
 use crate::error::{InvalidText, IoError};
+use crate::input_file::read_input;
 
 /// The text of `path`, a `kind` of file ("scene file", "manifest"); an
 /// error names the file and, for bytes that are not UTF-8, the line, the
 /// byte offset in the file and the byte itself.
 pub fn read_utf8(path: &Path, kind: &'static str) -> Result<String, IoError> {
-    let bytes = std::fs::read(path).map_err(|source| IoError::ReadText {
+    let bytes = read_input(path, kind, |source| IoError::ReadText {
         kind,
         path: path.to_path_buf(),
         source,
@@ -40,7 +41,7 @@ pub fn read_utf8(path: &Path, kind: &'static str) -> Result<String, IoError> {
 /// The text of a file that must be UTF-8 (what rollfit writes), or an
 /// error naming the line and byte offset of the first invalid byte.
 pub(crate) fn read_utf8_file(path: &Path) -> Result<String, IoError> {
-    let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+    let bytes = read_input(path, "result file", |source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;

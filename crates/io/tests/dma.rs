@@ -1367,3 +1367,51 @@ fn relaxation_csv_in_the_semicolon_dialect_reads_the_same_points() {
     assert_eq!(a.points, b.points);
     assert_eq!(b.lines, [3, 4, 5]);
 }
+
+/// Issue 36, item 5: a DMA workbook's spreadsheet error is skipped with a
+/// warning naming the cell and the error; a formula the file saved no
+/// result for is refused, naming the cell and the formula.
+#[test]
+fn workbook_error_cells_are_named_and_formulas_without_results_refused() {
+    use X::*;
+    let dir = TempDir::new("error-cells");
+    let header = || texts(&["f [Hz]", "E' [MPa]", "E'' [MPa]"]);
+    let book = xlsx(&[(
+        "DMA",
+        vec![
+            header(),
+            vec![N(1.0), N(2.0), N(0.2)],
+            vec![N(2.0), Error, N(0.3)],
+            vec![N(5.0), N(2.5), N(0.4)],
+        ],
+    )]);
+    let path = dir.write("errors.xlsx", &book);
+    let data = DmaData::read(&path, 0.5, &DmaOptions::default()).unwrap();
+    assert_eq!(data.points.len(), 2);
+    let warnings = data.warnings.join("\n");
+    assert!(
+        warnings.contains(
+            "; the first error: sheet \"DMA\", cell B3: column B (E' [MPa]): the cell holds the \
+             Excel error #DIV/0!"
+        ),
+        "{warnings}"
+    );
+    let book = xlsx(&[(
+        "DMA",
+        vec![
+            header(),
+            vec![N(1.0), N(2.0), N(0.2)],
+            vec![N(2.0), N(2.2), F("B2*1.1")],
+        ],
+    )]);
+    let path = dir.write("formula.xlsx", &book);
+    let m = error_text(DmaData::read(&path, 0.5, &DmaOptions::default()));
+    assert!(
+        m.contains(
+            "formula.xlsx, sheet \"DMA\", cell C3: column C (E'' [MPa]): the cell holds a formula (=B2*1.1) \
+             the file saved no result for; open it in Excel or LibreOffice and save, so its value \
+             is stored"
+        ),
+        "{m}"
+    );
+}

@@ -2,6 +2,21 @@
 
 use thiserror::Error;
 
+/// A Poisson's ratio outside the one range every entry point accepts
+/// ([`crate::scene::check_poisson`]); the message begins with the key, so
+/// that a scene's section or a flag's name can stand in front of it.
+#[derive(Debug, Error, Clone, Copy, PartialEq)]
+#[error(
+    "poisson = {} outside [0, 0.5]: Poisson's ratio of rubber is 0.5 (incompressible) and of \
+     the solids rollfit models 0 to 0.5; a negative ν (an auxetic foam) is no rubber, and the \
+     exact contact solvers need ν ≥ 0",
+    shown(*value)
+)]
+pub struct PoissonOutOfRange {
+    /// The ratio as given.
+    pub value: f64,
+}
+
 /// Everything that can go wrong when a scene or a modulus is built or evaluated.
 ///
 /// Parameters are checked when a model object is built, so the numerical code
@@ -19,6 +34,9 @@ pub enum ModelError {
         /// What the value must satisfy.
         requirement: String,
     },
+    /// Poisson's ratio outside [`crate::scene::POISSON_RANGE`].
+    #[error(transparent)]
+    Poisson(#[from] PoissonOutOfRange),
     /// A list or table is malformed (lengths, ordering, emptiness).
     #[error("{name}: {problem}")]
     InvalidTable {
@@ -182,7 +200,7 @@ pub enum ModelError {
 
 /// A value as a message shows it: as written for ordinary magnitudes,
 /// in exponent form for the extreme ones (1e308 rather than 309 digits).
-fn shown(value: f64) -> String {
+pub(crate) fn shown(value: f64) -> String {
     let magnitude = value.abs();
     if magnitude == 0.0 || !magnitude.is_finite() || (1e-4..1e9).contains(&magnitude) {
         value.to_string()

@@ -66,10 +66,10 @@ pub mod modulus;
 pub mod scene;
 
 pub use contact::{ContactSize, Shape};
-pub use error::ModelError;
+pub use error::{ModelError, PoissonOutOfRange};
 pub use friction::FrictionJacobian;
 pub use modulus::{
     HavriliakNegami, Prony, Shifted, StandardLinearSolid, TabulatedModulus, VerticalShift,
     ViscoelasticModulus, Wlf,
 };
-pub use scene::{Geometry, Scene, Substrate};
+pub use scene::{Geometry, POISSON_RANGE, Scene, Substrate, check_poisson};

@@ -3,7 +3,7 @@
 //! behind it never sees a negative radius, a Poisson ratio above ½ or a NaN.
 
 use crate::contact::{ContactSize, Shape, hertz_contact_size, mean_pressure};
-use crate::error::{ModelError, require_positive};
+use crate::error::{ModelError, PoissonOutOfRange, require_positive};
 use crate::modulus::ViscoelasticModulus;
 
 /// Accepted radii R, m: a nanometre (below it no continuum contact exists)
@@ -32,6 +32,25 @@ pub const CYLINDER_LOAD_RANGE: (f64, f64) = (1e-6, 1e10);
 /// 1 km film under a 1 nm sphere); 1e-300 m took 17 s to fail in the
 /// contact map.
 pub const THICKNESS_RANGE: (f64, f64) = (1e-9, 1e3);
+
+/// Poisson's ratios ν rollfit accepts, 0 ≤ ν ≤ ½, at every entry point (a
+/// scene's `[substrate] poisson`, `master --poisson`, the DMA and table
+/// readers converting shear moduli, fit.json, Python): the range of the
+/// solids it models and the one every solver takes. Isotropic elasticity
+/// allows −1 < ν ≤ ½, but ν < 0 is an auxetic foam, never a rubber, and the
+/// exact contact solvers need ν ≥ 0 (their half-space and strip
+/// influence functions); so one rule, not one per solver.
+pub const POISSON_RANGE: (f64, f64) = (0.0, 0.5);
+
+/// `poisson` if it lies in [`POISSON_RANGE`] (NaN does not), else the
+/// error every entry point shows.
+pub fn check_poisson(poisson: f64) -> Result<f64, PoissonOutOfRange> {
+    if (POISSON_RANGE.0..=POISSON_RANGE.1).contains(&poisson) {
+        Ok(poisson)
+    } else {
+        Err(PoissonOutOfRange { value: poisson })
+    }
+}
 
 /// Default relative tolerance of the friction quadrature.
 pub const DEFAULT_TOLERANCE: f64 = 1e-6;
@@ -102,14 +121,7 @@ impl<M: ViscoelasticModulus> Scene<M> {
     ) -> Result<Self, ModelError> {
         require_positive("radius", geometry.radius)?;
         require_positive("load", geometry.load)?;
-        let nu = substrate.poisson;
-        if !(nu.is_finite() && (0.0..=0.5).contains(&nu)) {
-            return Err(ModelError::parameter(
-                "poisson",
-                nu,
-                "must lie between 0 and 0.5",
-            ));
-        }
+        check_poisson(substrate.poisson)?;
         if let Some(d) = substrate.film_thickness {
             require_positive("thickness", d)?;
             if !(THICKNESS_RANGE.0..=THICKNESS_RANGE.1).contains(&d) {

@@ -78,9 +78,9 @@ pub struct Args {
     /// default, as in most TTS practice.
     #[arg(long)]
     pub vertical: bool,
-    /// Poisson's ratio converting shear moduli to Young's, E = 2(1+ν)G.
-    /// Default 0.5.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Poisson's ratio converting shear moduli to Young's, E = 2(1+ν)G:
+    /// 0 to 0.5, as a scene's [substrate] poisson. Default 0.5.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_poisson)]
     pub poisson: Option<f64>,
     /// Read a TRIOS file's moduli as Young's or shear (default: decided
     /// from the file).
@@ -91,6 +91,16 @@ pub struct Args {
     /// master.json's "quality" then says "poor", with the reasons.
     #[arg(long)]
     pub allow_poor_fit: bool,
+}
+
+/// `--poisson`: a number in the one range of Poisson's ratio
+/// (`rollfit_model::POISSON_RANGE`), refused with the model's words.
+fn parse_poisson(text: &str) -> Result<f64, String> {
+    let value: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("{text:?} is not a number"))?;
+    rollfit_model::check_poisson(value).map_err(|e| e.to_string())
 }
 
 /// `--shift`.

@@ -17,8 +17,13 @@ pub(crate) enum Cell {
     Text(String),
     /// A number of a workbook cell.
     Number(f64),
-    /// A workbook's error value (#DIV/0!, #N/A): no value.
-    Missing,
+    /// A workbook's error value, as Excel shows it (`#DIV/0!`, `#N/A`):
+    /// no value.
+    Error(String),
+    /// A workbook formula whose result the file does not hold (a file
+    /// written by a program that does not compute, e.g. openpyxl), as
+    /// written without its `=`: a value the user means, that cannot be read.
+    Formula(String),
     /// Something else of a workbook (a boolean, a date), described.
     Other(String),
 }
@@ -43,7 +48,7 @@ impl Cell {
         match self {
             Cell::Text(t) => t.clone(),
             Cell::Number(x) => x.to_string(),
-            Cell::Empty | Cell::Missing => String::new(),
+            Cell::Empty | Cell::Error(_) | Cell::Formula(_) => String::new(),
             Cell::Other(what) => what.clone(),
         }
     }
@@ -51,7 +56,7 @@ impl Cell {
     /// Whether the cell holds a number or no value (a data row's cell).
     fn is_numeric(&self) -> bool {
         match self {
-            Cell::Number(_) | Cell::Missing => true,
+            Cell::Number(_) | Cell::Error(_) | Cell::Formula(_) => true,
             Cell::Text(t) => no_value(t) || t.replace(',', ".").parse::<f64>().is_ok(),
             Cell::Empty | Cell::Other(_) => false,
         }
@@ -139,6 +144,8 @@ pub(crate) enum NotNumber {
     Text(String),
     /// NaN or infinite.
     NotFinite(String),
+    /// A formula without a saved result ([`Cell::Formula`]).
+    Formula(String),
 }
 
 /// The number in `cell`; None for no value (empty, NaN, NA, a spreadsheet
@@ -147,7 +154,8 @@ pub(crate) enum NotNumber {
 /// cell for measured data and DMA workbooks alike.
 pub(crate) fn parse_number(cell: &Cell, decimal_comma: bool) -> Result<Option<Number>, NotNumber> {
     let (value, decimal, shown) = match cell {
-        Cell::Empty | Cell::Missing => return Ok(None),
+        Cell::Empty | Cell::Error(_) => return Ok(None),
+        Cell::Formula(formula) => return Err(NotNumber::Formula(formula.clone())),
         Cell::Other(what) => return Err(NotNumber::Other(what.clone())),
         Cell::Number(x) => (*x, format!("{x:e}"), x.to_string()),
         Cell::Text(text) => {
@@ -202,6 +210,11 @@ pub(super) fn number(
             NotNumber::Thousands(text) => DataError::ThousandsSeparator { cell, column, text },
             NotNumber::Text(text) => DataError::NotANumber { cell, column, text },
             NotNumber::NotFinite(text) => DataError::NotFinite { cell, column, text },
+            NotNumber::Formula(formula) => DataError::FormulaWithoutValue {
+                cell,
+                column,
+                formula,
+            },
         }
     })?;
     if number.as_ref().is_some_and(|n| n.comma) {

@@ -125,9 +125,12 @@ pub fn read(path: &Path) -> Result<DataTable, IoError> {
 /// a workbook (default: the first), and is an error for a text file.
 /// Errors name the file.
 pub fn read_sheet(path: &Path, sheet: Option<&str>) -> Result<DataTable, IoError> {
-    let bytes = std::fs::read(path).map_err(|source| DataError::Open {
-        path: path.to_path_buf(),
-        source,
+    let bytes = crate::input_file::read_input(path, "data file", |source| {
+        DataError::Open {
+            path: path.to_path_buf(),
+            source,
+        }
+        .into()
     })?;
     let in_file = |cause: DataError| -> IoError {
         DataError::InFile {

@@ -10,7 +10,7 @@
 use rollfit_fit::data::{MIN_RELATIVE_SIGMA, column_requirement};
 
 use super::DataTable;
-use super::cell::{Row, number};
+use super::cell::{Cell, Row, number};
 use super::header_row::{self, Column, NamedColumns, classify};
 use super::quantity::Quantity;
 use super::source::Source;
@@ -181,6 +181,8 @@ struct Read {
     skipped: Vec<u64>,
     /// Which quantities had empty cells.
     skipped_in: [bool; 4],
+    /// The first spreadsheet error of a skipped row, said in full.
+    first_error: Option<String>,
     /// A decimal comma was read.
     decimal_commas: bool,
 }
@@ -197,6 +199,7 @@ fn read_rows(
         lines: Vec::new(),
         skipped: Vec::new(),
         skipped_in: [false; 4],
+        first_error: None,
         decimal_commas: false,
     };
     for row in rows {
@@ -265,6 +268,12 @@ fn read_row(
         let cell = &row.cells[column.index];
         let Some(number) = number(cell, source, &mut read.decimal_commas, &at)? else {
             read.skipped_in[column.quantity.index()] = true;
+            if let (Cell::Error(error), None) = (cell, &read.first_error) {
+                let (cell, name) = at();
+                read.first_error = Some(format!(
+                    "{cell}: column {name}: the cell holds the Excel error {error}"
+                ));
+            }
             continue;
         };
         let value = column.conversion.apply(number.value, &number.decimal);
@@ -325,10 +334,13 @@ fn finish(
             .collect();
         let n = read.skipped.len();
         warnings.push(format!(
-            "skipped {n} row{} with empty or NaN cells in {}: {}",
+            "skipped {n} row{} with empty or NaN cells in {}: {}{}",
             if n == 1 { "" } else { "s" },
             key_list(&quantities),
-            source.rows(&read.skipped)
+            source.rows(&read.skipped),
+            read.first_error
+                .as_ref()
+                .map_or(String::new(), |e| format!("; the first error: {e}"))
         ));
         if read.lines.is_empty() {
             return Err(DataError::AllRowsSkipped {

@@ -83,6 +83,14 @@ impl Book {
                     sheet: name.to_string(),
                     error,
                 })?;
+        // Formulas only matter where the file holds no result for them; a
+        // form without formulas (or one calamine cannot read them from)
+        // leaves every empty cell empty.
+        let formulas = self.sheets.worksheet_formula(name).ok();
+        let formula_at = |row: u32, column: u32| {
+            let formula = formulas.as_ref()?.get_value((row, column))?.trim();
+            (!formula.is_empty()).then(|| Cell::Formula(formula.to_string()))
+        };
         let (row0, column0) = range.start().unwrap_or((0, 0));
         Ok(range
             .rows()
@@ -90,7 +98,12 @@ impl Book {
             .map(|(i, cells)| Row {
                 number: u64::from(row0) + i as u64 + 1,
                 cells: std::iter::repeat_n(Cell::Empty, column0 as usize)
-                    .chain(cells.iter().map(cell))
+                    .chain(cells.iter().enumerate().map(|(j, data)| match data {
+                        Data::Empty => {
+                            formula_at(row0 + i as u32, column0 + j as u32).unwrap_or(Cell::Empty)
+                        }
+                        data => cell(data),
+                    }))
                     .collect(),
             })
             .filter(|row| !is_comment(row))
@@ -176,7 +189,7 @@ fn cell(data: &Data) -> Cell {
         Data::Int(i) => Cell::Number(*i as f64),
         Data::Float(x) => Cell::Number(*x),
         Data::String(s) => Cell::text(s),
-        Data::Error(_) => Cell::Missing,
+        Data::Error(e) => Cell::Error(e.to_string()),
         Data::Bool(b) => Cell::Other(format!("the boolean {}", if *b { "TRUE" } else { "FALSE" })),
         Data::DateTime(d) => Cell::Other(format!("the date/time {d}")),
         Data::DateTimeIso(s) | Data::DurationIso(s) => Cell::Other(format!("the date/time {s}")),

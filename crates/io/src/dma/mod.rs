@@ -120,13 +120,11 @@ impl DmaData {
         options: &DmaOptions,
         sheet: Option<&str>,
     ) -> Result<DmaData, IoError> {
-        if !(poisson > -1.0 && poisson <= 0.5) {
-            // Not the DMA file's fault: say whose number it is.
-            return Err(IoError::DmaPoisson {
-                path: path.to_path_buf(),
-                poisson,
-            });
-        }
+        // Not the DMA file's fault: said as the number's own.
+        rollfit_model::check_poisson(poisson).map_err(|problem| IoError::DmaPoisson {
+            path: path.to_path_buf(),
+            problem,
+        })?;
         let (read, format, sheet, mut notes) = read_form(path, options, sheet)?;
         let FormRead {
             points: raw,
@@ -202,7 +200,7 @@ type Form = (FormRead, &'static str, Option<String>, Vec<String>);
 /// Reads `path` in its form: a workbook's sheet `sheet`, else decoded
 /// text as TRIOS LIMS or CSV.
 fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<Form, IoError> {
-    let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+    let bytes = crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;

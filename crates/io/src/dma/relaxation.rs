@@ -254,23 +254,24 @@ pub fn is_relaxation(text: &str) -> bool {
 /// Whether the file at `path` is a relaxation file; false where it cannot
 /// be read (the frequency form's reader then says why).
 pub fn is_relaxation_file(path: &Path) -> bool {
-    std::fs::read(path)
-        .ok()
-        .and_then(|bytes| super::decode::decode(path, &bytes).ok())
-        .is_some_and(|text| is_relaxation(&text))
+    crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+    .ok()
+    .and_then(|bytes| super::decode::decode(path, &bytes).ok())
+    .is_some_and(|text| is_relaxation(&text))
 }
 
 impl RelaxationData {
     /// Reads a relaxation file; shear moduli become Young's with
     /// `poisson`.
     pub fn read(path: &Path, poisson: f64) -> Result<RelaxationData, IoError> {
-        if !(poisson > -1.0 && poisson <= 0.5) {
-            return Err(IoError::DmaPoisson {
-                path: path.to_path_buf(),
-                poisson,
-            });
-        }
-        let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+        rollfit_model::check_poisson(poisson).map_err(|problem| IoError::DmaPoisson {
+            path: path.to_path_buf(),
+            problem,
+        })?;
+        let bytes = crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
             path: path.to_path_buf(),
             source,
         })?;

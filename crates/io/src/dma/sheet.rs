@@ -168,6 +168,7 @@ fn no_columns(path: &Path, sheet: &str, book: &mut Book) -> IoError {
 fn read_rows(place: &Place, rows: &[Row], header: &Header) -> Result<FormRead, IoError> {
     let mut points = Vec::new();
     let mut skipped = Vec::new();
+    let mut first_error = None;
     for row in rows.iter().filter(|r| !r.is_blank()) {
         let number = row_number(row);
         let read = |c: &Column| value(place, row, number, c);
@@ -188,7 +189,12 @@ fn read_rows(place: &Place, rows: &[Row], header: &Header) -> Result<FormRead, I
                     step: header.step.as_ref().and_then(|c| step_label(row, c)),
                 });
             }
-            _ => skipped.push(row.number),
+            _ => {
+                skipped.push(row.number);
+                if first_error.is_none() {
+                    first_error = spreadsheet_error(place, row, header);
+                }
+            }
         }
     }
     let mut warnings = Vec::new();
@@ -199,9 +205,10 @@ fn read_rows(place: &Place, rows: &[Row], header: &Header) -> Result<FormRead, I
         };
         warnings.push(format!(
             "{}: skipped {} with an empty cell, NaN or a spreadsheet error (#DIV/0!, #N/A) in a \
-             column read",
+             column read{}",
             place.path.display(),
-            rows
+            rows,
+            first_error.map_or(String::new(), |e| format!("; the first error: {e}"))
         ));
     }
     header.form(place.path, points, warnings)
@@ -213,6 +220,23 @@ fn step_label(row: &Row, c: &Column) -> Option<String> {
     (!label.is_empty()).then_some(label)
 }
 
+/// Where `row` holds a spreadsheet error in a column read, and which: `sheet
+/// "S", cell C7: E'' [MPa]: the cell holds the Excel error #DIV/0!`.
+fn spreadsheet_error(place: &Place, row: &Row, header: &Header) -> Option<String> {
+    let columns = [&header.omega, &header.storage, &header.loss];
+    columns
+        .into_iter()
+        .chain(header.temperature.as_ref())
+        .find_map(|c| match row.cells.get(c.index) {
+            Some(Cell::Error(error)) => Some(format!(
+                "{}: {}: the cell holds the Excel error {error}",
+                place.cell(row_number(row), c.index),
+                c.reference
+            )),
+            _ => None,
+        })
+}
+
 /// The value of column `c` in `row` (number `number`), in SI; None for no
 /// value (empty, NaN, a spreadsheet error).
 fn value(place: &Place, row: &Row, number: usize, c: &Column) -> Result<Option<f64>, IoError> {
@@ -222,6 +246,13 @@ fn value(place: &Place, row: &Row, number: usize, c: &Column) -> Result<Option<f
     let column = c.reference.clone();
     match parse_number(cell, true) {
         Ok(number) => Ok(number.map(|n| c.convert(n.value))),
+        Err(NotNumber::Formula(formula)) => Err(DmaSheetError::FormulaWithoutValue {
+            path,
+            cell: at,
+            column,
+            formula,
+        }
+        .into()),
         Err(NotNumber::NotFinite(text)) => Err(IoError::NotFinite {
             path,
             cell: at,

@@ -266,6 +266,18 @@ pub enum DataError {
         header_row: RowRef,
         width: usize,
     },
+    /// A workbook formula without a saved result: refused, not skipped, as
+    /// its value is one the user means.
+    #[error(
+        "{cell}: column {column}: the cell holds a formula (={formula}) the file saved no result \
+         for; open it in Excel or LibreOffice and save, so its value is stored"
+    )]
+    FormulaWithoutValue {
+        cell: CellRef,
+        column: ColumnName,
+        /// As written, without its `=`.
+        formula: String,
+    },
     /// A workbook value that is no number (a boolean, a date).
     #[error("{cell}: column {column}: {what} is not a number")]
     NonNumericValue {

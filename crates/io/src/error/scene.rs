@@ -408,6 +408,7 @@ fn section_of(error: &ModelError) -> &'static str {
             "poisson" | "thickness" => "[substrate]: ",
             _ => "[material]: ",
         },
+        ModelError::Poisson(_) => "[substrate]: ",
         _ => "",
     }
 }

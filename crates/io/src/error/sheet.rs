@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-use super::DataError;
+use super::{CellRef, ColumnRef, DataError};
 
 /// Why a workbook DMA file cannot be read, beyond its cells.
 #[derive(Debug, Error)]
@@ -29,6 +29,20 @@ pub enum DmaSheetError {
         sheet: String,
         /// Every sheet's name and the cells of its most header-like row.
         found: Vec<(String, Vec<String>)>,
+    },
+    /// A formula without a saved result in a column read (the measured
+    /// data's [`DataError::FormulaWithoutValue`]).
+    #[error(
+        "{}, {cell}: {column}: the cell holds a formula (={formula}) the file saved no result \
+         for; open it in Excel or LibreOffice and save, so its value is stored",
+        path.display()
+    )]
+    FormulaWithoutValue {
+        path: PathBuf,
+        cell: Box<CellRef>,
+        column: ColumnRef,
+        /// As written, without its `=`.
+        formula: String,
     },
     /// A workbook whose sheets cannot be read: not a workbook, no such
     /// sheet. The measured-data reader's message, shown (not a source:

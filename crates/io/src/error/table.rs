@@ -50,7 +50,7 @@ pub enum TableError {
     /// Shear moduli and a Poisson's ratio that cannot convert them.
     #[error(
         "modulus table {}: holds shear moduli G′, G″; converting them to Young's moduli \
-         (E = 2(1+ν)G) needs [substrate] poisson in (−1, 0.5], not {poisson}",
+         (E = 2(1+ν)G) needs [substrate] poisson in [0, 0.5], not {poisson}",
         path.display()
     )]
     ShearWithoutPoisson { path: PathBuf, poisson: f64 },
@@ -84,6 +84,28 @@ pub enum TableError {
         lines: (usize, usize),
         /// rad/s.
         omega: f64,
+    },
+    /// E′ falling with ω beyond scatter (table/storage_rise.rs).
+    #[error(
+        "modulus table {}, line {line}: E_storage = {storage:.4e} Pa at ω = {omega:.4e} rad/s is \
+         {:.0} % below E_storage = {peak_storage:.4e} Pa at line {peak_line} (ω = \
+         {peak_omega:.4e} rad/s): the storage modulus of a viscoelastic solid rises with \
+         frequency (every relaxation term adds H ω²τ²/(1+ω²τ²)), and a fall of more than 20 % is \
+         no measurement scatter; check that the columns are E_storage and E_loss, the \
+         frequencies in the unit the header names, and the rows one material at one temperature",
+        path.display(),
+        100.0 * (1.0 - storage / peak_storage)
+    )]
+    StorageFalls {
+        path: PathBuf,
+        /// The row refused: its line, ω (rad/s) and E′ (Pa).
+        line: usize,
+        omega: f64,
+        storage: f64,
+        /// The row of the largest E′ before it.
+        peak_line: usize,
+        peak_omega: f64,
+        peak_storage: f64,
     },
     /// Fewer than two points left from a DMA form.
     #[error(

@@ -45,8 +45,15 @@ impl Digest {
     /// read (the batch then counts the entry as failed).
     pub fn read(dir: &Path) -> Result<Digest, IoError> {
         let path = dir.join(FIT_JSON);
-        let report: Value = std::fs::read(&path)
-            .map_err(|e| e.to_string())
+        let unreadable = |source: std::io::Error| IoError::ResultUnreadable {
+            path: path.clone(),
+            cause: source.to_string(),
+        };
+        let report: Value = crate::input_file::read_input(&path, "result", unreadable)
+            .map_err(|e| match e {
+                IoError::ResultUnreadable { cause, .. } => cause,
+                refused => refused.to_string(),
+            })
             .and_then(|bytes| serde_json::from_slice(&bytes).map_err(|e| e.to_string()))
             .map_err(|cause| IoError::ResultUnreadable { path, cause })?;
         let number = |v: &Value| v.as_f64();

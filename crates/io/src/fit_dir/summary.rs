@@ -3,7 +3,7 @@
 //! optional, and the checks serde cannot make.
 //!
 //! A fit.json edited by hand is checked where a wrong value would be read
-//! as something else rather than fail: Poisson's ratio in (−1, 0.5], the
+//! as something else rather than fail: Poisson's ratio in [0, 0.5], the
 //! shift model "wlf" (with C1, C2 > 0 and C2 + T − T_ref > 0 at its
 //! temperatures), "arrhenius" (with E_a > 0, without C1, C2) or "free"
 //! (without any of them). Errors name fit.json and the
@@ -221,13 +221,12 @@ impl FitSummary {
     /// something else (see the module doc). `text` is fit.json, for lines.
     pub(super) fn check(&self, path: &Path, text: &str) -> Result<(), IoError> {
         let at = |key: &str| (path.to_path_buf(), line_of_key(text, key));
-        let nu = self.poisson;
-        if !(nu > -1.0 && nu <= 0.5) {
+        if let Err(problem) = rollfit_model::check_poisson(self.poisson) {
             let (path, line) = at("poisson");
             return Err(IoError::PoissonOutOfRange {
                 path,
                 line,
-                value: nu,
+                problem,
             });
         }
         let Some(shift) = &self.shift else {

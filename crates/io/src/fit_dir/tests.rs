@@ -164,13 +164,18 @@ fn arrhenius_shifts_and_null_sigmas_read() {
 /// accepted, and a bad ν was blamed on the DMA file later.
 #[test]
 fn poisson_and_wlf_constants_out_of_range_are_refused_naming_fit_json() {
-    for (name, nu) in [("nu1", "1"), ("nu-1", "-1"), ("nu06", "0.6")] {
+    for (name, nu) in [
+        ("nu1", "1"),
+        ("nu-1", "-1"),
+        ("nu06", "0.6"),
+        ("nu-03", "-0.3"),
+    ] {
         let e = edited(name, r#""poisson": 0.5"#, &format!(r#""poisson": {nu}"#)).error();
         assert_contains(
             &e,
             &[
                 "fit.json, line 3",
-                &format!("poisson = {nu}: Poisson's ratio must lie in (−1, 0.5]"),
+                &format!("poisson = {nu} outside [0, 0.5]: Poisson's ratio of rubber is 0.5"),
             ],
         );
     }

@@ -122,6 +122,11 @@ fn parse_text(text: &str) -> Result<SceneFile, SceneError> {
         error: Box::new(error),
     })?;
     let poisson = file.substrate.poisson.map_or(DEFAULT_POISSON, |r| r.0);
+    // Checked before any material reads a file with it (a table's shear
+    // moduli are converted with it), so that ν is refused as the scene's.
+    rollfit_model::check_poisson(poisson)
+        .map_err(|e| SceneError::Model { error: e.into() })
+        .section("[substrate]")?;
     if let Some(material) = &mut file.material {
         material.dma.poisson = Some(poisson);
     }

@@ -25,7 +25,7 @@ pub(super) fn read(
 ) -> Result<ModulusTable, IoError> {
     // ν matters only for shear moduli: a bad ν is refused only then, and
     // named as the scene's (the DMA reader would call it the fit's).
-    let usable = poisson > -1.0 && poisson <= 0.5;
+    let usable = rollfit_model::check_poisson(poisson).is_ok();
     let options = DmaOptions { kind, wlf: None };
     let data = DmaData::read_sheet(path, if usable { poisson } else { 0.5 }, &options, sheet)
         .map_err(|e| TableError::Dma { error: Box::new(e) })?;

@@ -38,6 +38,7 @@
 mod contact_map;
 mod dma_form;
 mod plain;
+mod storage_rise;
 
 use std::path::Path;
 
@@ -86,9 +87,25 @@ pub fn read_sheet(
     kind: Option<ModulusKind>,
     sheet: Option<&str>,
 ) -> Result<ModulusTable, IoError> {
-    let bytes = std::fs::read(path).map_err(|source| TableError::Read {
-        path: path.to_path_buf(),
-        source,
+    let table = read_form(path, poisson, kind, sheet)?;
+    storage_rise::check(path, &table)?;
+    Ok(table)
+}
+
+/// The table at `path` in its form (the module doc), before the checks
+/// every form shares.
+fn read_form(
+    path: &Path,
+    poisson: f64,
+    kind: Option<ModulusKind>,
+    sheet: Option<&str>,
+) -> Result<ModulusTable, IoError> {
+    let bytes = crate::input_file::read_input(path, "modulus table", |source| {
+        TableError::Read {
+            path: path.to_path_buf(),
+            source,
+        }
+        .into()
     })?;
     if sheet.is_some() || crate::data::workbook::is_workbook(path, &bytes) {
         return dma_form::read(path, poisson, kind, sheet, false);

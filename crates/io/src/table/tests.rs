@@ -592,3 +592,30 @@ fn the_explanation_places_any_frequency() {
         "{text}"
     );
 }
+
+/// Issue 36, item 8: a table whose E′ falls as ω rises is no modulus and
+/// is refused at its first row beyond scatter, naming both rows; scatter
+/// of a few per cent is read.
+#[test]
+fn a_storage_modulus_falling_with_frequency_is_refused_naming_the_rows() {
+    let dir = TempDir::new("falling");
+    let falling = dir.write(
+        "falling.csv",
+        "# E' reversed\nomega,E_storage,E_loss\n0.1,1e8,1e6\n1,9e7,1e6\n10,5e7,1e6\n100,1e6,1e6\n",
+    );
+    let m = chain(&read(&falling, 0.5, None).unwrap_err());
+    assert!(
+        m.contains(
+            "falling.csv, line 5: E_storage = 5.0000e7 Pa at ω = 1.0000e1 rad/s is 50 % below \
+             E_storage = 1.0000e8 Pa at line 3 (ω = 1.0000e-1 rad/s): the storage modulus of a \
+             viscoelastic solid rises with frequency"
+        ),
+        "{m}"
+    );
+    // Scatter: a 15 % dip below the peak, then rising again, is read.
+    let scatter = dir.write(
+        "scatter.csv",
+        "omega,E_storage,E_loss\n0.1,1e6,1e5\n1,1.2e6,1e5\n10,1.03e6,1e5\n100,2e6,1e5\n",
+    );
+    assert!(read(&scatter, 0.5, None).is_ok());
+}

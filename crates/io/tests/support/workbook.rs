@@ -33,6 +33,9 @@ pub enum X<'a> {
     S(&'a str),
     /// A spreadsheet error value (#DIV/0!).
     Error,
+    /// A formula without a saved result (as a program that does not
+    /// compute writes it), without its `=`.
+    F(&'a str),
     /// Nothing.
     E,
 }
@@ -94,6 +97,7 @@ pub fn xlsx(sheets: &[(&str, Vec<Vec<X>>)]) -> Vec<u8> {
                         escape(s)
                     ),
                     X::Error => format!(r#"<c r="{at}" t="e"><v>#DIV/0!</v></c>"#),
+                    X::F(formula) => format!(r#"<c r="{at}"><f>{}</f></c>"#, escape(formula)),
                     X::E => String::new(),
                 };
             }
@@ -135,7 +139,7 @@ pub fn ods(name: &str, rows: Vec<Vec<X>>) -> Vec<u8> {
                     r#"<table:table-cell office:value-type="string"><text:p>{}</text:p></table:table-cell>"#,
                     escape(s)
                 ),
-                X::Error | X::E => "<table:table-cell/>".to_string(),
+                X::Error | X::F(_) | X::E => "<table:table-cell/>".to_string(),
             };
         }
         table += "</table:table-row>";

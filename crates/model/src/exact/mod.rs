@@ -645,13 +645,7 @@ impl RollingCylinder {
 fn check_body(poisson: f64, radius: f64, load: f64) -> Result<(), ModelError> {
     require_positive("radius", radius)?;
     require_positive("load", load)?;
-    if !(poisson.is_finite() && (0.0..=0.5).contains(&poisson)) {
-        return Err(ModelError::parameter(
-            "poisson",
-            poisson,
-            "must lie in [0, 0.5]",
-        ));
-    }
+    crate::scene::check_poisson(poisson)?;
     Ok(())
 }
 

@@ -78,7 +78,10 @@ fn xlsx_first_sheet_by_default() {
     );
     assert_eq!(
         t.warnings,
-        ["skipped 2 rows with empty or NaN cells in mu: sheet \"Run 1\", rows 6, 7"]
+        [
+            "skipped 2 rows with empty or NaN cells in mu: sheet \"Run 1\", rows 6, 7; the first \
+             error: sheet \"Run 1\", cell B6: column `COF` (mu): the cell holds the Excel error #DIV/0!"
+        ]
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
@@ -213,4 +216,31 @@ fn column_letters() {
         letters,
         ["A", "B", "Z", "AA", "AB", "AZ", "BA", "ZZ", "AAA"]
     );
+}
+
+/// Issue 36, item 5: a formula whose result the file does not hold is a
+/// value the user means: refused, naming the cell and the formula, not
+/// skipped as an empty cell.
+#[test]
+fn a_formula_without_a_saved_result_is_refused_naming_it() {
+    use X::*;
+    let dir = temp_dir("formula");
+    let book = xlsx(&[(
+        "Data",
+        vec![
+            vec![S("v"), S("mu")],
+            vec![N(1e-3), N(0.05)],
+            vec![N(2e-3), F("A2/B2")],
+        ],
+    )]);
+    let path = write(&dir, "formula.xlsx", &book);
+    let m = chain(&read(&path).unwrap_err());
+    assert!(
+        m.contains(
+            "sheet \"Data\", cell B3: column `mu`: the cell holds a formula (=A2/B2) the file saved \
+             no result for; open it in Excel or LibreOffice and save, so its value is stored"
+        ),
+        "{m}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
 }
