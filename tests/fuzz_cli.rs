@@ -5,7 +5,10 @@
 //! (through `report` and `compare`), each mutated from a valid file by a
 //! seeded sequence of structured edits (numbers replaced by extreme or
 //! malformed values, lines deleted, duplicated, swapped or inserted,
-//! delimiters changed, the file cut short, bytes flipped).
+//! delimiters changed, the file cut short, bytes flipped). Issue 36 adds
+//! inputs that are no ordinary file (a link to /dev/zero, a FIFO, a sparse
+//! 2 GiB file) and workbooks of the data and DMA files with cells made
+//! Excel errors, formulas without a saved result, text or empty.
 //!
 //! Every case must keep the promises of docs/ARCHITECTURE.md, "Contract",
 //! and issue 14:
@@ -22,6 +25,8 @@
 //! folder for a look.
 
 mod common;
+#[path = "../crates/io/tests/support/workbook.rs"]
+mod workbook;
 
 use std::collections::BTreeMap;
 use std::fs;
@@ -77,11 +82,15 @@ enum Kind {
     /// Data or DMA file without a size (issue 36): a link to /dev/zero, a
     /// FIFO, a sparse 2 GiB file; refused before it is read.
     Unsized,
+    /// A workbook of the measured data (through `fit`) or of the DMA file
+    /// (through `compare`) with some cells made Excel errors, formulas
+    /// without a saved result, text or empty (issue 36).
+    Workbook,
 }
 
 /// How many of every 100 cases are of each kind: the fits are the slow
 /// ones.
-const MIX: [(Kind, usize); 11] = [
+const MIX: [(Kind, usize); 12] = [
     (Kind::SceneForward, 17),
     (Kind::Unsized, 3),
     (Kind::SceneFit, 7),
@@ -90,7 +99,8 @@ const MIX: [(Kind, usize); 11] = [
     (Kind::DmaCsv, 10),
     (Kind::Trios, 12),
     (Kind::FitFolderReport, 8),
-    (Kind::FitFolderCompare, 15),
+    (Kind::FitFolderCompare, 11),
+    (Kind::Workbook, 4),
     (Kind::DmaSemicolon, 5),
     (Kind::DmaRamp, 3),
 ];
@@ -446,6 +456,34 @@ fn fixtures(root: &Path) {
     assert_eq!(fit.code, Some(0), "{}", fit.stderr);
 }
 
+/// The CSV file `csv` as a one-sheet workbook (comment lines dropped),
+/// each cell below the header, with probability 1/20, made an Excel error,
+/// a formula without a saved result, text or empty.
+fn spoilt_workbook(csv: &Path, rng: &mut ChaCha8Rng) -> Vec<u8> {
+    use workbook::X;
+    let text = fs::read_to_string(csv).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let mut rows = vec![workbook::texts(&header)];
+    for line in lines {
+        let row = line
+            .split(',')
+            .map(|cell| {
+                let value = cell.trim().parse::<f64>().map_or(X::S("?"), X::N);
+                match rng.random_range(0..80) {
+                    0 => X::Error,
+                    1 => X::F("A2*2"),
+                    2 => X::S("n/a"),
+                    3 => X::E,
+                    _ => value,
+                }
+            })
+            .collect();
+        rows.push(row);
+    }
+    workbook::xlsx(&[("Data", rows)])
+}
+
 /// One case: mutate, run, check; the problems found, the kind and the exit
 /// code.
 fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>) {
@@ -525,6 +563,18 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
                     (vec!["compare", "out", name], "out", name)
                 }
             }
+        }
+        Kind::Workbook => {
+            with_base(&dir);
+            let (source, name) =
+                [("data.csv", "data.xlsx"), ("dma.csv", "dma.xlsx")][rng.random_range(0..2)];
+            fs::write(dir.join(name), spoilt_workbook(&dir.join(source), &mut rng)).unwrap();
+            let args = if name == "data.xlsx" {
+                vec!["fit", "scene.toml", "data.xlsx", "-o", "out"]
+            } else {
+                vec!["compare", "out", "dma.xlsx"]
+            };
+            (args, "out", name)
         }
         Kind::Unsized => {
             with_base(&dir);

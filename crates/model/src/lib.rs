@@ -72,4 +72,4 @@ pub use modulus::{
     HavriliakNegami, Prony, Shifted, StandardLinearSolid, TabulatedModulus, VerticalShift,
     ViscoelasticModulus, Wlf,
 };
-pub use scene::{Geometry, POISSON_RANGE, Scene, Substrate, check_poisson};
+pub use scene::{Geometry, POISSON_RANGE, Scene, Substrate, check_film_thickness, check_poisson};

@@ -85,6 +85,23 @@ pub struct Scene<M> {
     tolerance: f64,
 }
 
+/// A film thickness d (m) inside [`THICKNESS_RANGE`], the rule of every
+/// front door (a scene's `[substrate] thickness`, Python's `Scene`).
+/// [`Scene::new`] itself takes any positive d: the film's physics depends
+/// on d/a only, and the model's tests probe d/a from 1e-300 to 1e300.
+pub fn check_film_thickness(d: f64) -> Result<(), ModelError> {
+    require_positive("thickness", d)?;
+    if (THICKNESS_RANGE.0..=THICKNESS_RANGE.1).contains(&d) {
+        return Ok(());
+    }
+    Err(ModelError::parameter(
+        "thickness",
+        d,
+        "must lie between 1e-9 m and 1000 m, a nanometre (below it a film is no continuum) and \
+         a kilometre (is it in m?)",
+    ))
+}
+
 /// The load's hard range ([`SPHERE_LOAD_RANGE`], [`CYLINDER_LOAD_RANGE`]),
 /// the one rule every front door applies through [`Scene::new`].
 pub fn check_load(shape: Shape, load: f64) -> Result<(), ModelError> {
@@ -124,14 +141,6 @@ impl<M: ViscoelasticModulus> Scene<M> {
         check_poisson(substrate.poisson)?;
         if let Some(d) = substrate.film_thickness {
             require_positive("thickness", d)?;
-            if !(THICKNESS_RANGE.0..=THICKNESS_RANGE.1).contains(&d) {
-                return Err(ModelError::parameter(
-                    "thickness",
-                    d,
-                    "must lie between 1e-9 m and 1000 m, a nanometre (below it a film is no \
-                     continuum) and a kilometre (is it in m?)",
-                ));
-            }
         }
         check_load(geometry.shape, geometry.load)?;
         let e0 = material.static_modulus();

@@ -113,6 +113,9 @@ impl PyScene {
         material: Option<Py<Material>>,
         tolerance: Option<f64>,
     ) -> PyResult<Self> {
+        if let Some(d) = thickness {
+            rollfit_model::check_film_thickness(d).map_err(|e| value_error(&e))?;
+        }
         let setup = RollingSetup {
             geometry: Geometry {
                 shape: shape_of(shape)?,

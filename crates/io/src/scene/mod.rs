@@ -127,6 +127,11 @@ fn parse_text(text: &str) -> Result<SceneFile, SceneError> {
     rollfit_model::check_poisson(poisson)
         .map_err(|e| SceneError::Model { error: e.into() })
         .section("[substrate]")?;
+    if let Some(Real(thickness)) = file.substrate.thickness {
+        rollfit_model::check_film_thickness(thickness)
+            .map_err(|error| SceneError::Model { error })
+            .section("[substrate]")?;
+    }
     if let Some(material) = &mut file.material {
         material.dma.poisson = Some(poisson);
     }

@@ -142,6 +142,19 @@ pub(super) fn headline(
 }
 
 /// The law lines and the table of shifts of the summary on stdout.
+/// A standard error to two significant digits (0.0036, 0.20, 12), so that
+/// a small one does not print as "± 0.00"; "—" where none is defined.
+fn two_digits(sigma: f64) -> String {
+    if !sigma.is_finite() {
+        return "—".to_string();
+    }
+    if sigma == 0.0 {
+        return "0".to_string();
+    }
+    let decimals = (1 - sigma.abs().log10().floor() as i32).max(0) as usize;
+    format!("{sigma:.decimals$}")
+}
+
 pub(super) fn shift_text(shift: &ShiftFactors) -> String {
     let count = shift.shifts.len();
     let mut out = String::new();
@@ -153,24 +166,24 @@ pub(super) fn shift_text(shift: &ShiftFactors) -> String {
     };
     if let Some(w) = shift.wlf {
         out += &format!(
-            "WLF ({}): C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K; {}\n",
+            "WLF ({}): C1 = {:.4} ± {}, C2 = {:.2} ± {} K; {}\n",
             applied(ShiftLaw::Wlf),
             w.c1,
-            w.c1_sigma,
+            two_digits(w.c1_sigma),
             w.c2,
-            w.c2_sigma,
+            two_digits(w.c2_sigma),
             test_line(&w.test)
         );
     }
     if let Some(w) = shift.wlf_arrhenius {
         out += &format!(
-            "WLF–Arrhenius ({}): C1 = {:.4} ± {:.2}, C2 = {:.2} ± {:.1} K above T_g = {:.2} °C, \
+            "WLF–Arrhenius ({}): C1 = {:.4} ± {}, C2 = {:.2} ± {} K above T_g = {:.2} °C, \
              E_a = {:.4e} ± {:.2e} J/mol below; {}\n",
             applied(ShiftLaw::WlfArrhenius),
             w.c1,
-            w.sigma[0],
+            two_digits(w.sigma[0]),
             w.c2,
-            w.sigma[1],
+            two_digits(w.sigma[1]),
             w.t_junction,
             w.activation_energy,
             w.sigma[2],
@@ -328,5 +341,21 @@ fn test_line(t: &LawTest) -> String {
             }
         ),
         None => "no degree of freedom left to test it".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::two_digits;
+
+    /// Two significant digits whatever the size; none defined, a dash.
+    #[test]
+    fn standard_errors_keep_two_significant_digits() {
+        assert_eq!(two_digits(0.0036327), "0.0036");
+        assert_eq!(two_digits(0.2), "0.20");
+        assert_eq!(two_digits(1.36), "1.4");
+        assert_eq!(two_digits(12.3), "12");
+        assert_eq!(two_digits(0.0), "0");
+        assert_eq!(two_digits(f64::INFINITY), "—");
     }
 }
