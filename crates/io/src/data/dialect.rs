@@ -187,6 +187,8 @@ pub(crate) fn split_line(line: &str, delimiter: char) -> Vec<Cell> {
         }
     }
     cells.push(Cell::text(&current));
+    // A row lives as long as the file's checks: no spare capacity per row.
+    cells.shrink_to_fit();
     cells
 }
 

@@ -149,7 +149,7 @@ pub fn read_sheet(path: &Path, sheet: Option<&str>) -> Result<DataTable, IoError
         }
         .into());
     }
-    text::parse_bytes(&bytes).map_err(in_file)
+    text::parse_bytes(bytes).map_err(in_file)
 }
 
 #[cfg(test)]

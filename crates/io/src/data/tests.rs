@@ -9,7 +9,7 @@ use crate::chain;
 use crate::error::DataError;
 
 fn parse_str(text: &str) -> Result<DataTable, DataError> {
-    parse_bytes(text.as_bytes())
+    parse_bytes(text.as_bytes().to_vec())
 }
 
 /// The warnings of `t` but the hint that unitless speeds above 1 m/s may
@@ -423,7 +423,7 @@ fn byte_order_mark_latin1_and_utf16() {
     let mut latin1 = b"v;mu;T (".to_vec();
     latin1.push(0xB0);
     latin1.extend(b"C)\n1;0,1;25\n");
-    let t = parse_bytes(&latin1).unwrap();
+    let t = parse_bytes(latin1.clone()).unwrap();
     assert_eq!(t.temperature, Some(vec![25.0]));
     assert!(
         t.notes
@@ -444,7 +444,7 @@ fn byte_order_mark_latin1_and_utf16() {
     for unit in "v\tµ\r\n1\t0,1\r\n".encode_utf16() {
         utf16.extend(unit.to_le_bytes());
     }
-    let t = parse_bytes(&utf16).unwrap();
+    let t = parse_bytes(utf16.clone()).unwrap();
     assert_eq!((t.speeds, t.friction), (vec![1.0], vec![0.1]));
     assert!(t.notes[0].contains("UTF-16"), "{:?}", t.notes);
 }

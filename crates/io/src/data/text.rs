@@ -15,20 +15,23 @@ use super::source::Source;
 use crate::error::DataError;
 
 /// Parses and checks a text measurement.
-pub(super) fn parse_bytes(bytes: &[u8]) -> Result<DataTable, DataError> {
+///
+/// The file's bytes are taken, not borrowed, and the lines are walked
+/// twice rather than collected: a logger's file of a million rows then
+/// lives once as text beside its cells (issue 36: memory at most ten times
+/// the file).
+pub(super) fn parse_bytes(bytes: Vec<u8>) -> Result<DataTable, DataError> {
     let mut notes = Vec::new();
     let text = decode(bytes, &mut notes)?;
-    let lines: Vec<Line> = dialect::lines(&text).collect();
-    let Some(first) = lines.first() else {
+    let Some(first) = dialect::lines(&text).next() else {
         return Err(DataError::Empty);
     };
-    let (delimiter, header) = match dialect::detect(lines.iter().copied(), is_header) {
+    let (delimiter, header) = match dialect::detect(dialect::lines(&text), is_header) {
         Some(found) => (found.delimiter, Some(found.index)),
         None => (dialect::likeliest(first.text), None),
     };
-    let rows: Vec<Row> = lines
-        .iter()
-        .map(|line| Row {
+    let rows: Vec<Row> = dialect::lines(&text)
+        .map(|line: Line| Row {
             number: line.number,
             cells: split_line(line.text, delimiter),
         })
@@ -38,7 +41,7 @@ pub(super) fn parse_bytes(bytes: &[u8]) -> Result<DataTable, DataError> {
 
 /// The text of `bytes`: UTF-8 (without a byte-order mark), UTF-16 with a
 /// byte-order mark, else Latin-1 (with a note).
-fn decode(bytes: &[u8], notes: &mut Vec<String>) -> Result<String, DataError> {
+fn decode(bytes: Vec<u8>, notes: &mut Vec<String>) -> Result<String, DataError> {
     let utf16 = |rest: &[u8], unit: fn([u8; 2]) -> u16| -> Result<String, DataError> {
         if !rest.len().is_multiple_of(2) {
             return Err(DataError::OddUtf16);
@@ -47,7 +50,7 @@ fn decode(bytes: &[u8], notes: &mut Vec<String>) -> Result<String, DataError> {
         String::from_utf16(&units).map_err(|source| DataError::NotUtf16 { source })
     };
     if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
-        return Ok(decode_8bit(rest, notes));
+        return Ok(decode_8bit(rest.to_vec(), notes));
     }
     if let Some(rest) = bytes.strip_prefix(&[0xFF, 0xFE]) {
         notes.push("read as UTF-16 (little-endian byte-order mark)".into());
@@ -60,15 +63,13 @@ fn decode(bytes: &[u8], notes: &mut Vec<String>) -> Result<String, DataError> {
     Ok(decode_8bit(bytes, notes))
 }
 
-fn decode_8bit(bytes: &[u8], notes: &mut Vec<String>) -> String {
-    match std::str::from_utf8(bytes) {
-        Ok(text) => text.to_string(),
+fn decode_8bit(bytes: Vec<u8>, notes: &mut Vec<String>) -> String {
+    match String::from_utf8(bytes) {
+        Ok(text) => text,
         Err(e) => {
-            let line = bytes[..e.valid_up_to()]
-                .iter()
-                .filter(|&&b| b == b'\n')
-                .count()
-                + 1;
+            let valid_up_to = e.utf8_error().valid_up_to();
+            let bytes = e.into_bytes();
+            let line = bytes[..valid_up_to].iter().filter(|&&b| b == b'\n').count() + 1;
             notes.push(format!(
                 "not UTF-8 text (line {line} is not): read as Latin-1 (ISO 8859-1)"
             ));
