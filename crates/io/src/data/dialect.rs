@@ -23,15 +23,10 @@
 //! more memory than one line's cells.
 
 use super::cell::{Cell, Row, is_comment_or_blank};
+pub(crate) use super::source::decimal_comma;
 
 /// The delimiters tried, in order of preference on a tie.
 pub(crate) const DELIMITERS: [char; 3] = ['\t', ';', ','];
-
-/// Whether a number may have a decimal comma with this delimiter between
-/// the cells.
-pub(crate) fn decimal_comma(delimiter: char) -> bool {
-    delimiter != ','
-}
 
 /// One line of a text: its number from 1 (as an editor counts: CR, LF and
 /// CRLF each end a line), where it starts (byte offset) and its text

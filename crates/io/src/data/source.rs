@@ -66,8 +66,14 @@ impl Source {
     /// Whether `0,5` is a number: not with a comma between the columns.
     pub fn decimal_comma(&self) -> bool {
         match self {
-            Source::Text { delimiter } => super::dialect::decimal_comma(*delimiter),
+            Source::Text { delimiter } => decimal_comma(*delimiter),
             Source::Sheet { .. } => true,
         }
     }
+}
+
+/// Whether a number may have a decimal comma with this delimiter between
+/// the cells: not when the comma itself separates them.
+pub(crate) fn decimal_comma(delimiter: char) -> bool {
+    delimiter != ','
 }

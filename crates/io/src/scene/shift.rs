@@ -2,6 +2,7 @@
 //! material (its own, or a DMA master curve's; docs/ARCHITECTURE.md,
 //! "Contract", "Scene file").
 
+use rollfit_model::VerticalShift;
 use rollfit_model::modulus::{Arrhenius, FreeShift, Wlf, WlfArrhenius};
 use serde::Deserialize;
 
@@ -214,6 +215,17 @@ impl ShiftSection {
                 Ok(ShiftRule::Free(free))
             }
         }
+    }
+
+    /// The section's vertical factors (None: b_T = 1), checked as
+    /// [`super::vertical::rule`] says.
+    pub(crate) fn vertical_rule(&self) -> Result<Option<VerticalShift>, SceneError> {
+        super::vertical::rule(
+            self.t_ref.0,
+            self.log_bt.as_deref(),
+            self.vertical,
+            self.expansion.map(|r| r.0),
+        )
     }
 
     /// Checks the section by building its shift and vertical factors.

@@ -17,7 +17,6 @@
 use rollfit_model::VerticalShift;
 use serde::Deserialize;
 
-use super::shift::ShiftSection;
 use super::values::Real;
 use crate::dma_master::DmaMaster;
 use crate::error::SceneError;
@@ -42,30 +41,31 @@ pub struct VerticalPoint {
     pub log_bt: Real,
 }
 
-impl ShiftSection {
-    /// The section's vertical factors (None: b_T = 1), after checking that
-    /// at most one form is given and `expansion` only with the density law.
-    pub(crate) fn vertical_rule(&self) -> Result<Option<VerticalShift>, SceneError> {
-        let t_ref = self.t_ref.0;
-        match (&self.log_bt, self.vertical, self.expansion) {
-            (Some(_), Some(_), _) => Err(SceneError::VerticalTwoForms),
-            (Some(_), None, Some(_)) | (None, None, Some(_)) => {
-                Err(SceneError::ExpansionWithoutDensity)
-            }
-            (Some(listed), None, None) => {
-                let entries = listed.iter().map(|p| (p.t.0, p.log_bt.0)).collect();
-                // The model's "entry i" is the i-th element of `log_bT`.
-                VerticalShift::table(t_ref, entries)
-                    .map(Some)
-                    .map_err(|error| SceneError::VerticalEntries { error })
-            }
-            (None, Some(VerticalLawName::Density), expansion) => {
-                VerticalShift::density(t_ref, expansion.map_or(0.0, |r| r.0))
-                    .map(Some)
-                    .map_err(|error| SceneError::Model { error })
-            }
-            (None, None, None) => Ok(None),
+/// The vertical factors of a `[material.shift]` section (None: b_T = 1),
+/// after checking that at most one form is given and `expansion` (α_V,
+/// 1/K) only with the density law. `t_ref` in °C.
+pub(crate) fn rule(
+    t_ref: f64,
+    log_bt: Option<&[VerticalPoint]>,
+    law: Option<VerticalLawName>,
+    expansion: Option<f64>,
+) -> Result<Option<VerticalShift>, SceneError> {
+    match (log_bt, law, expansion) {
+        (Some(_), Some(_), _) => Err(SceneError::VerticalTwoForms),
+        (Some(_), None, Some(_)) | (None, None, Some(_)) => Err(SceneError::ExpansionWithoutDensity),
+        (Some(listed), None, None) => {
+            let entries = listed.iter().map(|p| (p.t.0, p.log_bt.0)).collect();
+            // The model's "entry i" is the i-th element of `log_bT`.
+            VerticalShift::table(t_ref, entries)
+                .map(Some)
+                .map_err(|error| SceneError::VerticalEntries { error })
         }
+        (None, Some(VerticalLawName::Density), expansion) => {
+            VerticalShift::density(t_ref, expansion.unwrap_or(0.0))
+                .map(Some)
+                .map_err(|error| SceneError::Model { error })
+        }
+        (None, None, None) => Ok(None),
     }
 }
 
