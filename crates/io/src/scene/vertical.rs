@@ -52,7 +52,9 @@ pub(crate) fn rule(
 ) -> Result<Option<VerticalShift>, SceneError> {
     match (log_bt, law, expansion) {
         (Some(_), Some(_), _) => Err(SceneError::VerticalTwoForms),
-        (Some(_), None, Some(_)) | (None, None, Some(_)) => Err(SceneError::ExpansionWithoutDensity),
+        (Some(_), None, Some(_)) | (None, None, Some(_)) => {
+            Err(SceneError::ExpansionWithoutDensity)
+        }
         (Some(listed), None, None) => {
             let entries = listed.iter().map(|p| (p.t.0, p.log_bt.0)).collect();
             // The model's "entry i" is the i-th element of `log_bT`.
