@@ -27,6 +27,15 @@ pub enum FitError {
     /// speeds, temperatures or isotherms; the text says which and why).
     #[error("{0}")]
     InsufficientData(String),
+    /// The DMA isotherms of a joint fit, as a whole, cannot be used (the
+    /// text says why); `file` names their file as the front end gave it.
+    #[error("DMA file {file}: {why}")]
+    DmaData {
+        /// The DMA file, as [`crate::DmaRows`] names it.
+        file: String,
+        /// What is wrong with its isotherms.
+        why: String,
+    },
     /// The columns handed to [`crate::Measurements::new`] differ in length.
     #[error("the data columns have different lengths")]
     ColumnLengths,

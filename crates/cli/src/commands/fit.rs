@@ -376,6 +376,8 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     }
     let report = fitted.map_err(|e| match e {
         FitError::InsufficientData(why) => anyhow!("data file {}: {why}", data_path.display()),
+        // Names the DMA file itself.
+        FitError::DmaData { .. } => anyhow!("{e}"),
         // The settings only a joint fit reads, refused without DMA data.
         FitError::InvalidSetting { ref key, .. } if key != "dma" => {
             anyhow!(

@@ -10,7 +10,9 @@ use crate::analysis::probed_window;
 use crate::condense::condense;
 use crate::data::Measurements;
 use crate::error::FitError;
-use crate::joint::consistency::{Parts, compatibility, friction_factor, residual_ranges};
+use crate::joint::consistency::{
+    PartShare, Parts, compatibility, friction_factor, residual_ranges,
+};
 use crate::joint::start::{DmaAlone, JointStart, dma_alone, joint_start};
 use crate::joint::{DmaFitPoint, DmaRows, JointRecord, JointSigma, PartChi2, moduli_at};
 use crate::params::{FrictionFactor, ShiftKind, ValidFitParams};
@@ -34,7 +36,15 @@ pub(super) fn fit_joint(
     let rows = with_temperature(rows, params)?;
     let condensed = condense(&rows)?;
     let data = condensed.as_ref().map_or(&rows, |c| &c.data);
-    let alone = dma_alone(&dma, params.dma_sigma)?;
+    // What is wrong with the isotherms as a whole is the DMA file's
+    // problem: the message names that file, not the rolling data's.
+    let alone = dma_alone(&dma, params.dma_sigma).map_err(|e| match e {
+        FitError::InsufficientData(why) => FitError::DmaData {
+            file: dma.source().to_string(),
+            why,
+        },
+        other => other,
+    })?;
     let start = joint_start(data, &dma, params, &alone)?;
     let rolling_alone = fit_measured(data, None, &rolling_params(data, params, &start))?;
     let (weighted, rolling_sigma) = weighted_rows(data, &rolling_alone)?;
@@ -72,6 +82,18 @@ pub(super) fn fit_joint(
             ),
             (2 * dma.len(), !alone.sigma_given, alone.parameters),
         ),
+        shares: [
+            PartShare {
+                joint: joint_rolling_chi2,
+                rows: data.len(),
+                sigma: relative_sigma(&weighted),
+            },
+            PartShare {
+                joint: joint_dma_chi2,
+                rows: 2 * dma.len(),
+                sigma: alone.sigma,
+            },
+        ],
     };
     let record = JointAccount {
         data: &weighted,
@@ -138,6 +160,19 @@ fn weighted_rows(
         data.temperature().map(|t| t.to_vec()),
     )?;
     Ok((weighted, Some(s)))
+}
+
+/// The RMS of σ_i/μ_i over the weighted rows: their relative σ.
+fn relative_sigma(weighted: &Measurements) -> f64 {
+    let sigma = weighted.sigma().unwrap_or_default();
+    let n = sigma.len().max(1) as f64;
+    (sigma
+        .iter()
+        .zip(weighted.friction())
+        .map(|(s, m)| (s / m).powi(2))
+        .sum::<f64>()
+        / n)
+        .sqrt()
 }
 
 /// Σ ((μ_fit − μ)/σ)² over the rolling rows of `fit`.

@@ -204,21 +204,22 @@ fn master_curve(
     match (&params.terms, via_wlf, first) {
         (_, Some((wlf, start)), _) => {
             let candidates = wlf.terms.candidates.clone();
-            // A WLF fit that does not describe the data chose its λ for
-            // shifts the data reject: the free shifts then get their own
-            // (as `auto` gives them, `law::own_lambda`).
-            let poor = wlf.fit_quality.is_poor();
-            let free = free_from_wlf(data, params, wlf, &start)?;
-            if !poor {
-                return Ok((free, candidates));
+            if describes_data(&wlf.fit_quality) {
+                return Ok((free_from_wlf(data, params, wlf, &start)?, candidates));
             }
-            let own = law::own_lambda(data, params, &start, &free)?;
-            Ok(own
-                .map(|(mut own, candidates)| {
-                    own.fit.runs = free.fit.runs.iter().cloned().chain(own.fit.runs).collect();
-                    (own, candidates)
-                })
-                .unwrap_or((free, candidates)))
+            // A WLF fit that does not describe the data chose its λ for
+            // shifts the data reject: the free shifts get their own (as
+            // `auto` gives them, `law::own_lambda`), from the model-free
+            // overlap or WLF's shifts, whichever superposes the rows best.
+            let overlap = set.into_iter().cloned();
+            let starts: Vec<ShiftStart> = overlap.chain([start.clone()]).collect();
+            match law::own_lambda(data, params, &starts)? {
+                Some((mut own, candidates)) => {
+                    own.fit.runs = wlf.runs.into_iter().chain(own.fit.runs).collect();
+                    Ok((own, candidates))
+                }
+                None => Ok((free_from_wlf(data, params, wlf, &start)?, candidates)),
+            }
         }
         (_, None, Some(first)) => {
             let candidates = first.terms.candidates.clone();
@@ -242,6 +243,19 @@ fn master_curve(
             Vec::new(),
         )),
     }
+}
+
+/// Whether a fit's own tests of its residuals pass: the χ² test (σ
+/// measured), the runs test and the plausibility of an estimated noise
+/// ([`crate::quality`]). Not the verdict: "invalid" (the assumptions
+/// judged at the fitted material) overrides "poor" there, and a fit whose
+/// modulus is questioned may still miss the data, or describe them.
+fn describes_data(quality: &crate::quality::FitQuality) -> bool {
+    use crate::quality::{IMPLAUSIBLE_NOISE, POOR_P_VALUE, RUNS_P_VALUE};
+    let chi2 = quality.chi2_p_value.is_none_or(|p| p >= POOR_P_VALUE);
+    let runs = quality.runs.is_none_or(|r| r.p_value >= RUNS_P_VALUE);
+    let noise = quality.noise_source == "measured" || quality.noise <= IMPLAUSIBLE_NOISE;
+    chi2 && runs && noise
 }
 
 /// The fit on one τ grid, from `warm` (a material θ of this grid's

@@ -24,6 +24,32 @@
 //! the estimate's own scatter). The parts are called incompatible at
 //! p < [`P_VALUE`].
 //!
+//! A χ² test alone judges sample size, not physics: every model has a small
+//! approximation error (a causal Prony series cannot follow a real master
+//! curve exactly, and its Kramers–Kronig relations tie E′ to E″ more
+//! tightly than measured isotherms obey), and with enough points any such
+//! error is significant (same-material data: p = 0.57 at 13 points per
+//! isotherm, 3e-8 at 2000). So the parts are called incompatible only when
+//! the test finds a difference *and* the difference is larger than the
+//! modelling tolerance:
+//!
+//! - effect size d (decades): what sharing one material costs each part,
+//!   as the RMS of the residual it adds per point, d_part = s_part
+//!   √(max(0, χ²_part,joint − χ²_part,alone)/N_part)/ln 10 (s_part the
+//!   part's relative σ), summed over the parts: a systematic offset between
+//!   the parts is split between them by the joint fit, and the two bends
+//!   add up to it;
+//! - tolerance t (decades): each part's own RMS misfit alone, in decades,
+//!   summed, t = Σ s_part √(χ²_part,alone/N_part)/ln 10: the noise plus
+//!   what the model cannot follow of that part alone (for the DMA part its
+//!   Kramers–Kronig floor: the causal master curve's miss of the
+//!   isotherms);
+//! - incompatible: p < [`P_VALUE`] and d > t.
+//!
+//! d does not grow with sampling (it is a mean per point), and for one
+//! material it falls toward the model's own error as the points grow,
+//! while t does not fall below it.
+//!
 //! The friction factor κ (μ_measured = κ μ_theory, fitted with
 //! `friction_factor = "free"`) absorbs a dissipation that the bulk
 //! viscoelasticity of the DMA's material does not explain; κ beyond two σ
@@ -59,6 +85,35 @@ pub(crate) struct Parts {
     /// N − p of the parts whose σ was estimated from their fit alone (0:
     /// every σ given).
     pub estimated_dof: f64,
+    /// Each part's χ² at the joint optimum, its residual rows N and its
+    /// relative σ (RMS of σ_i/μ_i for the rolling rows, σ of ln E′ and
+    /// ln E″ for the DMA points): rolling, then DMA.
+    pub shares: [PartShare; 2],
+}
+
+/// One part's share of the joint misfit, for the effect size.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PartShare {
+    /// χ² of the part at the joint optimum.
+    pub joint: f64,
+    /// Residual rows of the part.
+    pub rows: usize,
+    /// Relative σ of the part's rows.
+    pub sigma: f64,
+}
+
+/// The effect size and the tolerance, decades (module doc).
+fn effect_and_tolerance(parts: &Parts) -> (f64, f64) {
+    let alone = [parts.rolling_alone.0, parts.dma_alone.0];
+    let per_point = |chi2: f64, share: &PartShare| {
+        share.sigma * (chi2.max(0.0) / share.rows.max(1) as f64).sqrt() / std::f64::consts::LN_10
+    };
+    let (mut effect, mut tolerance) = (0.0, 0.0);
+    for (share, alone) in parts.shares.iter().zip(alone) {
+        effect += per_point(share.joint - alone, share);
+        tolerance += per_point(alone, share);
+    }
+    (effect, tolerance)
 }
 
 /// The parameter goodness-of-fit test (module doc).
@@ -70,27 +125,43 @@ pub(crate) fn compatibility(parts: &Parts) -> Compatibility {
     } else {
         ChiSquared::new(dof).map_or(f64::NAN, |d| d.sf(statistic))
     };
+    let (effect, tolerance) = effect_and_tolerance(parts);
     // A test that could not be made (NaN) is no evidence against the pair.
-    let compatible = p_value.is_nan() || p_value >= P_VALUE;
-    let verdict = if compatible {
+    let significant = !p_value.is_nan() && p_value < P_VALUE;
+    let compatible = !(significant && effect > tolerance);
+    let size = format!(
+        "the parts differ by {effect:.3} decade where they overlap, against a modelling \
+         tolerance of {tolerance:.3} decade (each part's own misfit alone: its noise and what \
+         the model cannot follow of it)"
+    );
+    let verdict = if !compatible {
+        format!(
+            "incompatible: fitted together the parts lose Δχ² = {statistic:.1} against {dof:.1} \
+             shared degrees of freedom (p = {p_value:.1e}), and {size}; the rolling friction is \
+             not the bulk hysteresis of the DMA's material (an extra dissipation such as \
+             adhesion or a surface layer, a strain-amplitude effect, or a different compound or \
+             temperature calibration). See residual_ranges for where they disagree; \
+             friction_factor = \"free\" measures an extra dissipation as κ"
+        )
+    } else if significant {
         format!(
             "compatible: fitted together the parts lose Δχ² = {statistic:.1} against {dof:.1} \
-             shared degrees of freedom (p = {p_value:.2}); one material describes both"
+             shared degrees of freedom (p = {p_value:.1e}, a difference the data resolve), but \
+             {size}: within what the model itself misses, one material describes both"
         )
     } else {
         format!(
-            "incompatible: fitted together the parts lose Δχ² = {statistic:.1} against {dof:.1} \
-             shared degrees of freedom (p = {p_value:.1e}); the rolling friction is not the bulk \
-             hysteresis of the DMA's material (an extra dissipation such as adhesion or a \
-             surface layer, a strain-amplitude effect, or a different compound or temperature \
-             calibration). See residual_ranges for where they disagree; friction_factor = \
-             \"free\" measures an extra dissipation as κ"
+            "compatible: fitted together the parts lose Δχ² = {statistic:.1} against {dof:.1} \
+             shared degrees of freedom (p = {p_value:.2}), and {size}; one material describes \
+             both"
         )
     };
     Compatibility {
         statistic,
         dof,
         p_value,
+        effect_decades: effect,
+        tolerance_decades: tolerance,
         compatible,
         verdict,
     }
@@ -163,6 +234,18 @@ mod tests {
             dma_alone: (100.0, 14.0),
             joint: (joint, 16.0),
             estimated_dof: 0.0,
+            shares: [
+                PartShare {
+                    joint: 40.0 + (joint - 140.0) / 2.0,
+                    rows: 48,
+                    sigma: 0.02,
+                },
+                PartShare {
+                    joint: 100.0 + (joint - 140.0) / 2.0,
+                    rows: 120,
+                    sigma: 0.01,
+                },
+            ],
         };
         // dof = 8 + 14 − 16 = 6, median ≈ 5.35.
         let c = compatibility(&parts(145.35));
@@ -171,9 +254,44 @@ mod tests {
             "{c:?}"
         );
         assert!(c.compatible);
-        let far = compatibility(&parts(140.0 + 30.0));
-        assert!(!far.compatible && far.p_value < 1e-4, "{far:?}");
+        // Δχ² = 30 over 168 rows: significant, but 0.006 decade against a
+        // tolerance of 0.012 (2 % and 1 % noise): the model's own error.
+        let near = compatibility(&parts(140.0 + 30.0));
+        assert!(near.p_value < 1e-4, "{near:?}");
+        assert!(near.compatible && near.effect_decades < near.tolerance_decades);
+        assert!(near.verdict.contains("within what the model itself misses"));
+        // Δχ² = 3000: each part bent by several times its noise.
+        let far = compatibility(&parts(140.0 + 3000.0));
+        assert!(!far.compatible && far.effect_decades > 0.05, "{far:?}");
         assert!(far.verdict.contains("incompatible"));
+    }
+
+    /// The effect size is the bend per point: the same Δχ² per point on ten
+    /// times the rows gives the same effect, where p falls by orders.
+    #[test]
+    fn the_effect_size_does_not_grow_with_sampling() {
+        let parts = |scale: f64| Parts {
+            rolling_alone: (40.0 * scale, 8.0),
+            dma_alone: (100.0 * scale, 14.0),
+            joint: (140.0 * scale + 10.0 * scale, 16.0),
+            estimated_dof: 0.0,
+            shares: [
+                PartShare {
+                    joint: 45.0 * scale,
+                    rows: (48.0 * scale) as usize,
+                    sigma: 0.02,
+                },
+                PartShare {
+                    joint: 105.0 * scale,
+                    rows: (120.0 * scale) as usize,
+                    sigma: 0.01,
+                },
+            ],
+        };
+        let (few, many) = (compatibility(&parts(1.0)), compatibility(&parts(10.0)));
+        assert!(many.p_value < 1e-3 * few.p_value, "{few:?} {many:?}");
+        assert!((few.effect_decades - many.effect_decades).abs() < 1e-12);
+        assert!(few.compatible && many.compatible);
     }
 
     #[test]

@@ -80,7 +80,16 @@ pub struct Compatibility {
     pub dof: f64,
     /// P(χ²_dof ≥ statistic).
     pub p_value: f64,
-    /// p ≥ 0.01.
+    /// How far apart the parts are where they overlap, decades: the RMS
+    /// residual that sharing one material adds to each part, summed
+    /// ([`crate::joint::consistency`]).
+    #[serde(default)]
+    pub effect_decades: f64,
+    /// The modelling tolerance, decades: each part's own RMS misfit alone
+    /// (noise and the model's approximation error), summed.
+    #[serde(default)]
+    pub tolerance_decades: f64,
+    /// Not both p < 0.01 and an effect beyond the tolerance.
     pub compatible: bool,
     /// One sentence for the user.
     pub verdict: String,

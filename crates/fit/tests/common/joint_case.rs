@@ -66,13 +66,26 @@ pub const ROLLING_TEMPERATURES: [f64; 4] = [0.0, 20.0, 40.0, 60.0];
 /// Six isotherms × ten frequencies 0.1 … 100 Hz of `truth` under the WLF
 /// truth, E′ and E″ each with relative Gaussian noise `noise`.
 pub fn dma_isotherms<M: ViscoelasticModulus>(truth: &M, noise: f64, seed: u64) -> Vec<Isotherm> {
+    sampled_isotherms(truth, noise, seed, 10)
+}
+
+/// [`dma_isotherms`] with `count` frequencies per isotherm.
+pub fn sampled_isotherms<M: ViscoelasticModulus>(
+    truth: &M,
+    noise: f64,
+    seed: u64,
+    count: usize,
+) -> Vec<Isotherm> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let normal = Normal::new(0.0, noise).unwrap();
     DMA_TEMPERATURES
         .iter()
         .map(|&t| {
-            let omega: Vec<f64> = (0..10)
-                .map(|i| 2.0 * std::f64::consts::PI * 0.1 * 10f64.powf(3.0 * i as f64 / 9.0))
+            let omega: Vec<f64> = (0..count)
+                .map(|i| {
+                    let step = 3.0 * i as f64 / (count - 1) as f64;
+                    2.0 * std::f64::consts::PI * 0.1 * 10f64.powf(step)
+                })
                 .collect();
             let a = 10f64.powf(wlf_truth(t));
             let (mut storage, mut loss) = (Vec::new(), Vec::new());

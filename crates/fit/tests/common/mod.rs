@@ -4,6 +4,7 @@
 // Each test binary uses a different subset of these helpers.
 #![allow(dead_code)]
 
+pub mod broad_polymer;
 pub mod joint_case;
 
 use rand::SeedableRng;

@@ -102,11 +102,14 @@ fn chi2_table(joint: &JointRecord) -> String {
     let class = if c.compatible { "" } else { " class=\"warn\"" };
     let _ = writeln!(
         t,
-        "<tr{class}><th>together</th><td>Δχ² = {} on {} shared degrees of freedom, p = {}</td>\
+        "<tr{class}><th>together</th><td>Δχ² = {} on {} shared degrees of freedom, p = {}; \
+         the parts differ by {} decade (tolerance {} decade)</td>\
          <td class=\"num\">{}</td><td></td><td class=\"num\">{} (joint)</td></tr>",
         num(c.statistic),
         num(c.dof),
         num(c.p_value),
+        num(c.effect_decades),
+        num(c.tolerance_decades),
         num(x.rolling_joint + x.dma_joint),
         num(x.joint_parameters)
     );
