@@ -21,21 +21,17 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::axes::{lg, log_axis, log_range};
-use super::isotherm_key::{celsius, isotherm_colour};
+use super::isotherm_key::celsius;
 use super::marker_density::drawn_points;
+use super::master_frame;
 use super::parts::{
     ColouredPoint, dashed_key, draw_storage_loss, isotherms, legend_box, place_legend, plot_size,
     runs,
 };
 pub use super::shift_panel::ShiftMarker;
-use super::shift_panel::{ShiftPanel, draw_shift_column};
+use super::shift_panel::ShiftPanel;
 pub use super::verdict_banner::Verdict;
 use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
-
-/// Width of the left column (master curve and tan δ), px.
-const LEFT_WIDTH: u32 = 740;
-/// Height of the master curve panel and of the shift panel, px.
-const TOP_HEIGHT: u32 = 520;
 
 /// One DMA point after shifting.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -133,7 +129,7 @@ impl Figure for DmaMasterFigure<'_> {
     }
 
     fn size(&self) -> (u32, u32) {
-        (1100, 800 + Verdict::height(self.verdict.as_ref()))
+        master_frame::size(self.verdict.as_ref())
     }
 
     fn draw<DB>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
@@ -142,27 +138,18 @@ impl Figure for DmaMasterFigure<'_> {
         DB::ErrorType: 'static,
     {
         let isotherms = self.isotherms();
-        let coldest = isotherms.first().copied().unwrap_or(self.t_ref);
-        let warmest = isotherms.last().copied().unwrap_or(self.t_ref);
-        let colour = |t: f64| isotherm_colour(t, coldest, warmest);
-        let (banner, root) = root.split_vertically(Verdict::height(self.verdict.as_ref()));
-        if let Some(verdict) = &self.verdict {
-            verdict.draw(&banner)?;
-        }
-        let (left, right) = root.split_horizontally(LEFT_WIDTH);
-        let (upper, lower) = left.split_vertically(TOP_HEIGHT);
-
-        let curves = Curves::of(self, &colour);
-        self.draw_moduli(&upper, &curves)?;
-        self.draw_tan_delta(&lower, &curves)?;
-        draw_shift_column(
-            &right,
-            TOP_HEIGHT,
+        let colour = master_frame::palette(&isotherms, self.t_ref);
+        let (upper, lower) = master_frame::draw(
+            root,
+            self.verdict.as_ref(),
             &self.shift_panel(),
             &isotherms,
             self.t_ref,
             &colour,
-        )
+        )?;
+        let curves = Curves::of(self, &colour);
+        self.draw_moduli(&upper, &curves)?;
+        self.draw_tan_delta(&lower, &curves)
     }
 }
 

@@ -19,6 +19,7 @@ pub mod joint_master;
 pub mod joint_residuals;
 mod marker_density;
 pub mod master_curve;
+mod master_frame;
 mod parts;
 pub mod pressure_map;
 pub mod relaxation_master;

@@ -16,17 +16,13 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::axes::{lg, linear_range, log_axis, log_range};
-use super::isotherm_key::{celsius, isotherm_colour};
+use super::isotherm_key::celsius;
 use super::marker_density::drawn_points;
+use super::master_frame;
 use super::parts::{isotherms, legend_box, place_legend, plot_size, runs};
-use super::shift_panel::{ShiftMarker, ShiftPanel, draw_shift_column};
+use super::shift_panel::{ShiftMarker, ShiftPanel};
 use super::verdict_banner::Verdict;
 use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
-
-/// Width of the left column, px (as the frequency-sweep picture's).
-const LEFT_WIDTH: u32 = 740;
-/// Height of the master curve panel and of the shift panel, px.
-const TOP_HEIGHT: u32 = 520;
 
 /// One relaxation point after shifting.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -92,7 +88,7 @@ impl Figure for RelaxationMasterFigure<'_> {
     }
 
     fn size(&self) -> (u32, u32) {
-        (1100, 800 + Verdict::height(self.verdict.as_ref()))
+        master_frame::size(self.verdict.as_ref())
     }
 
     fn draw<DB>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
@@ -101,15 +97,15 @@ impl Figure for RelaxationMasterFigure<'_> {
         DB::ErrorType: 'static,
     {
         let isotherms = self.isotherms();
-        let coldest = isotherms.first().copied().unwrap_or(self.t_ref);
-        let warmest = isotherms.last().copied().unwrap_or(self.t_ref);
-        let colour = |t: f64| isotherm_colour(t, coldest, warmest);
-        let (banner, root) = root.split_vertically(Verdict::height(self.verdict.as_ref()));
-        if let Some(verdict) = &self.verdict {
-            verdict.draw(&banner)?;
-        }
-        let (left, right) = root.split_horizontally(LEFT_WIDTH);
-        let (upper, lower) = left.split_vertically(TOP_HEIGHT);
+        let colour = master_frame::palette(&isotherms, self.t_ref);
+        let (upper, lower) = master_frame::draw(
+            root,
+            self.verdict.as_ref(),
+            &self.shift_panel(),
+            &isotherms,
+            self.t_ref,
+            &colour,
+        )?;
         let drawn = drawn_points(self.points, |p| p.temperature);
         let x_range = log_range(
             drawn
@@ -120,15 +116,7 @@ impl Figure for RelaxationMasterFigure<'_> {
             -2.0..3.0,
         );
         self.draw_modulus(&upper, &drawn, &x_range, &colour)?;
-        self.draw_misfit(&lower, &drawn, &x_range, &colour)?;
-        draw_shift_column(
-            &right,
-            TOP_HEIGHT,
-            &self.shift_panel(),
-            &isotherms,
-            self.t_ref,
-            &colour,
-        )
+        self.draw_misfit(&lower, &drawn, &x_range, &colour)
     }
 }
 

@@ -33,13 +33,12 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::axes::{lg, linear_range, log_axis, log_range};
 use super::dma_master::MasterCurveFit;
-use super::isotherm_key::{celsius, draw_colour_key, isotherm_colour, text_style};
+use super::isotherm_key::{celsius, draw_colour_key, text_style};
 use super::marker_density::drawn_points;
+use super::master_frame;
 use super::parts::{isotherms, legend_box, place_legend, plot_size, runs};
 use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
 
-/// Width of the plot's column, px (the master picture's left column).
-const LEFT_WIDTH: u32 = 740;
 /// Height of the colour key, px.
 const KEY_HEIGHT: u32 = 200;
 
@@ -138,10 +137,8 @@ impl Figure for VanGurpPalmenFigure<'_> {
         DB::ErrorType: 'static,
     {
         let isotherms = self.isotherms();
-        let coldest = isotherms.first().copied().unwrap_or(self.t_ref);
-        let warmest = isotherms.last().copied().unwrap_or(self.t_ref);
-        let colour = |t: f64| isotherm_colour(t, coldest, warmest);
-        let (left, right) = root.split_horizontally(LEFT_WIDTH);
+        let colour = master_frame::palette(&isotherms, self.t_ref);
+        let (left, right) = root.split_horizontally(master_frame::LEFT_WIDTH);
         let (key_area, note_area) = right.split_vertically(KEY_HEIGHT);
         self.draw_plane(&left, &colour)?;
         draw_colour_key(&key_area, &isotherms, self.t_ref, &colour)?;
