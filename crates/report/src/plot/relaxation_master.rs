@@ -24,6 +24,10 @@ use super::shift_panel::{ShiftMarker, ShiftPanel};
 use super::verdict_banner::Verdict;
 use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
 
+/// The least half-height of the misfit panel, decades: the log misfit of
+/// 2 % scatter (0.009), the low end of what relaxation instruments give.
+const MIN_MISFIT_AXIS: f64 = 0.01;
+
 /// One relaxation point after shifting.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShiftedRelaxation {
@@ -219,7 +223,15 @@ impl RelaxationMasterFigure<'_> {
                 Some((lg(p.reduced_time)?, d, colour(p.temperature)))
             })
             .collect();
-        let y_range = linear_range(misfits.iter().map(|p| p.1).chain([0.0]), 0.15);
+        // At least ±MIN_MISFIT_AXIS: a series within the scatter of real
+        // data shows as flat, not as noise magnified to fill the panel.
+        let y_range = linear_range(
+            misfits
+                .iter()
+                .map(|p| p.1)
+                .chain([-MIN_MISFIT_AXIS, MIN_MISFIT_AXIS]),
+            0.15,
+        );
         let mut chart = ChartBuilder::on(area)
             .margin(12)
             .x_label_area_size(45)
