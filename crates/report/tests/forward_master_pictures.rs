@@ -2,7 +2,11 @@
 //! (DMA isotherms shifted onto one master curve) render to a PNG that
 //! decodes at the stated size and is not blank, with one colour per
 //! temperature, and to an SVG that carries the axis labels and the legend;
-//! bad values (NaN, negative μ) and a single isotherm render too.
+//! bad values (NaN, negative μ) and a single isotherm render too. The
+//! master picture puts a verdict that is not "good" in its title and names
+//! the shift law under the shift panel, outside the plot; relaxation
+//! isotherms get their master picture; the van Gurp–Palmen plot draws the
+//! isotherms as measured; shear data are labelled G throughout.
 //!
 //! The data are synthetic with known shapes: μ(v) from a standard linear
 //! solid (tan δ of E* = E0 + ΔE iωτ/(1 + iωτ) at ω = v a_T / a, so μ rises
@@ -15,9 +19,11 @@ mod common;
 use common::{Decoded, count, decode};
 use plotters::style::RGBColor;
 use rollfit_report::plot::dma_master::{
-    DmaMasterFigure, MasterCurveFit, ShiftMarker, ShiftedPoint,
+    DmaMasterFigure, MasterCurveFit, ShiftMarker, ShiftedPoint, Verdict,
 };
 use rollfit_report::plot::forward_sweep::{ForwardSweepFigure, SweepCurve};
+use rollfit_report::plot::relaxation_master::{RelaxationMasterFigure, ShiftedRelaxation};
+use rollfit_report::plot::van_gurp_palmen::{MeasuredPoint, VanGurpPalmenFigure};
 use rollfit_report::plot::{Picture, render, style};
 
 /// WLF constants (the "universal" ones) and the reference temperature, °C.
@@ -104,6 +110,7 @@ fn hex(c: RGBColor) -> String {
 struct SvgText {
     text: String,
     x: f64,
+    y: f64,
 }
 
 /// Checks the PNG (size, not blank) and that the SVG parses at that size;
@@ -135,6 +142,7 @@ fn check(p: &Picture, size: (u32, u32)) -> (Decoded, Vec<SvgText>) {
             Some(SvgText {
                 text: n.text()?.trim().to_string(),
                 x: n.attribute("x")?.parse().ok()?,
+                y: n.attribute("y")?.parse().ok()?,
             })
         })
         .collect();
@@ -384,7 +392,9 @@ fn eight_isotherms_make_a_master_curve_with_its_shift_and_colour_key() {
         t_ref: T_REF,
         shifts: &shifts,
         shift_curve: &shift_curve,
+        shift_law: &[],
         modulus_symbol: "E",
+        verdict: None,
     };
     let p = render(&figure).unwrap();
     assert_eq!(p.name, "master");
@@ -447,7 +457,9 @@ fn a_single_isotherm_leaves_the_shift_panel_to_a_note() {
             determined: true,
         }],
         shift_curve: &[],
+        shift_law: &[],
         modulus_symbol: "G",
+        verdict: None,
     })
     .unwrap();
     let (image, texts) = check(&p, (1100, 800));
@@ -467,8 +479,266 @@ fn a_single_isotherm_leaves_the_shift_panel_to_a_note() {
         t_ref: T_REF,
         shifts: &[],
         shift_curve: &[],
+        shift_law: &[],
         modulus_symbol: "E",
+        verdict: None,
     })
     .unwrap();
     assert_eq!(decode(&p).height, 800);
+}
+
+/// The verdict's reason as the fit crate words one (cause: advice).
+const POOR_REASON: &str = "the shifts are not determined by the overlap: only 3 of 8 isotherms \
+                           overlap their neighbours on a slope; measure isotherms closer in \
+                           temperature";
+
+/// The law's legend as `shift_panel::law_legend` words a WLF fit.
+fn wlf_legend() -> Vec<String> {
+    vec![
+        "WLF, T_ref = 20 °C:".to_string(),
+        "C1 = 8.86 ± 0.12, C2 = 101.6 ± 2.1 K".to_string(),
+    ]
+}
+
+#[test]
+fn a_poor_verdict_titles_the_picture_and_the_law_is_named_under_the_shift_panel() {
+    let temperatures = [-30.0, -15.0, 0.0, 10.0, 20.0, 35.0, 50.0, 70.0];
+    let points = isotherms(&temperatures);
+    let fit = prony_fit(&points);
+    // Wide bars (±0.8 decade) on every measured shift: a legend inside the
+    // plot would cover some of them wherever it went.
+    let shifts: Vec<ShiftMarker> = temperatures
+        .iter()
+        .enumerate()
+        .map(|(k, &t)| ShiftMarker {
+            temperature: t,
+            log_shift: log_shift(t),
+            sigma: 0.8,
+            determined: k % 3 != 0,
+        })
+        .collect();
+    let shift_curve: Vec<(f64, f64)> = (0..=100)
+        .map(|i| -30.0 + f64::from(i))
+        .map(|t| (t, log_shift(t)))
+        .collect();
+    let law = wlf_legend();
+    let reasons = vec![POOR_REASON.to_string()];
+    let figure = |verdict| DmaMasterFigure {
+        points: &points,
+        fit: &fit,
+        t_ref: T_REF,
+        shifts: &shifts,
+        shift_curve: &shift_curve,
+        shift_law: &law,
+        modulus_symbol: "E",
+        verdict,
+    };
+    let poor = render(&figure(Some(Verdict {
+        verdict: "poor",
+        reasons: &reasons,
+    })))
+    .unwrap();
+    let (width, height) = poor.size;
+    assert!(width == 1100 && height > 800, "{:?}", poor.size);
+    let (image, texts) = check(&poor, poor.size);
+    let text = joined(&texts);
+    for label in [
+        "Verdict: poor",
+        "the shifts are not determined by the overlap",
+        "WLF, T_ref = 20 °C:",
+        "C1 = 8.86 ± 0.12, C2 = 101.6 ± 2.1 K",
+        "measured, ±1σ",
+        "not determined (value applied)",
+    ] {
+        assert!(text.contains(label), "no text {label:?} in\n{text}");
+    }
+    // Only the cause, not the advice, and the law instead of a vague name.
+    assert!(!text.contains("measure isotherms closer") && !text.contains("fitted shift curve"));
+    // The title is the topmost text.
+    let title = texts
+        .iter()
+        .find(|t| t.text.starts_with("Verdict"))
+        .unwrap();
+    assert!(
+        texts.iter().all(|t| t.y >= title.y),
+        "the verdict is not on top"
+    );
+    assert!(
+        count(&image, style::VERDICT) > 200,
+        "the verdict is not in its colour"
+    );
+    // The legend lies under the shift panel's temperature axis (whose
+    // description "T (°C)" is the lowest text of the plot), in the right
+    // column: outside the plot, so no marker or bar is under it.
+    let axis = texts.iter().find(|t| t.text == "T (°C)").unwrap();
+    for label in [
+        "WLF, T_ref = 20 °C:",
+        "measured, ±1σ",
+        "not determined (value applied)",
+    ] {
+        let entry = texts.iter().find(|t| t.text == label).unwrap();
+        assert!(
+            entry.y > axis.y && entry.x > 740.0,
+            "{label} at ({}, {})",
+            entry.x,
+            entry.y
+        );
+    }
+
+    // A good verdict takes no room and says nothing.
+    let good = render(&figure(Some(Verdict {
+        verdict: "good",
+        reasons: &[],
+    })))
+    .unwrap();
+    let (_, texts) = check(&good, (1100, 800));
+    assert!(!joined(&texts).contains("Verdict"));
+}
+
+/// A relaxation modulus of the same spectrum as [`prony`]: E(t) = E0 +
+/// Σ H_k exp(−t/τ_k), Pa.
+fn relaxation_modulus(t: f64) -> f64 {
+    1e6 + (0..10)
+        .map(|k| {
+            let tau = 10f64.powf(f64::from(k) - 8.0);
+            3e8 * 0.5f64.powi(k) * (-t / tau).exp()
+        })
+        .sum::<f64>()
+}
+
+#[test]
+fn relaxation_isotherms_get_their_master_picture() {
+    let temperatures = [-10.0, 0.0, 10.0, 20.0, 30.0, 45.0];
+    let mut points = Vec::new();
+    for (j, &t) in temperatures.iter().enumerate() {
+        for i in 0..15 {
+            let time = 10f64.powf(3.0 * f64::from(i) / 14.0);
+            let reduced_time = time / 10f64.powf(log_shift(t));
+            let fitted = relaxation_modulus(reduced_time);
+            let scatter = 0.02 * (f64::from(i) * 1.3 + j as f64).sin();
+            points.push(ShiftedRelaxation {
+                reduced_time,
+                modulus: fitted * (1.0 + scatter),
+                fitted,
+                temperature: t,
+            });
+        }
+    }
+    let (lo, hi) = (
+        points[0].reduced_time,
+        points[points.len() - 1].reduced_time,
+    );
+    let (lo, hi) = (lo.min(hi), lo.max(hi));
+    let series: Vec<(f64, f64)> = (0..=120)
+        .map(|i| lo * (hi / lo).powf(f64::from(i) / 120.0))
+        .map(|t| (t, relaxation_modulus(t)))
+        .collect();
+    let shifts: Vec<ShiftMarker> = temperatures
+        .iter()
+        .map(|&t| ShiftMarker {
+            temperature: t,
+            log_shift: log_shift(t),
+            sigma: 0.05,
+            determined: true,
+        })
+        .collect();
+    let shift_curve: Vec<(f64, f64)> = (0..=55)
+        .map(|i| -10.0 + f64::from(i))
+        .map(|t| (t, log_shift(t)))
+        .collect();
+    let law = wlf_legend();
+    let p = render(&RelaxationMasterFigure {
+        points: &points,
+        series: &series,
+        t_ref: T_REF,
+        shifts: &shifts,
+        shift_curve: &shift_curve,
+        shift_law: &law,
+        modulus_symbol: "G",
+        verdict: None,
+    })
+    .unwrap();
+    assert_eq!(p.name, "master");
+    let (image, texts) = check(&p, (1100, 800));
+    let text = joined(&texts);
+    for label in [
+        "Relaxation master curve at T_ref = 20 °C",
+        "reduced time t/a_T (s), T_ref = 20 °C",
+        "G(t) (Pa)",
+        "G(t/a_T), per isotherm",
+        "Prony G(t)",
+        "log₁₀ G/G_Prony",
+        "Shift factors a_T",
+        "WLF, T_ref = 20 °C:",
+        "-10 °C (coldest)",
+        "45 °C (warmest)",
+    ] {
+        assert!(text.contains(label), "no text {label:?} in\n{text}");
+    }
+    assert!(!text.contains("E′") && !text.contains("E(t)"));
+    for c in [style::cold_to_warm(0.0), style::cold_to_warm(1.0)] {
+        assert!(count(&image, c) > 150, "too few pixels of {}", hex(c));
+    }
+    assert!(hue_sectors(&image, 150) >= 5);
+    // The series and the misfit's zero line, black and 2 px.
+    assert!(strokes(&p.svg, RGBColor(0, 0, 0), 2) >= 2);
+    assert!(p.caption.contains("6 isotherms"), "{}", p.caption);
+}
+
+#[test]
+fn the_van_gurp_palmen_plot_draws_every_isotherm_as_measured() {
+    let temperatures = [-30.0, -15.0, 0.0, 10.0, 20.0, 35.0, 50.0, 70.0];
+    let shifted = isotherms(&temperatures);
+    let fit = prony_fit(&shifted);
+    let measured: Vec<MeasuredPoint> = shifted
+        .iter()
+        .map(|p| MeasuredPoint {
+            storage: p.storage,
+            loss: p.loss,
+            temperature: p.temperature,
+        })
+        .collect();
+    let figure = |symbol| VanGurpPalmenFigure {
+        points: &measured,
+        fit: &fit,
+        t_ref: T_REF,
+        modulus_symbol: symbol,
+    };
+    let p = render(&figure("E")).unwrap();
+    assert_eq!(p.name, "vgp");
+    let (image, texts) = check(&p, (1100, 640));
+    let text = joined(&texts);
+    for label in [
+        "van Gurp–Palmen plot (no shift applied)",
+        "|E*| = √(E′² + E″²) (Pa)",
+        "phase angle δ (°)",
+        "per isotherm, as measured",
+        "Prony series at T_ref = 20 °C",
+        "-30 °C (coldest)",
+        "70 °C (warmest)",
+    ] {
+        assert!(text.contains(label), "no text {label:?} in\n{text}");
+    }
+    // The phase-angle ticks lie in 0…90°.
+    let ticks: Vec<f64> = texts
+        .iter()
+        .filter(|t| t.x < 80.0)
+        .filter_map(|t| t.text.parse().ok())
+        .collect();
+    assert!(ticks.len() >= 3, "{ticks:?}");
+    assert!(ticks.iter().all(|d| (0.0..=90.0).contains(d)), "{ticks:?}");
+    for c in [style::cold_to_warm(0.0), style::cold_to_warm(1.0)] {
+        assert!(count(&image, c) > 100, "too few pixels of {}", hex(c));
+    }
+    assert!(hue_sectors(&image, 100) >= 5);
+    // One polyline per isotherm in its colour, and the series in black.
+    for &t in &temperatures {
+        let c = style::cold_to_warm((t + 30.0) / 100.0);
+        assert!(strokes(&p.svg, c, 1) >= 1, "no line of the {t} °C isotherm");
+    }
+    assert!(strokes(&p.svg, RGBColor(0, 0, 0), 2) >= 1);
+
+    let (_, texts) = check(&render(&figure("G")).unwrap(), (1100, 640));
+    let text = joined(&texts);
+    assert!(text.contains("|G*| = √(G′² + G″²) (Pa)") && !text.contains("E′"));
 }

@@ -19,7 +19,12 @@
 //! - master.json: the numbers (the law chosen and why, every law tried
 //!   with its constants, standard errors and χ² test, the pairwise shifts
 //!   with their errors, λ, misfits and the Kramers–Kronig floor, warnings);
-//! - master.png and master.svg: the shifted isotherms with the series.
+//! - master.png and master.svg: the shifted isotherms with the series,
+//!   tan δ and the shift factors with the law and its constants, the
+//!   verdict in the title when it is not "good"; shear data drawn as G′, G″;
+//! - vgp.png and vgp.svg: the van Gurp–Palmen plot, phase angle δ against
+//!   |E*| of every isotherm as measured (no shift), where the isotherms of
+//!   a thermorheologically simple material fall on one curve.
 //!
 //! A master curve whose verdict (`rollfit_fit::master::quality`: data no
 //! causal series can follow, a series that misses them, shifts the data
@@ -40,12 +45,12 @@ use rollfit_io::fit_dir::columns::{
 use rollfit_io::{csv_text, material_file, output};
 use rollfit_model::ViscoelasticModulus;
 use rollfit_report::causality::{self, CausalFit};
-use rollfit_report::plot::{self, dma_master as figure};
 use serde::Serialize;
 
 use crate::commands::compare::{DmaModulus, poisson_source};
 use crate::{hints, progress, stdout};
 
+mod pictures;
 mod relaxation;
 mod shift_out;
 
@@ -292,55 +297,17 @@ fn encode(
     let mut json = serde_json::to_vec_pretty(&Summary::of(built, causal, poisson, quality))
         .context("cannot format master.json")?;
     json.push(b'\n');
-    let points: Vec<figure::ShiftedPoint> = master
-        .points
-        .iter()
-        .map(|p| figure::ShiftedPoint {
-            reduced_omega: p.reduced_omega,
-            storage: p.storage,
-            loss: p.loss,
-            temperature: p.temperature,
-        })
-        .collect();
-    let fit_curve = figure::MasterCurveFit {
-        omega: curve.iter().map(|c| c.0).collect(),
-        storage: curve.iter().map(|c| c.1).collect(),
-        loss: curve.iter().map(|c| c.2).collect(),
-    };
-    let shifts: Vec<figure::ShiftMarker> = master
-        .shift
-        .shifts
-        .iter()
-        .map(|s| figure::ShiftMarker {
-            temperature: s.temperature,
-            log_shift: s.log_shift_measured.unwrap_or(s.log_shift),
-            sigma: s.log_shift_measured_sigma,
-            determined: s.log_shift_measured.is_some(),
-        })
-        .collect();
-    let shift_curve = law_curve(built);
-    let picture = plot::render(&figure::DmaMasterFigure {
-        points: &points,
-        fit: &fit_curve,
-        t_ref: built.settings.t_ref(),
-        shifts: if master.shift.shifts.len() > 1 {
-            &shifts
-        } else {
-            &[]
-        },
-        shift_curve: &shift_curve,
-        modulus_symbol: "E",
-    })
-    .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let pictures = pictures::frequency(built, &curve, poisson, quality)?;
     Ok(vec![
         ("master.csv", master_csv),
         ("shift.csv", shift_csv),
         (MODULUS_CSV, modulus_csv),
         ("material.toml", material),
         ("master.json", json),
-        ("master.png", picture.png),
-        ("master.svg", picture.svg.into_bytes()),
-    ])
+    ]
+    .into_iter()
+    .chain(pictures)
+    .collect())
 }
 
 /// (ω, E′, E″) of the Prony series over the data's reduced range.
@@ -357,25 +324,6 @@ fn prony_curve(built: &DmaMaster) -> Vec<(f64, f64, f64)> {
             let w = lo * (hi / lo).powf(j as f64 / count as f64);
             let e = built.master.fit.prony.modulus(w);
             (w, e.re, e.im)
-        })
-        .collect()
-}
-
-/// The fitted law over the measured temperatures (empty for "free" or one
-/// isotherm).
-fn law_curve(built: &DmaMaster) -> Vec<(f64, f64)> {
-    let shift = &built.master.shift;
-    if shift.shifts.len() < 2 || matches!(shift.law, ShiftLaw::Free | ShiftLaw::Auto) {
-        return Vec::new();
-    }
-    let (lo, hi) = (
-        shift.shifts[0].temperature,
-        shift.shifts[shift.shifts.len() - 1].temperature,
-    );
-    (0..=100)
-        .filter_map(|j| {
-            let t = lo + (hi - lo) * j as f64 / 100.0;
-            shift.law_at(t).map(|l| (t, l))
         })
         .collect()
 }

@@ -7,31 +7,31 @@
 //! black solid and dashed lines; below it tan δ = E″/E′, the most sensitive
 //! test of the superposition (it does not depend on a vertical shift), of
 //! the points and of the Prony curve. At the right, log10 a_T against T per
-//! isotherm with the fitted shift curve (WLF or Arrhenius), and under it
-//! the key to the colours: the coldest, the reference and the warmest
-//! temperature. A single isotherm has nothing to shift: its panel says so.
+//! isotherm with the law's curve, named with its constants in a legend
+//! under the panel ([`super::shift_panel`]), and under it the key to the
+//! colours: the coldest, the reference and the warmest temperature. A
+//! single isotherm has nothing to shift: its panel says so. A verdict that
+//! is not "good" is the picture's title ([`super::verdict_banner`]).
+//! Shear data are drawn as G′ and G″, the moduli of the file (the caller
+//! divides the Young's moduli by 2(1+ν) and says "G").
 
 use std::ops::Range;
 
 use plotters::coord::Shift;
-use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::axes::{lg, linear_range, log_axis, log_range};
+use super::axes::{lg, log_axis, log_range};
+use super::isotherm_key::celsius;
 use super::marker_density::drawn_points;
+use super::master_frame;
 use super::parts::{
     ColouredPoint, dashed_key, draw_storage_loss, isotherms, legend_box, place_legend, plot_size,
     runs,
 };
-use super::{DrawResult, Figure, draw_legend, draw_mesh, draw_shift_mesh, format_tick, style};
-
-/// Width of the left column (master curve and tan δ), px.
-const LEFT_WIDTH: u32 = 740;
-/// Height of the master curve panel and of the shift panel, px.
-const TOP_HEIGHT: u32 = 520;
-/// Slices of the colour key's gradient bar.
-const KEY_SLICES: i32 = 120;
+pub use super::shift_panel::ShiftMarker;
+use super::shift_panel::ShiftPanel;
+pub use super::verdict_banner::Verdict;
+use super::{DrawResult, Figure, draw_legend, draw_mesh, style};
 
 /// One DMA point after shifting.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -57,22 +57,6 @@ pub struct MasterCurveFit {
     pub loss: Vec<f64>,
 }
 
-/// One isotherm's shift factor as the picture shows it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ShiftMarker {
-    /// Temperature, °C.
-    pub temperature: f64,
-    /// log10 a_T: the measured one where `determined`, else the value
-    /// applied (the law's).
-    pub log_shift: f64,
-    /// 1σ of a measured shift, decades (an error bar where finite and
-    /// positive).
-    pub sigma: f64,
-    /// Whether the data determine the shift; an undetermined one is drawn
-    /// hollow at the law's value.
-    pub determined: bool,
-}
-
 /// Shifted DMA isotherms, the Prony fit and the shift factors.
 pub struct DmaMasterFigure<'a> {
     /// The shifted points of every isotherm.
@@ -83,11 +67,15 @@ pub struct DmaMasterFigure<'a> {
     pub t_ref: f64,
     /// The shift factor of each isotherm.
     pub shifts: &'a [ShiftMarker],
-    /// The fitted shift curve (T °C, log10 a_T), densely (WLF/Arrhenius);
-    /// empty when none.
+    /// The law's shift curve (T °C, log10 a_T), densely; empty when none.
     pub shift_curve: &'a [(f64, f64)],
+    /// The legend's lines naming the law and its constants
+    /// ([`super::shift_panel::law_legend`]); empty: "fitted shift curve".
+    pub shift_law: &'a [String],
     /// "E" (Young's modulus) or "G" (shear modulus): what the axis labels say.
     pub modulus_symbol: &'static str,
+    /// The verdict, in the title when it is not "good"; None: none given.
+    pub verdict: Option<Verdict<'a>>,
 }
 
 impl DmaMasterFigure<'_> {
@@ -96,19 +84,13 @@ impl DmaMasterFigure<'_> {
         isotherms(self.points.iter().map(|p| p.temperature))
     }
 
-    /// Whether there is a shift to show: at least two shift factors or a
-    /// fitted curve.
-    fn has_shift(&self) -> bool {
-        let measured = self
-            .shifts
-            .iter()
-            .filter(|s| s.temperature.is_finite() && s.log_shift.is_finite())
-            .count();
-        measured >= 2
-            || self
-                .shift_curve
-                .iter()
-                .any(|s| s.0.is_finite() && s.1.is_finite())
+    /// The shift panel's content.
+    fn shift_panel(&self) -> ShiftPanel<'_> {
+        ShiftPanel {
+            shifts: self.shifts,
+            curve: self.shift_curve,
+            law: self.shift_law,
+        }
     }
 
     fn modulus_name(&self) -> &'static str {
@@ -125,27 +107,6 @@ impl DmaMasterFigure<'_> {
     }
 }
 
-/// The colour of an isotherm at `t` °C between the coldest and the warmest.
-pub(crate) fn isotherm_colour(t: f64, coldest: f64, warmest: f64) -> RGBColor {
-    if warmest > coldest {
-        style::cold_to_warm((t - coldest) / (warmest - coldest))
-    } else {
-        style::cold_to_warm(0.5)
-    }
-}
-
-fn text_style(size: u32, h: HPos, v: VPos) -> TextStyle<'static> {
-    ("sans-serif", size)
-        .into_font()
-        .color(&BLACK)
-        .pos(Pos::new(h, v))
-}
-
-/// "20 °C".
-pub(crate) fn celsius(t: f64) -> String {
-    format!("{} °C", format_tick(t))
-}
-
 impl Figure for DmaMasterFigure<'_> {
     fn name(&self) -> &'static str {
         "master"
@@ -154,7 +115,7 @@ impl Figure for DmaMasterFigure<'_> {
     fn caption(&self) -> String {
         let s = self.modulus_symbol;
         let n = self.isotherms().len();
-        let shift = if self.has_shift() {
+        let shift = if self.shift_panel().has_shift() {
             "; right, the shift factors log10 a_T per isotherm and the fitted shift curve"
         } else {
             "; a single isotherm, so nothing was shifted"
@@ -168,7 +129,7 @@ impl Figure for DmaMasterFigure<'_> {
     }
 
     fn size(&self) -> (u32, u32) {
-        (1100, 800)
+        master_frame::size(self.verdict.as_ref())
     }
 
     fn draw<DB>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
@@ -177,23 +138,18 @@ impl Figure for DmaMasterFigure<'_> {
         DB::ErrorType: 'static,
     {
         let isotherms = self.isotherms();
-        let coldest = isotherms.first().copied().unwrap_or(self.t_ref);
-        let warmest = isotherms.last().copied().unwrap_or(self.t_ref);
-        let colour = |t: f64| isotherm_colour(t, coldest, warmest);
-        let (left, right) = root.split_horizontally(LEFT_WIDTH);
-        let (upper, lower) = left.split_vertically(TOP_HEIGHT);
-        let (shift_area, key_area) = right.split_vertically(TOP_HEIGHT);
-
+        let colour = master_frame::palette(&isotherms, self.t_ref);
+        let (upper, lower) = master_frame::draw(
+            root,
+            self.verdict.as_ref(),
+            &self.shift_panel(),
+            &isotherms,
+            self.t_ref,
+            &colour,
+        )?;
         let curves = Curves::of(self, &colour);
         self.draw_moduli(&upper, &curves)?;
-        self.draw_tan_delta(&lower, &curves)?;
-        if self.has_shift() {
-            self.draw_shift(&shift_area, &colour)?;
-        } else {
-            draw_no_shift_note(&shift_area, &isotherms)?;
-        }
-        self.draw_colour_key(&key_area, &isotherms, &colour)?;
-        Ok(())
+        self.draw_tan_delta(&lower, &curves)
     }
 }
 
@@ -394,284 +350,5 @@ impl DmaMasterFigure<'_> {
             }
         }
         draw_legend(&mut chart, legend.corner)
-    }
-}
-
-/// The shift panel left blank but for the reason, so that the empty corner
-/// is not mistaken for a failed drawing.
-fn draw_no_shift_note<DB>(area: &DrawingArea<DB, Shift>, isotherms: &[f64]) -> DrawResult
-where
-    DB: DrawingBackend,
-    DB::ErrorType: 'static,
-{
-    let (w, _) = area.dim_in_pixel();
-    let note = match isotherms {
-        [t] => vec![
-            format!("Single isotherm ({}):", celsius(*t)),
-            "nothing was shifted, so there".into(),
-            "are no shift factors to show.".into(),
-        ],
-        _ => vec![
-            "No shift factors given:".into(),
-            "the shift panel is empty.".into(),
-        ],
-    };
-    for (i, line) in note.iter().enumerate() {
-        area.draw(&Text::new(
-            line.clone(),
-            (w as i32 / 2, 200 + 24 * i as i32),
-            text_style(style::LEGEND + 2, HPos::Center, VPos::Top),
-        ))?;
-    }
-    Ok(())
-}
-
-/// The measured shifts' ±1σ bars (clipped to the axes) and the
-/// undetermined isotherms as hollow markers in their colour.
-fn draw_bars_and_undetermined<'a, DB>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
-    bars: &[(f64, f64, f64)],
-    undetermined: &[(f64, f64)],
-    colour: &dyn Fn(f64) -> RGBColor,
-) -> DrawResult
-where
-    DB: DrawingBackend + 'a,
-    DB::ErrorType: 'static,
-{
-    let (lo, hi) = (chart.y_range().start, chart.y_range().end);
-    for &(t, l, sigma) in bars {
-        chart.draw_series(std::iter::once(ErrorBar::new_vertical(
-            t,
-            (l - sigma).max(lo),
-            l,
-            (l + sigma).min(hi),
-            BLACK.stroke_width(1),
-            8,
-        )))?;
-    }
-    if !undetermined.is_empty() {
-        chart
-            .draw_series(undetermined.iter().map(|&(t, l)| {
-                EmptyElement::at((t, l))
-                    + Circle::new((0, 0), 5, WHITE.filled())
-                    + Circle::new((0, 0), 5, colour(t).stroke_width(2))
-            }))?
-            .label(UNDETERMINED_LABEL)
-            .legend(|(x, y)| {
-                EmptyElement::at((x + 10, y))
-                    + Circle::new((0, 0), 5, WHITE.filled())
-                    + Circle::new((0, 0), 5, style::MEASURED.stroke_width(2))
-            });
-    }
-    Ok(())
-}
-
-/// The legend of the hollow markers.
-const UNDETERMINED_LABEL: &str = "not determined (value applied)";
-
-impl DmaMasterFigure<'_> {
-    /// log10 a_T against T: the measured factors as markers in their
-    /// isotherm's colour, the fitted shift curve as a line.
-    fn draw_shift<DB>(
-        &self,
-        area: &DrawingArea<DB, Shift>,
-        colour: &dyn Fn(f64) -> RGBColor,
-    ) -> DrawResult
-    where
-        DB: DrawingBackend,
-        DB::ErrorType: 'static,
-    {
-        let shown: Vec<ShiftMarker> = self
-            .shifts
-            .iter()
-            .copied()
-            .filter(|s| s.temperature.is_finite() && s.log_shift.is_finite())
-            .collect();
-        let measured: Vec<(f64, f64)> = shown
-            .iter()
-            .filter(|s| s.determined)
-            .map(|s| (s.temperature, s.log_shift))
-            .collect();
-        let undetermined: Vec<(f64, f64)> = shown
-            .iter()
-            .filter(|s| !s.determined)
-            .map(|s| (s.temperature, s.log_shift))
-            .collect();
-        // Error bars, drawn only where they fit in the axes: a bar of
-        // decades on a well-measured isotherm would flatten the plot.
-        let bars: Vec<(f64, f64, f64)> = shown
-            .iter()
-            .filter(|s| s.determined && s.sigma.is_finite() && s.sigma > 0.0)
-            .map(|s| (s.temperature, s.log_shift, s.sigma))
-            .collect();
-        let curve = runs(
-            self.shift_curve
-                .iter()
-                .map(|&(t, l)| (t.is_finite() && l.is_finite()).then_some((t, l))),
-        );
-        let x_range = linear_range(
-            measured
-                .iter()
-                .chain(&undetermined)
-                .chain(curve.iter().flatten())
-                .map(|p| p.0)
-                .chain([self.t_ref]),
-            0.08,
-        );
-        let y_range = linear_range(
-            measured
-                .iter()
-                .chain(&undetermined)
-                .chain(curve.iter().flatten())
-                .map(|p| p.1)
-                .chain([0.0]),
-            0.08,
-        );
-        // Markers weigh more than samples of the line.
-        let samples: Vec<((f64, f64), usize)> = curve
-            .iter()
-            .flatten()
-            .map(|&p| (p, 1))
-            .chain(measured.iter().chain(&undetermined).map(|&p| (p, 10)))
-            .collect();
-        let box_size = legend_box(
-            plot_size(area.dim_in_pixel(), 60, 45, true),
-            2 + usize::from(!undetermined.is_empty()),
-            UNDETERMINED_LABEL.len(),
-        );
-        let legend = place_legend(&samples, &x_range, &y_range, box_size);
-        let mut chart = ChartBuilder::on(area)
-            .margin(12)
-            .caption("Shift factors a_T", ("sans-serif", style::CAPTION))
-            .x_label_area_size(45)
-            .y_label_area_size(60)
-            .build_cartesian_2d(x_range, legend.y)?;
-        draw_shift_mesh(&mut chart, Some(6))?;
-        for (i, run) in curve.iter().enumerate() {
-            let series = chart.draw_series(LineSeries::new(
-                run.iter().copied(),
-                style::WLF.stroke_width(2),
-            ))?;
-            if i == 0 {
-                series.label("fitted shift curve").legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], style::WLF.stroke_width(2))
-                });
-            }
-        }
-        draw_bars_and_undetermined(&mut chart, &bars, &undetermined, colour)?;
-        if !measured.is_empty() {
-            chart
-                .draw_series(measured.iter().map(|&(t, l)| {
-                    EmptyElement::at((t, l))
-                        + Circle::new((0, 0), 5, colour(t).filled())
-                        + Circle::new((0, 0), 5, BLACK.stroke_width(1))
-                }))?
-                .label("measured, ±1σ")
-                .legend(|(x, y)| {
-                    EmptyElement::at((x + 10, y))
-                        + Circle::new((0, 0), 5, style::MEASURED.filled())
-                        + Circle::new((0, 0), 5, BLACK.stroke_width(1))
-                });
-        }
-        draw_legend(&mut chart, legend.corner)?;
-        Ok(())
-    }
-
-    /// The key to the isotherm colours: a bar from the coldest to the
-    /// warmest temperature with a tick per isotherm, labelled at both ends
-    /// and at T_ref.
-    fn draw_colour_key<DB>(
-        &self,
-        area: &DrawingArea<DB, Shift>,
-        isotherms: &[f64],
-        colour: &dyn Fn(f64) -> RGBColor,
-    ) -> DrawResult
-    where
-        DB: DrawingBackend,
-        DB::ErrorType: 'static,
-    {
-        let (w, _) = area.dim_in_pixel();
-        let w = w as i32;
-        area.draw(&Text::new(
-            "Isotherm colours",
-            (w / 2, 30),
-            text_style(style::AXIS_DESCRIPTION, HPos::Center, VPos::Top),
-        ))?;
-        let (x0, x1, y0, y1) = (30, w - 30, 100, 122);
-        let label = text_style(style::LEGEND, HPos::Center, VPos::Top);
-        let (coldest, warmest) = match isotherms {
-            [] => return Ok(()),
-            [t] => {
-                // One isotherm: one swatch, no bar.
-                area.draw(&Rectangle::new(
-                    [(w / 2 - 30, y0), (w / 2 + 30, y1)],
-                    colour(*t).filled(),
-                ))?;
-                area.draw(&Text::new(
-                    format!("the one isotherm, {}", celsius(*t)),
-                    (w / 2, y1 + 12),
-                    label,
-                ))?;
-                return Ok(());
-            }
-            [first, .., last] => (*first, *last),
-        };
-        let at = |t: f64| {
-            let f = ((t - coldest) / (warmest - coldest)).clamp(0.0, 1.0);
-            x0 + (f * f64::from(x1 - x0)).round() as i32
-        };
-        for i in 0..KEY_SLICES {
-            let f = f64::from(i) / f64::from(KEY_SLICES);
-            let a = x0 + (f * f64::from(x1 - x0)).floor() as i32;
-            let b = x0
-                + ((f64::from(i + 1) / f64::from(KEY_SLICES)) * f64::from(x1 - x0)).ceil() as i32;
-            area.draw(&Rectangle::new(
-                [(a, y0), (b, y1)],
-                style::cold_to_warm(f + 0.5 / f64::from(KEY_SLICES)).filled(),
-            ))?;
-        }
-        area.draw(&Rectangle::new([(x0, y0), (x1, y1)], BLACK.stroke_width(1)))?;
-        for &t in isotherms {
-            let x = at(t);
-            area.draw(&PathElement::new(
-                vec![(x, y1), (x, y1 + 6)],
-                BLACK.stroke_width(1),
-            ))?;
-        }
-        area.draw(&Text::new(
-            format!("{} (coldest)", celsius(coldest)),
-            (x0, y0 - 6),
-            text_style(style::LEGEND, HPos::Left, VPos::Bottom),
-        ))?;
-        area.draw(&Text::new(
-            format!("{} (warmest)", celsius(warmest)),
-            (x1, y0 - 6),
-            text_style(style::LEGEND, HPos::Right, VPos::Bottom),
-        ))?;
-        // T_ref below the bar, with a longer tick, kept inside the panel
-        // when it lies outside the measured range.
-        let x = at(self.t_ref);
-        area.draw(&PathElement::new(
-            vec![(x, y0 - 2), (x, y1 + 14)],
-            BLACK.stroke_width(2),
-        ))?;
-        let h = if x < x0 + 60 {
-            HPos::Left
-        } else if x > x1 - 60 {
-            HPos::Right
-        } else {
-            HPos::Center
-        };
-        area.draw(&Text::new(
-            format!("T_ref = {}", celsius(self.t_ref)),
-            (x, y1 + 18),
-            text_style(style::LEGEND, h, VPos::Top),
-        ))?;
-        area.draw(&Text::new(
-            format!("{} isotherms, one tick each", isotherms.len()),
-            (w / 2, y1 + 48),
-            text_style(style::TICK_LABEL, HPos::Center, VPos::Top),
-        ))?;
-        Ok(())
     }
 }

@@ -15,7 +15,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::dma_master::{DmaMasterFigure, MasterCurveFit, ShiftMarker, ShiftedPoint, celsius};
+use super::dma_master::{DmaMasterFigure, MasterCurveFit, ShiftMarker, ShiftedPoint};
+use super::isotherm_key::celsius;
 use super::parts::isotherms;
 use super::{DrawResult, Figure};
 use rollfit_fit::JointRecord;
@@ -134,7 +135,9 @@ impl JointMasterFigure {
             t_ref: self.t_ref,
             shifts: &self.shifts,
             shift_curve: &self.shift_curve,
+            shift_law: &[],
             modulus_symbol: "E",
+            verdict: None,
         }
     }
 }

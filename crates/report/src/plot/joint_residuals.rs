@@ -21,8 +21,8 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use super::axes::{LogAxis, lg, linear_range, log_axis, log_range};
-use super::dma_master::{celsius, isotherm_colour};
 use super::friction::temperature_label;
+use super::isotherm_key::{celsius, isotherm_colour};
 use super::parts::{
     ColouredPoint, dashed_key, draw_storage_loss, isotherms, legend_box, place_legend, plot_size,
 };

@@ -22,6 +22,8 @@ pub const WINDOW: RGBColor = RGBColor(255, 236, 179);
 pub const UNDETERMINED: RGBColor = RGBColor(150, 150, 150);
 /// The WLF curve of a temperature set.
 pub const WLF: RGBColor = RGBColor(31, 119, 180);
+/// A verdict that is not "good", in a picture's title.
+pub const VERDICT: RGBColor = RGBColor(180, 20, 20);
 
 /// One colour per temperature or per method: a qualitative palette
 /// (Tableau 10) whose neighbours are easy to tell apart.

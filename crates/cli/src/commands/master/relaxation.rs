@@ -14,10 +14,12 @@
 //!   data's reduced times (omega, E_storage, E_loss, tan_delta);
 //! - material.toml: as for frequency sweeps;
 //! - master.json: `domain` = "time", `time_range`, `omega_range`, the shift
-//!   keys of a frequency master.json, `prony` with `misfit_relaxation`.
+//!   keys of a frequency master.json, `prony` with `misfit_relaxation`;
+//! - master.png and master.svg: E(t/a_T) of the isotherms with the series,
+//!   each point's misfit and the shift factors (`super::pictures`).
 //!
-//! No picture yet, and no Kramers–Kronig floor (E(t) has no second
-//! component to check against).
+//! No Kramers–Kronig floor (E(t) has no second component to check
+//! against), and no van Gurp–Palmen plot (no phase angle).
 
 use anyhow::{Context, Result};
 use rollfit_fit::master::quality::MasterQuality;
@@ -111,6 +113,7 @@ fn encode(
     let mut json = serde_json::to_vec_pretty(&Summary::of(built, poisson, quality))
         .context("cannot format master.json")?;
     json.push(b'\n');
+    let picture = super::pictures::relaxation(built, &grid, poisson, quality)?;
     Ok(vec![
         ("master.csv", master_csv),
         ("shift.csv", shift_csv(&master.shift)?),
@@ -118,7 +121,10 @@ fn encode(
         (MODULUS_CSV, modulus_csv),
         ("material.toml", material_file::encode_relaxation(built)?),
         ("master.json", json),
-    ])
+    ]
+    .into_iter()
+    .chain(picture)
+    .collect())
 }
 
 /// master.json of a relaxation file.
