@@ -191,14 +191,19 @@ fn three_entries_write_three_folders_and_a_summary() {
 
     // The lock file stays: removing it while another batch may be opening
     // it would let two batches lock two different files.
-    let mut expected = vec![".rollfit-batch.lock".to_string(), "summary.csv".to_string()];
+    // And the folder's record of its files.
+    let mut expected = vec![
+        ".rollfit-batch.lock".to_string(),
+        ".rollfit-files.json".to_string(),
+        "summary.csv".to_string(),
+    ];
     expected.extend(NAMES.iter().map(|n| n.to_string()));
     expected.sort();
     assert_eq!(files(&out), expected);
     for name in NAMES {
         assert_eq!(
             files(&out.join(name)),
-            ["fit.json", "modulus.csv", "mu.csv"],
+            [".rollfit-files.json", "fit.json", "modulus.csv", "mu.csv"],
             "{name}"
         );
         // The defaults reached the fit.
@@ -537,7 +542,7 @@ fn a_poor_entry_fails_the_batch_unless_allowed() {
     // The results are written all the same.
     assert_eq!(
         files(&out.join("fifteen")),
-        ["fit.json", "modulus.csv", "mu.csv"]
+        [".rollfit-files.json", "fit.json", "modulus.csv", "mu.csv"]
     );
     let report = json(&out.join("fifteen").join("fit.json"));
     assert_eq!(report["fit_quality"]["verdict"], "poor");
@@ -1120,4 +1125,73 @@ fn physics_is_a_setting_of_defaults_and_entries() {
         Some("exact_correction")
     );
     assert!(!header("approximate").contains(&"exact_correction".to_string()));
+}
+
+/// An entry whose inputs changed since its result was written is refitted,
+/// the message saying which input changed; unchanged entries are kept.
+#[test]
+fn an_entry_whose_inputs_changed_is_refitted_saying_which() {
+    let dir = bundled("changed");
+    let manifest = dir.write("changed.toml", &format!("{DEFAULTS}{THREE}"));
+    let out = dir.path().join("results");
+    batch_ok(&manifest, &out, &[]);
+    // seed1 now names another data file; seed3's data are rewritten.
+    let edited = edit(
+        &format!("{DEFAULTS}{THREE}"),
+        "data = \"hn-rubber.csv\"",
+        "data = \"hn-rubber-seed2.csv\"",
+    );
+    fs::write(&manifest, edited).unwrap();
+    let seed3 = dir.path().join("hn-rubber-seed3.csv");
+    fs::write(&seed3, fs::read(&seed3).unwrap()).unwrap();
+    batch_ok(&manifest, &out, &[]);
+    let rows = summary(&out.join("summary.csv"));
+    assert_eq!(statuses(&rows), ["ok", "skipped", "ok"]);
+    let message = rows[0].get("message");
+    assert!(
+        message.contains("refitted: the existing result no longer answers the entry (data was ")
+            && message.contains("hn-rubber.csv, is now ")
+            && message.contains("hn-rubber-seed2.csv"),
+        "{message}"
+    );
+    assert!(
+        rows[2]
+            .get("message")
+            .contains("hn-rubber-seed3.csv was modified after the result was written"),
+        "{}",
+        rows[2].get("message")
+    );
+    // seed1's result is now the one of its new data.
+    assert_eq!(rows[0].get("objective"), rows[1].get("objective"));
+    batch_ok(&manifest, &out, &[]);
+    let rows = summary(&out.join("summary.csv"));
+    assert_eq!(statuses(&rows), ["skipped", "skipped", "skipped"]);
+}
+
+/// A joint fit's key in an entry without DMA data names the manifest, the
+/// entry and the key's line, not the command line.
+#[test]
+fn a_joint_key_without_dma_names_the_manifest_entry_and_line() {
+    let dir = bundled("joint-key");
+    for (key, value) in [("friction_factor", "\"free\""), ("dma_sigma", "0.02")] {
+        let manifest = dir.write(
+            "joint.toml",
+            &format!(
+                "{DEFAULTS}\n[[entry]]\nname = \"seed1\"\nscene = \"hn-rubber.toml\"\n\
+                 data = \"hn-rubber.csv\"\n{key} = {value}\n"
+            ),
+        );
+        let out = dir.path().join("results");
+        let output = batch(&manifest, &out, &[]);
+        let rows = summary(&out.join("summary.csv"));
+        assert!(!output.status.success());
+        let message = rows[0].get("message");
+        assert!(
+            message.contains(&format!(
+                "joint.toml: entry \"seed1\" (1 of 1, line 5), line 9: `{key}`"
+            )) && !message.contains("command line"),
+            "{message}"
+        );
+        fs::remove_dir_all(&out).unwrap();
+    }
 }

@@ -211,13 +211,17 @@ fn fits_a_synthetic_measurement_with_a_static_modulus_anchor() {
     let rms = (sum / mu.rows.len() as f64).sqrt();
     assert!(rms < 0.02, "rms relative misfit {rms}");
 
-    // Nothing but the three results in the folder (no temporary files).
+    // Nothing but the three results and the folder's record of them (no
+    // temporary files).
     let mut names: Vec<_> = fs::read_dir(&out)
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())
         .collect();
     names.sort();
-    assert_eq!(names, ["fit.json", "modulus.csv", "mu.csv"]);
+    assert_eq!(
+        names,
+        [".rollfit-files.json", "fit.json", "modulus.csv", "mu.csv"]
+    );
 }
 
 /// The bundled measurement as a European spreadsheet exports it (a title

@@ -6,9 +6,15 @@
 //! seeded sequence of structured edits (numbers replaced by extreme or
 //! malformed values, lines deleted, duplicated, swapped or inserted,
 //! delimiters changed, the file cut short, bytes flipped). Issue 36 adds
-//! inputs that are no ordinary file (a link to /dev/zero, a FIFO, a sparse
-//! 2 GiB file) and workbooks of the data and DMA files with cells made
-//! Excel errors, formulas without a saved result, text or empty.
+//! inputs that are no ordinary file (a link to /dev/zero, a sparse 2 GiB
+//! file) and workbooks of the data and DMA files with cells made Excel
+//! errors, formulas without a saved result, text or empty. Issue 47 adds
+//! mutated scenes and data given through a pipe or the standard input,
+//! and output folders shared between commands (a fit's or a master's
+//! folder, holding a user's photo and, at times, a spoilt record, written
+//! again by fit, master, batch, report or compare, with or without
+//! `--force`): the photo is never touched, and another command's folder is
+//! refused without `--force`.
 //!
 //! Every case must keep the promises of docs/ARCHITECTURE.md, "Contract",
 //! and issue 14:
@@ -79,9 +85,15 @@ enum Kind {
     DmaSemicolon,
     /// A temperature ramp through `master` (issue 36).
     DmaRamp,
-    /// Data or DMA file without a size (issue 36): a link to /dev/zero, a
-    /// FIFO, a sparse 2 GiB file; refused before it is read.
+    /// Data or DMA file without a size (issue 36): a link to /dev/zero or
+    /// a sparse 2 GiB file; refused before it is read.
     Unsized,
+    /// A mutated scene or data file through a pipe (a FIFO with a writer)
+    /// or the standard input (`-`), through `fit` (issue 47).
+    Piped,
+    /// A fit's or a master's folder holding a user's photo, written again
+    /// by another or the same command (issue 47).
+    SharedFolder,
     /// A workbook of the measured data (through `fit`) or of the DMA file
     /// (through `compare`) with some cells made Excel errors, formulas
     /// without a saved result, text or empty (issue 36).
@@ -90,11 +102,13 @@ enum Kind {
 
 /// How many of every 100 cases are of each kind: the fits are the slow
 /// ones.
-const MIX: [(Kind, usize); 12] = [
-    (Kind::SceneForward, 17),
+const MIX: [(Kind, usize); 14] = [
+    (Kind::SceneForward, 14),
     (Kind::Unsized, 3),
+    (Kind::Piped, 3),
+    (Kind::SharedFolder, 3),
     (Kind::SceneFit, 7),
-    (Kind::Data, 16),
+    (Kind::Data, 13),
     (Kind::Manifest, 4),
     (Kind::DmaCsv, 10),
     (Kind::Trios, 12),
@@ -337,13 +351,29 @@ struct Run {
 
 /// Runs rollfit with `args` in `dir`, killing it after a minute.
 fn run(dir: &Path, args: &[&str]) -> Run {
+    run_fed(dir, args, None)
+}
+
+/// [`run`] with `stdin` written to the standard input (else none).
+fn run_fed(dir: &Path, args: &[&str], stdin: Option<Vec<u8>>) -> Run {
     let mut child = Command::new(env!("CARGO_BIN_EXE_rollfit"))
         .args(args)
         .current_dir(dir)
+        .stdin(if stdin.is_some() {
+            Stdio::piped()
+        } else {
+            Stdio::null()
+        })
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .expect("cannot start the rollfit binary");
+    if let (Some(bytes), Some(mut pipe)) = (stdin, child.stdin.take()) {
+        // A run that stops reading early closes the pipe: not our concern.
+        std::thread::spawn(move || {
+            let _ = std::io::Write::write_all(&mut pipe, &bytes);
+        });
+    }
     let stderr = child.stderr.take().unwrap();
     let reader = std::thread::spawn(move || {
         let mut text = Vec::new();
@@ -454,6 +484,8 @@ fn fixtures(root: &Path) {
     assert_eq!(forward.code, Some(0), "{}", forward.stderr);
     let fit = run(root, &["fit", "scene.toml", "data.csv", "-o", "base"]);
     assert_eq!(fit.code, Some(0), "{}", fit.stderr);
+    let master = run(root, &["master", "dma.csv", "-o", "master-base"]);
+    assert_eq!(master.code, Some(0), "{}", master.stderr);
 }
 
 /// The CSV file `csv` as a one-sheet workbook (comment lines dropped),
@@ -507,7 +539,79 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
     };
     // The previous result an output must keep on a failure.
     let with_base = |dir: &Path| copy_tree(&root.join("base"), &dir.join("out"));
+    // What a piped case feeds, and a shared folder's expectations.
+    let mut stdin = None;
+    let mut feeder = None;
+    let mut refusal_expected = false;
     let (args, output, input): (Vec<&str>, &str, &str) = match kind {
+        Kind::Piped => {
+            let name = ["scene.toml", "data.csv"][rng.random_range(0..2)];
+            mutated(name, &mut rng);
+            with_base(&dir);
+            let bytes = fs::read(dir.join(name)).unwrap();
+            let pipe = if name == "data.csv" {
+                "pipe.csv"
+            } else {
+                "pipe.toml"
+            };
+            let made = rng.random_bool(0.5)
+                && Command::new("mkfifo")
+                    .arg(dir.join(pipe))
+                    .status()
+                    .is_ok_and(|s| s.success());
+            let given = if made {
+                feeder = Some(
+                    Command::new("sh")
+                        .arg("-c")
+                        .arg("cat \"$0\" > \"$1\"")
+                        .arg(dir.join(name))
+                        .arg(dir.join(pipe))
+                        .spawn()
+                        .unwrap(),
+                );
+                pipe
+            } else {
+                stdin = Some(bytes);
+                "-"
+            };
+            let args = if name == "data.csv" {
+                vec!["fit", "scene.toml", given, "-o", "out"]
+            } else {
+                vec!["fit", given, "data.csv", "-o", "out"]
+            };
+            (args, "out", if made { pipe } else { "file -" })
+        }
+        Kind::SharedFolder => {
+            let first_fit = rng.random_bool(0.5);
+            let first = if first_fit { "base" } else { "master-base" };
+            copy_tree(&root.join(first), &dir.join("out"));
+            fs::write(dir.join("out/photo.png"), b"the user's photo").unwrap();
+            let record = dir.join("out/.rollfit-files.json");
+            let spoilt = rng.random_range(0..4) == 0;
+            if spoilt {
+                let original = fs::read(&record).unwrap();
+                fs::write(&record, mutate(&original, &mut rng)).unwrap();
+            }
+            let force = rng.random_bool(0.3);
+            let (mut args, fit_writer, master_writer) = match rng.random_range(0..5) {
+                0 => (
+                    vec!["fit", "scene.toml", "data.csv", "-o", "out"],
+                    true,
+                    false,
+                ),
+                1 => (vec!["master", "dma.csv", "-o", "out"], false, true),
+                2 => (vec!["batch", "manifest.toml", "-o", "out"], false, false),
+                3 => (vec!["report", "out"], true, false),
+                _ => (vec!["compare", "out", "dma.csv"], true, false),
+            };
+            let writes_folder = args[0] != "report" && args[0] != "compare";
+            if force && writes_folder {
+                args.push("--force");
+            }
+            let same = if first_fit { fit_writer } else { master_writer };
+            refusal_expected = !(spoilt || same || (force && writes_folder));
+            (args, "out", ".rollfit-files.json")
+        }
         Kind::SceneForward => {
             mutated("scene.toml", &mut rng);
             fs::write(dir.join("out.csv"), b"previous output\n").unwrap();
@@ -581,15 +685,8 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
             let name = ["data.csv", "dma.csv"][rng.random_range(0..2)];
             let path = dir.join(name);
             fs::remove_file(&path).unwrap();
-            let fifo = || {
-                Command::new("mkfifo")
-                    .arg(&path)
-                    .status()
-                    .is_ok_and(|s| s.success())
-            };
-            match rng.random_range(0..3) {
+            match rng.random_range(0..2) {
                 0 => std::os::unix::fs::symlink("/dev/zero", &path).unwrap(),
-                1 if fifo() => {}
                 _ => fs::File::create(&path).unwrap().set_len(2 << 30).unwrap(),
             }
             let args = if name == "data.csv" {
@@ -614,9 +711,23 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
         }
     };
     let before = snapshot(&dir.join(output));
-    let result = run(&dir, &args);
+    let result = run_fed(&dir, &args, stdin);
+    if let Some(mut feeder) = feeder {
+        let _ = feeder.kill();
+        let _ = feeder.wait();
+    }
     let mut problems = Vec::new();
-    let what = format!("case {index} ({kind:?}, {input} mutated)");
+    let what = format!("case {index} ({kind:?}, {input} mutated, {args:?})");
+    if kind == Kind::SharedFolder {
+        if fs::read(dir.join("out/photo.png")).ok().as_deref() != Some(b"the user's photo") {
+            problems.push(format!("{what}: the user's photo was touched"));
+        }
+        if refusal_expected && result.code == Some(0) {
+            problems.push(format!(
+                "{what}: another command's folder was written without --force"
+            ));
+        }
+    }
     if result.timed_out {
         problems.push(format!("{what}: still running after 60 s"));
     }

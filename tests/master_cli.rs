@@ -819,3 +819,38 @@ fn flat_isotherms_are_refused() {
         ],
     );
 }
+
+/// Temperatures in merged cells (only an isotherm's first row holds its
+/// T): the other rows are skipped, and the refusal that follows is printed
+/// after the warning naming the skipped rows, which explains it.
+#[test]
+fn a_refusal_prints_the_skipped_rows_that_explain_it() {
+    use workbook::X::{self, E, N};
+    let tmp = TempDir::new("merged");
+    let mut rows: Vec<Vec<X>> = vec![
+        workbook::texts(&["T", "f", "E'", "E''"]),
+        workbook::texts(&["[°C]", "[Hz]", "[MPa]", "[MPa]"]),
+    ];
+    let mut last = None;
+    for &[t, f, s, l] in &eplexor_points() {
+        let cell = if last == Some(t) { E } else { N(t) };
+        last = Some(t);
+        rows.push(vec![cell, N(f), N(s), N(l)]);
+    }
+    let xlsx = tmp.path().join("merged.xlsx");
+    fs::write(&xlsx, workbook::xlsx(&[("Data", rows)])).unwrap();
+    let out = master(&xlsx, &tmp.path().join("out"), &[]);
+    let stderr = assert_failure(
+        &out,
+        &[
+            "warning: ",
+            "merged.xlsx: skipped sheet \"Data\", rows 4, 5",
+            "do not overlap",
+        ],
+    );
+    assert!(
+        stderr.find("skipped sheet") < stderr.find("error: "),
+        "{stderr}"
+    );
+    assert!(!tmp.path().join("out").exists());
+}

@@ -284,7 +284,10 @@ fn a_batch_checks_its_folder_first_and_cleans_up_after_killed_runs() {
             .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
             .collect();
         names.sort();
-        assert_eq!(names, ["fit.json", "modulus.csv", "mu.csv"]);
+        assert_eq!(
+            names,
+            [".rollfit-files.json", "fit.json", "modulus.csv", "mu.csv"]
+        );
     }
 }
 

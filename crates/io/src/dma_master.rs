@@ -40,6 +40,20 @@ pub fn build(
     sheet: Option<&str>,
     settings: &MasterSettings,
 ) -> Result<DmaMaster, IoError> {
+    build_told(path, poisson, kind, sheet, settings, |_| {})
+}
+
+/// [`build`], telling `on_read` the file as read (its notes and warnings:
+/// rows skipped, units converted) before the master curve is fitted, so
+/// that a refusal of the fit can be read next to the rows that explain it.
+pub fn build_told(
+    path: &Path,
+    poisson: f64,
+    kind: Option<ModulusKind>,
+    sheet: Option<&str>,
+    settings: &MasterSettings,
+    on_read: impl FnOnce(&DmaData),
+) -> Result<DmaMaster, IoError> {
     // No temperatures: the file is one curve, taken at T_ref.
     let untimed = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
     let DmaIsotherms {
@@ -47,6 +61,7 @@ pub fn build(
         isotherms,
         indices,
     } = read_isotherms(path, poisson, kind, sheet, Some(untimed))?;
+    on_read(&data);
     let ranges = match data.points.iter().any(|p| p.temperature.is_some()) {
         true => indices.iter().map(|i| range(&data.points, i)).collect(),
         false => Vec::new(),

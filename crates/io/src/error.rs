@@ -15,6 +15,7 @@ use thiserror::Error;
 mod boxed;
 pub(crate) mod data;
 mod fault;
+mod folder;
 mod input;
 pub(crate) mod manifest;
 pub(crate) mod master;
@@ -28,6 +29,7 @@ mod trios;
 pub use boxed::{DmaUnknownUnit, DuplicateQuantity, UnknownUnit};
 pub use data::{CellRef, ColumnName, DataError, RowRef, RowsRef, column_letter};
 pub use fault::Fault;
+pub use folder::FolderError;
 pub use input::InputError;
 pub use manifest::{EntryProblem, EntryRef, ManifestError, TomlPlace};
 pub use master::{DmaMasterError, TurnPoint};
@@ -646,18 +648,9 @@ pub enum IoError {
         dir.display()
     )]
     OutputNotFolder { dir: PathBuf },
-    /// An output folder holding a folder rollfit did not write.
-    #[error(
-        "output {} holds the folder {name}, which rollfit did not write; give an empty folder or \
-         a previous fit's",
-        dir.display()
-    )]
-    ForeignFolder {
-        /// The output folder.
-        dir: PathBuf,
-        /// The sub-folder's name.
-        name: String,
-    },
+    /// An output folder another run may not replace: see [`FolderError`].
+    #[error(transparent)]
+    Folder(#[from] FolderError),
     /// A result folder could not be filled or swapped in.
     #[error("cannot write the results to {}", dir.display())]
     WriteResults {

@@ -3,12 +3,16 @@
 //!
 //! Every reader parses a file held in memory, so a file without end
 //! (/dev/zero) or a huge one would grow the process until the machine
-//! fails, and a FIFO would block forever when opened. So the file is first
-//! looked at (`std::fs::metadata`, which follows a symbolic link to what
-//! it names): anything but a regular file is refused unopened, as is a
-//! file above the limit. The read itself stops one byte past the limit,
-//! so that a file that grows while it is read, or states a size it does
-//! not hold (/proc), is refused too instead of read on.
+//! fails. So the file is first looked at (`std::fs::metadata`, which
+//! follows a symbolic link to what it names): a regular file above the
+//! limit is refused unopened, as is anything but a regular file or a pipe
+//! (devices, sockets, folders). A pipe — `rollfit fit <(make-scene)
+//! data.csv`, a named pipe, or `-` for the standard input — is read as it
+//! comes; it cannot state its size, so the read, like every read, stops
+//! one byte past the limit: a pipe, a file that grows while it is read,
+//! or one that states a size it does not hold (/proc) is refused there
+//! instead of read on. A pipe can be read once; its bytes are kept for a
+//! second read of the same name within the run.
 //!
 //! The limit is [`DEFAULT_LIMIT`] (1 GiB, far above any measurement or DMA
 //! export seen: a 60-isotherm DMA CSV is 3.5 MB), or what the variable
@@ -17,8 +21,9 @@
 //! for one run (docs/ARCHITECTURE.md, "Contract", "Input files").
 
 use std::fs::FileType as SystemFileType;
-use std::io::Read;
-use std::path::Path;
+use std::io::{IsTerminal, Read};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 use crate::error::{InputError, IoError};
 
@@ -36,6 +41,8 @@ pub enum FileType {
     CharacterDevice,
     BlockDevice,
     Socket,
+    /// The standard input when it is a terminal or a device.
+    Terminal,
     /// Anything else the system knows that is no regular file.
     Other,
 }
@@ -62,6 +69,10 @@ impl FileType {
             FileType::CharacterDevice => sizeless!("a character device (such as /dev/zero)"),
             FileType::BlockDevice => sizeless!("a block device"),
             FileType::Socket => sizeless!("a socket"),
+            FileType::Terminal => {
+                "is a terminal or a device; `-` reads a file or a command's output piped into \
+                 rollfit (`rollfit fit - data.csv < scene.toml`)"
+            }
             FileType::Other => sizeless!("something else"),
         }
     }
@@ -94,6 +105,10 @@ impl FileType {
     }
 }
 
+/// The command-line name of the standard input: `-` reads the input
+/// piped into rollfit.
+pub const STANDARD_INPUT: &str = "-";
+
 /// The bytes of the input file at `path`, a `kind` of file ("data file",
 /// "DMA file"), read whole within the size limit (the module doc).
 /// `unreadable` makes the system's error (no such file, no permission)
@@ -114,16 +129,39 @@ pub fn read_input(
         size,
         limit,
     };
-    // Looked at before opening: opening a FIFO for reading blocks until a
-    // writer comes.
+    let not_regular = |found| InputError::NotRegular {
+        kind,
+        path: path.to_path_buf(),
+        found,
+    };
+    if path.as_os_str() == STANDARD_INPUT {
+        return streamed(path, || {
+            let stdin = std::io::stdin();
+            let metadata = standard_input_metadata().map_err(&unreadable)?;
+            match FileType::of(metadata.file_type()) {
+                None if metadata.len() > limit => Err(too_large(Some(metadata.len())).into()),
+                None | Some(FileType::Fifo) if !stdin.is_terminal() => {
+                    read_bounded(stdin.lock(), limit, &too_large, &unreadable, 0)
+                }
+                // A terminal would wait for typing; a device may never end.
+                _ => Err(not_regular(FileType::Terminal).into()),
+            }
+        });
+    }
+    // Looked at before opening: what is neither a file nor a pipe is
+    // refused unopened.
     let metadata = std::fs::metadata(path).map_err(&unreadable)?;
-    if let Some(found) = FileType::of(metadata.file_type()) {
-        return Err(InputError::NotRegular {
-            kind,
-            path: path.to_path_buf(),
-            found,
+    match FileType::of(metadata.file_type()) {
+        None => {}
+        // A pipe (`<(make-scene)`, a named pipe) is read as it comes, up to
+        // the limit; opening it waits for its writer.
+        Some(FileType::Fifo) => {
+            return streamed(path, || {
+                let file = std::fs::File::open(path).map_err(&unreadable)?;
+                read_bounded(file, limit, &too_large, &unreadable, 0)
+            });
         }
-        .into());
+        Some(found) => return Err(not_regular(found).into()),
     }
     if metadata.len() > limit {
         return Err(too_large(Some(metadata.len())).into());
@@ -131,14 +169,69 @@ pub fn read_input(
     let file = std::fs::File::open(path).map_err(&unreadable)?;
     // The stated size reserves the memory once; a wrong one costs only
     // the growth of the vector.
-    let mut bytes = Vec::with_capacity(usize::try_from(metadata.len()).unwrap_or(0));
-    file.take(limit.saturating_add(1))
+    let capacity = usize::try_from(metadata.len()).unwrap_or(0);
+    read_bounded(file, limit, &too_large, &unreadable, capacity)
+}
+
+/// At most `limit` bytes of `source`: one byte more is refused as too
+/// large (a file that grows while read, or states a size it does not
+/// hold).
+fn read_bounded(
+    source: impl Read,
+    limit: u64,
+    too_large: &dyn Fn(Option<u64>) -> InputError,
+    unreadable: &dyn Fn(std::io::Error) -> IoError,
+    capacity: usize,
+) -> Result<Vec<u8>, IoError> {
+    let mut bytes = Vec::with_capacity(capacity);
+    source
+        .take(limit.saturating_add(1))
         .read_to_end(&mut bytes)
-        .map_err(&unreadable)?;
+        .map_err(unreadable)?;
     if bytes.len() as u64 > limit {
         return Err(too_large(None).into());
     }
     Ok(bytes)
+}
+
+/// The pipes read so far, by the name they were given: a pipe can be read
+/// once, and a command may read an input twice (to tell a relaxation file
+/// from frequency sweeps, then to read it), so the second read gets the
+/// bytes of the first.
+static STREAMED: Mutex<Vec<(PathBuf, Arc<Vec<u8>>)>> = Mutex::new(Vec::new());
+
+/// The bytes of the pipe `path`: read by `read` the first time, kept for
+/// every later read.
+fn streamed(
+    path: &Path,
+    read: impl FnOnce() -> Result<Vec<u8>, IoError>,
+) -> Result<Vec<u8>, IoError> {
+    let mut kept = STREAMED
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    if let Some((_, bytes)) = kept.iter().find(|(p, _)| p == path) {
+        return Ok(bytes.as_ref().clone());
+    }
+    let bytes = read()?;
+    kept.push((path.to_path_buf(), Arc::new(bytes.clone())));
+    Ok(bytes)
+}
+
+/// What the standard input is (a pipe, a file, a terminal, a device).
+fn standard_input_metadata() -> std::io::Result<std::fs::Metadata> {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        let fd = std::io::stdin().as_fd().try_clone_to_owned()?;
+        std::fs::File::from(fd).metadata()
+    }
+    #[cfg(not(unix))]
+    {
+        Err(std::io::Error::new(
+            std::io::ErrorKind::Unsupported,
+            "standard input as a file is read on Unix only",
+        ))
+    }
 }
 
 /// The size limit of an input file: [`LIMIT_VARIABLE`] if set, else

@@ -92,6 +92,21 @@ pub struct Entry {
     pub dma: Option<PathBuf>,
     /// The entry's own settings (over the defaults and the flags).
     pub settings: FitSettings,
+    /// The entry as messages name it: `entry "a" (1 of 3, line 4)`.
+    pub place: EntryRef,
+    /// The line of each key written in the entry's table.
+    pub key_lines: Vec<(String, usize)>,
+}
+
+impl Entry {
+    /// Where the entry sets `key`: `entry "a" (1 of 3, line 4), line 7`
+    /// (without the second line when the key's cannot be found).
+    pub fn key_place(&self, key: &str) -> String {
+        match self.key_lines.iter().find(|(k, _)| k == key) {
+            Some((_, line)) => format!("{}, line {line}", self.place),
+            None => self.place.to_string(),
+        }
+    }
 }
 
 /// Reads and checks the manifest at `path`; every error names `path`.
@@ -219,6 +234,8 @@ fn check_entries(
                 sheet: raw_entry.sheet.take(),
                 dma,
                 settings: std::mem::take(&mut raw_entry.settings),
+                key_lines: key_lines(text, line),
+                place: who,
             });
         }
     }
@@ -263,6 +280,22 @@ fn describe(index: usize, total: usize, name: Option<&str>, line: usize) -> Entr
 }
 
 /// The 1-based line of byte `offset`.
+/// The `key = value` lines of the table whose header is on line `header`
+/// (from 1), up to the next header: (key, line).
+fn key_lines(text: &str, header: usize) -> Vec<(String, usize)> {
+    text.lines()
+        .enumerate()
+        .skip(header)
+        .map(|(i, l)| (i + 1, l.trim()))
+        .take_while(|(_, l)| !l.starts_with('['))
+        .filter_map(|(line, l)| {
+            let (key, _) = l.split_once('=')?;
+            let key = key.trim().trim_matches('"');
+            (!key.is_empty() && !key.starts_with('#')).then(|| (key.to_string(), line))
+        })
+        .collect()
+}
+
 fn line_of(text: &str, offset: usize) -> usize {
     let offset = offset.min(text.len());
     text.as_bytes()[..offset]

@@ -154,7 +154,7 @@ fn read_fit(result: &Bound<'_, PyAny>) -> PyResult<FitDir> {
     if let Ok(fit) = result.cast::<FitResult>() {
         let dir = scratch_folder();
         let files = fit.get().files.named();
-        output::replace_folder(&dir, &files).map_err(|e| io_error(&e))?;
+        output::replace_folder(&dir, output::Writer::Fit, false, &files).map_err(|e| io_error(&e))?;
         let read = FitDir::read(&dir);
         let _ = std::fs::remove_dir_all(&dir);
         return read.map_err(|e| io_error(&e));

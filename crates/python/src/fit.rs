@@ -494,8 +494,8 @@ impl FitResult {
     /// fit is written too (marked in fit.json); check `converged` and
     /// `to_dict()["fit_quality"]`.
     fn save(&self, dir: PathBuf) -> PyResult<()> {
-        output::check_replaceable(&dir).map_err(|e| io_error(&e))?;
-        output::replace_folder(&dir, &self.files.named()).map_err(|e| io_error(&e))
+        output::replace_folder(&dir, output::Writer::Fit, false, &self.files.named())
+            .map_err(|e| io_error(&e))
     }
 
     fn __repr__(&self) -> String {

@@ -36,8 +36,10 @@ use rollfit_io::fit_dir::columns::FIT_JSON;
 use rollfit_io::fit_dir::digest::Digest;
 use rollfit_io::{csv_text, output};
 
-use crate::commands::fit::{Job, Settings, fit_files};
+use crate::commands::fit::{Job, Settings, SettingsFrom, fit_files};
 use crate::progress;
+
+mod folder;
 use rollfit_io::manifest::{self, Entry};
 
 /// The lock file of a batch's output folder.
@@ -286,7 +288,14 @@ pub fn run(args: &Args) -> Result<()> {
             dir.display()
         );
     }
-    let _locks = lock_and_clean(&dir, args.shard, &manifest.entries)?;
+    // Another command's folder is refused before the lock is made in it.
+    output::check_replaceable(&dir, output::Writer::Batch, args.force)?;
+    let _locks = folder::lock_and_clean(&dir, args.shard, &manifest.entries)?;
+    // The folder's record names the summary and every entry's folder as
+    // the batch's, so that another command leaves them alone and a rerun
+    // resumes.
+    let names = folder::recorded_names(&manifest.entries, args.shard);
+    output::claim_folder(&dir, output::Writer::Batch, args.force, &names)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.jobs.unwrap_or(0))
         .thread_name(|i| format!("rollfit-batch-{i}"))
@@ -318,7 +327,12 @@ pub fn run(args: &Args) -> Result<()> {
             .with_max_len(1)
             .map(|entry| {
                 let settings = entry.settings.over(&flags.over(&manifest.defaults));
-                let result = run_entry(entry, &dir, &settings, args.force);
+                let from = SettingsFrom::Manifest {
+                    path: &args.manifest,
+                    entry,
+                    flags: &flags,
+                };
+                let result = run_entry(entry, &dir, &settings, args.force, from);
                 progress.finished(&result);
                 result
             })
@@ -344,35 +358,6 @@ pub fn run(args: &Args) -> Result<()> {
     );
 
     verdict(args, &results, &summary)
-}
-
-/// Takes DIR's lock and removes what killed runs left. Two batches writing
-/// one folder would mix their results: a whole batch holds the folder's
-/// lock alone, the shards of one share it and each holds its own. Taking it
-/// also proves the folder writable before the first fit.
-fn lock_and_clean(
-    dir: &Path,
-    shard: Option<Shard>,
-    entries: &[Entry],
-) -> Result<Vec<output::FolderLock>> {
-    let locks = match shard {
-        None => vec![output::FolderLock::take(dir, BATCH_LOCK, true)?],
-        Some(s) => vec![
-            output::FolderLock::take(dir, BATCH_LOCK, false)?,
-            output::FolderLock::take(
-                dir,
-                &format!(".rollfit-batch-{}-of-{}.lock", s.index, s.count),
-                true,
-            )?,
-        ],
-    };
-    // What killed runs left: staging folders beside the entries, and
-    // temporary files inside them.
-    output::remove_stale(dir);
-    for entry in entries {
-        output::remove_stale(&dir.join(&entry.name));
-    }
-    Ok(locks)
 }
 
 /// The batch's exit: warnings for what the flags accept, an error listing
@@ -457,15 +442,29 @@ fn verdict(args: &Args, results: &[EntryResult], summary: &Path) -> Result<()> {
 /// Runs (or skips) one entry; every error and panic becomes a failed row.
 /// The row's numbers are read back from the fit.json on disk, so that the
 /// summary describes the files it points to.
-fn run_entry(entry: &Entry, dir: &Path, settings: &FitSettings, force: bool) -> EntryResult {
+fn run_entry(
+    entry: &Entry,
+    dir: &Path,
+    settings: &FitSettings,
+    force: bool,
+    settings_from: SettingsFrom<'_>,
+) -> EntryResult {
     let folder = dir.join(&entry.name);
+    let mut redo = Vec::new();
     if folder.join(FIT_JSON).is_file() && !force {
-        return from_disk(
-            entry,
-            &folder,
-            Status::Skipped,
-            vec!["existing result kept (--force refits)".into()],
-        );
+        let changed = folder::changed_inputs(entry, &folder);
+        if changed.is_empty() {
+            return from_disk(
+                entry,
+                &folder,
+                Status::Skipped,
+                vec!["existing result kept (--force refits)".into()],
+            );
+        }
+        redo.push(format!(
+            "note: refitted: the existing result no longer answers the entry ({})",
+            changed.join("; ")
+        ));
     }
     // A refit replaces the folder as a whole when it is written; until then,
     // and if it fails, the previous result stays as it was.
@@ -479,18 +478,20 @@ fn run_entry(entry: &Entry, dir: &Path, settings: &FitSettings, force: bool) -> 
         usage: "in the manifest, scene = \"SCENE.toml\" and data = \"DATA.csv\"",
         // The batch's own bar counts entries.
         progress: false,
+        force,
+        settings_from,
     };
     // The data file's notes and warnings (unit conversions, skipped rows),
     // which `rollfit fit` prints on stderr, go into the entry's message; the
     // log's other line ("fitting N point(s) …") is left out.
-    let data_notes = RefCell::new(Vec::new());
+    let data_notes = RefCell::new(redo);
     let outcome = panic::catch_unwind(AssertUnwindSafe(|| {
         let outcome = fit_files(&job, |line| {
             if line.starts_with("note: ") || line.starts_with("warning: ") {
                 data_notes.borrow_mut().push(line.to_string());
             }
         })?;
-        outcome.commit(&folder)?;
+        outcome.commit(&folder, force)?;
         Ok::<_, anyhow::Error>(outcome)
     }));
     let data_notes = data_notes.into_inner();

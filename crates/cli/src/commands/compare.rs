@@ -135,7 +135,7 @@ pub fn run(args: &Args) -> Result<()> {
     let mut json = serde_json::to_vec_pretty(&result).context("cannot format compare.json")?;
     json.push(b'\n');
     let target = args.dir.join("compare.json");
-    output::write_atomically(&target, &json)?;
+    output::add_files(&args.dir, output::Writer::Fit, &[("compare.json", &json)])?;
     for note in &result.notes {
         eprintln!("note: {note}");
     }
@@ -202,7 +202,7 @@ fn run_relaxation(args: &Args) -> Result<()> {
     let mut json = serde_json::to_vec_pretty(&c).context("cannot format compare.json")?;
     json.push(b'\n');
     let target = args.dir.join("compare.json");
-    output::write_atomically(&target, &json)?;
+    output::add_files(&args.dir, output::Writer::Fit, &[("compare.json", &json)])?;
     for note in &c.notes {
         eprintln!("note: {note}");
     }

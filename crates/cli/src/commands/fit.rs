@@ -34,6 +34,8 @@ use crate::{hints, progress};
 
 mod joint;
 
+pub use joint::SettingsFrom;
+
 /// Arguments of `rollfit fit`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -61,6 +63,10 @@ pub struct Args {
     pub output: Option<PathBuf>,
     #[command(flatten)]
     pub settings: Settings,
+    /// Replace an output folder another command wrote (`rollfit master`,
+    /// `rollfit batch`); files rollfit did not write there stay.
+    #[arg(long)]
+    pub force: bool,
     /// Exit with status 0 even when the final solver run did not converge.
     #[arg(long)]
     pub allow_unconverged: bool,
@@ -176,6 +182,8 @@ pub fn run(args: &Args) -> Result<()> {
         settings: &args.settings.fit_settings(),
         usage: USAGE,
         progress: true,
+        force: args.force,
+        settings_from: joint::SettingsFrom::CommandLine,
     };
     let outcome = fit_files(&job, |line| eprintln!("{line}"))?;
     let report = &outcome.report;
@@ -187,7 +195,7 @@ pub fn run(args: &Args) -> Result<()> {
         && (!report.converged || quality.is_good() || args.allow_poor_fit)
         && (undetermined.is_none() || args.allow_unanchored);
     if accepted {
-        outcome.commit(&dir)?;
+        outcome.commit(&dir, args.force)?;
     }
     eprint!("{}", summary(report, &dir, accepted));
     if let Some(t) = outcome.temperature {
@@ -282,6 +290,11 @@ pub struct Job<'a> {
     /// Whether an exact-physics fit shows a bar of its exact solves (on a
     /// terminal; a batch shows its own bar of entries instead).
     pub progress: bool,
+    /// Whether `dir` may hold another command's results, which the fit
+    /// then replaces (`--force`).
+    pub force: bool,
+    /// Where `settings` were given, for the message refusing one.
+    pub settings_from: joint::SettingsFrom<'a>,
 }
 
 /// The order of `rollfit fit`'s files, for the hint when they look
@@ -301,8 +314,13 @@ impl Outcome {
     /// Writes the result files, replacing the folder `dir` as a whole
     /// ([`output::replace_folder`]): a reader finds either the previous
     /// complete result or this one.
-    pub fn commit(&self, dir: &Path) -> Result<()> {
-        Ok(output::replace_folder(dir, &self.files.named())?)
+    pub fn commit(&self, dir: &Path, force: bool) -> Result<()> {
+        Ok(output::replace_folder(
+            dir,
+            output::Writer::Fit,
+            force,
+            &self.files.named(),
+        )?)
     }
 }
 
@@ -313,7 +331,7 @@ impl Outcome {
 /// skipped) and a line before the (possibly long) fit starts.
 pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     let (scene_path, data_path, dir) = (job.scene, job.data, job.dir);
-    output::check_replaceable(dir)?;
+    output::check_replaceable(dir, output::Writer::Fit, job.force)?;
 
     let file = hints::with_hint(scene_file::load(scene_path).map_err(Into::into), || {
         hints::for_scene(scene_path, data_path, job.usage)
@@ -342,7 +360,7 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         FitError::InvalidSetting { key, .. } => {
             anyhow!(
                 "{}: {e}",
-                joint::setting_origin(job.settings, key, scene_path)
+                joint::setting_origin(job.settings, job.settings_from, key, scene_path)
             )
         }
         _ => anyhow!("scene file {}: {e}", scene_path.display()),
@@ -382,7 +400,7 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         FitError::InvalidSetting { ref key, .. } if key != "dma" => {
             anyhow!(
                 "{}: {e}",
-                joint::setting_origin(job.settings, key, scene_path)
+                joint::setting_origin(job.settings, job.settings_from, key, scene_path)
             )
         }
         other => anyhow!(

@@ -154,6 +154,14 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(out) = &args.output {
         // Refuse an unusable output path before a possibly long computation.
         output::check_target(out)?;
+        // Never over a result folder's file (a fit's mu.csv).
+        for path in [
+            out.clone(),
+            out.with_extension("png"),
+            out.with_extension("svg"),
+        ] {
+            output::check_free_file(&path)?;
+        }
     }
     let file = scene_file::load(path)?;
     let setup = file

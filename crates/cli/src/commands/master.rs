@@ -96,6 +96,10 @@ pub struct Args {
     /// master.json's "quality" then says "poor", with the reasons.
     #[arg(long)]
     pub allow_poor_fit: bool,
+    /// Replace an output folder another command wrote (`rollfit fit`,
+    /// `rollfit batch`); files rollfit did not write there stay.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// `--poisson`: a number in the one range of Poisson's ratio
@@ -140,7 +144,7 @@ const CURVE_PER_DECADE: f64 = 20.0;
 
 /// Runs `rollfit master`.
 pub fn run(args: &Args) -> Result<()> {
-    output::check_replaceable(&args.output)?;
+    output::check_replaceable(&args.output, output::Writer::Master, args.force)?;
     let settings = MasterSettings {
         t_ref: args.t_ref,
         law: args.shift.law(),
@@ -153,22 +157,33 @@ pub fn run(args: &Args) -> Result<()> {
     let (poisson, whose) = poisson_source(args.poisson);
     let spinner = progress::spinner(format!("master curve of {}", args.dma.display()));
     let sheet = args.sheet.as_deref();
-    let built = dma_master::build(&args.dma, poisson, kind, sheet, &settings).map_err(Into::into);
+    // The file's notes and warnings come before the master curve's
+    // verdict, so that a refusal is read next to the rows that explain it
+    // (rows skipped for a temperature in a merged cell).
+    let on_read = |data: &rollfit_io::dma::DmaData| {
+        spinner.suspend(|| {
+            for note in &data.notes {
+                eprintln!("note: {}", note.replace("(the fit's)", whose));
+            }
+            for warning in &data.warnings {
+                eprintln!("warning: {}", warning.replace("(the fit's)", whose));
+            }
+        });
+    };
+    let built = dma_master::build_told(&args.dma, poisson, kind, sheet, &settings, on_read)
+        .map_err(Into::into);
     let hint = || hints::for_dma(&args.dma, "rollfit master DMA.csv");
     let built = hints::with_hint(built, hint);
     let causal = built.as_ref().ok().map(causal_floor);
     spinner.finish_and_clear();
     let built = built?;
-    for note in &built.data.notes {
-        eprintln!("note: {}", note.replace("(the fit's)", whose));
-    }
     let shift = &built.master.shift;
     if shift.shifts.len() > 1 {
         eprintln!("note: shift law {}: {}", shift.law.name(), shift.reason);
     } else {
         eprintln!("note: {}", shift.reason);
     }
-    for warning in built.data.warnings.iter().chain(&built.master.warnings) {
+    for warning in &built.master.warnings {
         eprintln!("warning: {}", warning.replace("(the fit's)", whose));
     }
     let causal = causal.context("no causal fit")??;
@@ -182,7 +197,7 @@ pub fn run(args: &Args) -> Result<()> {
     gate(&quality, args)?;
     let files = encode(&built, &causal, poisson, &quality)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
-    output::replace_folder(&args.output, &named)?;
+    output::replace_folder(&args.output, output::Writer::Master, args.force, &named)?;
     stdout::write_stdout(summary(&built, &causal).as_bytes())?;
     eprintln!("wrote {}", args.output.display());
     Ok(())

@@ -84,24 +84,28 @@ pub fn run(args: &Args) -> Result<()> {
     });
     let page = report_html(&fit, &pictures, section.as_ref());
 
-    let mut written = Vec::new();
+    let mut written: Vec<(String, &[u8])> = Vec::new();
     for p in &pictures {
         for (extension, bytes) in [("png", p.png.as_slice()), ("svg", p.svg.as_bytes())] {
-            let path = args.dir.join(format!("{}.{extension}", p.name));
-            output::write_atomically(&path, bytes)?;
-            written.push(path);
+            written.push((format!("{}.{extension}", p.name), bytes));
         }
     }
-    if let Some((_, c)) = &comparison {
+    let json = match &comparison {
         // The same bytes as `rollfit compare` writes.
-        let path = args.dir.join("compare.json");
-        let mut json = serde_json::to_vec_pretty(c).context("cannot format compare.json")?;
-        json.push(b'\n');
-        output::write_atomically(&path, &json)?;
-        written.push(path);
+        Some((_, c)) => {
+            let mut json = serde_json::to_vec_pretty(c).context("cannot format compare.json")?;
+            json.push(b'\n');
+            Some(json)
+        }
+        None => None,
+    };
+    if let Some(json) = &json {
+        written.push(("compare.json".into(), json));
     }
     let html_path = args.dir.join("report.html");
-    output::write_atomically(&html_path, page.as_bytes())?;
+    written.push(("report.html".into(), page.as_bytes()));
+    let named: Vec<(&str, &[u8])> = written.iter().map(|(n, b)| (n.as_str(), *b)).collect();
+    output::add_files(&args.dir, output::Writer::Fit, &named)?;
 
     if let FittedLine::AtData { why } = &line {
         eprintln!(
@@ -121,7 +125,7 @@ pub fn run(args: &Args) -> Result<()> {
         "wrote {} and {} pictures ({} files) in {:.2} s",
         html_path.display(),
         pictures.len(),
-        written.len(),
+        written.len() - 1,
         started.elapsed().as_secs_f64()
     );
     Ok(())

@@ -18,25 +18,36 @@ use super::units::Conversion;
 use crate::error::DataError;
 use crate::error::data::{delimiter_name, key_list};
 
-/// The table of `rows` with its header at `header` (None: no header found,
-/// an error about the first row); `notes` so far (the encoding, the
-/// sheet).
+/// The table of `rows` with its header at position `header` (None: no
+/// header found, an error about the first row); `notes` so far (the
+/// encoding, the sheet).
+///
+/// The rows are taken as they come: only those down to the one below the
+/// header (a units row, perhaps) are kept, and each row below is read into
+/// its values and dropped, so that a logger's file of a million rows never
+/// lives as cells at once.
 pub(super) fn table(
     source: &Source,
-    rows: &[Row],
+    rows: impl IntoIterator<Item = Row>,
     header: Option<usize>,
     mut notes: Vec<String>,
 ) -> Result<DataTable, DataError> {
-    let first = rows
+    let mut rows = rows.into_iter();
+    let Some(header) = header else {
+        let first = rows.find(|r| !r.is_blank()).ok_or(DataError::Empty)?;
+        return Err(no_header(source, &first));
+    };
+    // The header, the rows above it and the one below.
+    let head: Vec<Row> = rows.by_ref().take(header + 2).collect();
+    let first = head
         .iter()
         .position(|r| !r.is_blank())
         .ok_or(DataError::Empty)?;
-    let Some(header) = header else {
-        return Err(no_header(source, &rows[first]));
+    let Some(header_row) = head.get(header) else {
+        return Err(DataError::Empty);
     };
-    let header_row = &rows[header];
     if header > first {
-        let titles = rows[first..header].iter().filter(|r| !r.is_blank()).count();
+        let titles = head[first..header].iter().filter(|r| !r.is_blank()).count();
         notes.push(format!(
             "header on {}; the {titles} {}{} above it (titles) ignored",
             source.row(header_row.number),
@@ -44,13 +55,13 @@ pub(super) fn table(
             if titles == 1 { "" } else { "s" }
         ));
     }
-    let (mut columns, units) = header_row::columns(source, &rows[header..])?;
+    let (mut columns, units) = header_row::columns(source, &head[header..])?;
     let mut start = header + 1;
     if let Some(units) = units {
         start += 1;
         notes.push(format!(
             "units from {}, below the header",
-            source.row(rows[header + 1].number)
+            source.row(head[header + 1].number)
         ));
         for (column, unit) in columns.iter_mut().zip(units) {
             if let Some(unit) = unit {
@@ -64,7 +75,8 @@ pub(super) fn table(
         .find(|(c, unit)| c.quantity == Quantity::Speed && unit.is_none())
         .map(|(c, _)| c.raw.clone());
     let (columns, column_notes) = with_units(columns);
-    let read = read_rows(source, &rows[start..], header_row, &columns)?;
+    let below = head[start.min(head.len())..].iter().cloned().chain(rows);
+    let read = read_rows(source, below, header_row, &columns)?;
     notes.extend(delimiter_note(source, read.decimal_commas));
     notes.extend(column_notes);
     let mut table = finish(source, &columns, read, notes)?;
@@ -187,10 +199,11 @@ struct Read {
     decimal_commas: bool,
 }
 
-/// Reads `rows`, the rows below the header (and units row) `header_row`.
+/// Reads `rows`, the rows below the header (and units row) `header_row`,
+/// one at a time.
 fn read_rows(
     source: &Source,
-    rows: &[Row],
+    rows: impl Iterator<Item = Row>,
     header_row: &Row,
     columns: &[Column],
 ) -> Result<Read, DataError> {
@@ -203,6 +216,7 @@ fn read_rows(
         decimal_commas: false,
     };
     for row in rows {
+        let row = &row;
         if row.is_blank() {
             continue;
         }

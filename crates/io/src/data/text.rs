@@ -17,9 +17,9 @@ use crate::error::DataError;
 /// Parses and checks a text measurement.
 ///
 /// The file's bytes are taken, not borrowed, and the lines are walked
-/// twice rather than collected: a logger's file of a million rows then
-/// lives once as text beside its cells (issue 36: memory at most ten times
-/// the file).
+/// twice rather than collected, the second time split into cells one row
+/// at a time as the rows are read: a logger's file of a million rows then
+/// lives once as text beside its values.
 pub(super) fn parse_bytes(bytes: Vec<u8>) -> Result<DataTable, DataError> {
     let mut notes = Vec::new();
     let text = decode(bytes, &mut notes)?;
@@ -30,13 +30,12 @@ pub(super) fn parse_bytes(bytes: Vec<u8>) -> Result<DataTable, DataError> {
         Some(found) => (found.delimiter, Some(found.index)),
         None => (dialect::likeliest(first.text), None),
     };
-    let rows: Vec<Row> = dialect::lines(&text)
-        .map(|line: Line| Row {
-            number: line.number,
-            cells: split_line(line.text, delimiter),
-        })
-        .collect();
-    table(&Source::Text { delimiter }, &rows, header, notes)
+    // Split as the rows are read, never all at once.
+    let rows = dialect::lines(&text).map(|line: Line| Row {
+        number: line.number,
+        cells: split_line(line.text, delimiter),
+    });
+    table(&Source::Text { delimiter }, rows, header, notes)
 }
 
 /// The text of `bytes`: UTF-8 (without a byte-order mark), UTF-16 with a

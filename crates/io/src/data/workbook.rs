@@ -128,7 +128,7 @@ pub(super) fn parse(
         return Err(DataError::EmptySheet { sheet: name });
     }
     let header = find_header(&rows);
-    table(&Source::Sheet { name }, &rows, header, notes)
+    table(&Source::Sheet { name }, rows, header, notes)
 }
 
 /// The sheet to read of `names`: `wanted` (matched exactly, else

@@ -223,3 +223,19 @@ pub(super) fn holders_note(holders: &[u32]) -> String {
         ),
     }
 }
+
+/// A folder's files for a message: "fit.json, mu.csv", the first six and
+/// how many more.
+pub(super) fn files_list(files: &[String]) -> String {
+    const SHOWN: usize = 6;
+    let mut text = files
+        .iter()
+        .take(SHOWN)
+        .cloned()
+        .collect::<Vec<_>>()
+        .join(", ");
+    if files.len() > SHOWN {
+        text += &format!(" and {} more", files.len() - SHOWN);
+    }
+    text
+}

@@ -38,6 +38,18 @@ pub struct Digest {
     pub reasons: Vec<String>,
     /// `shift.C1` and `shift.C2`, when both are numbers.
     pub wlf: Option<(f64, f64)>,
+    /// `input.scene`, `input.data` and `joint.dma_source`: the files the
+    /// result was fitted to, as given.
+    pub inputs: RecordedInputs,
+}
+
+/// The input files a fit.json names, as given.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RecordedInputs {
+    pub scene: Option<String>,
+    pub data: Option<String>,
+    /// A joint fit's DMA file.
+    pub dma: Option<String>,
 }
 
 impl Digest {
@@ -57,6 +69,7 @@ impl Digest {
             .and_then(|bytes| serde_json::from_slice(&bytes).map_err(|e| e.to_string()))
             .map_err(|cause| IoError::ResultUnreadable { path, cause })?;
         let number = |v: &Value| v.as_f64();
+        let text = |v: &Value| v.as_str().map(str::to_string);
         Ok(Digest {
             objective: number(&report["objective"]),
             misfit_per_point: number(&report["misfit_per_point"]),
@@ -80,6 +93,11 @@ impl Digest {
                 })
                 .unwrap_or_default(),
             wlf: number(&report["shift"]["C1"]).zip(number(&report["shift"]["C2"])),
+            inputs: RecordedInputs {
+                scene: text(&report["input"]["scene"]),
+                data: text(&report["input"]["data"]),
+                dma: text(&report["joint"]["dma_source"]),
+            },
         })
     }
 }

@@ -1,56 +1,26 @@
 //! A result folder replaced as a whole (docs/ARCHITECTURE.md, "Data
 //! flow"): the new files are written into a temporary sibling folder and
 //! swapped in, so that a reader finds either the previous folder or the
-//! new one.
+//! new one. Who may replace what follows the folder's record of its own
+//! files (`record.rs`).
 
 use std::fs::{self, OpenOptions};
 use std::io::{self, Write};
 use std::path::Path;
 
+use super::atomic::write_atomically;
 use super::dirs::{create_folder, parent_of};
-use super::temporary::{loop_temporary, remove_stale, temporary_pid};
-use crate::error::IoError;
-use crate::fit_dir::columns::{FIT_JSON, MODULUS_CSV, MU_CSV};
+use super::record::{self, Occupant, RECORD_FILE, Writer};
+use super::temporary::{TEMPORARY_PREFIX, loop_temporary, remove_stale, temporary_pid};
+use crate::error::{FolderError, IoError};
 
-/// Files a result folder's writers own: the fit's three, the report's page,
-/// pictures and comparison, and what `rollfit master` writes. A refit
-/// replaces the folder without them (the report of an old fit would not
-/// describe the new one); anything else found there is carried over.
-fn owned_by_rollfit(name: &str) -> bool {
-    [FIT_JSON, MODULUS_CSV, MU_CSV].contains(&name)
-        || matches!(
-            name,
-            "report.html"
-                | "compare.json"
-                | "master.csv"
-                | "shift.csv"
-                | "material.toml"
-                | "master.json"
-        )
-        || name.ends_with(".png")
-        || name.ends_with(".svg")
-}
-
-/// Checks, before a long computation, that `dir` can be replaced by
-/// [`replace_folder`]: it is a folder or absent, holds no sub-folder, and
-/// its parent folder is writable (made if missing).
-pub fn check_replaceable(dir: &Path) -> Result<(), IoError> {
-    if dir.exists() && !dir.is_dir() {
-        return Err(IoError::OutputNotFolder {
-            dir: dir.to_path_buf(),
-        });
-    }
-    if let Ok(entries) = fs::read_dir(dir) {
-        for entry in entries.flatten() {
-            let name = entry.file_name().to_string_lossy().into_owned();
-            if entry.path().is_dir() && temporary_pid(&name).is_none() {
-                return Err(IoError::ForeignFolder {
-                    dir: dir.to_path_buf(),
-                    name,
-                });
-            }
-        }
-    }
+/// Checks, before a long computation, that `writer` may replace `dir` by
+/// [`replace_folder`]: it is a folder or absent, not the current folder
+/// (nor one holding it), not another command's results (unless `force`),
+/// holds no file the command would write that rollfit did not write there,
+/// no sub-folder, and its parent folder is writable (made if missing).
+pub fn check_replaceable(dir: &Path, writer: Writer, force: bool) -> Result<(), IoError> {
+    check_occupant(dir, writer, force, writer.own_files().iter().copied())?;
     let parent = parent_of(dir);
     create_folder(&parent)?;
     let (probe, ()) = loop_temporary(&parent, |p| fs::create_dir(p))?;
@@ -58,20 +28,93 @@ pub fn check_replaceable(dir: &Path) -> Result<(), IoError> {
     Ok(())
 }
 
+/// Who wrote `dir`, once it is known that `writer` may replace it (see
+/// [`check_replaceable`]) with files named `names`.
+fn check_occupant<'a>(
+    dir: &Path,
+    writer: Writer,
+    force: bool,
+    names: impl IntoIterator<Item = &'a str>,
+) -> Result<Option<Occupant>, IoError> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(IoError::OutputNotFolder {
+            dir: dir.to_path_buf(),
+        });
+    }
+    if writer != Writer::Batch && holds_working_folder(dir) {
+        return Err(IoError::from(FolderError::OutputHoldsWorkingFolder {
+            dir: dir.to_path_buf(),
+        }));
+    }
+    let occupant = Occupant::of(dir);
+    if let Some(found) = occupant.as_ref().filter(|o| o.writer != writer && !force) {
+        return Err(IoError::from(FolderError::OtherCommandsFolder {
+            dir: dir.to_path_buf(),
+            found: found.writer.command(),
+            files: found.files.clone(),
+            ours: writer.command(),
+        }));
+    }
+    let owned = |name: &str| occupant.as_ref().is_some_and(|o| o.owns(name));
+    for name in names {
+        if dir.join(name).exists() && !owned(name) {
+            return Err(IoError::from(FolderError::NotOurFile {
+                dir: dir.to_path_buf(),
+                name: name.to_string(),
+                ours: writer.command(),
+            }));
+        }
+    }
+    if writer != Writer::Batch
+        && let Ok(entries) = fs::read_dir(dir)
+    {
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if entry.path().is_dir() && temporary_pid(&name).is_none() && !owned(&name) {
+                return Err(IoError::from(FolderError::ForeignFolder {
+                    dir: dir.to_path_buf(),
+                    name,
+                }));
+            }
+        }
+    }
+    Ok(occupant)
+}
+
+/// Whether `dir` is the current folder or one that holds it: a folder
+/// cannot be swapped while it is a process's working folder ("Device or
+/// resource busy"), and swapping a parent would move the user's shell into
+/// the removed copy.
+fn holds_working_folder(dir: &Path) -> bool {
+    let here = std::env::current_dir().and_then(|d| d.canonicalize());
+    match (here, dir.canonicalize()) {
+        (Ok(here), Ok(target)) => here.starts_with(target),
+        _ => false,
+    }
+}
+
 /// Replaces the folder `dir` by one holding `files` (name, content) as a
 /// whole: a reader sees either the previous folder or the new one, never a
 /// mixture, whenever the process is killed. The files are written into a
 /// temporary sibling folder (with the previous folder's files that rollfit
-/// does not own, linked or copied), flushed, and swapped in: on Linux by
-/// one `renameat2(RENAME_EXCHANGE)`, elsewhere (or on a file system without
+/// did not write, linked or copied, and the record of the new ones,
+/// [`RECORD_FILE`]), flushed, and swapped in: on Linux by one
+/// `renameat2(RENAME_EXCHANGE)`, elsewhere (or on a file system without
 /// it) by two renames, between which `dir` is briefly absent. On an error
-/// the temporary folder is removed and `dir` is as it was.
-pub fn replace_folder(dir: &Path, files: &[(&str, &[u8])]) -> Result<(), IoError> {
+/// the temporary folder is removed and `dir` is as it was. Refused as
+/// [`check_replaceable`] refuses, before anything is written.
+pub fn replace_folder(
+    dir: &Path,
+    writer: Writer,
+    force: bool,
+    files: &[(&str, &[u8])],
+) -> Result<(), IoError> {
+    let occupant = check_occupant(dir, writer, force, files.iter().map(|f| f.0))?;
     let parent = parent_of(dir);
     create_folder(&parent)?;
     remove_stale(&parent);
     let (stage, ()) = loop_temporary(&parent, |p| fs::create_dir(p))?;
-    let result = fill_and_swap(dir, &stage, files);
+    let result = fill_and_swap(dir, &stage, occupant.as_ref(), writer, files);
     // After a swap the temporary name holds the previous folder.
     let _ = fs::remove_dir_all(&stage);
     result.map_err(|source| IoError::WriteResults {
@@ -80,14 +123,96 @@ pub fn replace_folder(dir: &Path, files: &[(&str, &[u8])]) -> Result<(), IoError
     })
 }
 
-fn fill_and_swap(dir: &Path, stage: &Path, files: &[(&str, &[u8])]) -> io::Result<()> {
+/// Adds `files` to the result folder `dir` of `writer` (`rollfit report`'s
+/// pictures in a fit's folder), each written atomically, and records them
+/// as rollfit's: a later run of `writer` replaces them with the rest. A
+/// file of that name that rollfit did not write there is refused, as is
+/// another command's folder.
+pub fn add_files(dir: &Path, writer: Writer, files: &[(&str, &[u8])]) -> Result<(), IoError> {
+    let occupant = check_occupant(dir, writer, false, files.iter().map(|f| f.0))?;
+    let mut names: Vec<String> = occupant.map(|o| o.files).unwrap_or_default();
+    names.extend(files.iter().map(|f| f.0.to_string()));
+    // The record first: killed before the files are in place, it names a
+    // file that is not there, which harms nothing.
+    write_atomically(&dir.join(RECORD_FILE), &record::encode(writer, names))?;
+    for (name, bytes) in files {
+        write_atomically(&dir.join(name), bytes)?;
+    }
+    Ok(())
+}
+
+/// Claims `dir` for `writer`, which fills it in its own time (a batch
+/// writes its entries one by one and resumes): refused as
+/// [`check_replaceable`] refuses; with `force`, another command's files are
+/// removed; the record then names `writer` and `names` (with those of an
+/// earlier run of `writer`).
+pub fn claim_folder(
+    dir: &Path,
+    writer: Writer,
+    force: bool,
+    names: &[String],
+) -> Result<(), IoError> {
+    let occupant = check_occupant(dir, writer, force, names.iter().map(String::as_str))?;
+    let mut recorded = Vec::new();
+    match occupant {
+        Some(o) if o.writer == writer => recorded = o.files,
+        Some(o) => {
+            for name in &o.files {
+                let path = dir.join(name);
+                let removed = if path.is_dir() {
+                    fs::remove_dir_all(&path)
+                } else {
+                    fs::remove_file(&path)
+                };
+                if let Err(source) = removed.or_else(|e| match e.kind() {
+                    io::ErrorKind::NotFound => Ok(()),
+                    _ => Err(e),
+                }) {
+                    return Err(IoError::Write { path, source });
+                }
+            }
+        }
+        None => {}
+    }
+    recorded.extend(names.iter().cloned());
+    write_atomically(&dir.join(RECORD_FILE), &record::encode(writer, recorded))
+}
+
+/// Refuses `path` as an output file of a command that keeps no folder
+/// (`rollfit forward`) when it is a file another command recorded as its
+/// own in its folder.
+pub fn check_free_file(path: &Path) -> Result<(), IoError> {
+    let Some(name) = path.file_name().map(|n| n.to_string_lossy().into_owned()) else {
+        return Ok(());
+    };
+    match Occupant::of(&parent_of(path)) {
+        Some(o) if o.owns(&name) || name == RECORD_FILE => {
+            Err(IoError::from(FolderError::WrittenByAnother {
+                path: path.to_path_buf(),
+                found: o.writer.command(),
+            }))
+        }
+        _ => Ok(()),
+    }
+}
+
+fn fill_and_swap(
+    dir: &Path,
+    stage: &Path,
+    occupant: Option<&Occupant>,
+    writer: Writer,
+    files: &[(&str, &[u8])],
+) -> io::Result<()> {
     if dir.is_dir() {
         for entry in fs::read_dir(dir)? {
             let entry = entry?;
             let name = entry.file_name();
             let text = name.to_string_lossy();
             let leftover = text.starts_with('.') && text.ends_with(".tmp");
-            if owned_by_rollfit(&text) || leftover || !entry.path().is_file() {
+            // A batch's lock belongs to the batch's folder, not to this one.
+            let lock = text.starts_with(TEMPORARY_PREFIX) && text.ends_with(".lock");
+            let ours = occupant.is_some_and(|o| o.owns(&text)) || text == RECORD_FILE || lock;
+            if ours || leftover || !entry.path().is_file() {
                 continue;
             }
             let target = stage.join(&name);
@@ -96,7 +221,8 @@ fn fill_and_swap(dir: &Path, stage: &Path, files: &[(&str, &[u8])]) -> io::Resul
             }
         }
     }
-    for (name, bytes) in files {
+    let record = record::encode(writer, files.iter().map(|f| f.0.to_string()));
+    for (name, bytes) in files.iter().chain([&(RECORD_FILE, record.as_slice())]) {
         let mut file = OpenOptions::new()
             .write(true)
             .create_new(true)

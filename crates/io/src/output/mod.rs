@@ -1,6 +1,7 @@
 //! Writing results to disk (docs/ARCHITECTURE.md, "Data flow"): a single
 //! file atomically (write to a temporary, then rename), a result folder
-//! replaced as a whole, and the lock that keeps two runs from writing one
+//! replaced as a whole (and the record of its own files that decides
+//! which files a later run replaces), and the lock that keeps two runs from writing one
 //! folder.
 //!
 //! Every temporary name is `.rollfit-<pid>-<n>.tmp` (short, so that a long
@@ -12,11 +13,13 @@ mod atomic;
 mod dirs;
 mod folder;
 mod lock;
+mod record;
 mod temporary;
 
 pub use atomic::{check_target, write_atomically};
-pub use folder::{check_replaceable, replace_folder};
+pub use folder::{add_files, check_free_file, check_replaceable, claim_folder, replace_folder};
 pub use lock::FolderLock;
+pub use record::{RECORD_FILE, Writer};
 pub use temporary::remove_stale;
 
 #[cfg(test)]

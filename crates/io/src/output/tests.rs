@@ -42,19 +42,69 @@ fn names(dir: &Path) -> Vec<String> {
 fn a_folder_is_replaced_as_a_whole() {
     let root = folder("replace");
     let dir = root.join("fit");
-    replace_folder(&dir, &[("fit.json", b"1"), ("mu.csv", b"a")]).unwrap();
-    fs::write(dir.join("friction.png"), b"old picture").unwrap();
+    replace_folder(
+        &dir,
+        Writer::Fit,
+        false,
+        &[("fit.json", b"1"), ("mu.csv", b"a")],
+    )
+    .unwrap();
+    add_files(&dir, Writer::Fit, &[("friction.png", b"old picture")]).unwrap();
+    fs::write(dir.join("sample-photo.png"), b"mine").unwrap();
     fs::write(dir.join("notes.txt"), b"mine").unwrap();
     fs::write(dir.join(".mu.csv.4194304-0.tmp"), b"left by a killed 0.1").unwrap();
-    replace_folder(&dir, &[("fit.json", b"2"), ("modulus.csv", b"b")]).unwrap();
-    // The report's pictures of the old fit go, the user's notes stay.
-    assert_eq!(names(&dir), ["fit.json", "modulus.csv", "notes.txt"]);
+    replace_folder(
+        &dir,
+        Writer::Fit,
+        false,
+        &[("fit.json", b"2"), ("modulus.csv", b"b")],
+    )
+    .unwrap();
+    // The recorded files of the old fit go (its picture with them), the
+    // user's stay, whatever their names look like.
+    assert_eq!(
+        names(&dir),
+        [
+            RECORD_FILE,
+            "fit.json",
+            "modulus.csv",
+            "notes.txt",
+            "sample-photo.png"
+        ]
+    );
     assert_eq!(fs::read(dir.join("fit.json")).unwrap(), b"2");
+    assert_eq!(
+        fs::read_to_string(dir.join(RECORD_FILE)).unwrap(),
+        "{\n  \"written_by\": \"fit\",\n  \"files\": [\n    \"fit.json\",\n    \"modulus.csv\"\n  ]\n}\n"
+    );
     assert_eq!(names(&root), ["fit"]);
+    // Another command's folder is refused, and replaced with `force`.
+    let m = format!(
+        "{:#}",
+        replace_folder(&dir, Writer::Master, false, &[("master.json", b"m")]).unwrap_err()
+    );
+    assert!(
+        m.contains("holds the results of `rollfit fit` (fit.json, modulus.csv)"),
+        "{m}"
+    );
+    replace_folder(&dir, Writer::Master, true, &[("master.json", b"m")]).unwrap();
+    assert_eq!(
+        names(&dir),
+        [RECORD_FILE, "master.json", "notes.txt", "sample-photo.png"]
+    );
+    // A user's file under a name the command writes is never overwritten.
+    let m = format!(
+        "{:#}",
+        replace_folder(&dir, Writer::Fit, true, &[("notes.txt", b"x")]).unwrap_err()
+    );
+    assert!(
+        m.contains("holds notes.txt, which rollfit did not write there"),
+        "{m}"
+    );
     // A name near the file system's limit still leaves room for the
     // temporary one.
     let long = root.join("x".repeat(250));
-    replace_folder(&long, &[("fit.json", b"3")]).unwrap();
+    replace_folder(&long, Writer::Fit, false, &[("fit.json", b"3")]).unwrap();
     write_atomically(&long.join("y".repeat(250)), b"4").unwrap();
     fs::remove_dir_all(&root).unwrap();
 }

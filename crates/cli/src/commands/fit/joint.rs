@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Result, anyhow, bail};
 use rollfit_fit::{FitSettings, JointRecord, ValidFitParams};
 use rollfit_io::dma_joint;
+use rollfit_io::manifest::Entry;
 use rollfit_io::scene::SceneFile;
 
 /// Where a joint fit's DMA file was named, for messages.
@@ -45,7 +46,10 @@ pub fn with_dma(
     scene_path: &Path,
     log: &impl Fn(&str),
 ) -> Result<ValidFitParams> {
-    if !path.is_file() {
+    // A pipe or `-` is read as a file is; the reader refuses devices.
+    let piped = path.as_os_str() == rollfit_io::input_file::STANDARD_INPUT
+        || std::fs::metadata(&path).is_ok_and(|m| !m.is_file() && !m.is_dir());
+    if !path.is_file() && !piped {
         let (what, whose) = match origin {
             DmaOrigin::Given => ("--dma", "the current folder".to_string()),
             DmaOrigin::Scene => (
@@ -76,14 +80,45 @@ pub fn with_dma(
     })
 }
 
-/// A setting the fit refused under `key`, where the user gave it: the
-/// command line (its flag, spelled with dashes) when `settings` gives it,
-/// else the scene file.
-pub fn setting_origin(settings: &FitSettings, key: &str, scene_path: &Path) -> String {
-    if settings.gives(key) {
-        format!("command line: --{}", key.replace('_', "-"))
-    } else {
-        format!("scene file {}", scene_path.display())
+/// Where a job's settings over the scene's `[fit]` were given.
+#[derive(Clone, Copy)]
+pub enum SettingsFrom<'a> {
+    /// The flags of `rollfit fit`.
+    CommandLine,
+    /// A batch: the entry's keys over the flags over the manifest's
+    /// `[defaults]`.
+    Manifest {
+        path: &'a Path,
+        entry: &'a Entry,
+        flags: &'a FitSettings,
+    },
+}
+
+/// A setting the fit refused under `key`, where the user gave it: a
+/// batch entry's key (with the entry and its line), the command line (its
+/// flag, spelled with dashes), a manifest's `[defaults]`, else the scene
+/// file. `settings` are the job's, all sources merged.
+pub fn setting_origin(
+    settings: &FitSettings,
+    from: SettingsFrom<'_>,
+    key: &str,
+    scene_path: &Path,
+) -> String {
+    let flag = || format!("command line: --{}", key.replace('_', "-"));
+    match from {
+        SettingsFrom::Manifest { path, entry, .. } if entry.settings.gives(key) => {
+            format!(
+                "manifest {}: {}: `{key}`",
+                path.display(),
+                entry.key_place(key)
+            )
+        }
+        SettingsFrom::Manifest { flags, .. } if flags.gives(key) => flag(),
+        SettingsFrom::Manifest { path, .. } if settings.gives(key) => {
+            format!("manifest {}: [defaults]: `{key}`", path.display())
+        }
+        SettingsFrom::CommandLine if settings.gives(key) => flag(),
+        _ => format!("scene file {}", scene_path.display()),
     }
 }
 

@@ -61,7 +61,7 @@ pub(super) fn run(args: &Args, settings: &rollfit_fit::master::MasterSettings) -
     super::gate(&quality, args)?;
     let files = encode(&built, poisson, &quality)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
-    output::replace_folder(&args.output, &named)?;
+    output::replace_folder(&args.output, output::Writer::Master, args.force, &named)?;
     stdout::write_stdout(summary(&built).as_bytes())?;
     eprintln!("wrote {}", args.output.display());
     Ok(())
