@@ -231,7 +231,7 @@ fn unanchored_fits_report_a_scale_interval_or_refuse() {
 fn a_material_that_breaks_the_assumptions_is_invalid() {
     let s = setup();
     let data = sparse(s, hn_rubber(), 1e-6, 5.0, 15, 0.03, 0);
-    for (e0, assumption) in [(5e3, "rubber modulus"), (2e5, "small contact")] {
+    for (e0, assumption) in [(5e3, "viscoelastic solid's modulus"), (2e5, "small contact")] {
         let params = FitParams {
             anchor: Some(ScaleAnchor::StaticModulus(e0)),
             ..FitParams::default()
