@@ -1118,4 +1118,28 @@ fn shifts_that_are_not_wlf_are_chosen_free_and_a_poor_wlf_fit_names_free() {
     let flagged = dir.path().join("flag");
     fit_ok(&wlf_scene, &data, &flagged, &["--shift", "free"]);
     assert_eq!(json(&flagged.join("fit.json"))["shift"]["model"], "free");
+    // A two-branch law in the scene, which the fit does not have: free
+    // shifts in its place, and said on stderr and in fit.json.
+    let material = &SCENE[..SCENE.find("[fit]").unwrap()];
+    let two_branch = dir.write(
+        "two-branch.toml",
+        &format!(
+            "{material}[material.shift]\nmodel = \"wlf-arrhenius\"\nT_ref = 20.0\nC1 = 8.86\n\
+             C2 = 101.6\nT_g = -10.0\nE_a = 1.2e5\n\n[fit]\nE_at = {{ omega = 10.0, E = 6.26e7 }}\n"
+        ),
+    );
+    let substituted = dir.path().join("two-branch");
+    let stderr = fit_ok(&two_branch, &data, &substituted, &[]);
+    assert!(
+        stderr.contains(
+            "shift law free: [material.shift] model = \"wlf-arrhenius\" asks for a law the fit \
+             does not have; fitted instead: free shifts"
+        ),
+        "{stderr}"
+    );
+    let report = json(&substituted.join("fit.json"));
+    assert_eq!(report["shift"]["model"], "free");
+    assert_eq!(report["shift_choice"]["chosen_by"], "substitute");
+    assert_eq!(report["shift_choice"]["requested"], "wlf-arrhenius");
+    assert!(report["shift_choice"]["test"].is_null(), "{report}");
 }

@@ -222,3 +222,59 @@ fn a_batch_entry_with_dma_is_a_joint_fit() {
     );
     assert!(!dir.path().join("broken").join("joint").exists());
 }
+
+/// Rolling data of one temperature without a `T` column, `[fit] T_ref`
+/// saying where they were measured, and DMA isotherms at several
+/// temperatures (the user guide's "rolling data without a T column need
+/// T_ref"): the joint fit is written, and mu.csv places every rolling row
+/// at T_ref with log10 a_T = 0. The writer once stopped here on an
+/// internal fault after the whole fit.
+#[test]
+fn single_temperature_rolling_data_with_t_ref_and_dma_are_fitted() {
+    let dir = folder("single-temperature");
+    let tset = fs::read_to_string(dir.path().join("tset.csv")).unwrap();
+    let mut lines = tset.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let (v, mu, sigma, t) = (column("v"), column("mu"), column("sigma"), column("T"));
+    let mut single = String::from("v,mu,sigma\n");
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        if cells[t].parse::<f64>().unwrap() == 20.0 {
+            single += &format!("{},{},{}\n", cells[v], cells[mu], cells[sigma]);
+        }
+    }
+    dir.write("single.csv", &single);
+    dir.write("scene.toml", &scene_text(None));
+    let out = run_in(
+        dir.path(),
+        &[
+            "fit",
+            "scene.toml",
+            "single.csv",
+            "-o",
+            "out",
+            "--dma",
+            "dma.csv",
+        ],
+    );
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(!stderr.contains("internal"), "{stderr}");
+    joint_record(&dir.path().join("out"));
+    let mu = fs::read_to_string(dir.path().join("out/mu.csv")).unwrap();
+    let mut rows = mu.lines();
+    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
+    let (t, log_at) = (
+        header.iter().position(|c| *c == "T").expect("a T column"),
+        header.iter().position(|c| *c == "log_aT").unwrap(),
+    );
+    let mut count = 0;
+    for row in rows {
+        let cells: Vec<f64> = row.split(',').map(|c| c.parse().unwrap()).collect();
+        assert_eq!(cells[t], 20.0, "{row}");
+        assert_eq!(cells[log_at], 0.0, "{row}");
+        count += 1;
+    }
+    assert_eq!(count, 41);
+}

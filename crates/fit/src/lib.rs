@@ -17,7 +17,8 @@
 //!   and shifts by overlapping curves.
 //! - `analysis`: the determined window, determined terms, uncertainty bands.
 //! - [`quality`]: goodness of fit (χ² and runs tests).
-//! - [`sanity`]: warnings for inputs and results outside the theory or any lab.
+//! - [`sanity`]: warnings for inputs and results outside the theory or any lab;
+//!   [`extrapolation`]: the fitted values beyond the window the data determine.
 //! - `temperature_set`: the start and the cross-check of a temperature set's
 //!   shift; `vertical`: its vertical factors b_T, as a load per row.
 //! - [`exact_physics`]: fits against the exact rolling contact by defect
@@ -71,6 +72,7 @@ pub mod dma_rows;
 pub mod driver;
 pub mod error;
 pub mod exact_physics;
+pub mod extrapolation;
 pub mod fit;
 pub mod joint;
 pub mod master;
@@ -98,7 +100,7 @@ pub use error::FitError;
 pub use joint::{DmaRows, JointRecord};
 pub use params::{
     FitParams, FrictionFactor, Lambda, Method, ModulusAnchor, Physics, RollingSetup, ScaleAnchor,
-    ShiftKind, ShiftSettings, StartMaterial, TermRule, ValidFitParams,
+    ShiftKind, ShiftSettings, ShiftSubstitute, StartMaterial, TermRule, ValidFitParams,
 };
 pub use progress::{Observer, Progress};
 pub use quality::FitQuality;

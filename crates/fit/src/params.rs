@@ -220,6 +220,22 @@ pub struct ShiftSettings {
     /// curve's (`crate::vertical`). None: b_T = 1. Their T_ref must be the
     /// fit's.
     pub vertical: Option<VerticalShift>,
+    /// A law the scene asked for that the fit does not have
+    /// (`[material.shift] model = "wlf-arrhenius"`), with why `kind` is
+    /// fitted instead: said in the warnings and in fit.json's
+    /// `shift_choice` (`chosen_by = "substitute"`), never silently.
+    pub substituted: Option<ShiftSubstitute>,
+}
+
+/// A requested shift law replaced by another ([`ShiftSettings::substituted`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShiftSubstitute {
+    /// The law asked for, as the scene names it ("wlf-arrhenius").
+    pub requested: &'static str,
+    /// Where it was asked for ("[material.shift] model").
+    pub key: &'static str,
+    /// Why the fitted law replaces it, and what that law gives instead.
+    pub reason: String,
 }
 
 impl Default for ShiftSettings {
@@ -230,6 +246,7 @@ impl Default for ShiftSettings {
             wlf_start: None,
             cross_check: true,
             vertical: None,
+            substituted: None,
         }
     }
 }

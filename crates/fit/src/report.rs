@@ -293,6 +293,10 @@ pub struct FitReport {
     pub noise: f64,
     /// Goodness of fit: χ² and runs tests, and the verdict.
     pub fit_quality: crate::quality::FitQuality,
+    /// E0 and E1 where they lie beyond the window the data determine, with
+    /// the one-sided 2σ bound the window gives ([`crate::extrapolation`]);
+    /// they never judge the fit.
+    pub extrapolated: Vec<crate::extrapolation::Extrapolation>,
     /// Seed of the multi-start.
     pub seed: u64,
     /// Things the user must know.

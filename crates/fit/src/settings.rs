@@ -469,6 +469,8 @@ impl FitSettings {
         }
         if let Some(kind) = self.shift {
             params.shift.kind = kind;
+            // The law is now the one asked for here, not a substitute.
+            params.shift.substituted = None;
         }
         if let Some(t_ref) = self.t_ref {
             params.shift.t_ref = Some(t_ref);

@@ -10,6 +10,7 @@ use crate::analysis::{DETERMINED_RELATIVE_SIGMA, determined_stretch};
 use crate::condense::Condensed;
 use crate::data::Measurements;
 use crate::error::FitError;
+use crate::extrapolation::extrapolations;
 use crate::params::ValidFitParams;
 use crate::quality::FitQuality;
 use crate::report::{
@@ -150,6 +151,13 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
     };
     let mut fit_quality = fit.fit_quality;
     judge_assumptions(&mut fit_quality, &mut warnings, sanity);
+    // A law the scene asked for and the fit does not have is said, never
+    // silently replaced.
+    let shift_choice = shift_choice.or_else(|| {
+        let substitute = params.shift.substituted.as_ref()?;
+        let shift = fit.shift.as_ref()?;
+        Some(ShiftChoice::substitute(shift.model_name(), substitute))
+    });
     if let Some(c) = &shift_choice {
         warnings.push(format!("shift law {}: {}", c.model, c.reason));
     }
@@ -167,7 +175,13 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         }
         None => (None, fit.mu),
     };
+    let extrapolated = extrapolations(
+        fit.model.static_modulus,
+        fit.model.glassy_modulus,
+        &fit.curve,
+    );
     FitReport {
+        extrapolated,
         model: fit.model,
         poisson: params.setup.substrate.poisson,
         window,
@@ -211,10 +225,12 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
 }
 
 /// The sanity warnings into `warnings`; those that say the fitted material
-/// breaks one of the model's assumptions (a contact small against the body,
-/// small strains, a rubber's modulus: [`sanity`]'s checks 1, 2 and 4) make
-/// the verdict "invalid": the model has described the data with a material
-/// for which the model does not hold, so the fit describes nothing.
+/// breaks one of the model's assumptions where the data determine it (a
+/// contact small against the body, small strains, a viscoelastic solid's
+/// modulus: [`sanity`]'s checks 1, 2 and 4) make the verdict "invalid": the
+/// model has described the data with a material for which the model does
+/// not hold, so the fit describes nothing. Extrapolations beyond the window
+/// are warnings only.
 fn judge_assumptions(
     quality: &mut FitQuality,
     warnings: &mut Vec<String>,
@@ -328,25 +344,27 @@ fn reduced_speeds(data: &Measurements, fit: &Optimum) -> Vec<f64> {
 /// The sanity checks of [`crate::sanity`] on the data, their measured μ
 /// `friction` (one per point of `data`: the data's own, or the measured μ
 /// of a defect correction's corrected data) and the fitted material, at the
-/// reduced speeds (v·a_T) for a temperature set.
+/// reduced speeds (v·a_T) for a temperature set, the material judged inside
+/// `window`, where the data determine it.
 pub(super) fn sanity_warnings(
     data: &Measurements,
     friction: &[f64],
     params: &ValidFitParams,
     fit: &Optimum,
+    window: &Window,
 ) -> Result<Vec<sanity::Warning>, FitError> {
     let setup = &params.setup;
     let speeds = reduced_speeds(data, fit);
     let m = &fit.model;
     let prony = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
     let mut out = sanity::input_warnings(setup, data.speeds(), Some(friction));
-    out.extend(sanity::material_warnings(
+    out.extend(sanity::fitted_material_warnings(
         setup,
         &speeds,
         &|omega| prony.modulus(omega),
         m.static_modulus,
         m.glassy_modulus,
-        true,
+        [window.omega_min, window.omega_max],
     ));
     Ok(out)
 }

@@ -104,7 +104,13 @@ pub(super) fn fit_joint(
         parts,
     }
     .record(&outcome)?;
-    let sanity = sanity_warnings(&weighted, weighted.friction(), &joint, &outcome.fit)?;
+    let sanity = sanity_warnings(
+        &weighted,
+        weighted.friction(),
+        &joint,
+        &outcome.fit,
+        &outcome.window,
+    )?;
     let condensed = match &condensed {
         Some(c) => Some((c, fitted_friction(&rows, &joint, &outcome.fit)?)),
         None => None,

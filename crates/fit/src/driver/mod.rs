@@ -160,7 +160,7 @@ pub(crate) fn fit_measured(
         None => None,
     };
     let friction = measured_bins.as_ref().unwrap_or(data).friction();
-    let sanity = sanity_warnings(data, friction, params, &outcome.fit)?;
+    let sanity = sanity_warnings(data, friction, params, &outcome.fit, &outcome.window)?;
     let condensed = match &condensed {
         Some(c) => {
             let mu_fit = fitted_friction(rows, params, &outcome.fit)?;
@@ -276,7 +276,7 @@ fn fit_on_grid(
     let mut profile = profile_scale(data, params, &optimum, set)?;
     let optimum = match profile.refit.take() {
         None => optimum,
-        Some((e0, shape)) => {
+        Some(profile::Refit { e0, shape, centre }) => {
             let mut pinned = params.clone();
             pinned.anchor = Some(ModulusAnchor {
                 omega: 0.0,
@@ -286,12 +286,23 @@ fn fit_on_grid(
             let set = set.map(|s| s.with_theta(data, optimum.shift_theta.clone()));
             let mut refit = solve_on_grid(data, &pinned, tau, Some(shape), set.as_ref())?;
             refit.runs = optimum.runs.into_iter().chain(refit.runs).collect();
-            refit.warnings.push(format!(
-                "the unanchored optimum (E0 = {:.3e} Pa) lies outside the range of E0 where \
-                 the model holds or outside the scale profile's 2σ interval; the result is the \
-                 fit at the profile's best E0 = {e0:.3e} Pa",
-                optimum.model.static_modulus
-            ));
+            refit.warnings.push(if centre {
+                format!(
+                    "the scale profile is one-sided (its misfit is least at an end of the range \
+                     of E0 where the model holds, an edge and not an estimate); the result is \
+                     the fit at the centre of its 2σ interval in log E0, E0 = {e0:.3e} Pa \
+                     (the unanchored optimum had E0 = {:.3e} Pa; the interval is fit.json's \
+                     scale and widens the bands)",
+                    optimum.model.static_modulus
+                )
+            } else {
+                format!(
+                    "the unanchored optimum (E0 = {:.3e} Pa) lies outside the range of E0 where \
+                     the model holds or outside the scale profile's 2σ interval; the result is \
+                     the fit at the profile's best E0 = {e0:.3e} Pa",
+                    optimum.model.static_modulus
+                )
+            });
             profile.rescale_to(refit.model.static_modulus);
             refit
         }

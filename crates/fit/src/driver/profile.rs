@@ -32,7 +32,13 @@
 //!    geometric centre; otherwise it is
 //!    undetermined and the command line refuses the fit unless asked to
 //!    keep it.
-//! 5. When the unanchored optimum lies outside the range or more than one
+//! 5. On a one-sided profile — its minimum at an end of the profiled range,
+//!    where the misfit falls or stays flat up to the model's own limit (the
+//!    R/3 contact, E1_max) — that end is the worst estimate inside the
+//!    interval: the result is refitted with E0 pinned at the centre in
+//!    ln E0 of the 2σ interval (an open end closed by the range), which the
+//!    record and the bands keep. Otherwise, when the unanchored optimum
+//!    lies outside the range or more than one
 //!    noise unit (Δχ² > 1) above the profile's minimum — the penalty, which
 //!    prefers some shapes, has pulled it along the valley — the result is
 //!    refitted with E0 pinned at the profile's minimum (a parabola through
@@ -126,9 +132,9 @@ pub(super) struct ScaleProfile {
     pub runs: Vec<RunRecord>,
     /// What fit.json says of the scale.
     pub record: ScaleRecord,
-    /// When the unanchored optimum lies outside the range or the interval:
-    /// the E0 (Pa) to pin the result at, and the shape to start from.
-    pub refit: Option<(f64, Vec<f64>)>,
+    /// When the unanchored optimum lies outside the range or the interval,
+    /// or the profile is one-sided: where to pin the result.
+    pub refit: Option<Refit>,
     /// The steps within one noise unit of the best.
     accepted: Vec<Prony>,
 }
@@ -177,6 +183,18 @@ pub(crate) fn static_modulus_range(params: &ValidFitParams) -> [f64; 2] {
     [smallest_valid.max(MIN_RUBBER_MODULUS), 0.1 * params.e1_max]
 }
 
+/// Where the result of an unanchored fit is pinned instead of its own
+/// optimum (module doc, step 5).
+pub(super) struct Refit {
+    /// E0, Pa.
+    pub e0: f64,
+    /// The shape (ln(H_k/E0)) to start from.
+    pub shape: Vec<f64>,
+    /// Whether `e0` is the centre of a one-sided profile's 2σ interval (else
+    /// the profile's minimum).
+    pub centre: bool,
+}
+
 /// The pinned refits: what they share.
 struct Profiler<'a> {
     data: &'a Measurements,
@@ -216,7 +234,11 @@ pub(super) fn profile_scale(
             points: Vec::new(),
             runs: Vec::new(),
             record: no_range(m.static_modulus, range),
-            refit: Some((range[0], shape(m.strengths.iter(), m.static_modulus))),
+            refit: Some(Refit {
+                e0: range[0],
+                shape: shape(m.strengths.iter(), m.static_modulus),
+                centre: false,
+            }),
             accepted: Vec::new(),
         });
     }
@@ -269,13 +291,10 @@ pub(super) fn profile_scale(
     // The fit's own E0 is the first step when it lies in the range.
     let own = (e0_fit == start).then(|| steps.iter().find(|s| s.e0 == start));
     let own_delta = own.flatten().map(|s| (s.misfit - misfit_min) / unit);
-    let refit = if own_delta.is_some_and(|d| d <= ONE_SIGMA) {
-        None
-    } else {
-        let e0 = vertex(&steps, best).clamp(low.unwrap_or(range[0]), high.unwrap_or(range[1]));
-        Some((e0, steps[best].shape.clone()))
-    };
-    let e0 = refit.as_ref().map_or(e0_fit, |r| r.0);
+    let interval = [low.unwrap_or(range[0]), high.unwrap_or(range[1])];
+    let own_is_estimate = own_delta.is_some_and(|d| d <= ONE_SIGMA);
+    let refit = refit_at(&steps, best, interval, own_is_estimate);
+    let e0 = refit.as_ref().map_or(e0_fit, |r| r.e0);
     let delta = |s: &Step| (s.misfit - misfit_min) / unit;
     let mut record = ScaleRecord {
         status: status(low, high, range),
@@ -491,6 +510,45 @@ impl Profiler<'_> {
     }
 }
 
+/// Where to pin the result (module doc, step 5), given the profile's
+/// `steps` (by E0), the `best` one, the 2σ `interval` (open ends closed by
+/// the range) and whether the fit's own E0 lies within one noise unit of
+/// the minimum; None keeps the fit's own optimum.
+fn refit_at(
+    steps: &[Step],
+    best: usize,
+    interval: [f64; 2],
+    own_is_estimate: bool,
+) -> Option<Refit> {
+    if best == 0 || best + 1 == steps.len() {
+        // One-sided: the misfit falls to an end of the profiled range (the
+        // model's own limit, such as the R/3 contact) or is flat there; the
+        // minimum is an edge, the worst point to report. The centre in
+        // ln E0 of the 2σ interval is the estimate; the interval stays in
+        // the record and the bands.
+        let centre = (interval[0] * interval[1]).sqrt();
+        let near = (0..steps.len())
+            .min_by(|&a, &b| {
+                let d = |i: usize| (steps[i].e0 / centre).ln().abs();
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap_or(best);
+        return Some(Refit {
+            e0: centre,
+            shape: steps[near].shape.clone(),
+            centre: true,
+        });
+    }
+    if own_is_estimate {
+        return None;
+    }
+    Some(Refit {
+        e0: vertex(steps, best).clamp(interval[0], interval[1]),
+        shape: steps[best].shape.clone(),
+        centre: false,
+    })
+}
+
 /// Index of the step with the smallest misfit.
 fn best_step(steps: &[Step]) -> usize {
     (0..steps.len())
@@ -590,4 +648,54 @@ fn no_range(e0: f64, range: [f64; 2]) -> ScaleRecord {
 /// ln(H_k/E0): a material's shape in the pinned parametrisation.
 fn shape<'h>(strengths: impl Iterator<Item = &'h f64>, static_modulus: f64) -> Vec<f64> {
     strengths.map(|h| (h / static_modulus).ln()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Steps at `e0` (Pa) with misfits `misfit` (noise variance 1), the
+    /// shape ln(H/E0) = [ln E0] to tell them apart.
+    fn steps(points: &[(f64, f64)]) -> Vec<Step> {
+        points
+            .iter()
+            .map(|&(e0, misfit)| Step {
+                e0,
+                misfit,
+                noise_variance: 1.0,
+                shape: vec![e0.ln()],
+                prony: None,
+            })
+            .collect()
+    }
+
+    /// The held-out set's profile: least at the range's lower end (the R/3
+    /// limit, 0.75 MPa), Δχ² = 4 at 1.67 MPa. The estimate is the centre
+    /// of 0.75 … 1.67 MPa in ln E0, 1.12 MPa, not the edge.
+    #[test]
+    fn a_one_sided_profile_reports_the_interval_centre() {
+        let s = steps(&[(0.75e6, 0.0), (1.0e6, 0.8), (1.4e6, 2.5), (2.4e6, 9.0)]);
+        let r = refit_at(&s, best_step(&s), [0.75e6, 1.67e6], true).unwrap();
+        assert!(r.centre);
+        assert!((r.e0 / (0.75e6f64 * 1.67e6).sqrt() - 1.0).abs() < 1e-12);
+        // Started from the step nearest the centre (1.0 MPa).
+        assert_eq!(r.shape, vec![1.0e6f64.ln()]);
+        // Flat up to the upper end: the same rule.
+        let s = steps(&[(1e5, 9.0), (3e5, 1.0), (1e6, 0.1), (3e6, 0.0)]);
+        let r = refit_at(&s, best_step(&s), [2e5, 3e6], false).unwrap();
+        assert!(r.centre && (r.e0 / (2e5f64 * 3e6).sqrt() - 1.0).abs() < 1e-12);
+    }
+
+    /// A minimum inside the profile: the fit's own E0 when it lies within
+    /// one noise unit, else the parabola's vertex.
+    #[test]
+    fn an_inside_minimum_is_the_estimate() {
+        // Misfit (ln E0 − ln 1e6)² sampled at half decades: vertex at 1 MPa.
+        let at = |e0: f64| (e0, (e0 / 1e6).ln().powi(2));
+        let s = steps(&[at(1e5), at(3.2e5), at(1.1e6), at(3.5e6), at(1e7)]);
+        let best = best_step(&s);
+        assert!(refit_at(&s, best, [3e5, 3e6], true).is_none());
+        let r = refit_at(&s, best, [3e5, 3e6], false).unwrap();
+        assert!(!r.centre && (r.e0 / 1e6 - 1.0).abs() < 1e-9, "{}", r.e0);
+    }
 }

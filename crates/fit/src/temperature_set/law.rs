@@ -48,6 +48,8 @@
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
+use crate::params::ShiftSubstitute;
+
 /// Significance level below which a law is rejected against the free
 /// shifts.
 pub const ALPHA: f64 = 0.01;
@@ -136,19 +138,24 @@ impl LawCandidate {
 }
 
 /// How the shift law of a temperature set was chosen: fit.json's
-/// `shift_choice` (with `shift = "auto"` only).
+/// `shift_choice` (with `shift = "auto"`, or when a law the scene asked
+/// for was replaced by another).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ShiftChoice {
-    /// "auto".
+    /// "auto", or "substitute": the law asked for
+    /// ([`crate::params::ShiftSubstitute`]) is not one the fit has.
     pub chosen_by: &'static str,
     /// The law chosen: "wlf", "arrhenius" or "free" (= `shift.model`).
     pub model: &'static str,
     /// Why, in words.
     pub reason: String,
-    /// The test that judged the laws.
-    pub test: &'static str,
-    /// Its significance level.
-    pub alpha: f64,
+    /// With "substitute": the law asked for ("wlf-arrhenius").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub requested: Option<&'static str>,
+    /// The test that judged the laws (null for a substitute).
+    pub test: Option<&'static str>,
+    /// Its significance level (null for a substitute).
+    pub alpha: Option<f64>,
     /// The laws fitted, in the order tried, then the free shifts.
     pub candidates: Vec<LawCandidate>,
 }
@@ -195,9 +202,30 @@ impl ShiftChoice {
             chosen_by: "auto",
             model,
             reason,
-            test: TEST,
-            alpha: ALPHA,
+            requested: None,
+            test: Some(TEST),
+            alpha: Some(ALPHA),
             candidates,
+        }
+    }
+
+    /// The law `model` fitted in place of the one `substitute` asked for.
+    pub(crate) fn substitute(model: &'static str, substitute: &ShiftSubstitute) -> Self {
+        ShiftChoice {
+            chosen_by: "substitute",
+            model,
+            reason: format!(
+                "{} = \"{}\" asks for a law the fit does not have; fitted instead: {}, \
+                 because {}",
+                substitute.key,
+                substitute.requested,
+                law_name(model),
+                substitute.reason
+            ),
+            requested: Some(substitute.requested),
+            test: None,
+            alpha: None,
+            candidates: Vec::new(),
         }
     }
 
@@ -208,8 +236,9 @@ impl ShiftChoice {
             chosen_by: "auto",
             model: fit.model,
             reason,
-            test: TEST,
-            alpha: ALPHA,
+            requested: None,
+            test: Some(TEST),
+            alpha: Some(ALPHA),
             candidates: vec![LawCandidate::free(fit)],
         }
     }

@@ -46,7 +46,4 @@ pub enum Fault {
         /// Data points.
         points: usize,
     },
-    /// A temperature set whose data have no temperatures.
-    #[error("a temperature set without a T value")]
-    TemperatureMissing,
 }

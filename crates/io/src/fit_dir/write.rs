@@ -196,10 +196,9 @@ fn mu_csv(measured: &Measured<'_>, report: &FitReport) -> Result<Vec<u8>, IoErro
         }
         row.push((fit - mu) / mu);
         if let Some(shift) = shift {
-            let t = measured
-                .temperature
-                .map(|t| t[i])
-                .ok_or(Fault::TemperatureMissing)?;
+            // Rows without a T column under a shift are a joint fit's
+            // rolling data, measured at T_ref (the fit's own rule).
+            let t = measured.temperature.map_or(shift.t_ref(), |t| t[i]);
             let log_a = shift
                 .log_shifts()
                 .iter()

@@ -111,6 +111,14 @@ pub struct ContactAnchor {
     pub r: Real,
 }
 
+/// Why a scene's `[material.shift] model = "wlf-arrhenius"` is fitted with
+/// free shifts.
+const WLF_ARRHENIUS_SUBSTITUTE: &str = "the fit's shift laws are WLF, Arrhenius and free \
+     shifts: one free log10 a_T per measured temperature follows the two-branch law, its kink at \
+     T_g included, but its constants (C1, C2, T_g, E_a) are not fitted (the free log10 a_T are in \
+     fit.json's shift); give [fit] shift = \"free\" to ask for free shifts, or \"wlf\" or \
+     \"arrhenius\" for one law over all temperatures";
+
 impl FitSection {
     /// Checks the scale anchors: each positive, at most one, and below
     /// `E1_max`. The settings were checked as they were read.
@@ -244,10 +252,17 @@ impl SceneFile {
                 params.shift.kind = match shift.model {
                     ShiftKind::Wlf => rollfit_fit::ShiftKind::Wlf,
                     ShiftKind::Arrhenius => rollfit_fit::ShiftKind::Arrhenius,
-                    // The fit has no two-branch law; free shifts follow
-                    // any law, the kink included.
                     ShiftKind::Free | ShiftKind::WlfArrhenius => rollfit_fit::ShiftKind::Free,
                 };
+                // The fit has no two-branch law: free shifts follow it, the
+                // kink included, and the record says so.
+                if shift.model == ShiftKind::WlfArrhenius {
+                    params.shift.substituted = Some(rollfit_fit::ShiftSubstitute {
+                        requested: "wlf-arrhenius",
+                        key: "[material.shift] model",
+                        reason: WLF_ARRHENIUS_SUBSTITUTE.into(),
+                    });
+                }
             }
             params.shift.vertical = shift.vertical_rule().section("[material.shift]")?;
         }
