@@ -65,7 +65,7 @@ pub fn build(
         })?;
     Ok(DmaMaster {
         data,
-        settings: valid,
+        settings: valid.resolved(&master.shift),
         master,
         ranges,
     })
