@@ -74,11 +74,8 @@
 
 use crate::shift::overlap::{Curve, differences, golden_section};
 
-/// The largest 1σ of a shift the data determine, decades: the rule
-/// behind every "determined" flag of a master curve (pairs and
-/// isotherms). A factor 2 in a_T, the scale on which two TTS tools that
-/// both do their job differ on a clean set, not a precision that hides a
-/// wrong curve.
+/// The largest 1σ of a shift the data determine, decades: the rule behind
+/// every "determined" flag (pairs and isotherms); a factor 2 in a_T.
 pub const DETERMINED_SIGMA: f64 = 0.3;
 
 /// The difference, decades, between the shift log E′ alone needs and the
@@ -111,8 +108,7 @@ pub enum PairCause {
     OverlapEnd,
     /// Two separate minima fit about equally well.
     Ambiguous,
-    /// Bounded, but σ exceeds [`DETERMINED_SIGMA`] or the 2σ interval
-    /// leaves the overlap.
+    /// Bounded, but σ > [`DETERMINED_SIGMA`] or 2σ leaves the overlap.
     Wide,
     /// Fewer than [`MIN_OVERLAP`] points of an isotherm can overlap the
     /// other at any shift.
