@@ -155,12 +155,14 @@ fn eplexor_like_replica_superposes_where_it_can_and_says_where_not() {
     // off a plateau.
     let mut reference = Vec::new();
     let mut sloped = Vec::new();
+    let mut exact_gap = Vec::new();
     for k in 0..20 {
         let (e, t) = (
             oracle_shift(&exact[k], &exact[k + 1], 0),
             oracle_shift(&exact[k], &exact[k + 1], 1),
         );
         reference.push(0.5 * (e + t));
+        exact_gap.push((e - t).abs());
         sloped.push(
             [&exact[k], &exact[k + 1]]
                 .iter()
@@ -177,16 +179,18 @@ fn eplexor_like_replica_superposes_where_it_can_and_says_where_not() {
     for seed in 0..3 {
         let isotherms = replica(&material, &temps, &shifts, (10, 3.0), 0.01, 40 + seed);
         // The classes as the issue defines them, on the measured (noisy)
-        // isotherms: the best shifts of log E′ alone and log tan δ alone
-        // agree within 0.2 decade (and the pair is off a plateau), or
-        // differ by more than 0.3.
+        // isotherms and, so that the truth is one shift or clearly two, on
+        // the noise-free ones: the best shifts of log E′ alone and log tan δ
+        // alone agree within 0.2 decade (and the pair is off a plateau), or
+        // differ by more than 0.3. A gap the noise of a nearly flat E′ makes
+        // alone is neither.
         let (mut holds, mut fails) = (Vec::new(), Vec::new());
         for k in 0..20 {
             let d = oracle_shift(&isotherms[k], &isotherms[k + 1], 0)
                 - oracle_shift(&isotherms[k], &isotherms[k + 1], 1);
-            if d.abs() <= 0.2 && sloped[k] {
+            if d.abs() <= 0.2 && exact_gap[k] <= 0.2 && sloped[k] {
                 holds.push(k);
-            } else if d.abs() > 0.3 {
+            } else if d.abs() > 0.3 && exact_gap[k] > 0.3 {
                 fails.push(k);
             }
         }
