@@ -266,7 +266,7 @@ fn bad_isotherms() {
         &[
             "flat.csv",
             "no shift between the isotherms (-60, -50, -40 °C)",
-            "plateau",
+            "the best overlap",
         ],
     );
     assert!(!tmp.path().join("flat").exists());
