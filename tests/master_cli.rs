@@ -176,7 +176,9 @@ fn same_friction_as_material_toml(
     );
 }
 
-/// The refusals: isotherms that do not overlap (naming the pair), a sweep
+/// The refusals: isotherms 20 decades apart whose shift is measured (no
+/// cap on the search) but whose moduli (E′ ×10 over three decades, E″
+/// constant) no causal series follows (naming the file), a sweep
 /// that turns (naming its lines), WLF on two isotherms; and what is not an
 /// error: one isotherm (the master curve, no shift), an E″ ≤ 0 point
 /// (dropped with its line).
@@ -193,7 +195,7 @@ fn bad_isotherms() {
     }
     let gap = tmp.write("gap.csv", &gap);
     let out = master(&gap, &tmp.path().join("gap"), &["--shift", "free"]);
-    assert_failure(&out, &["gap.csv", "0 °C and 10 °C do not overlap"]);
+    assert_failure(&out, &["gap.csv", "not causal"]);
     assert!(!tmp.path().join("gap").exists());
 
     let good = isotherms_csv(&[0.0, 10.0, 20.0], 8, 0.0, 1);
@@ -264,7 +266,7 @@ fn bad_isotherms() {
         &[
             "flat.csv",
             "no shift between the isotherms (-60, -50, -40 °C)",
-            "plateau",
+            "the best overlap",
         ],
     );
     assert!(!tmp.path().join("flat").exists());
@@ -801,23 +803,83 @@ fn noncausal_isotherms_are_refused() {
     );
 }
 
-/// Issue 36, item 3: nine isotherms with the same flat moduli (0.1 %
-/// scatter) determine no shift worth the name: refused, naming the
-/// undetermined shifts and what would fix them.
+/// Nine isotherms with the same flat moduli (0.1 % scatter) determine no
+/// shift: refused, every pair named as a plateau with its numbers and
+/// what would fix it, also under --allow-poor-fit (no curve could be
+/// used), and the folder left as it was.
 #[test]
 fn flat_isotherms_are_refused() {
     let tmp = TempDir::new("gate-flat");
     let temps: Vec<f64> = (0..9).map(|k| 10.0 * k as f64).collect();
     let dma = tmp.write("flat.csv", &gate_csv(&temps, 1e-3, |_, _| (1e9, 1e8)));
-    refused_then_allowed(
-        &dma,
-        &tmp,
-        &[
-            "the shifts are not determined by the overlap",
-            "of 9 isotherms",
-            "measure isotherms through the transition",
-        ],
+    let dir = tmp.path().join("master");
+    fs::create_dir_all(&dir).unwrap();
+    fs::write(dir.join("master.json"), "earlier\n").unwrap();
+    let before = common::snapshot(&dir);
+    for extra in [&[][..], &["--allow-poor-fit"][..]] {
+        let out = master(&dma, &dir, extra);
+        assert_failure(
+            &out,
+            &[
+                "flat.csv",
+                "is determined by the data",
+                "10–20 °C flat, a plateau",
+                "E′ changes by at most",
+                "measure isotherms through the transition",
+            ],
+        );
+        assert_eq!(common::snapshot(&dir), before, "the folder changed");
+    }
+}
+
+/// Isotherms from the glass (flat: E′ within 1 %, tan δ < 0.02) through
+/// the transition, WLF-shifted with 1 % noise: the curve is written with
+/// exit 0, the glassy isotherms marked not determined in shift.csv, the
+/// summary, master.json and material.toml's comment stating the window
+/// the determined part covers; `--strict` refuses it, naming the
+/// isotherms, and writes nothing.
+#[test]
+fn partly_determined_curves_are_written_and_strict_refuses_them() {
+    let glassy = HavriliakNegami::new(2e6, 2e9, 1e-3, 0.6, 0.8).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let mut csv = String::from("T,omega,E_storage,E_loss\n");
+    for k in 0..12 {
+        let t = -60.0 + 10.0 * k as f64;
+        for i in 0..12 {
+            let w = 0.1 * 10f64.powf(3.0 * i as f64 / 11.0);
+            let e = glassy.modulus(w * 10f64.powf(wlf(t)));
+            let s = e.re * (1.0 + 0.01 * normal.sample(&mut rng));
+            let l = e.im * (1.0 + 0.01 * normal.sample(&mut rng));
+            csv += &format!("{t},{w:e},{s:e},{l:e}\n");
+        }
+    }
+    let tmp = TempDir::new("partly");
+    let dma = tmp.write("glassy.csv", &csv);
+    let dir = tmp.path().join("m");
+    let stdout = succeed(master(&dma, &dir, &[]));
+    let flags = fs::read_to_string(dir.join("shift.csv")).unwrap();
+    assert!(flags.contains("false") && flags.contains("true"), "{flags}");
+    assert!(
+        stdout.contains("Determined: ") && stdout.contains("covering ω a_T"),
+        "{stdout}"
     );
+    let json: serde_json::Value =
+        serde_json::from_slice(&fs::read(dir.join("master.json")).unwrap()).unwrap();
+    assert!(json["determined_omega_range"].is_array(), "{json}");
+    assert!(
+        json["determined_rule"]
+            .as_str()
+            .unwrap()
+            .contains("0.3 decade")
+    );
+    assert_eq!(json["quality"]["verdict"], "good", "{}", json["quality"]);
+    let material = fs::read_to_string(dir.join("material.toml")).unwrap();
+    assert!(material.contains("placed by the law"), "{material}");
+    let strict_dir = tmp.path().join("strict");
+    let out = master(&dma, &strict_dir, &["--strict"]);
+    assert_failure(&out, &["--strict", "not determined", "glassy.csv"]);
+    assert!(!strict_dir.exists(), "a folder was written on error");
 }
 
 /// Temperatures in merged cells (only an isotherm's first row holds its

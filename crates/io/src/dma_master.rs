@@ -80,7 +80,7 @@ pub fn build_told(
         })?;
     Ok(DmaMaster {
         data,
-        settings: valid,
+        settings: valid.resolved(&master.shift),
         master,
         ranges,
     })

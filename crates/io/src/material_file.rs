@@ -84,6 +84,8 @@ struct Source<'a> {
     shift: &'a ShiftFactors,
     prony: &'a Prony,
     settings: &'a ValidMasterSettings,
+    /// The reduced frequencies (rad/s) the determined isotherms cover.
+    window: Option<[f64; 2]>,
 }
 
 /// The file's text, with a comment header saying where it came from.
@@ -96,6 +98,7 @@ pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
         shift: &built.master.shift,
         prony: &built.master.fit.prony,
         settings: &built.settings,
+        window: built.master.determined_window,
     })
 }
 
@@ -111,7 +114,36 @@ pub fn encode_relaxation(built: &RelaxationBuilt) -> Result<Vec<u8>, IoError> {
         shift: &built.master.shift,
         prony: &built.master.fit.prony,
         settings: &built.settings,
+        window: None,
     })
+}
+
+/// The comment on what the data determine: every isotherm's shift, or
+/// which are placed by the law and the window the others cover.
+fn determined_comment(source: &Source<'_>) -> String {
+    let shifts = &source.shift.shifts;
+    let undetermined: Vec<String> = shifts
+        .iter()
+        .filter(|s| !s.determined)
+        .map(|s| format!("{}", s.temperature))
+        .collect();
+    if shifts.len() < 2 || undetermined.is_empty() {
+        return String::new();
+    }
+    let window = source.window.map_or(String::new(), |[lo, hi]| {
+        format!(
+            "; they cover ω a_T = {lo:.3e} … {hi:.3e} rad/s at T_ref, the window the series \
+             measures"
+        )
+    });
+    format!(
+        "\n# The data determine the shifts of {} of {} isotherms (σ ≤ {} decade){window}.\n# The \
+         isotherms at {} °C are placed by the law: the series beyond that window rests on it.",
+        shifts.len() - undetermined.len(),
+        shifts.len(),
+        rollfit_fit::master::pairwise::DETERMINED_SIGMA,
+        undetermined.join(", ")
+    )
 }
 
 fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
@@ -188,7 +220,7 @@ fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
     let mut text = format!(
         "# Written by rollfit master from {} ({} {}, {} points).\n\
          # Young's modulus at T_ref = {t_ref} °C: a Prony series E*(ω) = E0 + Σ H_k iωτ_k/(1 + iωτ_k),\n\
-         # E0 = E1 − Σ H_k = {:e} Pa.{}\n\
+         # E0 = E1 − Σ H_k = {:e} Pa.{}{}\n\
          # Copy these tables into a scene file{}.\n\n",
         source.path.display(),
         shift_factors.shifts.len(),
@@ -201,6 +233,7 @@ fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
         } else {
             ""
         },
+        determined_comment(source),
         source.also
     );
     text.push_str(&body);

@@ -61,7 +61,7 @@ pub fn build(
     })?;
     Ok(RelaxationBuilt {
         data,
-        settings: valid,
+        settings: valid.resolved(&master.shift),
         master,
     })
 }

@@ -27,15 +27,18 @@
 //!   a thermorheologically simple material fall on one curve.
 //!
 //! A master curve whose verdict (`rollfit_fit::master::quality`: data no
-//! causal series can follow, a series that misses them, shifts the data
-//! do not determine) is poor writes nothing and fails, unless
-//! `--allow-poor-fit`, as `fit` does with a poor fit.
+//! causal series can follow, a series that misses them, no shift the data
+//! determine) is poor writes nothing and fails, unless `--allow-poor-fit`,
+//! as `fit` does with a poor fit. A curve with some undetermined shifts
+//! is written, those isotherms marked and the frequency window the
+//! determined ones cover stated; `--strict` refuses it instead.
 
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use rollfit_fit::master::pairwise::DETERMINED_SIGMA;
 use rollfit_fit::master::quality::{MasterQuality, Misfits};
-use rollfit_fit::master::{MasterSettings, ShiftLaw};
+use rollfit_fit::master::{MasterSettings, ShiftFactors, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
 use rollfit_io::dma::DmaPoint;
 use rollfit_io::dma_master::{self, DmaMaster};
@@ -54,7 +57,7 @@ mod pictures;
 mod relaxation;
 mod shift_out;
 
-use shift_out::{ShiftJson, shift_csv, shift_text};
+use shift_out::{ShiftJson, VgpJson, shift_csv, shift_text};
 
 /// Arguments of `rollfit master`.
 #[derive(Debug, clap::Args)]
@@ -100,6 +103,11 @@ pub struct Args {
     /// `rollfit batch`); files rollfit did not write there stay.
     #[arg(long)]
     pub force: bool,
+    /// Refuse (write nothing, exit non-zero) when any isotherm's shift is
+    /// not determined by the data (σ about T_ref above 0.3 decade), for a
+    /// pipeline that must not use a curve placed partly by a law.
+    #[arg(long)]
+    pub strict: bool,
 }
 
 /// `--poisson`: a number in the one range of Poisson's ratio
@@ -195,6 +203,7 @@ pub fn run(args: &Args) -> Result<()> {
         loss: causal.misfit_loss,
     });
     gate(&quality, args)?;
+    strict_gate(&built.master.shift, args)?;
     let files = encode(&built, &causal, poisson, &quality)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
     output::replace_folder(&args.output, output::Writer::Master, args.force, &named)?;
@@ -256,6 +265,28 @@ fn gate(quality: &MasterQuality, args: &Args) -> Result<()> {
          master.json)",
         args.dma.display(),
         quality.reasons.join("; "),
+        args.output.display()
+    )
+}
+
+/// Under `--strict`, refuses a curve with any undetermined shift, naming
+/// the isotherms; before anything is written.
+pub(super) fn strict_gate(shift: &ShiftFactors, args: &Args) -> Result<()> {
+    let undetermined: Vec<String> = shift
+        .shifts
+        .iter()
+        .filter(|s| !s.determined)
+        .map(|s| shift_out::celsius(s.temperature))
+        .collect();
+    if !args.strict || undetermined.is_empty() {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "DMA file {}: --strict: the shifts of the isotherms at {} °C are not determined by the \
+         data (σ about T_ref above {DETERMINED_SIGMA} decade); nothing was written to {} (without \
+         --strict the curve is written with those isotherms marked)",
+        args.dma.display(),
+        undetermined.join(", "),
         args.output.display()
     )
 }
@@ -367,6 +398,11 @@ struct Summary {
     omega_range: [f64; 2],
     #[serde(flatten)]
     shift: ShiftJson,
+    /// The reduced frequencies (rad/s) the isotherms with determined
+    /// shifts cover; null where none.
+    determined_omega_range: Option<[f64; 2]>,
+    /// The van Gurp–Palmen test of the unshifted isotherms.
+    van_gurp_palmen: VgpJson,
     prony: PronySummary,
     kramers_kronig: KkSummary,
     /// The gate's verdict ("good", or "poor" with reasons).
@@ -421,6 +457,8 @@ impl Summary {
                 m.points[m.points.len() - 1].reduced_omega,
             ],
             shift: ShiftJson::of(&m.shift),
+            determined_omega_range: m.determined_window,
+            van_gurp_palmen: VgpJson::of(&m.van_gurp_palmen),
             prony: PronySummary {
                 terms: fit.prony.relaxation_times().len(),
                 static_modulus: fit.prony.static_modulus(),
@@ -464,6 +502,8 @@ fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
     );
     out += &isotherms_line(&built.ranges);
     out += &shift_text(&m.shift);
+    out += &shift_out::window_text(&m.shift, m.determined_window, "ω a_T", "rad/s");
+    out += &shift_out::vgp_text(&m.van_gurp_palmen);
     let fit = &m.fit;
     out += &format!(
         "Prony series: {} terms, λ = {:.3e}; RMS misfit E′ {:.4}, E″ {:.4} decades; \

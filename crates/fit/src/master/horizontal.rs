@@ -34,8 +34,7 @@ use rayon::prelude::*;
 
 use super::condense::bins;
 use super::isotherm::Isotherm;
-use super::pairwise::{PairShift, PairVerdict, pair_shift};
-use crate::error::FitError;
+use super::pairwise::{PairCause, PairShift, PairVerdict, pair_shift};
 use crate::shift::overlap::Curve;
 
 /// What the isotherms were measured against: frequency sweeps, or
@@ -62,14 +61,6 @@ impl Domain {
         match self {
             Domain::Frequency => "more frequencies",
             Domain::Time => "longer times",
-        }
-    }
-
-    /// What is flat on a plateau, for messages.
-    pub(crate) fn curves(self) -> &'static str {
-        match self {
-            Domain::Frequency => "E′ and tan δ are",
-            Domain::Time => "E(t) is",
         }
     }
 }
@@ -159,13 +150,11 @@ pub(crate) fn curves(isotherm: &Isotherm) -> Vec<Curve> {
     ]
 }
 
-/// The pairs of `sorted` (ascending, distinct temperatures); refuses a
-/// neighbour pair that does not overlap, naming it.
-pub(crate) fn pairs(
-    sorted: &[Superposable],
-    vertical: bool,
-    domain: Domain,
-) -> Result<Pairs, FitError> {
+/// The pairs of `sorted` (ascending, distinct temperatures). A pair that
+/// cannot overlap is an undetermined pair of zero shift
+/// ([`super::pairwise::PairCause::TooFewPoints`]); whether any shift is
+/// determined is the network's question.
+pub(crate) fn pairs(sorted: &[Superposable], vertical: bool) -> Pairs {
     let all: Vec<&[Curve]> = sorted.iter().map(|i| i.curves.as_slice()).collect();
     let mut out = Pairs {
         pairs: Vec::new(),
@@ -176,22 +165,11 @@ pub(crate) fn pairs(
     // objective scans): in parallel, collected in order.
     // upper(x) = lower(x + s): the warmer isotherm is the colder one seen
     // at frequencies 10^s times higher.
-    let neighbours: Vec<Option<PairShift>> = (0..all.len().saturating_sub(1))
+    let neighbours: Vec<PairShift> = (0..all.len().saturating_sub(1))
         .into_par_iter()
         .map(|k| pair_shift(all[k], all[k + 1], vertical, (k, k + 1)))
         .collect();
     for (k, pair) in neighbours.into_iter().enumerate() {
-        let pair = pair.ok_or_else(|| {
-            FitError::InsufficientData(format!(
-                "the isotherms at {} °C and {} °C do not overlap in {} once shifted (at \
-                 least a fifth of the warmer one's points, and four, must fall inside the \
-                 colder one's range): measure a temperature between them or over {}",
-                sorted[k].temperature,
-                sorted[k + 1].temperature,
-                domain.axis(),
-                domain.wider()
-            ))
-        })?;
         out.chained.push(out.chained[k] + pair.shift);
         out.log_vertical.push(out.log_vertical[k] + pair.vertical);
         out.pairs.push(pair);
@@ -201,8 +179,9 @@ pub(crate) fn pairs(
         .filter(|&k| undetermined(k) || undetermined(k + 1))
         .collect::<Vec<usize>>()
         .into_par_iter()
-        .filter_map(|k| pair_shift(all[k], all[k + 2], vertical, (k, k + 2)))
+        .map(|k| pair_shift(all[k], all[k + 2], vertical, (k, k + 2)))
+        .filter(|p| p.cause != PairCause::TooFewPoints)
         .collect();
     out.pairs.extend(bridges);
-    Ok(out)
+    out
 }

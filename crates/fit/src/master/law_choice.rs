@@ -13,6 +13,16 @@
 //!    isotherms): no law describes them within their errors, and a law
 //!    would move well-measured isotherms off their best overlap.
 //!
+//! A candidate that cannot hold is rejected before its test is read, with
+//! its reason, and `auto` goes on to the next: a WLF branch that diverges
+//! (T = T_ref − C2) at or above the coldest measured isotherm, a WLF C1
+//! above [`super::quality::WLF_C1_MAX`] (no polymer's free volume gives
+//! it), or a constant with a standard error of exactly 0 (a degenerate
+//! fit the shifts do not determine). A law asked for by name that
+//! diverges inside the measured temperatures is an error naming its
+//! constants, where it diverges, the measured range and the laws that do
+//! fit.
+//!
 //! When T_ref lies outside the measured temperatures a free shift cannot
 //! reach it; `auto` then keeps the law with the largest p-value and says
 //! that it does not pass.
@@ -24,6 +34,7 @@
 //!   1980, ch. 11.
 
 use super::ShiftLaw;
+use super::quality::WLF_C1_MAX;
 use super::temperature_law::{
     self, ArrheniusFit, LawTest, PairObservation, WlfArrheniusFit, WlfFit,
 };
@@ -44,6 +55,66 @@ pub struct LawChoice {
     pub arrhenius: Option<ArrheniusFit>,
     /// WLF–Arrhenius, where tried.
     pub wlf_arrhenius: Option<WlfArrheniusFit>,
+    /// Candidates `auto` rejected as unable to hold, each with its reason.
+    pub rejected: Vec<(ShiftLaw, String)>,
+}
+
+/// Why a fitted law cannot hold over the measured temperatures `measured`
+/// (ascending, °C), or None: a WLF branch that diverges inside or above
+/// their lower end, C1 above [`WLF_C1_MAX`], or a standard error of
+/// exactly 0 (module doc).
+pub(crate) fn cannot_hold(
+    law: ShiftLaw,
+    choice: &LawChoice,
+    measured: &[f64],
+    t_ref: f64,
+) -> Option<String> {
+    let (lo, hi) = (measured[0], measured[measured.len() - 1]);
+    let range = format!("{} to {} °C", temperature(lo), temperature(hi));
+    let (wlf, sigmas): (Option<(f64, f64)>, Vec<f64>) = match law {
+        ShiftLaw::Wlf => {
+            let w = choice.wlf?;
+            (Some((w.c1, w.c2)), vec![w.c1_sigma, w.c2_sigma])
+        }
+        ShiftLaw::WlfArrhenius => {
+            let w = choice.wlf_arrhenius?;
+            (Some((w.c1, w.c2)), w.sigma.to_vec())
+        }
+        ShiftLaw::Arrhenius => (None, vec![choice.arrhenius?.activation_energy_sigma]),
+        ShiftLaw::Free | ShiftLaw::Auto => return None,
+    };
+    if let Some((c1, c2)) = wlf {
+        let below = match law {
+            ShiftLaw::WlfArrhenius => choice.wlf_arrhenius.map_or(lo, |w| w.t_junction.max(lo)),
+            _ => lo,
+        };
+        let diverges = t_ref - c2;
+        // The WLF branch holds above `below`; measured temperatures there
+        // must lie above its divergence.
+        if measured
+            .iter()
+            .any(|&t| t >= below && c2 + t - t_ref <= 0.0)
+        {
+            return Some(format!(
+                "C1 = {c1:.4}, C2 = {c2:.2} K about T_ref = {t_ref} °C diverge at T_ref − C2 = {}                  °C, inside the measured temperatures ({range})",
+                temperature(diverges)
+            ));
+        }
+        if c1 > WLF_C1_MAX {
+            return Some(format!(
+                "C1 = {c1:.4e} is far above any polymer's (at most about {WLF_C1_MAX}): WLF is \
+                 stretched to a straight line"
+            ));
+        }
+    }
+    if sigmas.contains(&0.0) {
+        return Some(
+            "a constant has a standard error of exactly 0: the shifts do not \
+                     determine it (a degenerate fit)"
+                .to_string(),
+        );
+    }
+    None
 }
 
 /// "χ² = 12.3 for 9 degrees of freedom, p = 0.2".
@@ -59,7 +130,7 @@ fn describe(test: &LawTest) -> String {
 
 /// A temperature for a message, °C, to 0.01 K (a controller's scatter
 /// about its set point is noise in a sentence).
-pub(crate) fn temperature(t: f64) -> String {
+pub fn temperature(t: f64) -> String {
     let rounded = (t * 100.0).round() / 100.0;
     // −0 reads oddly.
     format!("{}", if rounded == 0.0 { 0.0 } else { rounded })
@@ -76,11 +147,13 @@ fn aicc(test: &LawTest, parameters: usize, pairs: usize) -> f64 {
 }
 
 /// Chooses and fits the law of the determined `pairs`; `temps` are the
-/// determined isotherms' temperatures (ascending).
+/// determined isotherms' temperatures, `measured` every isotherm's
+/// (both ascending).
 pub(crate) fn choose(
     asked: ShiftLaw,
     pairs: &[PairObservation],
     temps: &[f64],
+    measured: &[f64],
     t_ref: f64,
 ) -> Result<LawChoice, FitError> {
     let n = pairs.len();
@@ -99,6 +172,7 @@ pub(crate) fn choose(
         wlf: None,
         arrhenius: None,
         wlf_arrhenius: None,
+        rejected: Vec::new(),
     };
     let fails = |name: &str, test: &LawTest| {
         format!(
@@ -149,16 +223,73 @@ pub(crate) fn choose(
         ShiftLaw::Free => {
             choice.reason = "asked for: the measured shifts, linear in T between isotherms".into();
         }
-        ShiftLaw::Auto => choose_auto(&mut choice, pairs, temps, t_ref),
+        ShiftLaw::Auto => choose_auto(&mut choice, pairs, temps, measured, t_ref),
+    }
+    if asked != ShiftLaw::Auto
+        && let Some(why) = cannot_hold(asked, &choice, measured, t_ref)
+        && why.contains("diverge")
+    {
+        let mut others = LawChoice {
+            law: ShiftLaw::Auto,
+            rejected: Vec::new(),
+            ..choice.clone()
+        };
+        choose_auto(&mut others, pairs, temps, measured, t_ref);
+        let fit: Vec<&str> = [
+            (ShiftLaw::Wlf, others.wlf.map(|w| w.test)),
+            (ShiftLaw::WlfArrhenius, others.wlf_arrhenius.map(|w| w.test)),
+            (ShiftLaw::Arrhenius, others.arrhenius.map(|a| a.test)),
+        ]
+        .into_iter()
+        .filter(|(law, test)| {
+            *law != asked
+                && test.is_some_and(|t| t.passes())
+                && !others.rejected.iter().any(|r| r.0 == *law)
+        })
+        .map(|(law, _)| law.name())
+        .chain(std::iter::once("free"))
+        .collect();
+        return Err(FitError::InsufficientData(format!(
+            "the {} law cannot hold: {why}; laws that fit the determined shifts: {} (--shift {})",
+            asked.name(),
+            fit.join(", "),
+            fit[0]
+        )));
     }
     Ok(choice)
 }
 
 /// `auto` (module doc).
-fn choose_auto(choice: &mut LawChoice, pairs: &[PairObservation], temps: &[f64], t_ref: f64) {
+fn choose_auto(
+    choice: &mut LawChoice,
+    pairs: &[PairObservation],
+    temps: &[f64],
+    measured: &[f64],
+    t_ref: f64,
+) {
     let n = pairs.len();
     choice.wlf = temperature_law::fit_wlf(pairs, t_ref);
-    if let Some(w) = choice.wlf.filter(|w| w.test.passes()) {
+    choice.wlf_arrhenius = temperature_law::fit_wlf_arrhenius(pairs, t_ref);
+    choice.arrhenius =
+        temperature_law::fit_arrhenius(pairs, t_ref).filter(|a| a.activation_energy > 0.0);
+    for law in [ShiftLaw::Wlf, ShiftLaw::WlfArrhenius, ShiftLaw::Arrhenius] {
+        if let Some(why) = cannot_hold(law, choice, measured, t_ref) {
+            choice.rejected.push((law, why));
+        }
+    }
+    let rejected_laws: Vec<ShiftLaw> = choice.rejected.iter().map(|r| r.0).collect();
+    let rejected = |law: ShiftLaw| rejected_laws.contains(&law);
+    // The other rejected candidates, said after WLF's verdict.
+    let others_rejected: Vec<String> = choice
+        .rejected
+        .iter()
+        .filter(|r| r.0 != ShiftLaw::Wlf)
+        .map(|(law, why)| format!("{} rejected: {why}", law.name()))
+        .collect();
+    if let Some(w) = choice
+        .wlf
+        .filter(|w| w.test.passes() && !rejected(ShiftLaw::Wlf))
+    {
         choice.law = ShiftLaw::Wlf;
         choice.reason = format!(
             "auto: WLF describes the {} determined shifts ({})",
@@ -167,15 +298,23 @@ fn choose_auto(choice: &mut LawChoice, pairs: &[PairObservation], temps: &[f64],
         );
         return;
     }
-    choice.wlf_arrhenius = temperature_law::fit_wlf_arrhenius(pairs, t_ref);
-    choice.arrhenius =
-        temperature_law::fit_arrhenius(pairs, t_ref).filter(|a| a.activation_energy > 0.0);
-    let wlf_said = choice.wlf.map_or_else(
-        || "WLF cannot be fitted to them".to_string(),
-        |w| format!("WLF does not describe them ({})", describe(&w.test)),
-    );
+    let wlf_said = match choice.rejected.iter().find(|r| r.0 == ShiftLaw::Wlf) {
+        Some((_, why)) => format!("WLF cannot hold ({why})"),
+        None => choice.wlf.map_or_else(
+            || "WLF cannot be fitted to them".to_string(),
+            |w| format!("WLF does not describe them ({})", describe(&w.test)),
+        ),
+    };
+    let wlf_said = if others_rejected.is_empty() {
+        wlf_said
+    } else {
+        format!("{wlf_said}; {}", others_rejected.join("; "))
+    };
     let mut passing: Vec<(ShiftLaw, f64, String)> = Vec::new();
-    if let Some(w) = choice.wlf_arrhenius.filter(|w| w.test.passes()) {
+    if let Some(w) = choice
+        .wlf_arrhenius
+        .filter(|w| w.test.passes() && !rejected(ShiftLaw::WlfArrhenius))
+    {
         passing.push((
             ShiftLaw::WlfArrhenius,
             aicc(&w.test, 4, n),
@@ -186,7 +325,10 @@ fn choose_auto(choice: &mut LawChoice, pairs: &[PairObservation], temps: &[f64],
             ),
         ));
     }
-    if let Some(a) = choice.arrhenius.filter(|a| a.test.passes()) {
+    if let Some(a) = choice
+        .arrhenius
+        .filter(|a| a.test.passes() && !rejected(ShiftLaw::Arrhenius))
+    {
         passing.push((
             ShiftLaw::Arrhenius,
             aicc(&a.test, 1, n),
@@ -216,16 +358,25 @@ fn choose_auto(choice: &mut LawChoice, pairs: &[PairObservation], temps: &[f64],
         );
         return;
     }
-    // T_ref outside the determined isotherms: a free shift cannot reach
-    // it; the law with the largest p-value.
+    closest_law(choice, temps, t_ref, &rejected_laws);
+}
+
+/// `auto` with T_ref outside the determined isotherms, where no law
+/// passes: a free shift cannot reach T_ref, so the law (not among
+/// `rejected`) with the largest p-value, said not to pass.
+fn closest_law(choice: &mut LawChoice, temps: &[f64], t_ref: f64, rejected: &[ShiftLaw]) {
+    let rejected = |law: ShiftLaw| rejected.contains(&law);
     let mut laws: Vec<(ShiftLaw, f64)> = Vec::new();
-    if let Some(w) = choice.wlf {
+    if let Some(w) = choice.wlf.filter(|_| !rejected(ShiftLaw::Wlf)) {
         laws.push((ShiftLaw::Wlf, w.test.p_value.unwrap_or(1.0)));
     }
-    if let Some(w) = choice.wlf_arrhenius {
+    if let Some(w) = choice
+        .wlf_arrhenius
+        .filter(|_| !rejected(ShiftLaw::WlfArrhenius))
+    {
         laws.push((ShiftLaw::WlfArrhenius, w.test.p_value.unwrap_or(1.0)));
     }
-    if let Some(a) = choice.arrhenius {
+    if let Some(a) = choice.arrhenius.filter(|_| !rejected(ShiftLaw::Arrhenius)) {
         laws.push((ShiftLaw::Arrhenius, a.test.p_value.unwrap_or(1.0)));
     }
     laws.sort_by(|a, b| b.1.total_cmp(&a.1));

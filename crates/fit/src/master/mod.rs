@@ -56,11 +56,13 @@ pub mod relaxation;
 mod relaxation_prony;
 mod shifts;
 pub mod temperature_law;
+pub mod van_gurp_palmen;
 
 pub use isotherm::Isotherm;
 pub use prony_fit::{PronyFit, TAU_PER_DECADE, fit_prony, tau_grid};
 pub use shifts::{IsothermShift, ShiftFactors, shift_factors};
 pub use temperature_law::{ArrheniusFit, LawTest, WlfArrheniusFit, WlfFit};
+pub use van_gurp_palmen::{VanGurpPalmen, van_gurp_palmen};
 
 use rollfit_model::ViscoelasticModulus;
 
@@ -100,8 +102,9 @@ impl ShiftLaw {
 /// Settings of a master curve, unchecked.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MasterSettings {
-    /// Reference temperature, °C; None: 20 °C when inside the measured
-    /// range, else the measured temperature nearest to it.
+    /// Reference temperature, °C; None: 20 °C when inside the isotherms
+    /// whose shifts the data determine, else the one of them nearest to
+    /// it.
     pub t_ref: Option<f64>,
     /// The law of a_T.
     pub law: ShiftLaw,
@@ -113,6 +116,7 @@ pub struct MasterSettings {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ValidMasterSettings {
     t_ref: f64,
+    t_ref_given: bool,
     law: ShiftLaw,
     vertical: bool,
 }
@@ -131,6 +135,16 @@ impl ValidMasterSettings {
     /// Whether vertical factors are found.
     pub fn vertical(&self) -> bool {
         self.vertical
+    }
+
+    /// The settings with the reference temperature the shifts resolved
+    /// ([`ShiftFactors::t_ref`]: without a T_ref given, the shifts move it
+    /// into the determined part).
+    pub fn resolved(self, shift: &ShiftFactors) -> ValidMasterSettings {
+        ValidMasterSettings {
+            t_ref: shift.t_ref,
+            ..self
+        }
     }
 }
 
@@ -239,6 +253,7 @@ impl MasterSettings {
         }
         Ok(ValidMasterSettings {
             t_ref,
+            t_ref_given: self.t_ref.is_some(),
             law: self.law,
             vertical: self.vertical,
         })
@@ -325,6 +340,13 @@ pub struct MasterCurve {
     pub points: Vec<MasterPoint>,
     /// The Prony series at T_ref.
     pub fit: PronyFit,
+    /// The reduced frequencies (ω a_T, rad/s) the isotherms whose shifts
+    /// the data determine cover: the part of the curve that is measured
+    /// rather than placed by the law; None where no isotherm is.
+    pub determined_window: Option<[f64; 2]>,
+    /// The van Gurp–Palmen test of the unshifted isotherms: every point
+    /// (log10 |E*|, δ), the pairs' numbers and the ranges.
+    pub van_gurp_palmen: VanGurpPalmen,
     /// Things the user should know (the shift's among them).
     pub warnings: Vec<String>,
 }
@@ -360,11 +382,27 @@ pub fn build_master_curve(
         fit.converged,
         ("E′", "outside the data"),
     );
+    let determined_window = window(
+        points
+            .iter()
+            .filter(|p| shift.is_determined(p.temperature))
+            .map(|p| p.reduced_omega),
+    );
     Ok(MasterCurve {
         shift,
         points,
         fit,
+        determined_window,
+        van_gurp_palmen: van_gurp_palmen(isotherms),
         warnings,
+    })
+}
+
+/// The smallest and largest of `values`; None for none.
+pub(crate) fn window(values: impl Iterator<Item = f64>) -> Option<[f64; 2]> {
+    values.fold(None, |w, v| match w {
+        None => Some([v, v]),
+        Some([lo, hi]) => Some([lo.min(v), hi.max(v)]),
     })
 }
 
@@ -399,5 +437,7 @@ pub(crate) fn series_warnings(
     warnings
 }
 
+#[cfg(test)]
+mod replica_tests;
 #[cfg(test)]
 mod tests;

@@ -7,7 +7,8 @@
 //! over the overlap, and the colder one's points against the warmer curve
 //! at x − s; M_k(s) is the mean of the two mean squared differences. The
 //! shift s minimises M(s) = Σ_k M_k(s) (k = E′, tan δ), found by a scan
-//! over ±15 decades and a golden-section refinement. The count n_k below
+//! over every shift at which the isotherms overlap (below) and a
+//! golden-section refinement. The count n_k below
 //! is the mean of the two overlaps.
 //!
 //! Its uncertainty comes from a profile of the same objective read as a
@@ -20,17 +21,44 @@
 //! and the 1σ interval is where χ²(s) − χ²(s₀) ≤ 1 (the profile-likelihood
 //! interval; Bevington & Robinson ch. 11). A curve whose residuals include
 //! the interpolation's own error counts that error as noise, which widens
-//! the interval rather than narrowing it. Why a profile and not the
+//! the interval rather than narrowing it. The noise is never taken below
+//! the isotherms' own scatter (from their third differences, which a
+//! smooth sweep's trend and curvature do not enter): on an overlap of a
+//! few points, two curves can match at one shift by chance far better
+//! than their noise, and a profile scaled by that chance is sharp where
+//! the data are flat. Why a profile and not the
 //! curvature alone: on a plateau the objective is flat and not quadratic,
 //! and only the profile says how far it stays flat.
 //!
-//! A shift is *undetermined* when the 2σ interval (Δχ² ≤ 4) reaches the
-//! end of the range the overlap rule allows (a fifth of the warmer
-//! isotherm's points, and at least four, inside the colder one's range):
-//! the data then fit about equally well at the boundary, and the optimum
-//! found there is where the rule stopped the search, not a measurement.
-//! This is the glassy (or rubbery) plateau, where E′ and tan δ are flat
-//! and any shift over decades fits.
+//! The search spans every shift at which the two isotherms overlap: at
+//! least [`MIN_OVERLAP`] points of each inside the other's frequency range,
+//! whatever the shift (no cap: a step of three decades between neighbours
+//! is ordinary when it is measured). Whether the data determine the shift
+//! is read from the profile alone:
+//! - *flat*: χ²(s) − χ²(s₀) stays below 4 on both sides up to the ends of
+//!   the overlap (a glassy or rubbery plateau: any shift fits);
+//! - *at the overlap's end*: it stays below 4 on one side up to where the
+//!   isotherms stop overlapping, so the best overlap may lie beyond it (a
+//!   transition whose overlap is too narrow);
+//! - *ambiguous*: another minimum, outside the 2σ interval, comes within
+//!   Δχ² < 4 of the best (the curves match at two places);
+//! - otherwise σ = max(profile, jackknife), and the shift is *determined*
+//!   when σ ≤ [`DETERMINED_SIGMA`] and its 2σ interval lies inside the
+//!   overlap. One rule, so the flag and σ never contradict each other.
+//!
+//! Superposition itself is tested per pair: the shift log E′ alone needs
+//! and the one log tan δ alone needs are found the same way. Where both
+//! curves fix a shift of their own (each profile rises by Δχ² ≥ 4 on both
+//! sides) and the two differ by more than [`TTS_DISAGREEMENT`] and by more
+//! than twice their combined 1σ (a difference their own errors do not
+//! explain), no single
+//! shift superposes the pair (thermorheological complexity, e.g. a β
+//! relaxation that shifts with its own activation energy), and the pair
+//! records which quantity carries the combined shift (the one whose own
+//! shift lies nearer to it); σ is then at least half their difference, so
+//! that the combined shift is never reported more precise than the choice
+//! between the quantities. A gap that a nearly flat curve's own noise
+//! explains is not a failure and does not widen σ.
 //!
 //! The coverage of these intervals on synthetic isotherms is measured in
 //! the tests (`master/tests.rs`).
@@ -46,14 +74,45 @@
 
 use crate::shift::overlap::{Curve, differences, golden_section};
 
+/// The largest 1σ of a shift the data determine, decades: the rule behind
+/// every "determined" flag (pairs and isotherms); a factor 2 in a_T.
+pub const DETERMINED_SIGMA: f64 = 0.3;
+
+/// The difference, decades, between the shift log E′ alone needs and the
+/// one log tan δ alone needs beyond which superposition fails for a pair
+/// (module doc).
+pub const TTS_DISAGREEMENT: f64 = 0.3;
+
+/// The fewest points of each isotherm inside the other's range at which a
+/// shift is compared: two, the fewest that carry a slope each way.
+pub const MIN_OVERLAP: usize = 2;
+
 /// What the data say about the shift of a pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PairVerdict {
-    /// Determined, with a finite standard error.
+    /// Determined: σ ≤ [`DETERMINED_SIGMA`] and the 2σ interval inside the
+    /// overlap.
     Determined,
-    /// The 2σ interval reaches the end of the allowed overlap: flat
-    /// curves (a plateau), or an optimum on the boundary.
+    /// Not determined; [`PairShift::cause`] says why.
     Undetermined,
+}
+
+/// Why a pair's shift is what it is (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PairCause {
+    /// A measurement: the profile is bounded on both sides.
+    Measured,
+    /// The profile is flat across the whole overlap (a plateau).
+    Flat,
+    /// The profile stays low up to where the isotherms stop overlapping.
+    OverlapEnd,
+    /// Two separate minima fit about equally well.
+    Ambiguous,
+    /// Bounded, but σ > [`DETERMINED_SIGMA`] or 2σ leaves the overlap.
+    Wide,
+    /// Fewer than [`MIN_OVERLAP`] points of an isotherm can overlap the
+    /// other at any shift.
+    TooFewPoints,
 }
 
 /// The relative shift of isotherm `upper` against `lower`.
@@ -63,15 +122,38 @@ pub struct PairShift {
     pub lower: usize,
     /// Index of the warmer isotherm.
     pub upper: usize,
-    /// s = log10 a_{T_upper} − log10 a_{T_lower} at the best overlap.
+    /// s = log10 a_{T_upper} − log10 a_{T_lower} at the best overlap (0
+    /// where the isotherms cannot overlap).
     pub shift: f64,
-    /// 1σ of `shift`, decades (infinite when undetermined).
+    /// 1σ of `shift`, decades (infinite where the profile gives none).
     pub sigma: f64,
     /// The mean log E′ offset at `shift` (the vertical step; 0 without
     /// vertical factors).
     pub vertical: f64,
     /// Whether the data determine the shift.
     pub verdict: PairVerdict,
+    /// Why (a measurement, or the cause it is not one).
+    pub cause: PairCause,
+    /// The overlap of the two frequency ranges at `shift`, decades.
+    pub overlap: f64,
+    /// The shift each curve alone needs (log E′ or log E(t), log tan δ;
+    /// NaN where there is no second curve), decades.
+    pub curve_shift: [f64; 2],
+    /// Whether each curve alone fixes its shift (its own profile rises by
+    /// Δχ² ≥ 4 on both sides inside the overlap).
+    pub curve_bounded: [bool; 2],
+    /// Whether superposition fails here: both curves fix their shifts and
+    /// these differ by more than [`TTS_DISAGREEMENT`].
+    pub tts_fails: bool,
+    /// The curve whose own shift lies nearer `shift` (0: the modulus, 1:
+    /// tan δ): the quantity that carries the combined shift.
+    pub carrier: usize,
+    /// The largest change of each curve across one isotherm of the pair
+    /// (max − min of its log10 values), decades: what a plateau lacks.
+    pub spans: [f64; 2],
+    /// The smallest and largest value of the second curve (log10 tan δ) in
+    /// the two isotherms (NaN without one).
+    pub second_range: [f64; 2],
 }
 
 /// The most groups the jackknife leaves out in turn per isotherm
@@ -80,103 +162,311 @@ pub struct PairShift {
 /// every isotherm of up to 40 frequencies (a DMA sweep is rarely longer).
 const JACKKNIFE_GROUPS: usize = 40;
 
-/// Scan step and half-range of the search, decades.
+/// Scan step of the search, decades.
 const STEP: f64 = 0.02;
-const RANGE: f64 = 15.0;
 
 /// The shift of `upper` against `lower` (the same curves of each: log E′
 /// and log tan δ of a frequency sweep, log E(t) of a relaxation isotherm,
-/// the first one the modulus), or None where the pair never overlaps as
-/// the rule asks. With `vertical` the first curves may also differ by a
-/// constant.
+/// the first one the modulus), with its verdict and cause. With `vertical`
+/// the first curves may also differ by a constant.
 pub(crate) fn pair_shift(
     lower: &[Curve],
     upper: &[Curve],
     vertical: bool,
     indices: (usize, usize),
-) -> Option<PairShift> {
+) -> PairShift {
     let free_offset = offsets(lower.len(), vertical);
-    let need = (upper[0].x.len() / 5).max(4);
-    let parts = |s: f64| mismatch(lower, upper, &free_offset, need, s);
+    let parts = |s: f64| mismatch(lower, upper, &free_offset, MIN_OVERLAP, s);
     let cost = |s: f64| parts(s).map_or(f64::INFINITY, |p| total(&p));
-
-    let (s0, s_min, s_max) = best_shift(&cost)?;
-    let at_optimum = parts(s0)?;
-    // χ² weights: (n_k − p_k)/M_k(s₀), the residual scatter as the noise.
+    let spans = curve_spans(lower, upper);
+    let second_range = if lower.len() > 1 {
+        let all = lower[1].y.iter().chain(&upper[1].y);
+        let lo = all.clone().copied().fold(f64::INFINITY, f64::min);
+        [lo, all.copied().fold(f64::NEG_INFINITY, f64::max)]
+    } else {
+        [f64::NAN; 2]
+    };
+    let mut out = PairShift {
+        lower: indices.0,
+        upper: indices.1,
+        shift: 0.0,
+        sigma: f64::INFINITY,
+        vertical: 0.0,
+        verdict: PairVerdict::Undetermined,
+        cause: PairCause::TooFewPoints,
+        overlap: 0.0,
+        curve_shift: [f64::NAN; 2],
+        curve_bounded: [false; 2],
+        tts_fails: false,
+        carrier: 0,
+        spans,
+        second_range,
+    };
+    let Some((s0, s_min, s_max)) = best_shift(&cost, overlap_range(&lower[0], &upper[0])) else {
+        return out;
+    };
+    out.shift = s0;
+    out.overlap = overlap_at(&lower[0], &upper[0], s0);
+    let Some(at_optimum) = parts(s0) else {
+        return out;
+    };
+    // χ² weights: (n_k − p_k)/M_k(s₀), the residual scatter as the noise,
+    // but never below the isotherms' own scatter: on a small overlap two
+    // points can match by chance far better than their noise allows, and
+    // a profile scaled by that chance would be sharp where the data are
+    // flat.
+    let dof = |k: usize, n: usize| dof(free_offset[k], n);
+    let floor: Vec<f64> = (0..lower.len())
+        .map(|k| 5.0 / 6.0 * (scatter(&lower[k].y) + scatter(&upper[k].y)))
+        .collect();
+    // Curves equal to rounding: the scatter of doubles, not zero.
     let weights: Vec<f64> = (0..at_optimum.len())
-        .map(|k| {
-            let (m, n) = at_optimum[k];
-            let p = if free_offset[k] { 2.0 } else { 1.0 };
-            let dof = (n as f64 - p).max(1.0);
-            // Curves equal to rounding: the scatter of doubles, not zero.
-            dof / m.max(1e-24)
-        })
+        .map(|k| dof(k, at_optimum[k].1) / at_optimum[k].0.max(floor[k]).max(1e-24))
         .collect();
     let chi2 = |s: f64| -> f64 {
         parts(s).map_or(f64::INFINITY, |p| {
             p.iter().zip(&weights).map(|(q, w)| w * q.0).sum::<f64>()
         })
     };
-    let chi0 = chi2(s0);
-    // Where Δχ² first exceeds `level` walking from s₀ towards `end`
-    // (bisected between scan points), or None if it never does inside the
-    // allowed run.
-    let crossing = |level: f64, direction: f64| -> Option<f64> {
-        let mut inside = s0;
+    if vertical {
+        let (sum, _, n) = differences(&lower[0], &upper[0], s0);
+        out.vertical = if n > 0 { sum / n as f64 } else { 0.0 };
+    }
+    test_superposition(lower, upper, &free_offset, &floor, (s_min, s_max), &mut out);
+    let disagreement = (out.curve_shift[0] - out.curve_shift[1]).abs();
+    if lower.len() > 1 {
+        out.carrier =
+            usize::from((out.curve_shift[1] - s0).abs() < (out.curve_shift[0] - s0).abs());
+    }
+    let profile = Profile {
+        chi2: &chi2,
+        chi0: chi2(s0),
+        s0,
+        run: (s_min, s_max),
+    };
+    let wide = [profile.crossing(4.0, -1.0), profile.crossing(4.0, 1.0)];
+    out.cause = match wide {
+        [None, None] => PairCause::Flat,
+        [None, Some(_)] | [Some(_), None] => PairCause::OverlapEnd,
+        [Some(left), Some(right)] => {
+            if profile.second_minimum(left, right, 4.0) {
+                PairCause::Ambiguous
+            } else {
+                match (profile.crossing(1.0, -1.0), profile.crossing(1.0, 1.0)) {
+                    (Some(left), Some(right)) => {
+                        let jackknife = jackknife_sigma(lower, upper, &free_offset, (s_min, s_max));
+                        let mut sigma = (0.5 * (right - left)).max(jackknife);
+                        if out.tts_fails {
+                            sigma = sigma.max(0.5 * disagreement);
+                        }
+                        out.sigma = sigma;
+                        // On flat noisy curves the profile is as noisy as
+                        // the data and can show a sharp minimum; the
+                        // jackknife's estimates then scatter over the
+                        // overlap, and 2σ leaves it.
+                        let inside = s0 - 2.0 * sigma > s_min && s0 + 2.0 * sigma < s_max;
+                        if inside && sigma <= DETERMINED_SIGMA {
+                            PairCause::Measured
+                        } else {
+                            PairCause::Wide
+                        }
+                    }
+                    _ => PairCause::Flat,
+                }
+            }
+        }
+    };
+    if out.cause == PairCause::Measured {
+        out.verdict = PairVerdict::Determined;
+    }
+    out
+}
+
+/// Degrees of freedom of a curve's mismatch over `n` points: one for the
+/// shift, one more where its offset is free.
+fn dof(free_offset: bool, n: usize) -> f64 {
+    let p = if free_offset { 2.0 } else { 1.0 };
+    (n as f64 - p).max(1.0)
+}
+
+/// Each curve alone (module doc): its own best shift in `run`, whether its
+/// own profile fixes it, and whether the two differ beyond their errors
+/// and [`TTS_DISAGREEMENT`]; recorded in `out`.
+fn test_superposition(
+    lower: &[Curve],
+    upper: &[Curve],
+    free_offset: &[bool],
+    floor: &[f64],
+    (s_min, s_max): (f64, f64),
+    out: &mut PairShift,
+) {
+    let parts = |s: f64| mismatch(lower, upper, free_offset, MIN_OVERLAP, s);
+    // Each curve alone: its own best shift, whether its own profile
+    // (noise from its own residuals there) fixes it, and its 1σ.
+    let mut curve_sigma = [f64::INFINITY; 2];
+    for k in 0..lower.len().min(2) {
+        let own = |s: f64| parts(s).map_or(f64::INFINITY, |p| p[k].0);
+        if let Some((sk, _, _)) = best_shift_in(&own, s_min, s_max) {
+            let n = parts(sk).map_or(0, |p| p[k].1);
+            let w = dof(free_offset[k], n) / own(sk).max(floor[k]).max(1e-24);
+            let profile = |s: f64| w * own(s);
+            out.curve_shift[k] = sk;
+            out.curve_bounded[k] = rises_on_both_sides(&profile, sk, s_min, s_max, 4.0);
+            let own_profile = Profile {
+                chi2: &profile,
+                chi0: profile(sk),
+                s0: sk,
+                run: (s_min, s_max),
+            };
+            if let (Some(left), Some(right)) = (
+                own_profile.crossing(1.0, -1.0),
+                own_profile.crossing(1.0, 1.0),
+            ) {
+                curve_sigma[k] = 0.5 * (right - left);
+            }
+        }
+    }
+    // A difference the curves' own errors explain is no failure. A nearly
+    // flat curve's own profile understates its error (its optimum is the
+    // noise's), so a candidate failure is checked against each curve's
+    // jackknife too.
+    let disagreement = (out.curve_shift[0] - out.curve_shift[1]).abs();
+    let beyond = |sigma: &[f64; 2]| disagreement > 2.0 * sigma[0].hypot(sigma[1]);
+    out.tts_fails = out.curve_bounded == [true, true]
+        && disagreement > TTS_DISAGREEMENT
+        && beyond(&curve_sigma);
+    if out.tts_fails {
+        for (k, sigma) in curve_sigma.iter_mut().enumerate() {
+            let jackknife = jackknife_sigma(
+                &lower[k..=k],
+                &upper[k..=k],
+                &free_offset[k..=k],
+                (s_min, s_max),
+            );
+            *sigma = sigma.max(jackknife);
+        }
+        out.tts_fails = beyond(&curve_sigma);
+    }
+}
+
+/// The χ² profile of a pair about its optimum.
+struct Profile<'a> {
+    chi2: &'a dyn Fn(f64) -> f64,
+    chi0: f64,
+    s0: f64,
+    run: (f64, f64),
+}
+
+impl Profile<'_> {
+    /// Where Δχ² first exceeds `level` walking from s₀ in `direction`
+    /// (bisected between scan points), or None if it never does before the
+    /// overlap ends.
+    fn crossing(&self, level: f64, direction: f64) -> Option<f64> {
+        let (s_min, s_max) = self.run;
+        let mut inside = self.s0;
         let mut k = 1;
         loop {
-            let s = s0 + direction * k as f64 * STEP;
+            let s = self.s0 + direction * k as f64 * STEP;
             if s < s_min - 1e-12 || s > s_max + 1e-12 {
-                // The last allowed scan point may still be below the level;
-                // the run ends there.
+                // The last allowed point may still be above the level.
                 let edge = if direction > 0.0 { s_max } else { s_min };
-                if chi2(edge) - chi0 > level {
-                    return Some(bisect(&chi2, chi0 + level, inside, edge));
+                if (self.chi2)(edge) - self.chi0 > level {
+                    return Some(bisect(self.chi2, self.chi0 + level, inside, edge));
                 }
                 return None;
             }
-            if chi2(s) - chi0 > level {
-                return Some(bisect(&chi2, chi0 + level, inside, s));
+            if (self.chi2)(s) - self.chi0 > level {
+                return Some(bisect(self.chi2, self.chi0 + level, inside, s));
             }
             inside = s;
             k += 1;
         }
+    }
+
+    /// Whether a shift outside (left, right), more than one scan step
+    /// beyond, comes within Δχ² < `level` of the optimum.
+    fn second_minimum(&self, left: f64, right: f64, level: f64) -> bool {
+        let (s_min, s_max) = self.run;
+        let coarse = 5.0 * STEP;
+        let count = ((s_max - s_min) / coarse).ceil().max(1.0) as usize;
+        (0..=count)
+            .map(|j| s_min + (s_max - s_min) * j as f64 / count as f64)
+            .filter(|&s| s < left - coarse || s > right + coarse)
+            .any(|s| (self.chi2)(s) - self.chi0 < level)
+    }
+}
+
+/// Whether `profile` rises by more than `level` above its value at `at`
+/// somewhere on each side inside [s_min, s_max].
+fn rises_on_both_sides(
+    profile: &dyn Fn(f64) -> f64,
+    at: f64,
+    s_min: f64,
+    s_max: f64,
+    level: f64,
+) -> bool {
+    let base = profile(at);
+    let side = |from: f64, to: f64| {
+        let count = ((to - from).abs() / STEP).ceil().max(1.0) as usize;
+        (1..=count).any(|j| {
+            let c = profile(from + (to - from) * j as f64 / count as f64);
+            c.is_finite() && c - base > level
+        })
     };
-    let vertical_step = if vertical {
-        let (sum, _, n) = differences(&lower[0], &upper[0], s0);
-        if n > 0 { sum / n as f64 } else { 0.0 }
-    } else {
-        0.0
-    };
-    let wide = [crossing(4.0, -1.0), crossing(4.0, 1.0)];
-    let (sigma, verdict) = if wide.iter().any(Option::is_none) {
-        (f64::INFINITY, PairVerdict::Undetermined)
-    } else {
-        match (crossing(1.0, -1.0), crossing(1.0, 1.0)) {
-            (Some(left), Some(right)) => {
-                let profile = 0.5 * (right - left);
-                let jackknife = jackknife_sigma(lower, upper, &free_offset, (s_min, s_max));
-                let sigma = profile.max(jackknife);
-                // On flat noisy curves the profile is as noisy as the data
-                // and can show a sharp minimum; the jackknife's estimates
-                // then scatter over the allowed range.
-                if s0 - 2.0 * sigma <= s_min || s0 + 2.0 * sigma >= s_max {
-                    (f64::INFINITY, PairVerdict::Undetermined)
-                } else {
-                    (sigma, PairVerdict::Determined)
-                }
-            }
-            _ => (f64::INFINITY, PairVerdict::Undetermined),
+    side(at, s_min) && side(at, s_max)
+}
+
+/// The shifts at which any of `upper`'s points can fall inside `lower`'s
+/// range: upper(x) against lower(x + s).
+fn overlap_range(lower: &Curve, upper: &Curve) -> Option<(f64, f64)> {
+    let (l0, l1) = (lower.x.first()?, lower.x.last()?);
+    let (u0, u1) = (upper.x.first()?, upper.x.last()?);
+    Some((l0 - u1, l1 - u0))
+}
+
+/// The overlap of the two ranges at shift `s`, decades.
+fn overlap_at(lower: &Curve, upper: &Curve, s: f64) -> f64 {
+    match (
+        lower.x.first(),
+        lower.x.last(),
+        upper.x.first(),
+        upper.x.last(),
+    ) {
+        (Some(l0), Some(l1), Some(u0), Some(u1)) => {
+            ((l1 - s).min(*u1) - (l0 - s).max(*u0)).max(0.0)
         }
+        _ => 0.0,
+    }
+}
+
+/// The variance of a curve's noise from its third differences,
+/// var(y_{i+1} − 3y_i + 3y_{i−1} − y_{i−2}) = 20 σ² for white noise, to
+/// which a linear or quadratic trend adds nothing (the sweep's curvature
+/// does not pass for noise); 0 with fewer than four points.
+fn scatter(y: &[f64]) -> f64 {
+    if y.len() < 4 {
+        return 0.0;
+    }
+    let sum: f64 = y
+        .windows(4)
+        .map(|w| (w[3] - 3.0 * w[2] + 3.0 * w[1] - w[0]).powi(2))
+        .sum();
+    sum / (y.len() - 3) as f64 / 20.0
+}
+
+/// Per curve (up to two), the largest max − min of its values within one
+/// isotherm of the pair.
+fn curve_spans(lower: &[Curve], upper: &[Curve]) -> [f64; 2] {
+    let span = |c: &Curve| {
+        let lo = c.y.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = c.y.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (hi - lo).max(0.0)
     };
-    Some(PairShift {
-        lower: indices.0,
-        upper: indices.1,
-        shift: s0,
-        sigma,
-        vertical: vertical_step,
-        verdict,
-    })
+    let mut out = [f64::NAN; 2];
+    for k in 0..lower.len().min(2) {
+        out[k] = span(&lower[k]).max(span(&upper[k]));
+    }
+    out
 }
 
 /// Whether each curve's offset is free: the modulus's (the first) with
@@ -194,7 +484,7 @@ fn total(parts: &[(f64, usize)]) -> f64 {
 /// Per curve (log E′, log tan δ; or log E(t)): the mean squared mismatch
 /// of upper(x) against lower(x + s) (about its mean where the offset is
 /// free) and the overlap count; None where the first curve's overlap is
-/// shorter than `need` points or a curve does not overlap.
+/// shorter than `need` points either way or a curve does not overlap.
 fn mismatch(
     lower: &[Curve],
     upper: &[Curve],
@@ -210,7 +500,7 @@ fn mismatch(
         // the two one-way optima can lie decades apart).
         let one = differences(&lower[k], &upper[k], s);
         let other = differences(&upper[k], &lower[k], -s);
-        if one.2 == 0 || other.2 == 0 || (k == 0 && one.2 < need) {
+        if one.2 == 0 || other.2 == 0 || (k == 0 && (one.2 < need || other.2 < need)) {
             return None;
         }
         let mean_square = |(sum, sum_sq, n): (f64, f64, usize)| {
@@ -231,15 +521,18 @@ fn mismatch(
     Some(out)
 }
 
-/// The shift of least `cost` by a scan over ±[`RANGE`] and a
-/// golden-section refinement, with the ends of the run of allowed
-/// (finite-cost) shifts around it: (s₀, s_min, s_max).
-fn best_shift(cost: &dyn Fn(f64) -> f64) -> Option<(f64, f64, f64)> {
+/// The shift of least `cost` by a scan over `range` (where the isotherms
+/// can overlap at all) and a golden-section refinement, with the ends of
+/// the run of allowed (finite-cost) shifts around it: (s₀, s_min, s_max).
+fn best_shift(cost: &dyn Fn(f64) -> f64, range: Option<(f64, f64)>) -> Option<(f64, f64, f64)> {
+    let (from, to) = range?;
     // A coarse scan finds the allowed run (the curves vary on the scale of
     // a decade); the best shift is then searched inside it.
     let coarse = 5.0 * STEP;
-    let steps = (RANGE / coarse) as i64;
-    let grid: Vec<f64> = (-steps..=steps).map(|i| i as f64 * coarse).collect();
+    let steps = ((to - from) / coarse).ceil().max(1.0) as usize;
+    let grid: Vec<f64> = (0..=steps)
+        .map(|i| from + (to - from) * i as f64 / steps as f64)
+        .collect();
     let costs: Vec<f64> = grid.iter().map(|&s| cost(s)).collect();
     let best = (0..grid.len())
         .filter(|&i| costs[i].is_finite())
@@ -349,10 +642,9 @@ fn jackknife_sigma(
         };
         curves.iter().map(drop).collect()
     };
-    let need = (upper[0].x.len() / 5).max(4);
     let minimum = |lower: &[Curve], upper: &[Curve]| -> Option<f64> {
         let cost = |s: f64| {
-            mismatch(lower, upper, free_offset, need, s).map_or(f64::INFINITY, |p| total(&p))
+            mismatch(lower, upper, free_offset, MIN_OVERLAP, s).map_or(f64::INFINITY, |p| total(&p))
         };
         // Searched afresh over the whole allowed run, so that a minimum
         // that noise made is free to move.

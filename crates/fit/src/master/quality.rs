@@ -32,11 +32,13 @@
 //!    where neighbouring isotherms overlap on a slope
 //!    ([`super::pairwise`]): on a plateau any shift fits, and the law, or
 //!    the best-overlap placement, decides it instead of the data.
-//!    - Fewer than half of the isotherms determined (and fewer than all
-//!      when there are two or three): most of the curve's placement is
-//!      assumption. Half, because the law is then fitted to a minority of
-//!      the temperatures and extrapolated over the majority, with no
-//!      measurement against which to test it.
+//!    - No isotherm determined (each σ about T_ref above
+//!      [`super::pairwise::DETERMINED_SIGMA`]): nothing of the curve is a
+//!      measurement. A curve with some undetermined isotherms is a curve:
+//!      they are marked, and the window the determined ones cover is
+//!      stated, but the data they do determine are not withheld.
+//!    - (For a law asked for by name; `auto` rejects such candidates
+//!      before choosing, [`super::law_choice`].)
 //!    - WLF (alone or above a junction) with C1 above [`WLF_C1_MAX`] = 100:
 //!      C1 = B/(2.303 f) with the free-volume fraction f ≈ 0.025 at T_g
 //!      gives C1 ≈ 17 (Ferry's tables span about 5–35 at T_g, less above
@@ -51,7 +53,8 @@
 //! rubbery plateau (E0 undetermined: an extrapolation, named as such),
 //! a law asked for that misses the shifts (the user chose it), an
 //! unconverged Prony fit (the best series found; its misfit is judged by
-//! 2), a few undetermined isotherms among determined ones.
+//! 2), undetermined isotherms among determined ones (refused only under
+//! `--strict`, by the front end).
 //!
 //! # References
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
@@ -151,17 +154,16 @@ fn shift_reasons(shift: &ShiftFactors) -> Vec<String> {
     }
     let mut reasons = Vec::new();
     let determined = shift.shifts.iter().filter(|s| s.determined).count();
-    let needed = if total <= 3 { total } else { total.div_ceil(2) };
     let fix = "measure isotherms through the transition (where E′ and tan δ change with \
                frequency) or closer in temperature, or use one isotherm as a `table` material \
                with known shift constants in the scene's [material.shift] (model = \"wlf\", \
                C1, C2)";
-    if determined < needed {
+    if determined == 0 {
         reasons.push(format!(
-            "the shifts are not determined by the overlap: only {determined} of {total} \
-             isotherms overlap their neighbours on a slope (the isotherms are flat, as on a \
-             glassy or rubbery plateau, or overlap too little), so the law or the best-overlap \
-             placement, not the data, puts the others; {fix}"
+            "no isotherm's shift is determined by the overlap (σ about T_ref above {} decade \
+             for all {total}), so the law or the best-overlap placement, not the data, puts \
+             every isotherm; {fix}",
+            super::pairwise::DETERMINED_SIGMA
         ));
     }
     let c1 = match shift.law {

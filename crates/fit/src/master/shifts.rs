@@ -4,6 +4,9 @@
 //! [`super`], steps 1–3).
 
 use super::horizontal::{Domain, Superposable};
+use super::pairwise::{
+    DETERMINED_SIGMA, MIN_OVERLAP, PairCause, PairShift, PairVerdict, TTS_DISAGREEMENT,
+};
 use super::temperature_law::{self, ArrheniusFit, WlfArrheniusFit, WlfFit};
 use super::{Isotherm, ShiftLaw, ValidMasterSettings, horizontal, law_choice, network, pairwise};
 use crate::error::FitError;
@@ -15,8 +18,9 @@ pub struct IsothermShift {
     pub temperature: f64,
     /// Points of the isotherm.
     pub points: usize,
-    /// Whether the data determine this isotherm's shift relative to the
-    /// others (it belongs to the determined part of the pairs).
+    /// Whether the data determine this isotherm's shift: it is joined to
+    /// the reference part by determined pairs and its measured σ about
+    /// T_ref is at most [`DETERMINED_SIGMA`].
     pub determined: bool,
     /// log10 a_T measured from the overlap, anchored at T_ref (by the
     /// law's offset, or for "free" by interpolation at T_ref); None where
@@ -55,6 +59,8 @@ pub struct ShiftFactors {
     pub arrhenius: Option<ArrheniusFit>,
     /// The WLF–Arrhenius fit (tried by the law or by `auto`).
     pub wlf_arrhenius: Option<WlfArrheniusFit>,
+    /// Candidates `auto` rejected as unable to hold, with the reason.
+    pub rejected_laws: Vec<(ShiftLaw, String)>,
     /// Things the user should know.
     pub warnings: Vec<String>,
 }
@@ -77,6 +83,14 @@ impl ShiftFactors {
                     .then(|| interpolate(&temps, &values, t))
             }
         }
+    }
+
+    /// Whether the isotherm at `t` (°C) has a determined shift (false for
+    /// a temperature that is none of them).
+    pub fn is_determined(&self, t: f64) -> bool {
+        self.shifts
+            .iter()
+            .any(|s| s.temperature == t && s.determined)
     }
 
     /// (a_T, b_T) applied to the isotherm at `t` (°C, one of `shifts`).
@@ -129,26 +143,21 @@ pub(crate) fn superpose(
 ) -> Result<ShiftFactors, FitError> {
     sorted.sort_by(|a, b| a.temperature.total_cmp(&b.temperature));
     let temps: Vec<f64> = sorted.iter().map(|i| i.temperature).collect();
-    let t_ref = settings.t_ref;
     if sorted.len() == 1 {
-        return Ok(single(t_ref, &sorted[0]));
+        return Ok(single(settings.t_ref, &sorted[0]));
     }
-    let found = horizontal::pairs(&sorted, settings.vertical, domain)?;
-    let network = network::solve(&found.pairs, &temps, t_ref).ok_or_else(|| {
+    let found = horizontal::pairs(&sorted, settings.vertical);
+    let network = network::solve(&found.pairs, &temps, settings.t_ref).ok_or_else(|| {
         FitError::InsufficientData(format!(
-            "no shift between the isotherms ({} °C) is determined by the data: either {} \
-             flat across them (a glassy or rubbery plateau), so any shift fits about \
-             equally well, or neighbouring isotherms overlap too little (their best overlap \
-             lies at the edge of the {} range the overlap rule allows: a fifth of an \
-             isotherm's points, and four, inside its neighbour's range); measure isotherms \
-             through the transition, closer in temperature or over {}, or give \
-             the shifts in the scene's [material.shift]",
+            "no shift between the isotherms ({} °C) is determined by the data: {}; measure \
+             isotherms through the transition, closer in temperature or over {}, or give the \
+             shifts in the scene's [material.shift]",
             list_temperatures(&temps),
-            domain.curves(),
-            domain.axis(),
+            causes(&found.pairs, &temps, domain).join("; "),
             domain.wider()
         ))
     })?;
+    let t_ref = reference_temperature(settings, &network, &temps);
     let observations: Vec<temperature_law::PairObservation> = network
         .pairs
         .iter()
@@ -163,7 +172,13 @@ pub(crate) fn superpose(
         .filter(|&i| network.determined[i])
         .map(|i| temps[i])
         .collect();
-    let choice = law_choice::choose(settings.law, &observations, &determined_temps, t_ref)?;
+    let choice = law_choice::choose(
+        settings.law,
+        &observations,
+        &determined_temps,
+        &temps,
+        t_ref,
+    )?;
     let mut factors = ShiftFactors {
         t_ref,
         law: choice.law,
@@ -173,6 +188,7 @@ pub(crate) fn superpose(
         wlf: choice.wlf,
         arrhenius: choice.arrhenius,
         wlf_arrhenius: choice.wlf_arrhenius,
+        rejected_laws: choice.rejected,
         warnings: choice.warnings,
     };
     let placed = place(&factors, &network, &found, &temps)?;
@@ -180,25 +196,17 @@ pub(crate) fn superpose(
     if let Some(rms) = placed.law_rms {
         set_law_rms(&mut factors, rms);
     }
+    // One rule for the flag (pairwise::DETERMINED_SIGMA): joined to the
+    // reference part, and its σ about T_ref within the rule.
+    let determined: Vec<bool> = (0..temps.len())
+        .map(|i| placed.measured[i].is_some_and(|m| m.1 <= DETERMINED_SIGMA))
+        .collect();
     let undetermined: Vec<f64> = (0..temps.len())
-        .filter(|&i| !network.determined[i])
+        .filter(|&i| !determined[i])
         .map(|i| temps[i])
         .collect();
-    if !undetermined.is_empty() {
-        factors.warnings.push(format!(
-            "the shifts of the isotherms at {} °C are not determined by the data (their overlap \
-             with the others is flat, as on a glassy or rubbery plateau, or ends at the edge of \
-             the {} range): {}",
-            list_temperatures(&undetermined),
-            domain.axis(),
-            if factors.law == ShiftLaw::Free {
-                "they are placed where they overlap their neighbours best, which the data do not \
-                 fix"
-            } else {
-                "they take the law's value"
-            }
-        ));
-    }
+    let said = determined_warnings(&factors, &found.pairs, &undetermined, &temps, domain);
+    factors.warnings.extend(said);
     let vertical_offset = interpolate(&temps, &found.log_vertical, t_ref);
     factors.shifts = sorted
         .iter()
@@ -206,7 +214,7 @@ pub(crate) fn superpose(
         .map(|(k, iso)| IsothermShift {
             temperature: iso.temperature,
             points: iso.points,
-            determined: network.determined[k],
+            determined: determined[k],
             log_shift_measured: placed.measured[k].map(|m| m.0),
             log_shift_measured_sigma: placed.measured[k].map_or(f64::INFINITY, |m| m.1),
             log_shift: placed.applied[k].0,
@@ -215,6 +223,78 @@ pub(crate) fn superpose(
         })
         .collect();
     Ok(factors)
+}
+
+/// T_ref (°C): the user's, else 20 °C when inside the determined part of
+/// `network`, else that part's temperature nearest 20 °C.
+fn reference_temperature(
+    settings: &ValidMasterSettings,
+    network: &network::Network,
+    temps: &[f64],
+) -> f64 {
+    if settings.t_ref_given {
+        return settings.t_ref;
+    }
+    let part: Vec<f64> = (0..temps.len())
+        .filter(|&i| network.determined[i])
+        .map(|i| temps[i])
+        .collect();
+    if (part[0]..=part[part.len() - 1]).contains(&super::DEFAULT_T_REF) {
+        return super::DEFAULT_T_REF;
+    }
+    *part
+        .iter()
+        .min_by(|a, b| {
+            (*a - super::DEFAULT_T_REF)
+                .abs()
+                .total_cmp(&(*b - super::DEFAULT_T_REF).abs())
+        })
+        .unwrap_or(&part[0])
+}
+
+/// What to say about the isotherms at `undetermined` (°C) and the pairs
+/// where superposition fails.
+fn determined_warnings(
+    factors: &ShiftFactors,
+    pairs: &[PairShift],
+    undetermined: &[f64],
+    temps: &[f64],
+    domain: Domain,
+) -> Vec<String> {
+    let mut warnings = Vec::new();
+    if !undetermined.is_empty() {
+        let pairs_said = causes(pairs, temps, domain);
+        warnings.push(format!(
+            "the shifts of the isotherms at {} °C are not determined by the data (σ about T_ref \
+             above {DETERMINED_SIGMA} decade, or not joined to the determined part): {}; {}",
+            list_temperatures(undetermined),
+            if pairs_said.is_empty() {
+                "their pairs' errors add up along the chain".to_string()
+            } else {
+                pairs_said.join("; ")
+            },
+            if factors.law == ShiftLaw::Free {
+                "they are placed where they overlap their neighbours best, which the data do not \
+                 fix"
+            } else {
+                "they take the law's value"
+            }
+        ));
+    }
+    let failing: Vec<String> = pairs
+        .iter()
+        .filter(|p| p.tts_fails)
+        .map(|p| tts_failure(p, temps))
+        .collect();
+    if !failing.is_empty() {
+        warnings.push(format!(
+            "time–temperature superposition fails (E′ and tan δ need different shifts, by more \
+             than {TTS_DISAGREEMENT} decade): {}; no single shift superposes both there, and \
+             those shifts carry at least half the difference as σ",
+            failing.join("; ")
+        ));
+    }
+    warnings
 }
 
 /// One isotherm: its own master curve, unshifted.
@@ -243,8 +323,102 @@ fn single(t_ref: f64, isotherm: &Superposable) -> ShiftFactors {
         wlf: None,
         arrhenius: None,
         wlf_arrhenius: None,
+        rejected_laws: Vec::new(),
         warnings: Vec::new(),
     }
+}
+
+/// Why each undetermined neighbour pair is not a measurement, with its
+/// numbers (a plateau, a too-narrow overlap, two equal minima, a wide
+/// interval, too few points).
+pub(crate) fn causes(pairs: &[PairShift], temps: &[f64], domain: Domain) -> Vec<String> {
+    pairs
+        .iter()
+        .filter(|p| p.verdict == PairVerdict::Undetermined && p.upper == p.lower + 1)
+        .map(|p| {
+            let between = format!(
+                "{}–{} °C",
+                law_choice::temperature(temps[p.lower]),
+                law_choice::temperature(temps[p.upper])
+            );
+            let change = |decades: f64| format!("{:.0} %", (10f64.powf(decades) - 1.0) * 100.0);
+            let varies = match domain {
+                Domain::Frequency => format!(
+                    "E′ changes by at most {} and tan δ lies between {:.3} and {:.3} across an \
+                     isotherm",
+                    change(p.spans[0]),
+                    10f64.powf(p.second_range[0]),
+                    10f64.powf(p.second_range[1])
+                ),
+                Domain::Time => format!(
+                    "E(t) changes by at most {} across an isotherm",
+                    change(p.spans[0])
+                ),
+            };
+            match p.cause {
+                PairCause::Flat => format!(
+                    "{between} flat, a plateau ({varies}): any shift fits about equally well"
+                ),
+                PairCause::OverlapEnd => format!(
+                    "{between} the best overlap ({:.2} decades) lies where the isotherms stop \
+                     overlapping ({:.2} decade in common; {varies}): the transition's overlap \
+                     is too narrow, measure a temperature between them or a wider {} range",
+                    p.shift,
+                    p.overlap,
+                    domain.axis()
+                ),
+                PairCause::Ambiguous => format!(
+                    "{between} two shifts, apart by more than 2σ, fit about equally well \
+                     ({varies})"
+                ),
+                PairCause::Wide if p.tts_fails => format!(
+                    "{between} superposition fails ({}): σ = {:.2} decade",
+                    disagreement(p),
+                    p.sigma
+                ),
+                PairCause::Wide => format!(
+                    "{between} σ = {:.2} decade exceeds {DETERMINED_SIGMA} ({varies})",
+                    p.sigma
+                ),
+                PairCause::TooFewPoints => format!(
+                    "{between} too few points: fewer than {MIN_OVERLAP} points of an isotherm \
+                     fall inside the other's {} range at any shift",
+                    domain.axis()
+                ),
+                PairCause::Measured => format!("{between} measured"),
+            }
+        })
+        .collect()
+}
+
+/// "E′ alone needs −1.92, tan δ alone −0.07 decades".
+fn disagreement(p: &PairShift) -> String {
+    format!(
+        "E′ alone needs {:.2}, tan δ alone {:.2} decades",
+        p.curve_shift[0], p.curve_shift[1]
+    )
+}
+
+/// A pair where superposition fails, for messages: its temperatures, the
+/// two shifts and the quantity that carries the combined one, with why:
+/// the summed mismatch is ruled by the curve that changes more, in
+/// decades, across an isotherm.
+pub(crate) fn tts_failure(p: &PairShift, temps: &[f64]) -> String {
+    let names = ["E′", "tan δ"];
+    let (carrier, other) = (p.carrier.min(1), 1 - p.carrier.min(1));
+    format!(
+        "{}–{} °C: {}; the shift ({:.2} ± {:.2}) follows {}, which changes by {:.3} decade \
+         across an isotherm against {:.3} for {}",
+        law_choice::temperature(temps[p.lower]),
+        law_choice::temperature(temps[p.upper]),
+        disagreement(p),
+        p.shift,
+        p.sigma,
+        names[carrier],
+        p.spans[carrier],
+        p.spans[other],
+        names[other]
+    )
 }
 
 /// Where each isotherm goes: (value, σ) measured (None where

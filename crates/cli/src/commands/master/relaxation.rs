@@ -59,6 +59,7 @@ pub(super) fn run(args: &Args, settings: &rollfit_fit::master::MasterSettings) -
     // No Kramers–Kronig floor for E(t): the shifts alone are judged.
     let quality = rollfit_fit::master::quality::assess(&built.master.shift, None);
     super::gate(&quality, args)?;
+    super::strict_gate(&built.master.shift, args)?;
     let files = encode(&built, poisson, &quality)?;
     let named: Vec<(&str, &[u8])> = files.iter().map(|(n, b)| (*n, b.as_slice())).collect();
     output::replace_folder(&args.output, output::Writer::Master, args.force, &named)?;
@@ -218,6 +219,7 @@ fn summary(built: &RelaxationBuilt) -> String {
         headline(&m.shift, m.points.len(), &built.settings, " (t/a_T)")
     );
     out += &shift_text(&m.shift);
+    out += &super::shift_out::window_text(&m.shift, None, "", "");
     out += &format!(
         "Prony series: {} terms, λ = {:.3e}; RMS misfit E(t) {:.4} decades\n",
         m.fit.prony.relaxation_times().len(),

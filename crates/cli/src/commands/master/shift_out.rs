@@ -4,8 +4,10 @@
 //! and the law lines and table of the summary on stdout.
 
 use anyhow::Result;
-use rollfit_fit::master::pairwise::PairVerdict;
-use rollfit_fit::master::{LawTest, ShiftFactors, ShiftLaw, ValidMasterSettings};
+pub(super) use rollfit_fit::master::law_choice::temperature as celsius;
+use rollfit_fit::master::pairwise::{DETERMINED_SIGMA, PairCause, PairVerdict, TTS_DISAGREEMENT};
+use rollfit_fit::master::van_gurp_palmen::VGP_TOLERANCE;
+use rollfit_fit::master::{LawTest, ShiftFactors, ShiftLaw, ValidMasterSettings, VanGurpPalmen};
 use rollfit_io::csv_text;
 use rollfit_io::fit_dir::columns::{LOG_AT, T};
 use serde::Serialize;
@@ -16,8 +18,47 @@ pub(super) struct ShiftJson {
     wlf: Option<WlfSummary>,
     arrhenius: Option<ArrheniusSummary>,
     wlf_arrhenius: Option<WlfArrheniusSummary>,
+    /// The laws `auto` rejected as unable to hold, with the reason.
+    rejected_laws: Vec<RejectedLaw>,
+    /// What "determined" means, for pairs and isotherms alike.
+    determined_rule: String,
     shifts: Vec<ShiftRow>,
     pairs: Vec<PairRow>,
+    /// The pairs where E′ and tan δ need different shifts.
+    superposition_fails: Vec<TtsFailure>,
+}
+
+#[derive(Serialize)]
+struct RejectedLaw {
+    law: &'static str,
+    reason: String,
+}
+
+/// A pair where no single shift superposes E′ and tan δ.
+#[derive(Serialize)]
+struct TtsFailure {
+    #[serde(rename = "T_lower")]
+    t_lower: f64,
+    #[serde(rename = "T_upper")]
+    t_upper: f64,
+    /// The shift log E′ alone needs, decades.
+    shift_storage: f64,
+    /// The shift log tan δ alone needs, decades.
+    shift_tan_delta: f64,
+    /// The quantity the combined shift follows: "E′" or "tan δ".
+    carried_by: &'static str,
+}
+
+/// The rule behind every "determined" flag.
+fn determined_rule() -> String {
+    format!(
+        "a pair's shift is determined when its profile (Δχ² = 4) is bounded inside the \
+         isotherms' overlap, no second minimum comes within Δχ² = 4, and σ ≤ {DETERMINED_SIGMA} \
+         decade (σ = max(profile, jackknife), at least half the difference of the E′ and tan δ \
+         shifts where they differ by more than {TTS_DISAGREEMENT}); an isotherm's shift is \
+         determined when determined pairs join it to the reference part and its σ about T_ref \
+         is ≤ {DETERMINED_SIGMA} decade"
+    )
 }
 
 impl ShiftJson {
@@ -48,6 +89,27 @@ impl ShiftJson {
                 rms: defined(w.rms),
                 test: TestSummary::of(&w.test),
             }),
+            rejected_laws: shift
+                .rejected_laws
+                .iter()
+                .map(|(law, reason)| RejectedLaw {
+                    law: law.name(),
+                    reason: reason.clone(),
+                })
+                .collect(),
+            determined_rule: determined_rule(),
+            superposition_fails: shift
+                .pairs
+                .iter()
+                .filter(|p| p.tts_fails)
+                .map(|p| TtsFailure {
+                    t_lower: shift.shifts[p.lower].temperature,
+                    t_upper: shift.shifts[p.upper].temperature,
+                    shift_storage: p.curve_shift[0],
+                    shift_tan_delta: p.curve_shift[1],
+                    carried_by: ["E′", "tan δ"][p.carrier.min(1)],
+                })
+                .collect(),
             shifts: shift
                 .shifts
                 .iter()
@@ -73,6 +135,11 @@ impl ShiftJson {
                     shift: p.shift,
                     sigma: defined(p.sigma),
                     determined: p.verdict == PairVerdict::Determined,
+                    cause: cause_name(p.cause),
+                    overlap: p.overlap,
+                    shift_storage: defined(p.curve_shift[0]),
+                    shift_tan_delta: defined(p.curve_shift[1]),
+                    superposition_fails: p.tts_fails,
                 })
                 .collect(),
         }
@@ -319,6 +386,179 @@ struct PairRow {
     shift: f64,
     sigma: Option<f64>,
     determined: bool,
+    /// "measured", or why not: "flat", "overlap_end", "ambiguous",
+    /// "wide", "too_few_points".
+    cause: &'static str,
+    /// The overlap of the two frequency ranges at `shift`, decades.
+    overlap: f64,
+    /// The shift log E′ (log E(t)) alone needs.
+    shift_storage: Option<f64>,
+    /// The shift log tan δ alone needs.
+    shift_tan_delta: Option<f64>,
+    /// Whether E′ and tan δ need shifts more than 0.3 decade apart.
+    superposition_fails: bool,
+}
+
+fn cause_name(cause: PairCause) -> &'static str {
+    match cause {
+        PairCause::Measured => "measured",
+        PairCause::Flat => "flat",
+        PairCause::OverlapEnd => "overlap_end",
+        PairCause::Ambiguous => "ambiguous",
+        PairCause::Wide => "wide",
+        PairCause::TooFewPoints => "too_few_points",
+    }
+}
+
+/// The van Gurp–Palmen keys of master.json.
+#[derive(Serialize)]
+pub(super) struct VgpJson {
+    /// The modelling part of each pair's tolerance, degrees.
+    tolerance_fixed_deg: f64,
+    pairs: Vec<VgpPairRow>,
+    ranges: Vec<VgpRangeRow>,
+    /// Every point: [T °C, log10 |E*| (Pa), δ (degrees)].
+    points: Vec<[f64; 3]>,
+}
+
+#[derive(Serialize)]
+struct VgpPairRow {
+    #[serde(rename = "T_lower")]
+    t_lower: f64,
+    #[serde(rename = "T_upper")]
+    t_upper: f64,
+    /// Common range of log10 |E*|, decades.
+    overlap: f64,
+    /// RMS δ difference, degrees (null: not tested).
+    mismatch_deg: Option<f64>,
+    tolerance_deg: f64,
+    collapses: Option<bool>,
+}
+
+#[derive(Serialize)]
+struct VgpRangeRow {
+    #[serde(rename = "T_from")]
+    t_from: f64,
+    #[serde(rename = "T_to")]
+    t_to: f64,
+    collapses: Option<bool>,
+    worst_deg: Option<f64>,
+    tolerance_deg: f64,
+}
+
+impl VgpJson {
+    pub(super) fn of(v: &VanGurpPalmen) -> VgpJson {
+        VgpJson {
+            tolerance_fixed_deg: VGP_TOLERANCE,
+            pairs: v
+                .pairs
+                .iter()
+                .map(|p| VgpPairRow {
+                    t_lower: p.t_lower,
+                    t_upper: p.t_upper,
+                    overlap: p.overlap,
+                    mismatch_deg: p.mismatch,
+                    tolerance_deg: p.tolerance,
+                    collapses: p.collapses(),
+                })
+                .collect(),
+            ranges: v
+                .ranges
+                .iter()
+                .map(|r| VgpRangeRow {
+                    t_from: r.t_from,
+                    t_to: r.t_to,
+                    collapses: r.collapses,
+                    worst_deg: defined(r.worst),
+                    tolerance_deg: r.tolerance,
+                })
+                .collect(),
+            points: v
+                .points
+                .iter()
+                .map(|p| [p.temperature, p.log_modulus, p.phase_angle])
+                .collect(),
+        }
+    }
+}
+
+/// The summary's van Gurp–Palmen line: per range, whether the unshifted
+/// isotherms collapse, with the numbers.
+pub(super) fn vgp_text(v: &VanGurpPalmen) -> String {
+    if v.ranges.is_empty() {
+        return String::new();
+    }
+    let parts: Vec<String> = v
+        .ranges
+        .iter()
+        .map(|r| {
+            let span = format!("{}…{} °C", celsius(r.t_from), celsius(r.t_to));
+            match r.collapses {
+                Some(true) => format!(
+                    "{span} collapse (δ within {:.2}°, tolerance {:.2}°)",
+                    r.worst, r.tolerance
+                ),
+                Some(false) => format!(
+                    "{span} do not collapse (δ apart by up to {:.2}°, tolerance {:.2}°): \
+                     superposition fails there",
+                    r.worst, r.tolerance
+                ),
+                None => format!("{span} not tested (no common |E*|)"),
+            }
+        })
+        .collect();
+    format!(
+        "van Gurp–Palmen (δ against log |E*|, no shifts): {}\n",
+        parts.join("; ")
+    )
+}
+
+/// The summary's lines on what the data determine: every shift, or the
+/// undetermined isotherms, the window the others cover (`variable` in
+/// `unit` at T_ref), and where superposition fails.
+pub(super) fn window_text(
+    shift: &ShiftFactors,
+    window: Option<[f64; 2]>,
+    variable: &str,
+    unit: &str,
+) -> String {
+    let total = shift.shifts.len();
+    if total < 2 {
+        return String::new();
+    }
+    let undetermined: Vec<String> = shift
+        .shifts
+        .iter()
+        .filter(|s| !s.determined)
+        .map(|s| celsius(s.temperature))
+        .collect();
+    let mut out = if undetermined.is_empty() {
+        format!("Determined: all {total} isotherms' shifts (σ ≤ {DETERMINED_SIGMA} decade)\n")
+    } else {
+        format!(
+            "Determined: {} of {total} isotherms' shifts (σ ≤ {DETERMINED_SIGMA} decade){}; not \
+             determined, placed by the law: {} °C\n",
+            total - undetermined.len(),
+            window.map_or(String::new(), |[lo, hi]| format!(
+                ", covering {variable} = {lo:.3e} … {hi:.3e} {unit}"
+            )),
+            undetermined.join(", ")
+        )
+    };
+    for p in shift.pairs.iter().filter(|p| p.tts_fails) {
+        out += &format!(
+            "Superposition fails at {}–{} °C: E′ alone needs {:.2}, tan δ alone {:.2} decades; \
+             the shift {:.2} ± {:.2} follows {}\n",
+            celsius(shift.shifts[p.lower].temperature),
+            celsius(shift.shifts[p.upper].temperature),
+            p.curve_shift[0],
+            p.curve_shift[1],
+            p.shift,
+            p.sigma,
+            ["E′", "tan δ"][p.carrier.min(1)]
+        );
+    }
+    out
 }
 
 /// A standard error, or None where it is not defined (NaN).
