@@ -98,7 +98,7 @@ impl RelaxationMaster {
     pub fn quality(&self) -> super::quality::MasterQuality {
         let mut quality = super::quality::assess(&self.shift, None);
         let (misfit, limit) = (self.fit.misfit, super::quality::NONCAUSAL_FLOOR);
-        if !(misfit <= limit) {
+        if misfit.is_nan() || misfit > limit {
             quality.reasons.push(format!(
                 "the Prony series misses E(t) by {misfit:.3} decades RMS (limit {limit}): a \
                  relaxation modulus never rises with time, and no non-negative series comes \
