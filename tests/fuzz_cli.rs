@@ -14,7 +14,9 @@
 //! folder, holding a user's photo and, at times, a spoilt record, written
 //! again by fit, master, batch, report or compare, with or without
 //! `--force`): the photo is never touched, and another command's folder is
-//! refused without `--force`.
+//! refused without `--force`. It also adds master curves asked for at a T_ref near the shift law's singular
+//! temperature, workbooks with a stray cell far from the data (a sheet
+//! extent of up to 1.7e10 cells) and relaxation files with extreme times.
 //!
 //! Every case must keep the promises of docs/ARCHITECTURE.md, "Contract",
 //! and issue 14:
@@ -98,20 +100,34 @@ enum Kind {
     /// (through `compare`) with some cells made Excel errors, formulas
     /// without a saved result, text or empty (issue 36).
     Workbook,
+    /// DMA isotherms through `master` with a T_ref near the singular
+    /// temperature of WLF (−81.6 °C for these data) or Arrhenius (absolute
+    /// zero), under a random shift law (issue 47).
+    TRefSingular,
+    /// A workbook of the measured data (through `fit`) or of the DMA file
+    /// (through `compare`) with one stray cell far below and right of the
+    /// data (issue 47).
+    StrayCell,
+    /// A relaxation file through `master` with times made extreme (1e±300
+    /// s, just outside or inside the accepted range) (issue 47).
+    ExtremeTimes,
 }
 
 /// How many of every 100 cases are of each kind: the fits are the slow
 /// ones.
-const MIX: [(Kind, usize); 14] = [
-    (Kind::SceneForward, 14),
+const MIX: [(Kind, usize); 17] = [
+    (Kind::SceneForward, 11),
     (Kind::Unsized, 3),
     (Kind::Piped, 3),
     (Kind::SharedFolder, 3),
     (Kind::SceneFit, 7),
-    (Kind::Data, 13),
+    (Kind::Data, 11),
+    (Kind::TRefSingular, 2),
+    (Kind::StrayCell, 2),
+    (Kind::ExtremeTimes, 2),
     (Kind::Manifest, 4),
     (Kind::DmaCsv, 10),
-    (Kind::Trios, 12),
+    (Kind::Trios, 11),
     (Kind::FitFolderReport, 8),
     (Kind::FitFolderCompare, 11),
     (Kind::Workbook, 4),
@@ -464,6 +480,22 @@ fn fixtures(root: &Path) {
     }
     fs::write(root.join("ramp.csv"), ramp).unwrap();
     fs::copy(
+        repo.join("data/hn-rubber-dma-isotherms.csv"),
+        root.join("iso.csv"),
+    )
+    .unwrap();
+    // Three isotherms of a relaxation modulus falling 0.35 decades per
+    // decade of time, shifted 1.5 decades per 10 K.
+    let mut relax = String::from("t_s,E_relax,T\n");
+    for (j, t) in [0.0, 10.0, 20.0].iter().enumerate() {
+        for k in 0..=20 {
+            let time = 10f64.powf(k as f64 / 5.0);
+            let reduced = time * 10f64.powf(1.5 * j as f64);
+            relax += &format!("{time:e},{:e},{t}\n", 1e8 * reduced.powf(-0.35) + 1e6);
+        }
+    }
+    fs::write(root.join("relax.csv"), relax).unwrap();
+    fs::copy(
         repo.join("crates/io/tests/fixtures/trios_tensile.txt"),
         root.join("trios.txt"),
     )
@@ -493,27 +525,36 @@ fn fixtures(root: &Path) {
 /// a formula without a saved result, text or empty.
 fn spoilt_workbook(csv: &Path, rng: &mut ChaCha8Rng) -> Vec<u8> {
     use workbook::X;
-    let text = fs::read_to_string(csv).unwrap();
+    let mut rows = workbook_rows(csv);
+    for row in rows.iter_mut().skip(1) {
+        for cell in row.iter_mut() {
+            match rng.random_range(0..80) {
+                0 => *cell = X::Error,
+                1 => *cell = X::F("A2*2"),
+                2 => *cell = X::S("n/a"),
+                3 => *cell = X::E,
+                _ => {}
+            }
+        }
+    }
+    workbook::xlsx(&[("Data", rows)])
+}
+
+/// The CSV file `csv` as the rows of a sheet (comment lines dropped).
+fn workbook_rows(csv: &Path) -> Vec<Vec<workbook::X<'static>>> {
+    use workbook::X;
+    let text: &'static str = Box::leak(fs::read_to_string(csv).unwrap().into_boxed_str());
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let mut rows = vec![workbook::texts(&header)];
     for line in lines {
-        let row = line
-            .split(',')
-            .map(|cell| {
-                let value = cell.trim().parse::<f64>().map_or(X::S("?"), X::N);
-                match rng.random_range(0..80) {
-                    0 => X::Error,
-                    1 => X::F("A2*2"),
-                    2 => X::S("n/a"),
-                    3 => X::E,
-                    _ => value,
-                }
-            })
-            .collect();
-        rows.push(row);
+        rows.push(
+            line.split(',')
+                .map(|cell| cell.trim().parse::<f64>().map_or(X::S("?"), X::N))
+                .collect(),
+        );
     }
-    workbook::xlsx(&[("Data", rows)])
+    rows
 }
 
 /// One case: mutate, run, check; the problems found, the kind and the exit
@@ -679,6 +720,54 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
                 vec!["compare", "out", "dma.xlsx"]
             };
             (args, "out", name)
+        }
+        Kind::TRefSingular => {
+            fs::copy(root.join("iso.csv"), dir.join("iso.csv")).unwrap();
+            let near = [-81.6, -81.0, -80.0, -82.0, -100.0, -250.0, -273.14, -260.0];
+            let t_ref = near[rng.random_range(0..near.len())] + rng.random_range(-0.5..0.5);
+            let law = ["wlf", "arrhenius", "wlf-arrhenius", "auto", "free"][rng.random_range(0..5)];
+            let mut args = vec!["master", "iso.csv", "-o", "master", "--shift", law];
+            args.push("--T-ref");
+            args.push(Box::leak(format!("{t_ref:.3}").into_boxed_str()));
+            (args, "master", "iso.csv")
+        }
+        Kind::StrayCell => {
+            with_base(&dir);
+            let (source, name) =
+                [("data.csv", "data.xlsx"), ("dma.csv", "dma.xlsx")][rng.random_range(0..2)];
+            let column = ["XFD", "CZ", "A", "D", "AAA"][rng.random_range(0..5)];
+            let row = [1048576, 1000000, 1, 2, 70000][rng.random_range(0..5)];
+            let at = format!("{column}{row}");
+            let rows = workbook_rows(&dir.join(source));
+            fs::write(
+                dir.join(name),
+                workbook::xlsx_with_stray(&[("Data", rows)], Some(&at)),
+            )
+            .unwrap();
+            let args = if name == "data.xlsx" {
+                vec!["fit", "scene.toml", "data.xlsx", "-o", "out"]
+            } else {
+                vec!["compare", "out", "dma.xlsx"]
+            };
+            (args, "out", name)
+        }
+        Kind::ExtremeTimes => {
+            let text = fs::read_to_string(root.join("relax.csv")).unwrap();
+            let extremes = [
+                "1e300", "1e-300", "1e30", "1e-30", "1.1e30", "9e-31", "0", "-1",
+            ];
+            let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+            for _ in 0..rng.random_range(1..4) {
+                let k = rng.random_range(1..lines.len());
+                let rest = lines[k][lines[k].find(',').unwrap()..].to_string();
+                lines[k] = format!("{}{rest}", extremes[rng.random_range(0..extremes.len())]);
+            }
+            fs::write(dir.join("relax.csv"), lines.join("\n") + "\n").unwrap();
+            (
+                vec!["master", "relax.csv", "-o", "master"],
+                "master",
+                "relax.csv",
+            )
         }
         Kind::Unsized => {
             with_base(&dir);

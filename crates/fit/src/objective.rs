@@ -126,6 +126,17 @@ impl Objective<'_> {
     }
 
     /// The shift's parameters within θ.
+    /// The refusal of a shift at θ that left the floating-point range.
+    fn shift_beyond_range(&self, theta: &[f64]) -> FitError {
+        match &self.shift {
+            Some(shift) => shift.beyond_range(self.shift_theta(theta)),
+            None => FitError::setting(
+                "v",
+                "a speed is not a positive finite number after the load's shift",
+            ),
+        }
+    }
+
     fn shift_theta<'t>(&self, theta: &'t [f64]) -> &'t [f64] {
         let n = self.param.free_count();
         &theta[n..n + self.shift.as_ref().map_or(0, |s| s.count())]
@@ -198,10 +209,7 @@ impl Objective<'_> {
         let n_free = self.free_count();
         let (speeds, shift_grads) = self.reduced_speeds(theta);
         if speeds.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
-            return Err(FitError::setting(
-                "shift",
-                "the optimiser produced a shift factor outside the floating-point range",
-            ));
+            return Err(self.shift_beyond_range(theta));
         }
         let rows = self.residual_count();
         let kappa = self.friction_factor_index().map_or(1.0, |k| theta[k].exp());

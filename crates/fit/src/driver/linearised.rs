@@ -67,6 +67,19 @@ impl Linearisation {
         let jacobian = e
             .jacobian
             .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
+        // The SVD of a matrix holding NaN never converges: a shift or
+        // modulus beyond the floating-point range is refused here.
+        if jacobian
+            .iter()
+            .chain(e.residuals.iter())
+            .any(|x| !x.is_finite())
+        {
+            return Err(FitError::setting(
+                "shift",
+                "the residuals or their derivatives are not finite numbers at this fit's shift \
+                 (a reduced speed or frequency beyond the floating-point range)",
+            ));
+        }
         let data_count = objective.data_rows();
         Ok(Linearisation {
             lambda: trial.lambda,

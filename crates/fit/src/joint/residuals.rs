@@ -24,6 +24,7 @@ use nalgebra::{DMatrix, DVector};
 use rollfit_model::VerticalShift;
 
 use crate::error::FitError;
+use crate::master::reach::REDUCED_RANGE;
 use crate::parametrization::{Mapped, Parametrization};
 use crate::shift::{ShiftParam, index_of};
 
@@ -187,10 +188,10 @@ impl DmaBlock {
         let mut grad_theta = vec![0.0; n_material];
         for i in 0..self.points() {
             let w = self.omega[i] * ln_a[i].exp();
-            if !(w.is_finite() && w > 0.0) {
-                return Err(FitError::setting(
-                    "shift",
-                    "the optimiser produced a shift factor outside the floating-point range",
+            if !(REDUCED_RANGE.0..=REDUCED_RANGE.1).contains(&w) {
+                return Err(shift.map_or(
+                    FitError::setting("shift", "a DMA frequency left the floating-point range"),
+                    |(s, theta)| s.beyond_range(theta),
                 ));
             }
             let (e1, e2) = moduli(m, tau, w);

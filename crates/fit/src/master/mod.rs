@@ -52,8 +52,10 @@ mod network;
 pub mod pairwise;
 pub mod prony_fit;
 pub mod quality;
+pub mod reach;
 pub mod relaxation;
 mod relaxation_prony;
+mod scale;
 mod shifts;
 pub mod temperature_law;
 pub mod van_gurp_palmen;
@@ -164,6 +166,13 @@ impl MasterSettings {
         }
         for iso in isotherms {
             check_isotherm(iso)?;
+        }
+        for iso in isotherms {
+            let points = (1..).zip(&iso.storage).zip(&iso.loss);
+            scale::check_modulus_scale(
+                iso.temperature,
+                points.flat_map(|((k, &e1), &e2)| [(k, "E′", e1), (k, "E″", e2)]),
+            )?;
         }
         self.check_temperatures(isotherms.iter().map(|i| i.temperature).collect())
     }
@@ -370,6 +379,11 @@ pub fn build_master_curve(
             });
         }
     }
+    reach::check_reach(
+        &shift,
+        points.iter().map(|p| (p.temperature, p.reduced_omega)),
+        ("reduced frequency ω a_T", "rad/s"),
+    )?;
     points.sort_by(|p, q| p.reduced_omega.total_cmp(&q.reduced_omega));
     let omega: Vec<f64> = points.iter().map(|p| p.reduced_omega).collect();
     let storage: Vec<f64> = points.iter().map(|p| p.storage).collect();

@@ -84,6 +84,34 @@ pub struct RelaxationMaster {
     pub warnings: Vec<String>,
 }
 
+impl RelaxationMaster {
+    /// The verdict on this curve: the shifts' reasons
+    /// ([`super::quality::assess`]), and a series that does not follow
+    /// the data. E(t) of every linear viscoelastic solid is a non-negative
+    /// sum of decaying exponentials (completely monotone: it never rises
+    /// with time, Ferry ch. 3), which is the series fitted; its misfit is
+    /// therefore at least the distance of the data from any causal E(t),
+    /// and one above [`super::quality::NONCAUSAL_FLOOR`] (0.1 decades RMS,
+    /// 26 %) is data no relaxation modulus follows, or a series that
+    /// missed them. There is no separate floor to tell the two apart, as
+    /// E′ and E″ have.
+    pub fn quality(&self) -> super::quality::MasterQuality {
+        let mut quality = super::quality::assess(&self.shift, None);
+        let (misfit, limit) = (self.fit.misfit, super::quality::NONCAUSAL_FLOOR);
+        if misfit.is_nan() || misfit > limit {
+            quality.reasons.push(format!(
+                "the Prony series misses E(t) by {misfit:.3} decades RMS (limit {limit}): a \
+                 relaxation modulus never rises with time, and no non-negative series comes \
+                 closer to these data; check that the modulus column is E(t) or G(t) after a \
+                 step of strain (not a creep compliance, not a stress during loading), its unit, \
+                 and that the times count from the step"
+            ));
+            quality.verdict = "poor";
+        }
+        quality
+    }
+}
+
 /// Where a relaxation run stops increasing in time: the first index k ≥ 1
 /// with t_k ≤ t_{k−1}, None when the times increase throughout. Front ends
 /// name the file lines of points k − 1 and k with it.
@@ -106,6 +134,10 @@ impl MasterSettings {
         }
         for iso in isotherms {
             check_isotherm(iso)?;
+        }
+        for iso in isotherms {
+            let points = (1..).zip(&iso.modulus).map(|(k, &e)| (k, "E(t)", e));
+            super::scale::check_modulus_scale(iso.temperature, points)?;
         }
         self.check_temperatures(isotherms.iter().map(|i| i.temperature).collect())
     }
@@ -197,6 +229,11 @@ pub fn build_relaxation_master(
             });
         }
     }
+    super::reach::check_reach(
+        &shift,
+        points.iter().map(|p| (p.temperature, p.reduced_time)),
+        ("reduced time t/a_T", "s"),
+    )?;
     points.sort_by(|p, q| p.reduced_time.total_cmp(&q.reduced_time));
     let time: Vec<f64> = points.iter().map(|p| p.reduced_time).collect();
     let modulus: Vec<f64> = points.iter().map(|p| p.modulus).collect();

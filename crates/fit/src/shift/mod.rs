@@ -31,6 +31,7 @@
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
 //!   1980, ch. 11 (WLF, and the Arrhenius law below T_g).
 
+mod beyond;
 pub(crate) mod overlap;
 mod record;
 mod temperatures;

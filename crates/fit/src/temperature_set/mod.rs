@@ -123,6 +123,22 @@ pub(crate) fn temperature_set(
     let mut notes = Vec::new();
     let theta = match (params.shift.kind, params.shift.wlf_start) {
         (ShiftKind::Wlf, Some((c1, c2))) => {
+            // WLF diverges at T_ref − C2 and does not hold at or below it:
+            // constants singular at a measured temperature describe
+            // another material, or C2 is not in K.
+            let (t_ref, singular) = (param.t_ref(), param.t_ref() - c2);
+            if let Some(&cold) = temps.iter().find(|&&t| t <= singular) {
+                return Err(FitError::setting(
+                    "[material.shift]",
+                    format!(
+                        "WLF with C1 = {c1}, C2 = {c2} K about T_ref = {t_ref} °C is singular at \
+                         T_ref - C2 = {singular} °C, at or above the measured temperature \
+                         {cold} °C, where the law gives no shift: give C2 above {} K (in K), \
+                         or leave C1 and C2 out to start the shift from the data",
+                        t_ref - cold
+                    ),
+                ));
+            }
             notes.push(format!(
                 "WLF started from the scene's C1 = {c1}, C2 = {c2} K"
             ));

@@ -134,7 +134,25 @@ fn units_row(
     let speed = columns
         .iter()
         .find(|(c, _)| c.quantity == Quantity::Speed)?;
-    speed_unit(&text(speed.0.index))?;
+    if speed_unit(&text(speed.0.index)).is_none() {
+        // A unit in brackets under the speed column is a units row with a
+        // unit not understood, not a row of data that is not a number.
+        let bracketed = match row.cells.get(speed.0.index) {
+            Some(Cell::Text(t)) => {
+                let t = t.trim();
+                (t.starts_with('[') && t.ends_with(']')) || (t.starts_with('(') && t.ends_with(')'))
+            }
+            _ => false,
+        };
+        return bracketed.then(|| {
+            Err(DataError::UnknownUnitInUnitsRow {
+                cell: source.cell(row.number, speed.0.index),
+                header: speed.0.raw.clone(),
+                quantity: speed.0.quantity,
+                unit: text(speed.0.index),
+            })
+        });
+    }
     let mut units = Vec::new();
     for (column, named) in columns {
         let written = text(column.index);

@@ -74,41 +74,136 @@ impl Book {
     }
 
     /// The rows of the sheet `name`, numbered as the spreadsheet shows
-    /// them, `#` comment rows left out.
+    /// them, `#` comment rows and rows without a cell left out.
     pub fn rows(&mut self, name: &str) -> Result<Vec<Row>, DataError> {
-        let range =
-            self.sheets
-                .worksheet_range(name)
-                .map_err(|error| DataError::UnreadableSheet {
-                    sheet: name.to_string(),
-                    error,
-                })?;
+        let unreadable = |error: calamine::Error| DataError::UnreadableSheet {
+            sheet: name.to_string(),
+            error,
+        };
+        let cells = match &mut self.sheets {
+            calamine::Sheets::Xlsx(book) => xlsx_cells(book, name).map_err(unreadable)?,
+            calamine::Sheets::Xlsb(book) => xlsb_cells(book, name).map_err(unreadable)?,
+            _ => self.range_cells(name).map_err(unreadable)?,
+        };
+        Ok(rows_of(cells)
+            .into_iter()
+            .filter(|row| !is_comment(row))
+            .collect())
+    }
+
+    /// The cells of the sheet `name` from calamine's rectangular range
+    /// (.xls, whose reader builds it while opening the file, and .ods,
+    /// whose reader caps it at 1e8 cells and refuses more).
+    fn range_cells(&mut self, name: &str) -> Result<Vec<Placed>, calamine::Error> {
+        let range = self.sheets.worksheet_range(name)?;
         // Formulas only matter where the file holds no result for them; a
         // form without formulas (or one calamine cannot read them from)
         // leaves every empty cell empty.
         let formulas = self.sheets.worksheet_formula(name).ok();
-        let formula_at = |row: u32, column: u32| {
-            let formula = formulas.as_ref()?.get_value((row, column))?.trim();
+        let formula_at = |pos: (u32, u32)| {
+            let formula = formulas.as_ref()?.get_value(pos)?.trim();
             (!formula.is_empty()).then(|| Cell::Formula(formula.to_string()))
         };
-        let (row0, column0) = range.start().unwrap_or((0, 0));
         Ok(range
-            .rows()
-            .enumerate()
-            .map(|(i, cells)| Row {
-                number: u64::from(row0) + i as u64 + 1,
-                cells: std::iter::repeat_n(Cell::Empty, column0 as usize)
-                    .chain(cells.iter().enumerate().map(|(j, data)| match data {
-                        Data::Empty => {
-                            formula_at(row0 + i as u32, column0 + j as u32).unwrap_or(Cell::Empty)
-                        }
-                        data => cell(data),
-                    }))
-                    .collect(),
+            .used_cells()
+            .filter_map(|(i, j, data)| {
+                let (row0, column0) = range.start().unwrap_or((0, 0));
+                let pos = (row0 + i as u32, column0 + j as u32);
+                match data {
+                    Data::Empty => formula_at(pos).map(|c| (pos, c)),
+                    data => Some((pos, cell(data))),
+                }
             })
-            .filter(|row| !is_comment(row))
             .collect())
     }
+}
+
+/// A cell and its (row, column), both from 0.
+type Placed = ((u32, u32), Cell);
+
+/// The cells of an .xlsx sheet that hold a value or a formula, as the
+/// file lists them: memory follows the cells, not the sheet's extent (a
+/// stray cell at XFD1048576 spans 1.7e10 cells).
+fn xlsx_cells<RS: std::io::Read + std::io::Seek>(
+    book: &mut calamine::Xlsx<RS>,
+    name: &str,
+) -> Result<Vec<Placed>, calamine::Error> {
+    let mut reader = match book.worksheet_cells_reader(name) {
+        // A chart sheet has no cells (calamine's range is empty too).
+        Err(calamine::XlsxError::NotAWorksheet(_)) => return Ok(Vec::new()),
+        reader => reader?,
+    };
+    let mut cells = Vec::new();
+    while let Some(found) = reader.next_cell_with_formula()? {
+        let data = Data::from(found.value);
+        let formula = found.formula.filter(|f| !f.trim().is_empty());
+        match (data, formula) {
+            (Data::Empty, Some(f)) => cells.push((found.pos, Cell::Formula(f.trim().to_string()))),
+            (Data::Empty, None) => {}
+            (data, _) => cells.push((found.pos, cell(&data))),
+        }
+    }
+    Ok(cells)
+}
+
+/// The cells of an .xlsb sheet that hold a value or a formula (as
+/// [`xlsx_cells`]; the formulas are a second pass over the sheet).
+fn xlsb_cells<RS: std::io::Read + std::io::Seek>(
+    book: &mut calamine::Xlsb<RS>,
+    name: &str,
+) -> Result<Vec<Placed>, calamine::Error> {
+    let mut cells = Vec::new();
+    let mut empty = std::collections::BTreeSet::new();
+    {
+        let mut reader = book.worksheet_cells_reader(name)?;
+        while let Some(found) = reader.next_cell()? {
+            match Data::from(found.get_value().clone()) {
+                Data::Empty => {
+                    empty.insert(found.get_position());
+                }
+                data => cells.push((found.get_position(), cell(&data))),
+            }
+        }
+    }
+    if !empty.is_empty()
+        && let Ok(mut reader) = book.worksheet_cells_reader(name)
+    {
+        while let Ok(Some(found)) = reader.next_formula() {
+            let formula = found.get_value().trim();
+            if !formula.is_empty() && empty.contains(&found.get_position()) {
+                cells.push((found.get_position(), Cell::Formula(formula.to_string())));
+            }
+        }
+    }
+    Ok(cells)
+}
+
+/// Rows of `cells`, ascending, each as wide as its last cell (the rows
+/// without a cell left out: every reader skips blank rows).
+fn rows_of(mut cells: Vec<Placed>) -> Vec<Row> {
+    cells.sort_by_key(|(pos, _)| *pos);
+    let mut rows: Vec<Row> = Vec::new();
+    for ((row, column), value) in cells {
+        let number = u64::from(row) + 1;
+        if rows.last().is_none_or(|r| r.number != number) {
+            rows.push(Row {
+                number,
+                cells: Vec::new(),
+            });
+        }
+        let Some(last) = rows.last_mut() else {
+            continue;
+        };
+        let column = column as usize;
+        if let Some(twice) = last.cells.get_mut(column) {
+            // A position listed twice: the later record stands.
+            *twice = value;
+            continue;
+        }
+        last.cells.resize(column, Cell::Empty);
+        last.cells.push(value);
+    }
+    rows
 }
 
 /// Reads the sheet `wanted` (default: the first) of the workbook `bytes`.
@@ -183,6 +278,11 @@ fn is_comment(row: &Row) -> bool {
     }
 }
 
+/// What to do about a number shown as a date: spreadsheets turn a typed
+/// number into a date when the column is formatted as dates.
+const DATE_FIX: &str = " (a cell formatted as a date or time: format the column as \"Number\" \
+                        in the spreadsheet and save it again)";
+
 fn cell(data: &Data) -> Cell {
     match data {
         Data::Empty => Cell::Empty,
@@ -191,8 +291,10 @@ fn cell(data: &Data) -> Cell {
         Data::String(s) => Cell::text(s),
         Data::Error(e) => Cell::Error(e.to_string()),
         Data::Bool(b) => Cell::Other(format!("the boolean {}", if *b { "TRUE" } else { "FALSE" })),
-        Data::DateTime(d) => Cell::Other(format!("the date/time {d}")),
-        Data::DateTimeIso(s) | Data::DurationIso(s) => Cell::Other(format!("the date/time {s}")),
+        Data::DateTime(d) => Cell::Other(format!("the date/time {d}{DATE_FIX}")),
+        Data::DateTimeIso(s) | Data::DurationIso(s) => {
+            Cell::Other(format!("the date/time {s}{DATE_FIX}"))
+        }
     }
 }
 

@@ -107,6 +107,17 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<(FormRead, Vec<String>), 
     let units = units
         .as_ref()
         .map(|(line, cells)| (*line, cells.as_slice()));
+    let times = super::relaxation::time_columns(&names);
+    if !times.is_empty() {
+        notes.push(format!(
+            "{}: time column{} {} ignored: a file with a frequency column is read as a frequency \
+             sweep (E′, E″ against ω); a stress-relaxation file has a time column and no \
+             frequency column",
+            path.display(),
+            if times.len() == 1 { "" } else { "s" },
+            times.join(", ")
+        ));
+    }
     let header = header::columns(&place, header_line, names, units)?;
     let mut warnings = Vec::new();
     if header.both {

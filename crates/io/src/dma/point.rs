@@ -67,11 +67,17 @@ pub struct DmaWlf {
 
 impl DmaWlf {
     /// The DMA's WLF shift from T_ref (°C), C1 and C2 (K): finite numbers
-    /// with C2 > 0. The error says what is wrong (the command line puts
+    /// with C1 > 0 and C2 > 0. The error says what is wrong (the command line puts
     /// the text it was given before it, the Python module the argument).
     pub fn new(t_ref: f64, c1: f64, c2: f64) -> Result<DmaWlf, String> {
         if !(t_ref.is_finite() && c1.is_finite() && c2.is_finite()) {
             return Err(format!("the numbers must be finite; {WLF_USAGE}"));
+        }
+        // As a scene's [material.shift]: a_T falls as T rises.
+        if c1 <= 0.0 {
+            return Err(format!(
+                "C1 = {c1}: must be a finite number greater than zero"
+            ));
         }
         if c2 <= 0.0 {
             return Err(format!(

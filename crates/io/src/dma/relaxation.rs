@@ -22,8 +22,8 @@
 //! sweep's reader ([`super::csv_form`]) is unchanged.
 //!
 //! Shear moduli become Young's with E(t) = 2(1 + ν) G(t) (ν
-//! frequency-independent, as for E*(ω): [`super`]). Checks: t > 0 and E(t)
-//! in (0, 1e13] Pa, every number finite, T in (−273.15, 1000] °C, all rows
+//! frequency-independent, as for E*(ω): [`super`]). Checks: t in
+//! [1e-30, 1e30] s and E(t) in (0, 1e13] Pa, every number finite, T in (−273.15, 1000] °C, all rows
 //! with a temperature or none; within each isotherm (grouped as the
 //! frequency form's, [`super::isotherms`]) the times increase in file
 //! order, else the two lines are named.
@@ -35,6 +35,10 @@ use super::point::ModulusKind;
 use crate::columns::{E_RELAX, G_RELAX, TIME};
 use crate::csv_columns::LineIndex;
 use crate::error::{ColumnRef, IoError, RelaxationError};
+
+/// Accepted times since the step of strain, s: the reciprocal of the
+/// frequency form's accepted ω (1e-30 … 1e30 rad/s).
+const TIME_RANGE: (f64, f64) = (1e-30, 1e30);
 
 /// One point of a relaxation file, the modulus as Young's.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -240,6 +244,16 @@ fn header_row(text: &str) -> Option<(usize, Vec<String>, char, usize)> {
     None
 }
 
+/// The names of `names` read as a time column (`t`, `time`, with a unit):
+/// a frequency sweep's reader ignores them, and says so.
+pub(crate) fn time_columns(names: &[String]) -> Vec<&str> {
+    names
+        .iter()
+        .filter(|n| matches!(recognise(n), Some((Quantity::Time, ..))))
+        .map(String::as_str)
+        .collect()
+}
+
 /// Whether `text` is a relaxation file: its header has a time column and
 /// no frequency column (the module doc). A header with a time column but
 /// no modulus is one too (its reading then says what is missing).
@@ -360,6 +374,18 @@ fn row(
     let time = value(&header.time)?;
     if time <= 0.0 {
         return Err(RelaxationError::TimeNotPositive {
+            path: path.to_path_buf(),
+            line,
+            column: header.time.reference.clone(),
+            value: time,
+        }
+        .into());
+    }
+    // The frequency form's ω range turned into times: far outside any
+    // relaxation test, and beyond what the τ grid of the series spans
+    // (a time of 1e300 s asks for hundreds of decades of terms).
+    if !(TIME_RANGE.0..=TIME_RANGE.1).contains(&time) {
+        return Err(RelaxationError::TimeOutOfRange {
             path: path.to_path_buf(),
             line,
             column: header.time.reference.clone(),

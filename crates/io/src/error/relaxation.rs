@@ -49,6 +49,19 @@ pub enum RelaxationError {
         column: ColumnRef,
         value: f64,
     },
+    /// A time outside 1e-30 … 1e30 s (the reciprocal of the frequency
+    /// form's range).
+    #[error(
+        "{}, line {line}: {column}: t = {value:e} s is outside 1e-30 … 1e30 s, beyond any \
+         relaxation measurement (is the time in s, or is the column a time at all?)",
+        path.display()
+    )]
+    TimeOutOfRange {
+        path: PathBuf,
+        line: usize,
+        column: ColumnRef,
+        value: f64,
+    },
     /// A relaxation modulus that is not positive or beyond any solid's.
     #[error(
         "{}, line {line}: {column}: E(t) = {value} Pa is not a modulus (it must be positive and \

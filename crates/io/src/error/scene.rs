@@ -257,6 +257,17 @@ pub enum SceneError {
         first: usize,
         first_temperature: f64,
     },
+    /// A temperature outside what `rollfit fit` accepts in a data file.
+    #[error(
+        "{entry} °C {requirement}: a data file's T column is refused there, so `rollfit fit` \
+         could not read these rows back"
+    )]
+    TemperatureOutOfRange {
+        /// `temperature = …` or `temperature[i] = …`.
+        entry: String,
+        /// What the value breaks (the data reader's rule).
+        requirement: &'static str,
+    },
     /// Both a list and a range of speeds.
     #[error("give either `v = [..]` or `v_min`, `v_max` (and `count`), not both")]
     SpeedsTwice,

@@ -3,6 +3,7 @@
 
 use std::fmt;
 
+use rollfit_fit::data::column_requirement;
 use rollfit_model::modulus::FreeShift;
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -64,10 +65,30 @@ impl SweepTemperature {
         }
     }
 
-    /// Checks what serde cannot see: a list names at least one temperature
-    /// and none twice (within the model's [`FreeShift::TEMPERATURE_TOLERANCE`],
-    /// the rule the fit uses to tell the temperatures of a set apart).
+    /// Checks what serde cannot see: each temperature inside the range a
+    /// data file's T column accepts
+    /// ([`rollfit_fit::data::column_requirement`]); a list names at least
+    /// one temperature and none twice (within the model's
+    /// [`FreeShift::TEMPERATURE_TOLERANCE`], the rule the fit uses to tell
+    /// the temperatures of a set apart).
     pub(super) fn check(&self) -> Result<(), SceneError> {
+        for (i, &t) in self.values().iter().enumerate() {
+            if let Some(requirement) = column_requirement("T", t) {
+                let key = match self {
+                    SweepTemperature::One(_) => "temperature".to_string(),
+                    SweepTemperature::List(_) => format!("temperature[{i}]"),
+                };
+                // 1e300 in full is 301 digits.
+                let shown = match t.abs() < 1e6 {
+                    true => format!("{t}"),
+                    false => format!("{t:e}"),
+                };
+                return Err(SceneError::TemperatureOutOfRange {
+                    entry: format!("{key} = {shown}"),
+                    requirement,
+                });
+            }
+        }
         let SweepTemperature::List(list) = self else {
             return Ok(());
         };

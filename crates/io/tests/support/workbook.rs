@@ -64,6 +64,13 @@ fn escape(text: &str) -> String {
 
 /// An .xlsx workbook of `sheets` (name, rows from A1).
 pub fn xlsx(sheets: &[(&str, Vec<Vec<X>>)]) -> Vec<u8> {
+    xlsx_with_stray(sheets, None)
+}
+
+/// An .xlsx workbook of `sheets` whose first sheet also holds the number
+/// 1 in the cell `stray` (as `"XFD1048576"`, below and right of the rows):
+/// a sheet whose extent is far larger than its data.
+pub fn xlsx_with_stray(sheets: &[(&str, Vec<Vec<X>>)], stray: Option<&str>) -> Vec<u8> {
     const MAIN: &str = "http://schemas.openxmlformats.org/spreadsheetml/2006/main";
     const RELS: &str = "http://schemas.openxmlformats.org/package/2006/relationships";
     const DOC: &str = "http://schemas.openxmlformats.org/officeDocument/2006/relationships";
@@ -102,6 +109,10 @@ pub fn xlsx(sheets: &[(&str, Vec<Vec<X>>)]) -> Vec<u8> {
                 };
             }
             sheet += "</row>";
+        }
+        if let (0, Some(at)) = (i, stray) {
+            let row: String = at.chars().filter(char::is_ascii_digit).collect();
+            sheet += &format!(r#"<row r="{row}"><c r="{at}"><v>1</v></c></row>"#);
         }
         sheet += "</sheetData></worksheet>";
         parts.push((format!("xl/worksheets/sheet{n}.xml"), sheet));

@@ -122,16 +122,28 @@ pub fn setting_origin(
     }
 }
 
+/// `p` (a percentage) to three significant digits: fixed from 0.01 to
+/// 1e4, else with an exponent (σ = 1e-5 is not "0.00 %", 1e300 not 301
+/// digits).
+fn percent(p: f64) -> String {
+    if p != 0.0 && p.is_finite() && (1e-2..1e4).contains(&p.abs()) {
+        let decimals = (2 - p.abs().log10().floor() as i32).max(0) as usize;
+        format!("{p:.decimals$}")
+    } else {
+        format!("{p:.2e}")
+    }
+}
+
 /// The summary's block about a joint fit: each part's χ² together and
 /// alone, the compatibility verdict and κ if fitted.
 pub fn summary_lines(joint: &JointRecord) -> String {
     let chi2 = &joint.chi2;
     let mut text = format!(
-        "joint fit with DMA file {} ({} DMA points, {} rolling rows; DMA σ {:.2} % {}):\n",
+        "joint fit with DMA file {} ({} DMA points, {} rolling rows; DMA σ {} % {}):\n",
         joint.dma_source,
         joint.dma_points,
         joint.rolling_points,
-        100.0 * joint.sigma.dma,
+        percent(100.0 * joint.sigma.dma),
         joint.sigma.dma_source
     );
     text += &format!(

@@ -56,8 +56,9 @@ pub(super) fn run(args: &Args, settings: &rollfit_fit::master::MasterSettings) -
     for warning in &built.master.warnings {
         eprintln!("warning: {warning}");
     }
-    // No Kramers–Kronig floor for E(t): the shifts alone are judged.
-    let quality = rollfit_fit::master::quality::assess(&built.master.shift, None);
+    // No Kramers–Kronig floor for E(t): the shifts and the series' misfit
+    // are judged.
+    let quality = built.master.quality();
     super::gate(&quality, args)?;
     super::strict_gate(&built.master.shift, args)?;
     let files = encode(&built, poisson, &quality)?;
