@@ -248,6 +248,7 @@ fn shear_becomes_young_with_the_fits_poisson_ratio() {
     let young = DmaOptions {
         kind: Some(ModulusKind::Young),
         wlf: None,
+        ..Default::default()
     };
     let data = DmaData::read(&path, 0.5, &young).unwrap();
     assert_eq!(data.kind, ModulusKind::Shear);
@@ -307,6 +308,7 @@ fn trios_lims_shear_export_with_its_units() {
     let young = DmaOptions {
         kind: Some(ModulusKind::Young),
         wlf: None,
+        ..Default::default()
     };
     let data = DmaData::read(&path, 0.5, &young).unwrap();
     assert_eq!(data.kind, ModulusKind::Young);
@@ -493,6 +495,7 @@ fn bad_trios_files_are_refused_with_line_and_variable() {
     let told = DmaOptions {
         kind: Some(ModulusKind::Shear),
         wlf: None,
+        ..Default::default()
     };
     let data = DmaData::read(&dir.path().join("kind.txt"), 0.5, &told).unwrap();
     assert_eq!(data.kind, ModulusKind::Shear);
