@@ -63,32 +63,28 @@ pub fn decode_noted(path: &Path, bytes: &[u8]) -> Result<(String, Vec<String>), 
 /// UTF-8 (its mark dropped), else Latin-1 where nothing is UTF-8 beyond
 /// ASCII; the refusals of [`decode`].
 fn decode_8bit(path: &Path, bytes: &[u8]) -> Result<String, IoError> {
-    match bytes {
-        _ => {
-            let marked = bytes.starts_with(&[0xEF, 0xBB, 0xBF]);
-            let body = if marked { &bytes[3..] } else { bytes };
-            match std::str::from_utf8(body) {
-                Ok(text) => Ok(text.to_string()),
-                Err(e) => {
-                    let offset = (bytes.len() - body.len()) + e.valid_up_to();
-                    if marked {
-                        Err(invalid_text(
-                            path,
-                            bytes,
-                            offset,
-                            InvalidText::InvalidAfterMark,
-                        ))
-                    } else if body.utf8_chunks().any(|c| !c.valid().is_ascii()) {
-                        Err(invalid_text(
-                            path,
-                            bytes,
-                            offset,
-                            InvalidText::MixedEncodings,
-                        ))
-                    } else {
-                        Ok(body.iter().map(|&b| char::from(b)).collect())
-                    }
-                }
+    let marked = bytes.starts_with(&[0xEF, 0xBB, 0xBF]);
+    let body = if marked { &bytes[3..] } else { bytes };
+    match std::str::from_utf8(body) {
+        Ok(text) => Ok(text.to_string()),
+        Err(e) => {
+            let offset = (bytes.len() - body.len()) + e.valid_up_to();
+            if marked {
+                Err(invalid_text(
+                    path,
+                    bytes,
+                    offset,
+                    InvalidText::InvalidAfterMark,
+                ))
+            } else if body.utf8_chunks().any(|c| !c.valid().is_ascii()) {
+                Err(invalid_text(
+                    path,
+                    bytes,
+                    offset,
+                    InvalidText::MixedEncodings,
+                ))
+            } else {
+                Ok(body.iter().map(|&b| char::from(b)).collect())
             }
         }
     }

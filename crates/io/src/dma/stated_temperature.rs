@@ -132,9 +132,12 @@ fn leading_number(text: &str) -> Option<(f64, &str)> {
     Some((number, &text[end..]))
 }
 
+/// A unit's map to °C.
+type ToCelsius = fn(f64) -> f64;
+
 /// The temperature unit at the start of `text`: its map to °C and what
 /// follows it.
-fn unit(text: &str) -> Option<(fn(f64) -> f64, &str)> {
+fn unit(text: &str) -> Option<(ToCelsius, &str)> {
     const CELSIUS: [&str; 8] = ["°C", "ºC", "℃", "degC", "deg C", "° C", "C", "c"];
     for u in CELSIUS {
         if let Some(rest) = text.strip_prefix(u) {
@@ -142,7 +145,7 @@ fn unit(text: &str) -> Option<(fn(f64) -> f64, &str)> {
         }
     }
     text.strip_prefix('K')
-        .map(|rest| ((|t| t - 273.15) as fn(f64) -> f64, rest))
+        .map(|rest| ((|t| t - 273.15) as ToCelsius, rest))
 }
 
 #[cfg(test)]
