@@ -178,3 +178,317 @@ fn master_refuses_a_temperature_ramp_and_groups_by_gaps_or_steps() {
         outputs(&tmp.path().join("plain"))
     );
 }
+
+/// The bundled file's isotherms, each as its own file body (the header
+/// `f,G_storage,G_loss`, no T column), in ascending temperature.
+fn per_temperature() -> Vec<(String, Vec<String>)> {
+    let mut out: Vec<(String, Vec<String>)> = Vec::new();
+    for line in bundled().lines().filter(|l| !l.starts_with('#')).skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let row = cells[..3].join(",");
+        match out.last_mut() {
+            Some((t, rows)) if t == cells[3] => rows.push(row),
+            _ => out.push((cells[3].to_string(), vec![row])),
+        }
+    }
+    out
+}
+
+/// `rollfit master` with `args` after the files.
+fn master_files(files: &[&Path], dir: &Path, args: &[&str]) -> std::process::Output {
+    let mut all: Vec<&OsStr> = vec![OsStr::new("master")];
+    all.extend(files.iter().map(|p| p.as_os_str()));
+    all.extend([OsStr::new("-o"), dir.as_os_str()]);
+    all.extend(args.iter().map(OsStr::new));
+    rollfit(&all)
+}
+
+/// One file per temperature, the temperature stated in the file name, in
+/// a title line, in a key=value line or given on the command line: the
+/// master curve of the one file with a T column, to the last digit, and
+/// the summary says where each temperature came from.
+#[test]
+fn master_reads_one_file_per_temperature_from_every_source() {
+    let tmp = TempDir::new("per-temperature");
+    let plain = tmp.write("plain.csv", &bundled());
+    succeed(master(&plain, &tmp.path().join("plain")));
+    let expected = outputs(&tmp.path().join("plain"));
+    let folder = tmp.path().join("sweeps");
+    fs::create_dir(&folder).unwrap();
+    let isotherms = per_temperature();
+    assert_eq!(isotherms.len(), 9);
+    for (k, (t, rows)) in isotherms.iter().enumerate() {
+        let (name, above) = match k {
+            0 => (format!("a_{t}C.csv"), String::new()),
+            1 => (format!("b_{t}c.csv"), String::new()),
+            2 => (format!("c_{t}°C.csv"), String::new()),
+            3 => ("d.csv".to_string(), format!("Temperature: {t} °C\n")),
+            4 => ("e.csv".to_string(), format!("T={t};Mw=120000;\n")),
+            5 => (
+                "f.csv".to_string(),
+                format!("Result: Frequency sweep {t}C-cooling\n"),
+            ),
+            _ => (format!("{}.csv", (b'a' + k as u8) as char), String::new()),
+        };
+        let body = format!("{above}f,G_storage,G_loss\n{}\n", rows.join("\n"));
+        fs::write(folder.join(name), body).unwrap();
+    }
+    let given = "-20,-10,0,10,20,30,40,50,60";
+    let out = master_files(
+        &[&folder],
+        &tmp.path().join("folder"),
+        &["--temperatures", given],
+    );
+    let stdout = succeed(out);
+    assert_eq!(outputs(&tmp.path().join("folder")), expected);
+    for said in [
+        "a_-20C.csv: 13 points, -20 °C, from the file name",
+        "c_0°C.csv: 13 points, 0 °C, from the file name",
+        "d.csv: 13 points, 10 °C, stated on line 1",
+        "e.csv: 13 points, 20 °C, stated on line 1",
+        "f.csv: 13 points, 30 °C, stated on line 1",
+        "i.csv: 13 points, 60 °C, from --temperatures",
+    ] {
+        assert!(stdout.contains(said), "{said}\n{stdout}");
+    }
+    // Without the temperatures the last files state none: refused, named.
+    let out = master_files(&[&folder], &tmp.path().join("none"), &[]);
+    assert_failure(&out, &["g.csv: no temperature", "--temperatures"]);
+    // The files one by one on the command line read alike; a count that
+    // does not match the files is refused.
+    let mut files: Vec<_> = fs::read_dir(&folder)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    let files: Vec<&Path> = files.iter().map(|p| p.as_path()).collect();
+    succeed(master_files(
+        &files,
+        &tmp.path().join("listed"),
+        &["--temperatures", given],
+    ));
+    assert_eq!(outputs(&tmp.path().join("listed")), expected);
+    let out = master_files(
+        &files,
+        &tmp.path().join("count"),
+        &["--temperatures", "1,2"],
+    );
+    assert_failure(&out, &["2 temperatures given for 9 DMA files"]);
+}
+
+/// Two sweeps at one temperature in two files are merged into one
+/// isotherm ordered by frequency, and points at a repeated frequency are
+/// averaged: the master curve of the file that holds each point once.
+#[test]
+fn master_merges_sweeps_at_one_temperature_and_repeated_frequencies() {
+    let tmp = TempDir::new("merge");
+    let plain = tmp.write("plain.csv", &bundled());
+    succeed(master(&plain, &tmp.path().join("plain")));
+    let expected = outputs(&tmp.path().join("plain"));
+    let folder = tmp.path().join("sweeps");
+    fs::create_dir(&folder).unwrap();
+    for (t, rows) in per_temperature() {
+        let header = "f,G_storage,G_loss\n".to_string();
+        if t == "20" {
+            // Every other point in each of two files.
+            for (part, name) in [(0, "20C_a.csv"), (1, "20C_b.csv")] {
+                let mine: Vec<&String> = rows.iter().skip(part).step_by(2).collect();
+                let body: Vec<&str> = mine.iter().map(|s| s.as_str()).collect();
+                fs::write(folder.join(name), format!("{header}{}\n", body.join("\n"))).unwrap();
+            }
+        } else {
+            fs::write(
+                folder.join(format!("{t}C.csv")),
+                format!("{header}{}\n", rows.join("\n")),
+            )
+            .unwrap();
+        }
+    }
+    let out = master_files(&[&folder], &tmp.path().join("merged"), &[]);
+    let stderr = text(&out.stderr);
+    succeed(out);
+    assert!(
+        stderr.contains("2 sweeps at 20.00 °C (") && stderr.contains("merged into one isotherm"),
+        "{stderr}"
+    );
+    assert_eq!(outputs(&tmp.path().join("merged")), expected);
+
+    // The first point of the file written twice, E′ 1e6 Pa below and
+    // above: their mean is the point.
+    let first = "0.1,4.89321e+08,5.89546e+07,-20";
+    let twice = bundled().replacen(
+        first,
+        "0.1,4.88321e+08,5.89546e+07,-20\n0.1,4.90321e+08,5.89546e+07,-20",
+        1,
+    );
+    assert_ne!(twice, bundled());
+    let path = tmp.write("twice.csv", &twice);
+    let out = master(&path, &tmp.path().join("twice"));
+    let stderr = text(&out.stderr);
+    succeed(out);
+    assert!(
+        stderr.contains("isotherm at -20.00 °C: 2 points at repeated frequencies averaged into 1"),
+        "{stderr}"
+    );
+    assert_eq!(outputs(&tmp.path().join("twice")), expected);
+}
+
+/// The numbers of master.csv, shift.csv and modulus.csv in `dir`, file by
+/// file and row by row (empty cells as NaN).
+fn numbers(dir: &Path) -> Vec<Vec<f64>> {
+    ["master.csv", "shift.csv", "modulus.csv"]
+        .iter()
+        .map(|name| {
+            let text = fs::read_to_string(dir.join(name)).unwrap();
+            text.lines()
+                .skip(1)
+                .flat_map(|l| l.split(',').map(|c| c.parse().unwrap_or(f64::NAN)))
+                .collect::<Vec<f64>>()
+        })
+        .collect()
+}
+
+/// Whether `a` and `b` agree within `tolerance` (relative), NaN with NaN.
+fn agree(a: &[Vec<f64>], b: &[Vec<f64>], tolerance: f64) -> Result<(), String> {
+    for (file, (x, y)) in a.iter().zip(b).enumerate() {
+        if x.len() != y.len() {
+            return Err(format!(
+                "file {file}: {} against {} numbers",
+                x.len(),
+                y.len()
+            ));
+        }
+        for (k, (p, q)) in x.iter().zip(y).enumerate() {
+            let same =
+                (p.is_nan() && q.is_nan()) || (p - q).abs() <= tolerance * p.abs().max(1e-300);
+            if !same {
+                return Err(format!("file {file}, number {k}: {p} against {q}"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The bundled isotherms written as rheometers export them — |G*| with δ
+/// in degrees, |G*| with tan δ, η*′ and η*″, |η*| with δ in radians,
+/// `Storage Modulus` and `Loss Modulus` in MPa on a units row — give the
+/// plain file's master curve within 1e-6: each conversion is exact.
+#[test]
+fn master_reads_complex_moduli_phase_angles_and_viscosities() {
+    let tmp = TempDir::new("forms");
+    let plain = tmp.write("plain.csv", &bundled());
+    succeed(master(&plain, &tmp.path().join("plain")));
+    let expected = numbers(&tmp.path().join("plain"));
+    let rows: Vec<[f64; 4]> = bundled()
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| {
+            let c: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [c[0], c[1], c[2], c[3]]
+        })
+        .collect();
+    type Row = fn(&[f64; 4]) -> String;
+    let forms: [(&str, &str, Row, &[&str]); 5] = [
+        (
+            "abs-phase.csv",
+            "Frequency [Hz],|G*| [Pa],Phase angle [°],Temperature [°C]",
+            |[f, s, l, t]| format!("{f},{:e},{:e},{t}", s.hypot(*l), l.atan2(*s).to_degrees()),
+            &[],
+        ),
+        (
+            "abs-tan.csv",
+            "f (Hz);Complex Modulus (Pa);tan(delta);T",
+            |[f, s, l, t]| format!("{f};{:e};{:e};{t}", s.hypot(*l), l / s),
+            &["--dma-modulus", "shear"],
+        ),
+        (
+            "viscosity.csv",
+            "Angular Frequency [rad/s],η*′ [Pa·s],η*″ [Pa·s],Temperature",
+            |[f, s, l, t]| {
+                let w = 2.0 * std::f64::consts::PI * f;
+                format!("{w:e},{:e},{:e},{t}", l / w, s / w)
+            },
+            &[],
+        ),
+        (
+            "complex-viscosity.csv",
+            "Angular Frequency,Complex Viscosity,delta,Temperature\nrad/s,Pa·s,rad,°C",
+            |[f, s, l, t]| {
+                let w = 2.0 * std::f64::consts::PI * f;
+                format!("{w:e},{:e},{:e},{t}", s.hypot(*l) / w, l.atan2(*s))
+            },
+            &[],
+        ),
+        (
+            "storage-loss.csv",
+            "Frequency,Storage Modulus,Loss Modulus,Temperature\n[Hz],[MPa],[MPa],[°C]",
+            |[f, s, l, t]| format!("{f},{:e},{:e},{t}", s / 1e6, l / 1e6),
+            &["--dma-modulus", "shear"],
+        ),
+    ];
+    for (name, header, row, args) in forms {
+        let body: Vec<String> = rows.iter().map(row).collect();
+        let path = tmp.write(name, &format!("{header}\n{}\n", body.join("\n")));
+        let dir = tmp.path().join(name.replace('.', "_"));
+        let mut all: Vec<&str> = vec![];
+        all.extend(args);
+        let out = master_files(&[&path], &dir, &all);
+        let stderr = text(&out.stderr);
+        succeed(out);
+        agree(&numbers(&dir), &expected, 1e-6).unwrap_or_else(|e| panic!("{name}: {e}\n{stderr}"));
+        if name == "abs-phase.csv" {
+            assert!(stderr.contains("shear moduli from |M*| and δ"), "{stderr}");
+        }
+    }
+    // Unitless moduli whose names do not say shear or Young's: read as
+    // Young's in Pa, and both said.
+    let body: Vec<String> = rows
+        .iter()
+        .map(|[f, s, l, t]| format!("{f},{s:e},{l:e},{t}"))
+        .collect();
+    let path = tmp.write(
+        "unsaid.csv",
+        &format!(
+            "Frequency,Storage Modulus,Loss Modulus,T\n{}\n",
+            body.join("\n")
+        ),
+    );
+    let out = master_files(&[&path], &tmp.path().join("unsaid"), &[]);
+    let stderr = text(&out.stderr);
+    succeed(out);
+    for said in [
+        "moduli without a unit in the file: read in Pa (give --units to state another)",
+        "the column names do not say whether the moduli are Young's (E) or shear (G): read as \
+         Young's (give --dma-modulus shear if they are shear moduli)",
+    ] {
+        assert!(stderr.contains(said), "{said}\n{stderr}");
+    }
+}
+
+/// The bundled file as a UTF-16 export with a stray byte after its last
+/// line (as RheoCompass writes one): its master curve, with notes.
+#[test]
+fn master_reads_utf16_with_a_stray_trailing_byte() {
+    let tmp = TempDir::new("utf16");
+    let plain = tmp.write("plain.csv", &bundled());
+    succeed(master(&plain, &tmp.path().join("plain")));
+    let mut bytes = vec![0xFF, 0xFE];
+    bytes.extend(bundled().encode_utf16().flat_map(u16::to_le_bytes));
+    bytes.push(0x00);
+    let path = tmp.path().join("utf16.csv");
+    fs::write(&path, bytes).unwrap();
+    let out = master(&path, &tmp.path().join("utf16"));
+    let stderr = text(&out.stderr);
+    succeed(out);
+    for said in [
+        "read as UTF-16 (little-endian byte-order mark)",
+        "one stray byte after the last line",
+    ] {
+        assert!(stderr.contains(said), "{said}\n{stderr}");
+    }
+    assert_eq!(
+        outputs(&tmp.path().join("utf16")),
+        outputs(&tmp.path().join("plain"))
+    );
+}

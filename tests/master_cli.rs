@@ -916,3 +916,51 @@ fn a_refusal_prints_the_skipped_rows_that_explain_it() {
     );
     assert!(!tmp.path().join("out").exists());
 }
+
+/// A relaxation file with its units on a row of their own (`t,G_relax,T,Set`
+/// then `s,kPa,°C,-`) and one with a time stamp written twice give the
+/// master curve of the file with units in its names, to the last digit;
+/// a time that falls back is still refused.
+#[test]
+fn relaxation_units_row_and_repeated_time_stamps() {
+    let tmp = TempDir::new("relaxation-forms");
+    let temps = [-20.0, -10.0, 0.0, 10.0, 20.0, 30.0];
+    let plain = relaxation_csv(&temps, 5);
+    let files = ["master.csv", "shift.csv", "relaxation.csv", "modulus.csv"];
+    let read = |dir: &Path| -> Vec<String> {
+        files
+            .iter()
+            .map(|f| fs::read_to_string(dir.join(f)).unwrap())
+            .collect()
+    };
+    succeed(master(
+        &tmp.write("plain.csv", &plain),
+        &tmp.path().join("plain"),
+        &[],
+    ));
+    let expected = read(&tmp.path().join("plain"));
+    let rows: Vec<&str> = plain.lines().skip(2).collect();
+    let mut units = String::from("t,G_relax,T,Set\ns,kPa,°C,-\n");
+    for row in &rows {
+        let c: Vec<&str> = row.split(',').collect();
+        units += &format!("{},{},{},{}\n", c[1], c[2], c[0], c[0]);
+    }
+    let dir = tmp.path().join("units");
+    succeed(master(&tmp.write("units.csv", &units), &dir, &[]));
+    assert_eq!(read(&dir), expected);
+
+    let twice = plain.replacen(rows[3], &format!("{}\n{}", rows[3], rows[3]), 1);
+    let dir = tmp.path().join("twice");
+    let out = master(&tmp.write("twice.csv", &twice), &dir, &[]);
+    let stderr = text(&out.stderr);
+    succeed(out);
+    assert!(
+        stderr.contains("isotherm at -20.00 °C: 2 points at repeated times averaged into 1"),
+        "{stderr}"
+    );
+    assert_eq!(read(&dir), expected);
+
+    let back = plain.replacen(rows[4], &format!("{}\n{}", rows[4], rows[2]), 1);
+    let out = master(&tmp.write("back.csv", &back), &tmp.path().join("back"), &[]);
+    assert_failure(&out, &["back.csv"]);
+}

@@ -11,7 +11,7 @@ use rollfit_fit::joint::{DMA_MODULUS_RANGE, DMA_OMEGA_RANGE};
 use rollfit_fit::master::Isotherm;
 use rollfit_fit::{DmaRows, FitError};
 
-use crate::dma_master::{DmaIsotherms, read_isotherms};
+use crate::dma_master::{DmaInput, DmaIsotherms, read_isotherms};
 use crate::error::{DmaMasterError, IoError, RowRef};
 
 /// The DMA isotherms of a joint fit and what reading the file said.
@@ -32,7 +32,7 @@ pub struct JointDma {
 /// without one). Errors name the file and, where one point is at fault,
 /// its line.
 pub fn read(path: &Path, poisson: f64, t_ref: Option<f64>) -> Result<JointDma, IoError> {
-    let read = read_isotherms(path, poisson, None, None, t_ref)?;
+    let read = read_isotherms(&DmaInput::file(path), poisson, t_ref)?;
     let source = path.display().to_string();
     // Each isotherm alone first, so that a point the library refuses is
     // found in the isotherm it named.

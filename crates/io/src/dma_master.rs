@@ -1,17 +1,27 @@
-//! A DMA file to a master curve: read the file (any form [`crate::dma`]
-//! accepts, docs/ARCHITECTURE.md, "Contract", "DMA files"), group its
-//! points into isotherms, and run `rollfit_fit::master` on them. Shared by
+//! A DMA file, or several (one per isotherm, [`crate::dma::files`]), to a
+//! master curve: read the files (any form [`crate::dma`] accepts,
+//! docs/ARCHITECTURE.md, "Contract", "DMA files"), group their points into
+//! isotherms, and run `rollfit_fit::master` on them.
+//!
+//! Sweeps at one temperature from several files are merged into one
+//! isotherm ordered by frequency (the fit takes one isotherm per
+//! temperature), and points at a repeated frequency within an isotherm —
+//! a frequency printed with too few digits, or two sweeps merged — are
+//! averaged into one: E′ and E″ as arithmetic means, which at equal ω is
+//! what a least-squares fit through both would see. Each merge is noted. Shared by
 //! `rollfit master` and a scene's `[material] model = "dma"`, so that both
 //! give the same series. Nothing is written here: `rollfit master` writes
 //! the folder, [`crate::material_file`] its material.toml.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
 
-use crate::dma::{DmaData, DmaOptions, ISOTHERM_GAP, ISOTHERM_SPAN, ModulusKind, range};
+use crate::dma::{
+    DmaData, DmaOptions, ISOTHERM_GAP, ISOTHERM_SPAN, ModulusKind, files, range, read_files,
+};
 use crate::error::{DmaMasterError, IoError, TurnPoint};
 
 /// A master curve built from a DMA file.
@@ -28,29 +38,49 @@ pub struct DmaMaster {
     pub ranges: Vec<(f64, f64)>,
 }
 
-/// Reads `path` (of a workbook the sheet `sheet`, default the first) and
-/// builds its master curve ([`read_isotherms`], then the master-curve fit).
-/// `poisson` converts shear moduli (E = 2(1+ν)G); `kind` overrides a TRIOS
-/// file's shear/tensile decision. Errors ([`DmaMasterError`]) name the
-/// file and, where one point is at fault, its line.
+/// The DMA data a master curve is built from.
+#[derive(Debug, Clone, Default)]
+pub struct DmaInput {
+    /// The files, or folders of files ([`files::expand`]).
+    pub files: Vec<PathBuf>,
+    /// The sheet of a workbook (default: the first).
+    pub sheet: Option<String>,
+    /// Overrides a TRIOS file's shear/tensile decision.
+    pub kind: Option<ModulusKind>,
+    /// One temperature per file (°C), for files that state none.
+    pub temperatures: Option<Vec<f64>>,
+    /// The unit of moduli the files give none for (name, pascals).
+    pub modulus_unit: Option<(&'static str, f64)>,
+}
+
+impl DmaInput {
+    /// One file, read as it says.
+    pub fn file(path: &Path) -> DmaInput {
+        DmaInput {
+            files: vec![path.to_path_buf()],
+            ..DmaInput::default()
+        }
+    }
+}
+
+/// Reads `input` and builds its master curve ([`read_isotherms`], then
+/// the master-curve fit). `poisson` converts shear moduli (E = 2(1+ν)G).
+/// Errors ([`DmaMasterError`]) name the file and, where one point is at
+/// fault, its line.
 pub fn build(
-    path: &Path,
+    input: &DmaInput,
     poisson: f64,
-    kind: Option<ModulusKind>,
-    sheet: Option<&str>,
     settings: &MasterSettings,
 ) -> Result<DmaMaster, IoError> {
-    build_told(path, poisson, kind, sheet, settings, |_| {})
+    build_told(input, poisson, settings, |_| {})
 }
 
 /// [`build`], telling `on_read` the file as read (its notes and warnings:
 /// rows skipped, units converted) before the master curve is fitted, so
 /// that a refusal of the fit can be read next to the rows that explain it.
 pub fn build_told(
-    path: &Path,
+    input: &DmaInput,
     poisson: f64,
-    kind: Option<ModulusKind>,
-    sheet: Option<&str>,
     settings: &MasterSettings,
     on_read: impl FnOnce(&DmaData),
 ) -> Result<DmaMaster, IoError> {
@@ -60,8 +90,9 @@ pub fn build_told(
         data,
         isotherms,
         indices,
-    } = read_isotherms(path, poisson, kind, sheet, Some(untimed))?;
+    } = read_isotherms(input, poisson, Some(untimed))?;
     on_read(&data);
+    let path = data.path.as_path();
     let ranges = match data.points.iter().any(|p| p.temperature.is_some()) {
         true => indices.iter().map(|i| range(&data.points, i)).collect(),
         false => Vec::new(),
@@ -97,25 +128,31 @@ pub struct DmaIsotherms {
     pub indices: Vec<Vec<usize>>,
 }
 
-/// Reads `path` (of a workbook the sheet `sheet`, default the first) and
-/// groups its points into isotherms ([`crate::dma::isotherm`]: by step,
+/// Reads `input` and groups its points into isotherms ([`crate::dma::isotherm`]: by step,
 /// else by temperature), refusing a temperature ramp and an isotherm
 /// whose frequencies do not run one way: what `rollfit master`, a scene's
 /// `model = "dma"` and a joint fit's `dma` share. `poisson` converts shear
-/// moduli (E = 2(1+ν)G); `kind` overrides a TRIOS file's shear/tensile
-/// decision. A file without temperatures is one isotherm at `untimed`
-/// (None: refused, [`DmaMasterError::NoTemperature`]). Errors name the
-/// file and, where one point is at fault, its line.
+/// moduli (E = 2(1+ν)G). A file without temperatures is one isotherm at
+/// `untimed` (None: refused, [`DmaMasterError::NoTemperature`]). Errors
+/// name the file and, where one point is at fault, its line.
 pub fn read_isotherms(
-    path: &Path,
+    input: &DmaInput,
     poisson: f64,
-    kind: Option<ModulusKind>,
-    sheet: Option<&str>,
     untimed: Option<f64>,
 ) -> Result<DmaIsotherms, IoError> {
-    let options = DmaOptions { kind, wlf: None };
-    let data = DmaData::read_sheet(path, poisson, &options, sheet)
-        .map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
+    let options = DmaOptions {
+        kind: input.kind,
+        wlf: None,
+        modulus_unit: input.modulus_unit,
+    };
+    let read = |input: &DmaInput| {
+        let paths = files::expand(&input.files)?;
+        let given = input.temperatures.as_deref();
+        read_files(&paths, poisson, &options, input.sheet.as_deref(), given)
+    };
+    let mut data = read(input).map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
+    let path = data.path.clone();
+    let path = path.as_path();
     let with_t = data
         .points
         .iter()
@@ -160,24 +197,84 @@ pub fn read_isotherms(
             .collect()
     };
     let mut sets = Vec::with_capacity(groups.len());
-    for (temperature, indices) in &groups {
-        check_monotone(&data, *temperature, indices).map_err(|source| DmaMasterError::InFile {
-            path: path.to_path_buf(),
+    let mut kept = Vec::with_capacity(groups.len());
+    for (temperature, mut indices) in groups {
+        let merged = merge_files(&data, temperature, &mut indices);
+        data.notes.extend(merged);
+        let (isotherm, firsts, note) = average_repeats(&data, temperature, &indices);
+        data.notes.extend(note);
+        check_monotone(&data, temperature, &firsts).map_err(|source| DmaMasterError::InFile {
+            path: data.file_of(firsts[0]).to_path_buf(),
             source: Box::new(source),
         })?;
-        let point = |i: &usize| data.points[*i];
-        sets.push(Isotherm {
-            temperature: *temperature,
-            omega: indices.iter().map(|i| point(i).omega).collect(),
-            storage: indices.iter().map(|i| point(i).storage).collect(),
-            loss: indices.iter().map(|i| point(i).loss).collect(),
-        });
+        sets.push(isotherm);
+        kept.push(firsts);
     }
     Ok(DmaIsotherms {
         data,
         isotherms: sets,
-        indices: groups.into_iter().map(|(_, indices)| indices).collect(),
+        indices: kept,
     })
+}
+
+/// Orders the points `indices` of an isotherm by frequency when they come
+/// from more than one file (sweeps at one temperature merged), saying so.
+fn merge_files(data: &DmaData, temperature: f64, indices: &mut [usize]) -> Option<String> {
+    let mut from: Vec<&Path> = indices.iter().map(|&i| data.file_of(i)).collect();
+    from.dedup();
+    if from.len() < 2 {
+        return None;
+    }
+    let names: Vec<String> = from.iter().map(|p| p.display().to_string()).collect();
+    indices.sort_by(|&a, &b| data.points[a].omega.total_cmp(&data.points[b].omega));
+    Some(format!(
+        "{} sweeps at {temperature:.2} °C ({}) merged into one isotherm, ordered by frequency",
+        names.len(),
+        names.join(", ")
+    ))
+}
+
+/// The isotherm of the points `indices` (in sweep order), each run of
+/// points at one frequency averaged into one point; the index of each
+/// run's first point; a note when any run had more than one point.
+fn average_repeats(
+    data: &DmaData,
+    temperature: f64,
+    indices: &[usize],
+) -> (Isotherm, Vec<usize>, Option<String>) {
+    let mut isotherm = Isotherm {
+        temperature,
+        omega: Vec::new(),
+        storage: Vec::new(),
+        loss: Vec::new(),
+    };
+    let mut firsts = Vec::new();
+    let runs = indices.chunk_by(|&a, &b| data.points[a].omega == data.points[b].omega);
+    for run in runs {
+        let mean = |f: fn(&crate::dma::DmaPoint) -> f64| {
+            run.iter().map(|&i| f(&data.points[i])).sum::<f64>() / run.len() as f64
+        };
+        isotherm.omega.push(data.points[run[0]].omega);
+        isotherm.storage.push(mean(|p| p.storage));
+        isotherm.loss.push(mean(|p| p.loss));
+        firsts.push(run[0]);
+    }
+    let note = (firsts.len() < indices.len()).then(|| {
+        format!(
+            "isotherm at {temperature:.2} °C: {} points at repeated frequencies averaged into {}",
+            indices.len() - isotherm.omega.len() + runs_repeated(data, indices),
+            runs_repeated(data, indices)
+        )
+    });
+    (isotherm, firsts, note)
+}
+
+/// The number of runs of more than one point at one frequency.
+fn runs_repeated(data: &DmaData, indices: &[usize]) -> usize {
+    indices
+        .chunk_by(|&a, &b| data.points[a].omega == data.points[b].omega)
+        .filter(|run| run.len() > 1)
+        .count()
 }
 
 /// Refuses an isotherm whose frequencies neither rise nor fall

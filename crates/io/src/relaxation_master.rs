@@ -32,20 +32,40 @@ pub fn build(
     poisson: f64,
     settings: &MasterSettings,
 ) -> Result<RelaxationBuilt, IoError> {
-    let data = RelaxationData::read(path, poisson)?;
-    let isotherms: Vec<RelaxationIsotherm> = groups(&data.points)
-        .into_iter()
-        .map(|(temperature, indices)| RelaxationIsotherm {
-            // No temperatures: the file is one curve, taken at T_ref.
-            temperature: if temperature.is_nan() {
-                settings.t_ref.unwrap_or(DEFAULT_T_REF)
-            } else {
-                temperature
-            },
-            time: indices.iter().map(|&i| data.points[i].time).collect(),
-            modulus: indices.iter().map(|&i| data.points[i].modulus).collect(),
-        })
-        .collect();
+    let mut data = RelaxationData::read(path, poisson)?;
+    let mut isotherms: Vec<RelaxationIsotherm> = Vec::new();
+    for (temperature, indices) in groups(&data.points) {
+        // No temperatures: the file is one curve, taken at T_ref.
+        let temperature = if temperature.is_nan() {
+            settings.t_ref.unwrap_or(DEFAULT_T_REF)
+        } else {
+            temperature
+        };
+        let mut isotherm = RelaxationIsotherm {
+            temperature,
+            time: Vec::new(),
+            modulus: Vec::new(),
+        };
+        // Time stamps printed with too few digits repeat: each run of one
+        // time is averaged into one point (the reader refused times that
+        // fall).
+        let runs = indices.chunk_by(|&a, &b| data.points[a].time == data.points[b].time);
+        let mut repeated = 0;
+        for run in runs {
+            let mean = run.iter().map(|&i| data.points[i].modulus).sum::<f64>() / run.len() as f64;
+            isotherm.time.push(data.points[run[0]].time);
+            isotherm.modulus.push(mean);
+            repeated += if run.len() > 1 { run.len() } else { 0 };
+        }
+        if repeated > 0 {
+            data.notes.push(format!(
+                "{}: isotherm at {temperature:.2} °C: {repeated} points at repeated times averaged into {}",
+                path.display(),
+                repeated - (indices.len() - isotherm.time.len())
+            ));
+        }
+        isotherms.push(isotherm);
+    }
     let in_file = |source: DmaMasterError| DmaMasterError::InFile {
         path: path.to_path_buf(),
         source: Box::new(source),

@@ -248,6 +248,7 @@ fn shear_becomes_young_with_the_fits_poisson_ratio() {
     let young = DmaOptions {
         kind: Some(ModulusKind::Young),
         wlf: None,
+        ..Default::default()
     };
     let data = DmaData::read(&path, 0.5, &young).unwrap();
     assert_eq!(data.kind, ModulusKind::Shear);
@@ -307,6 +308,7 @@ fn trios_lims_shear_export_with_its_units() {
     let young = DmaOptions {
         kind: Some(ModulusKind::Young),
         wlf: None,
+        ..Default::default()
     };
     let data = DmaData::read(&path, 0.5, &young).unwrap();
     assert_eq!(data.kind, ModulusKind::Young);
@@ -493,6 +495,7 @@ fn bad_trios_files_are_refused_with_line_and_variable() {
     let told = DmaOptions {
         kind: Some(ModulusKind::Shear),
         wlf: None,
+        ..Default::default()
     };
     let data = DmaData::read(&dir.path().join("kind.txt"), 0.5, &told).unwrap();
     assert_eq!(data.kind, ModulusKind::Shear);
@@ -928,10 +931,10 @@ fn eplexor_workbook_gives_the_csv_master_curve_to_the_last_digit() {
     let xlsx_path = dir.write("sweep.xlsx", &book);
     let ods_path = dir.write("sweep.ods", ods("Messung", eplexor_rows(&points, false)));
     let settings = MasterSettings::default();
-    let from_csv = dma_master::build(&csv, 0.5, None, None, &settings).unwrap();
+    let from_csv = dma_master::build(&dma_master::DmaInput::file(&csv), 0.5, &settings).unwrap();
     assert_eq!(from_csv.data.format, "csv");
     for path in [&xlsx_path, &ods_path] {
-        let built = dma_master::build(path, 0.5, None, None, &settings)
+        let built = dma_master::build(&dma_master::DmaInput::file(path), 0.5, &settings)
             .unwrap_or_else(|e| panic!("{}: {}", path.display(), chain(&e)));
         assert_eq!(built.data.format, "workbook");
         // Bit for bit: the points, every shifted point, the series, the
@@ -1166,7 +1169,7 @@ fn a_joint_fits_dma_file_is_read_as_the_master_curve_reads_it() {
         "sweep.xlsx",
         xlsx(&[("Sheet1", eplexor_rows(&points, false))]),
     );
-    let grouped = dma_master::read_isotherms(&csv, 0.5, None, None, None).unwrap();
+    let grouped = dma_master::read_isotherms(&dma_master::DmaInput::file(&csv), 0.5, None).unwrap();
     assert_eq!(grouped.isotherms.len(), 4);
     for path in [&csv, &book] {
         let joint = dma_joint::read(path, 0.5, None)

@@ -51,7 +51,11 @@ fn options(modulus: Option<&str>, dma_wlf: Option<(f64, f64, f64)>) -> PyResult<
         .map(|(t_ref, c1, c2)| DmaWlf::new(t_ref, c1, c2))
         .transpose()
         .map_err(|problem| value_error_text(format!("dma_wlf: {problem}")))?;
-    Ok(DmaOptions { kind, wlf })
+    Ok(DmaOptions {
+        kind,
+        wlf,
+        ..DmaOptions::default()
+    })
 }
 
 /// Reads a DMA file (CSV: omega or f; E_storage, E_loss or G_storage,

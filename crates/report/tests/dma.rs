@@ -217,6 +217,7 @@ fn real_468mp_files_when_present() {
             c1: 9.06,
             c2: 129.3,
         }),
+        ..Default::default()
     };
     for data in [&from_csv, &from_lims] {
         let points = data.at_reference(&fit, &options).unwrap();
@@ -336,6 +337,7 @@ fn several_temperatures_are_shifted_back_onto_the_master_curve() {
             c1: C1 * C2 / (C2 + 20.0),
             c2: C2 + 20.0,
         }),
+        ..Default::default()
     };
     let again = data.at_reference(&fit, &own).unwrap();
     for (a, b) in again.iter().zip(&points) {
@@ -351,6 +353,7 @@ fn several_temperatures_are_shifted_back_onto_the_master_curve() {
             c1: C1,
             c2: C2,
         }),
+        ..Default::default()
     };
     assert_on_master_curve(&data.at_reference(&plain, &own20).unwrap(), 1e-13);
 

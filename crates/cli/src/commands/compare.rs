@@ -92,6 +92,7 @@ impl DmaFlags {
         DmaOptions {
             kind: self.dma_modulus.map(DmaModulus::kind),
             wlf: self.dma_wlf,
+            ..DmaOptions::default()
         }
     }
 }

@@ -1,4 +1,4 @@
-//! `rollfit master DMA [-o DIR] [--T-ref T]
+//! `rollfit master DMA... [-o DIR] [--temperatures T1,T2,…] [--T-ref T]
 //! [--shift auto|wlf|free|arrhenius|wlf-arrhenius] [--vertical]`: a master curve from DMA isotherms by time–temperature
 //! superposition, and the material a scene can use.
 //!
@@ -40,7 +40,7 @@ use rollfit_fit::master::pairwise::DETERMINED_SIGMA;
 use rollfit_fit::master::quality::{MasterQuality, Misfits};
 use rollfit_fit::master::{MasterSettings, ShiftFactors, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
-use rollfit_io::dma::DmaPoint;
+use rollfit_io::dma::{DmaFile, DmaPoint, TemperatureOrigin};
 use rollfit_io::dma_master::{self, DmaMaster};
 use rollfit_io::fit_dir::columns::{
     E_LOSS, E_STORAGE, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
@@ -63,8 +63,24 @@ use shift_out::{ShiftJson, VgpJson, shift_csv, shift_text};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// DMA file: CSV (f or omega; E_storage, E_loss or G_storage, G_loss; T),
-    /// a TRIOS LIMS export or a workbook (Eplexor export), several isotherms.
-    pub dma: PathBuf,
+    /// a TRIOS LIMS export or a workbook (Eplexor export), several isotherms;
+    /// or several files (one isotherm each), or a folder of them.
+    #[arg(required = true, num_args = 1..)]
+    pub dma: Vec<PathBuf>,
+    /// The temperature of each DMA file, °C, in the order of the files
+    /// (a folder's: by name), for files that state none (in a T column, a
+    /// line above the header or the file name).
+    #[arg(
+        long,
+        value_name = "T1,T2,…",
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    pub temperatures: Option<Vec<f64>>,
+    /// The unit of moduli a DMA file gives without one: Pa, kPa, MPa or
+    /// GPa (default Pa, said in a note).
+    #[arg(long, value_name = "UNIT", value_parser = parse_modulus_unit)]
+    pub units: Option<(&'static str, f64)>,
     /// The sheet of a workbook DMA file to read (default: the first).
     #[arg(long, value_name = "NAME")]
     pub sheet: Option<String>,
@@ -120,6 +136,12 @@ fn parse_poisson(text: &str) -> Result<f64, String> {
     rollfit_model::check_poisson(value).map_err(|e| e.to_string())
 }
 
+/// `--units`: a modulus unit of the DMA readers' one table.
+pub fn parse_modulus_unit(text: &str) -> Result<(&'static str, f64), String> {
+    rollfit_io::dma::modulus_unit(text)
+        .ok_or_else(|| format!("{text:?} is not a unit of modulus (Pa, kPa, MPa, GPa, N/mm²)"))
+}
+
 /// `--shift`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum ShiftChoice {
@@ -158,13 +180,26 @@ pub fn run(args: &Args) -> Result<()> {
         law: args.shift.law(),
         vertical: args.vertical,
     };
-    if rollfit_io::dma::relaxation::is_relaxation_file(&args.dma) {
+    let first = &args.dma[0];
+    if rollfit_io::dma::relaxation::is_relaxation_file(first) {
+        if args.dma.len() > 1 || first.is_dir() {
+            anyhow::bail!(
+                "relaxation file {}: several relaxation files are not read together yet; put \
+                 their isotherms in one file with a T column",
+                first.display()
+            );
+        }
         return relaxation::run(args, &settings);
     }
-    let kind = args.dma_modulus.map(DmaModulus::kind);
     let (poisson, whose) = poisson_source(args.poisson);
-    let spinner = progress::spinner(format!("master curve of {}", args.dma.display()));
-    let sheet = args.sheet.as_deref();
+    let spinner = progress::spinner(format!("master curve of {}", dma_name(args)));
+    let input = dma_master::DmaInput {
+        files: args.dma.clone(),
+        sheet: args.sheet.clone(),
+        kind: args.dma_modulus.map(DmaModulus::kind),
+        temperatures: args.temperatures.clone(),
+        modulus_unit: args.units,
+    };
     // The file's notes and warnings come before the master curve's
     // verdict, so that a refusal is read next to the rows that explain it
     // (rows skipped for a temperature in a merged cell).
@@ -178,9 +213,8 @@ pub fn run(args: &Args) -> Result<()> {
             }
         });
     };
-    let built = dma_master::build_told(&args.dma, poisson, kind, sheet, &settings, on_read)
-        .map_err(Into::into);
-    let hint = || hints::for_dma(&args.dma, "rollfit master DMA.csv");
+    let built = dma_master::build_told(&input, poisson, &settings, on_read).map_err(Into::into);
+    let hint = || hints::for_dma(first, "rollfit master DMA.csv");
     let built = hints::with_hint(built, hint);
     let causal = built.as_ref().ok().map(causal_floor);
     spinner.finish_and_clear();
@@ -263,7 +297,7 @@ fn gate(quality: &MasterQuality, args: &Args) -> Result<()> {
         "DMA file {}: the master curve is poor: {}; nothing was written to {} (give \
          --allow-poor-fit to write it, marked \"quality\": {{\"verdict\": \"poor\"}} in \
          master.json)",
-        args.dma.display(),
+        dma_name(args),
         quality.reasons.join("; "),
         args.output.display()
     )
@@ -285,10 +319,38 @@ pub(super) fn strict_gate(shift: &ShiftFactors, args: &Args) -> Result<()> {
         "DMA file {}: --strict: the shifts of the isotherms at {} °C are not determined by the \
          data (σ about T_ref above {DETERMINED_SIGMA} decade); nothing was written to {} (without \
          --strict the curve is written with those isotherms marked)",
-        args.dma.display(),
+        dma_name(args),
         undetermined.join(", "),
         args.output.display()
     )
+}
+
+/// The DMA files as messages name them: the one file, or every one.
+fn dma_name(args: &Args) -> String {
+    let names: Vec<String> = args.dma.iter().map(|p| p.display().to_string()).collect();
+    names.join(", ")
+}
+
+/// Where each file's temperature came from, one line per file, when the
+/// data are several files or one whose temperature is not a T column.
+fn temperature_sources(files: &[DmaFile]) -> String {
+    let stated = |f: &DmaFile| f.temperature != TemperatureOrigin::Column;
+    if files.len() < 2 && !files.iter().any(stated) {
+        return String::new();
+    }
+    let mut out = String::new();
+    for f in files {
+        let origin = match &f.temperature {
+            TemperatureOrigin::Given(t) => format!("{t} °C, from --temperatures"),
+            other => other.to_string(),
+        };
+        out += &format!(
+            "  {}: {} points, {origin}\n",
+            f.path.display(),
+            f.points.len()
+        );
+    }
+    out
 }
 
 /// The best causal fit of the shifted points (the causality check of
@@ -501,6 +563,7 @@ fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
         shift_out::headline(&m.shift, m.points.len(), &built.settings, "")
     );
     out += &isotherms_line(&built.ranges);
+    out += &temperature_sources(&built.data.files);
     out += &shift_text(&m.shift);
     out += &shift_out::window_text(&m.shift, m.determined_window, "ω a_T", "rad/s");
     out += &shift_out::vgp_text(&m.van_gurp_palmen);

@@ -37,7 +37,11 @@ pub use crate::columns::{F, G_LOSS, G_STORAGE};
 
 /// Parses the CSV text of `path`: the points, and notes on how the file
 /// was read (its delimiter, title lines).
-pub(crate) fn parse(path: &Path, text: &str) -> Result<(FormRead, Vec<String>), IoError> {
+pub(crate) fn parse(
+    path: &Path,
+    text: &str,
+    told: header::Told,
+) -> Result<(FormRead, Vec<String>), IoError> {
     // No header the vocabulary knows: the first line is read as one, for
     // the message naming what it lacks.
     let Some((delimiter, start, found)) = dialect_of(text, super::sheet::is_header) else {
@@ -118,7 +122,8 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<(FormRead, Vec<String>), 
             times.join(", ")
         ));
     }
-    let header = header::columns(&place, header_line, names, units)?;
+    let header = header::columns(&place, header_line, names, units, told)?;
+    notes.extend(header.notes(path));
     let mut warnings = Vec::new();
     if header.both {
         warnings.push(format!(
@@ -148,7 +153,14 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<(FormRead, Vec<String>), 
         };
         points.push(row(path, at, &header, &record, &mut warnings)?);
     }
-    Ok((header.form(path, points, warnings)?, notes))
+    let mut read = header.form(path, points, warnings)?;
+    read.preamble = text[..start]
+        .lines()
+        .enumerate()
+        .map(|(i, line)| (i + 1, line.to_string()))
+        .filter(|(_, line)| !line.trim().is_empty())
+        .collect();
+    Ok((read, notes))
 }
 
 /// The number in `field` of column `c` on line `line`, with a decimal

@@ -34,6 +34,9 @@ pub(crate) struct FormRead {
     pub kind: ModulusKind,
     pub names: FieldNames,
     pub warnings: Vec<String>,
+    /// The lines above the header (number, text): titles and metadata, where
+    /// a file may state its temperature.
+    pub preamble: Vec<(usize, String)>,
 }
 
 /// Where the rows of a DMA table are: the file, and for a workbook the

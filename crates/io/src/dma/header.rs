@@ -4,13 +4,10 @@
 //! and a workbook's sheet ([`super::sheet`]) — so that a column name means
 //! the same wherever it is written.
 //!
-//! | quantity    | names                                  | units (default first)        |
-//! |-------------|----------------------------------------|------------------------------|
-//! | frequency   | `f`, `freq`, `frequency`; `omega`, `ω` | Hz, kHz, mHz (f); rad/s (ω)  |
-//! | storage     | `E_storage`, `E'`; shear `G_storage`, `G'` | Pa, kPa, MPa, GPa, N/mm² |
-//! | loss        | `E_loss`, `E''`; shear `G_loss`, `G''` | as storage                   |
-//! | temperature | `T`, `temp`, `temperature` (optional)  | °C, K                        |
-//! | step        | `Step`, `Set`, `Segment` (optional)    | a label: which points form one isotherm |
+//! The names and units are [`super::vocabulary`]'s. The moduli come as
+//! E′ and E″ (or G′, G″) or in a form converted exactly at each ω
+//! ([`super::moduli::Moduli`]: |M*| with δ or tan δ, M′ with tan δ, η′ and
+//! η″, |η*| with δ or tan δ).
 //!
 //! A unit is given in one of three ways: a suffix after an underscore
 //! (`f_Hz`, `omega_rad_s`, `E_loss_MPa`, `T_K`; the CSV spellings, case as
@@ -19,204 +16,24 @@
 //! Netzsch/GABO Eplexor "Excel Export" writes it) for the columns whose
 //! names carry none. Without one a column is in the default unit. Primes
 //! may be typed as `'`, `′`, `’`, `"` or `″`; names other than `T` compare
-//! case-insensitively (a lone lowercase `t` is time). Columns named
-//! otherwise (`tan delta`, `|E*|`, `t [s]`) are ignored.
+//! case-insensitively (a lone lowercase `t` is time). Other columns
+//! (`t [s]`, `Normal force`) are ignored.
 //!
 //! Refused, naming the columns: two columns for one quantity, since which
 //! one is meant is a guess and a factor 2π or 10⁶ rides on it; the
 //! contradictory `omega_Hz` or `f_rad_s`; a unit not known.
 
-use std::f64::consts::PI;
 use std::path::Path;
 
 use super::form::{FieldNames, FormRead, Place, RawPoint};
+use super::moduli::Moduli;
 use super::point::ModulusKind::{self, Shear, Young};
+pub use super::vocabulary::modulus_unit;
+use super::vocabulary::{Quantity, classify};
 use crate::error::{ColumnRef, Contradiction, DmaUnknownUnit, DuplicateQuantity, IoError};
-use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA, T};
+use crate::fit_dir::columns::{E_LOSS, E_STORAGE};
 
-pub use crate::columns::{F, G_LOSS, G_STORAGE};
-
-/// What a column holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Quantity {
-    /// Angular frequency (default rad/s).
-    Omega,
-    /// Frequency (default Hz).
-    Frequency,
-    Storage(ModulusKind),
-    Loss(ModulusKind),
-    Temperature,
-    /// The step, set or segment of a temperature programme: a label.
-    Step,
-}
-
-impl Quantity {
-    /// The kind of unit, for messages.
-    fn unit_kind(self) -> &'static str {
-        match self {
-            Quantity::Omega | Quantity::Frequency => "a frequency",
-            Quantity::Storage(_) | Quantity::Loss(_) => "a modulus",
-            Quantity::Temperature => "a temperature",
-            Quantity::Step => "a step",
-        }
-    }
-
-    /// The units known, for messages.
-    fn known(self) -> &'static str {
-        match self {
-            Quantity::Omega | Quantity::Frequency => "Hz, kHz, mHz, rad/s",
-            Quantity::Storage(_) | Quantity::Loss(_) => "Pa, kPa, MPa, GPa, N/mm²",
-            Quantity::Temperature => "°C, K",
-            Quantity::Step => "none",
-        }
-    }
-
-    /// The factor and offset to SI of the default unit.
-    fn default_unit(self) -> (f64, f64) {
-        match self {
-            Quantity::Frequency => (2.0 * PI, 0.0),
-            _ => (1.0, 0.0),
-        }
-    }
-
-    /// The factor and offset to SI (rad/s, Pa, °C) of `unit` as written
-    /// in brackets, a units row or (`rad_s`) a CSV suffix.
-    fn unit(self, unit: &str) -> Option<(f64, f64)> {
-        let unit = unit.trim();
-        let hertz = |scale: f64| Some((2.0 * PI * scale, 0.0));
-        match self {
-            Quantity::Omega | Quantity::Frequency => match unit {
-                "Hz" | "hz" => hertz(1.0),
-                "kHz" | "khz" => hertz(1e3),
-                "mHz" => hertz(1e-3),
-                "rad/s" | "rad_s" | "rad s-1" | "rad·s⁻¹" | "rad s^-1" => Some((1.0, 0.0)),
-                // Cycles per second for f, radians per second for ω.
-                "1/s" | "s-1" | "s^-1" | "s⁻¹" => Some(self.default_unit()),
-                _ => None,
-            },
-            Quantity::Storage(_) | Quantity::Loss(_) => match unit {
-                "Pa" | "N/m²" | "N/m2" | "N/m^2" => Some((1.0, 0.0)),
-                "kPa" => Some((1e3, 0.0)),
-                "MPa" | "N/mm²" | "N/mm2" | "N/mm^2" => Some((1e6, 0.0)),
-                "GPa" => Some((1e9, 0.0)),
-                _ => None,
-            },
-            Quantity::Temperature => match unit {
-                "°C" | "C" | "degC" | "deg C" | "℃" | "ºC" => Some((1.0, 0.0)),
-                "K" => Some((1.0, -273.15)),
-                _ => None,
-            },
-            // A label; whatever a units row writes above it.
-            Quantity::Step => Some((1.0, 0.0)),
-        }
-    }
-}
-
-/// The canonical (CSV) names, each with its unit suffixes: the name
-/// alone, or `name_SUFFIX`.
-const CANONICAL: [(&str, Quantity, &[&str]); 7] = [
-    (OMEGA, Quantity::Omega, &["rad_s"]),
-    (F, Quantity::Frequency, &["Hz"]),
-    (E_STORAGE, Quantity::Storage(Young), &MODULUS_SUFFIXES),
-    (E_LOSS, Quantity::Loss(Young), &MODULUS_SUFFIXES),
-    (G_STORAGE, Quantity::Storage(Shear), &MODULUS_SUFFIXES),
-    (G_LOSS, Quantity::Loss(Shear), &MODULUS_SUFFIXES),
-    (T, Quantity::Temperature, &["C", "K"]),
-];
-
-const MODULUS_SUFFIXES: [&str; 4] = ["Pa", "kPa", "MPa", "GPa"];
-
-/// The names instruments write (lower case, primes as `'`, no spaces).
-const ALIASES: [(&str, Quantity); 21] = [
-    ("step", Quantity::Step),
-    ("stepnumber", Quantity::Step),
-    ("stepno.", Quantity::Step),
-    ("set", Quantity::Step),
-    ("segment", Quantity::Step),
-    ("seg", Quantity::Step),
-    ("segmentnumber", Quantity::Step),
-    ("freq", Quantity::Frequency),
-    ("frequency", Quantity::Frequency),
-    ("frequenz", Quantity::Frequency),
-    ("ω", Quantity::Omega),
-    ("angularfrequency", Quantity::Omega),
-    ("e'", Quantity::Storage(Young)),
-    ("e''", Quantity::Loss(Young)),
-    ("g'", Quantity::Storage(Shear)),
-    ("g''", Quantity::Loss(Shear)),
-    ("temp", Quantity::Temperature),
-    ("temperature", Quantity::Temperature),
-    ("temperatur", Quantity::Temperature),
-    ("e_storage", Quantity::Storage(Young)),
-    ("e_loss", Quantity::Loss(Young)),
-];
-
-/// What a header cell names: the quantity and the unit its name gives
-/// (`None`: none given; `Some(Err(unit))`: a unit not known).
-type Named = (Quantity, Option<Result<(f64, f64), String>>);
-
-/// What the header cell `raw` names, if anything.
-fn classify(raw: &str) -> Option<Named> {
-    let raw = raw.trim();
-    for (base, quantity, suffixes) in CANONICAL {
-        if raw == base {
-            return Some((quantity, None));
-        }
-        if let Some(suffix) = raw.strip_prefix(base).and_then(|r| r.strip_prefix('_'))
-            && suffixes.contains(&suffix)
-        {
-            let unit = quantity.unit(suffix).ok_or_else(|| suffix.to_string());
-            return Some((quantity, Some(unit)));
-        }
-    }
-    let (name, unit) = split_unit(raw);
-    let quantity = alias(name)?;
-    let unit = unit
-        .filter(|u| !u.is_empty())
-        .map(|u| quantity.unit(u).ok_or_else(|| u.to_string()));
-    Some((quantity, unit))
-}
-
-/// The quantity of a name without its unit.
-fn alias(name: &str) -> Option<Quantity> {
-    if name == T {
-        return Some(Quantity::Temperature);
-    }
-    if name == "t" {
-        return None; // time
-    }
-    if let Some((_, quantity, _)) = CANONICAL.iter().find(|(base, _, _)| *base == name) {
-        return Some(*quantity);
-    }
-    let folded: String = name
-        .to_lowercase()
-        .replace(['′', '’', '´', '`'], "'")
-        .replace(['″', '"'], "''")
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect();
-    match folded.as_str() {
-        "f" => Some(Quantity::Frequency),
-        "omega" => Some(Quantity::Omega),
-        _ => ALIASES.iter().find(|(a, _)| *a == folded).map(|(_, q)| *q),
-    }
-}
-
-/// (name, unit) of `E' [MPa]`, `f (Hz)`; the unit `None` without brackets.
-fn split_unit(raw: &str) -> (&str, Option<&str>) {
-    let open = match raw.chars().last() {
-        Some(')') => '(',
-        Some(']') => '[',
-        _ => return (raw, None),
-    };
-    match raw.rfind(open) {
-        Some(start) if !raw[..start].trim().is_empty() => (
-            raw[..start].trim_end(),
-            Some(raw[start + 1..raw.len() - 1].trim()),
-        ),
-        _ => (raw, None),
-    }
-}
+use crate::columns::{G_LOSS, G_STORAGE};
 
 /// A units-row cell without its brackets.
 fn unit_text(cell: &str) -> &str {
@@ -251,27 +68,46 @@ pub(super) struct Header {
     pub both: bool,
     pub kind: ModulusKind,
     pub omega: Column,
+    /// The first modulus column ([`Moduli`]: M′, |M*|, η′ or |η*|).
     pub storage: Column,
+    /// The second (M″, δ, tan δ or η″).
     pub loss: Column,
+    /// How the two become M′ and M″.
+    pub moduli: Moduli,
     pub temperature: Option<Column>,
     /// A step (set, segment) column: which points form one isotherm.
     pub step: Option<Column>,
+    /// What the reader should say of how the header was read: the unit
+    /// assumed for moduli or δ without one, the conversion, columns
+    /// named twice.
+    pub notes: Vec<String>,
+    /// What it assumed: the kind of moduli whose names do not say it.
+    pub warnings: Vec<String>,
 }
 
 impl Header {
-    /// What a form read under this header: `points` (at least one) and
-    /// the `warnings` so far.
+    /// What a form read under this header: `points` (at least one, the
+    /// two modulus columns' values as read, made M′ and M″ here) and the
+    /// `warnings` so far.
     pub fn form(
         &self,
         path: &Path,
-        points: Vec<RawPoint>,
-        warnings: Vec<String>,
+        mut points: Vec<RawPoint>,
+        mut warnings: Vec<String>,
     ) -> Result<FormRead, IoError> {
         if points.is_empty() {
             return Err(IoError::NoRows {
                 path: path.to_path_buf(),
             });
         }
+        for p in &mut points {
+            (p.storage, p.loss) = self.moduli.convert(p.omega, p.storage, p.loss);
+        }
+        warnings.extend(
+            self.warnings
+                .iter()
+                .map(|w| format!("{}: {w}", path.display())),
+        );
         Ok(FormRead {
             points,
             kind: self.kind,
@@ -281,22 +117,49 @@ impl Header {
                 loss: self.loss.reference.clone(),
             },
             warnings,
+            preamble: Vec::new(),
         })
+    }
+
+    /// The notes, each behind the file's name.
+    pub fn notes(&self, path: &Path) -> impl Iterator<Item = String> {
+        self.notes
+            .iter()
+            .map(move |n| format!("{}: {n}", path.display()))
     }
 }
 
-/// Whether `names` (a row's cells) name a frequency, a storage and a loss
-/// column of one kind: the header of a sheet, found among its first rows.
-pub(super) fn is_header(names: &[String]) -> bool {
-    let found: Vec<Quantity> = names
+/// The quantities `names` (a row's cells) name.
+fn quantities(names: &[String]) -> Vec<Quantity> {
+    names
         .iter()
         .filter_map(|n| classify(n))
         .map(|n| n.0)
-        .collect();
+        .collect()
+}
+
+/// Whether `names` (a row's cells) name a frequency and the moduli in one
+/// of the forms [`Moduli`] lists: the header of a sheet, found among its
+/// first rows.
+pub(super) fn is_header(names: &[String]) -> bool {
+    let found = quantities(names);
     let has = |q: Quantity| found.contains(&q);
+    let any = |f: fn(Option<ModulusKind>) -> Quantity| {
+        [Some(Young), Some(Shear), None]
+            .into_iter()
+            .any(|k| has(f(k)))
+    };
     let frequency = has(Quantity::Omega) || has(Quantity::Frequency);
-    let pair = |k: ModulusKind| has(Quantity::Storage(k)) && has(Quantity::Loss(k));
-    frequency && (pair(Young) || pair(ModulusKind::Shear))
+    let pair = |k: Option<ModulusKind>| has(Quantity::Storage(k)) && has(Quantity::Loss(k));
+    let angle = has(Quantity::Phase) || has(Quantity::TanDelta);
+    let moduli = pair(Some(Young))
+        || pair(Some(Shear))
+        || pair(None)
+        || (any(Quantity::Complex) && angle)
+        || (any(Quantity::Storage) && has(Quantity::TanDelta))
+        || (has(Quantity::ViscosityStorage) && has(Quantity::ViscosityLoss))
+        || (has(Quantity::ViscosityComplex) && angle);
+    frequency && moduli
 }
 
 /// Whether `cells`, the row below the header `names`, is a units row: no
@@ -314,6 +177,15 @@ pub(super) fn is_units_row(names: &[String], cells: &[String]) -> bool {
         .any(|(name, cell)| classify(name).is_some_and(|(q, _)| q.unit(unit_text(cell)).is_some()))
 }
 
+/// What the reader is told beyond the header: the modulus kind asked for
+/// (`--dma-modulus`) and the unit of moduli the file gives none for
+/// (`--units`: name, pascals).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Told {
+    pub kind: Option<ModulusKind>,
+    pub modulus_unit: Option<(&'static str, f64)>,
+}
+
 /// The columns of the header `names` on row `row` of `place`, with the
 /// units of a units row `units` below it where the names give none (see
 /// the module doc).
@@ -322,8 +194,10 @@ pub(super) fn columns(
     row: usize,
     names: Vec<String>,
     units: Option<(usize, &[String])>,
+    told: Told,
 ) -> Result<Header, IoError> {
     let mut found: Vec<(Quantity, Column)> = Vec::new();
+    let mut unitless: Vec<Quantity> = Vec::new();
     for (index, name) in names.iter().enumerate() {
         if let Some(contradiction) = Contradiction::of(name) {
             return Err(IoError::ContradictoryUnit {
@@ -356,7 +230,13 @@ pub(super) fn columns(
             (None, Some((units_row, written))) => quantity
                 .unit(written)
                 .ok_or_else(|| unknown(place.cell(units_row, index), written))?,
-            (None, None) => quantity.default_unit(),
+            (None, None) => {
+                unitless.push(quantity);
+                match told.modulus_unit {
+                    Some((_, pascals)) if quantity.is_modulus() => (pascals, 0.0),
+                    _ => quantity.default_unit(),
+                }
+            }
         };
         let reference = place.column(index, name);
         found.push((
@@ -369,16 +249,43 @@ pub(super) fn columns(
             },
         ));
     }
-    assemble(place, row, names, found)
+    let mut header = assemble(place, row, names, found, told.kind)?;
+    let moduli_unitless = unitless.iter().any(|q| q.is_modulus())
+        && header.moduli != Moduli::ViscosityParts
+        && header.moduli != Moduli::ViscosityAbsPhase
+        && header.moduli != Moduli::ViscosityAbsTan;
+    match (moduli_unitless, told.modulus_unit) {
+        (true, Some((name, _))) => header.notes.push(format!(
+            "moduli without a unit in the file: read in {name}, as stated"
+        )),
+        (true, None) => header.notes.push(
+            "moduli without a unit in the file: read in Pa (give --units to state another)"
+                .to_string(),
+        ),
+        (false, Some((name, _))) => header.warnings.push(format!(
+            "the file states the unit of its moduli: the unit given, {name}, is not used"
+        )),
+        (false, None) => {}
+    }
+    if unitless.contains(&Quantity::Phase)
+        && matches!(header.moduli, Moduli::AbsPhase | Moduli::ViscosityAbsPhase)
+    {
+        header.notes.push(
+            "phase angle δ without a unit: read in degrees (write `[rad]` for radians)".into(),
+        );
+    }
+    Ok(header)
 }
 
 /// The header of the columns `found`: one of each quantity, the Young's
-/// moduli before the shear ones.
+/// moduli before the shear ones, M′ and M″ before the forms converted
+/// ([`Moduli`]); `requested` the kind of moduli whose names do not say.
 fn assemble(
     place: &Place,
     row: usize,
     names: Vec<String>,
     found: Vec<(Quantity, Column)>,
+    requested: Option<ModulusKind>,
 ) -> Result<Header, IoError> {
     let one = |label: &'static str, wanted: &[Quantity]| {
         let all: Vec<&Column> = found
@@ -404,40 +311,30 @@ fn assemble(
         });
     };
     let young = (
-        one(E_STORAGE, &[Quantity::Storage(Young)])?,
-        one(E_LOSS, &[Quantity::Loss(Young)])?,
+        one(E_STORAGE, &[Quantity::Storage(Some(Young))])?,
+        one(E_LOSS, &[Quantity::Loss(Some(Young))])?,
     );
     let shear = (
-        one(G_STORAGE, &[Quantity::Storage(Shear)])?,
-        one(G_LOSS, &[Quantity::Loss(Shear)])?,
+        one(G_STORAGE, &[Quantity::Storage(Some(Shear))])?,
+        one(G_LOSS, &[Quantity::Loss(Some(Shear))])?,
     );
     let both = young.0.is_some() && young.1.is_some() && shear.0.is_some() && shear.1.is_some();
-    let (kind, storage, loss) = match (young, shear) {
-        ((Some(s), Some(l)), _) => (Young, s, l),
-        (_, (Some(s), Some(l))) => (Shear, s, l),
-        ((s, l), (gs, gl)) => {
-            // Name what is missing of the kind the file started to give.
-            let absent = |pair: [(bool, &'static str); 2]| {
-                pair.iter()
-                    .filter(|(present, _)| !present)
-                    .map(|(_, n)| *n)
-                    .collect::<Vec<_>>()
-                    .join(" and ")
-            };
-            let missing = if s.is_some() || l.is_some() {
-                absent([(s.is_some(), E_STORAGE), (l.is_some(), E_LOSS)])
-            } else if gs.is_some() || gl.is_some() {
-                absent([(gs.is_some(), G_STORAGE), (gl.is_some(), G_LOSS)])
-            } else {
-                format!("{E_STORAGE} and {E_LOSS} (or {G_STORAGE} and {G_LOSS})")
-            };
-            return Err(IoError::NoModulusColumns {
-                path: place.path.to_path_buf(),
-                missing,
-                header: names,
-            });
-        }
+    let mut notes = Vec::new();
+    let chosen = choose(&found, &young, &shear, &mut notes);
+    let Some((kind, moduli, storage, loss)) = chosen else {
+        return Err(no_moduli(place, names, &young, &shear));
     };
+    let mut warnings = Vec::new();
+    let kind = resolve_kind(kind, requested, &mut notes, &mut warnings);
+    if let Some(said) = moduli.said() {
+        let of = |c: &Column| c.reference.to_string();
+        notes.push(format!(
+            "{} moduli {said} ({} and {})",
+            kind.name(),
+            of(&storage),
+            of(&loss)
+        ));
+    }
     let temperature = one("temperature", &[Quantity::Temperature])?;
     let step = one("step", &[Quantity::Step])?;
     Ok(Header {
@@ -447,7 +344,138 @@ fn assemble(
         omega,
         storage,
         loss,
+        moduli,
         temperature,
         step,
+        notes,
+        warnings,
     })
+}
+
+/// The kind of moduli: the names', else the one requested (noted), else
+/// Young's (a warning: the names do not say).
+fn resolve_kind(
+    named: Option<ModulusKind>,
+    requested: Option<ModulusKind>,
+    notes: &mut Vec<String>,
+    warnings: &mut Vec<String>,
+) -> ModulusKind {
+    match (named, requested) {
+        (Some(k), _) => k,
+        (None, Some(k)) => {
+            notes.push(format!("moduli read as {} moduli, as stated", k.name()));
+            k
+        }
+        (None, None) => {
+            warnings.push(
+                "the column names do not say whether the moduli are Young's (E) or shear (G): \
+                 read as Young's (give --dma-modulus shear if they are shear moduli)"
+                    .to_string(),
+            );
+            Young
+        }
+    }
+}
+
+/// The refusal of a header without moduli in any form, naming what is
+/// missing of the kind the file started to give.
+fn no_moduli(
+    place: &Place,
+    names: Vec<String>,
+    young: &(Option<Column>, Option<Column>),
+    shear: &(Option<Column>, Option<Column>),
+) -> IoError {
+    let (s, l) = young;
+    let (gs, gl) = shear;
+    let absent = |pair: [(bool, &'static str); 2]| {
+        pair.iter()
+            .filter(|(present, _)| !present)
+            .map(|(_, n)| *n)
+            .collect::<Vec<_>>()
+            .join(" and ")
+    };
+    let missing = if s.is_some() || l.is_some() {
+        absent([(s.is_some(), E_STORAGE), (l.is_some(), E_LOSS)])
+    } else if gs.is_some() || gl.is_some() {
+        absent([(gs.is_some(), G_STORAGE), (gl.is_some(), G_LOSS)])
+    } else {
+        format!("{E_STORAGE} and {E_LOSS} (or {G_STORAGE} and {G_LOSS})")
+    };
+    IoError::NoModulusColumns {
+        path: place.path.to_path_buf(),
+        missing,
+        header: names,
+    }
+}
+
+/// A modulus pair the header gives: the kind its names say (None: they do
+/// not), the form, and its two columns.
+type Chosen = (Option<ModulusKind>, Moduli, Column, Column);
+
+/// The moduli of the columns `found`: E′ and E″ (then G′, G″, then
+/// unsaid), else the converted forms in the order of [`Moduli`]. Of a
+/// quantity only a converted form reads, the first column is used (noted
+/// in `notes` when there are more).
+fn choose(
+    found: &[(Quantity, Column)],
+    young: &(Option<Column>, Option<Column>),
+    shear: &(Option<Column>, Option<Column>),
+    notes: &mut Vec<String>,
+) -> Option<Chosen> {
+    // The quantities only the converted forms read: the first column of
+    // each (a rheometer writes δ in two columns now and then).
+    let mut first = |wanted: &[Quantity]| -> Option<Column> {
+        let all: Vec<&Column> = found
+            .iter()
+            .filter(|(q, _)| wanted.contains(q))
+            .map(|(_, c)| c)
+            .collect();
+        if let [a, b, ..] = all.as_slice() {
+            notes.push(format!(
+                "{} and {} name one quantity: the first is read",
+                a.reference, b.reference
+            ));
+        }
+        all.first().map(|c| (*c).clone())
+    };
+    let plain = (
+        first(&[Quantity::Storage(None)]),
+        first(&[Quantity::Loss(None)]),
+    );
+    let complex = [Some(Young), Some(Shear), None]
+        .into_iter()
+        .find_map(|k| first(&[Quantity::Complex(k)]).map(|c| (k, c)));
+    let phase = first(&[Quantity::Phase]);
+    let tan = first(&[Quantity::TanDelta]);
+    let eta = (
+        first(&[Quantity::ViscosityStorage]),
+        first(&[Quantity::ViscosityLoss]),
+        first(&[Quantity::ViscosityComplex]),
+    );
+    let storage_any = young
+        .0
+        .clone()
+        .map(|c| (Some(Young), c))
+        .or_else(|| shear.0.clone().map(|c| (Some(Shear), c)))
+        .or_else(|| plain.0.clone().map(|c| (None, c)));
+    match (young, shear, &plain) {
+        ((Some(s), Some(l)), _, _) => Some((Some(Young), Moduli::Parts, s.clone(), l.clone())),
+        (_, (Some(s), Some(l)), _) => Some((Some(Shear), Moduli::Parts, s.clone(), l.clone())),
+        (_, _, (Some(s), Some(l))) => Some((None, Moduli::Parts, s.clone(), l.clone())),
+        _ => match (complex, phase, tan, storage_any, eta) {
+            (Some((k, c)), Some(p), _, _, _) => Some((k, Moduli::AbsPhase, c, p)),
+            (Some((k, c)), None, Some(t), _, _) => Some((k, Moduli::AbsTan, c, t)),
+            (None, _, Some(t), Some((k, s)), _) => Some((k, Moduli::StorageTan, s, t)),
+            (None, _, _, _, (Some(a), Some(b), _)) => {
+                Some((Some(Shear), Moduli::ViscosityParts, a, b))
+            }
+            (None, Some(p), _, _, (_, _, Some(e))) => {
+                Some((Some(Shear), Moduli::ViscosityAbsPhase, e, p))
+            }
+            (None, None, Some(t), None, (_, _, Some(e))) => {
+                Some((Some(Shear), Moduli::ViscosityAbsTan, e, t))
+            }
+            _ => None,
+        },
+    }
 }

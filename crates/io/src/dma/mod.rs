@@ -59,16 +59,22 @@ use crate::error::{DmaSheetError, IoError};
 mod checks;
 pub mod csv_form;
 pub mod decode;
+pub mod files;
 mod form;
 mod header;
 pub mod isotherm;
+mod moduli;
 mod point;
 pub mod relaxation;
 mod sheet;
+pub mod stated_temperature;
 pub mod trios;
+mod vocabulary;
 
 use crate::data::workbook::is_workbook;
+pub use files::{DmaFile, TemperatureOrigin, read_files};
 use form::{FormRead, Place};
+pub use header::modulus_unit;
 pub use isotherm::{
     Grouping, ISOTHERM_GAP, ISOTHERM_SPAN, ISOTHERM_TOLERANCE, Isotherm, Ramp, group, group_steps,
     group_temperatures, isotherms, range,
@@ -78,7 +84,7 @@ pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind, WLF_USAGE};
 /// A DMA file read, its moduli as Young's moduli in Pa.
 #[derive(Debug, Clone)]
 pub struct DmaData {
-    /// The file.
+    /// The file; of several files, the folder holding them.
     pub path: PathBuf,
     /// The points in file order, as measured.
     pub points: Vec<DmaPoint>,
@@ -101,6 +107,9 @@ pub struct DmaData {
     /// How the file was read where the file itself said so (a CSV's shear
     /// columns converted with ν): worth knowing, nothing to check.
     pub notes: Vec<String>,
+    /// Each file read, in order: its points and where their temperature
+    /// came from.
+    pub files: Vec<DmaFile>,
 }
 
 impl DmaData {
@@ -127,11 +136,13 @@ impl DmaData {
         })?;
         let (read, format, sheet, mut notes) = read_form(path, options, sheet)?;
         let FormRead {
-            points: raw,
+            points: mut raw,
             kind,
             names,
             mut warnings,
+            preamble,
         } = read;
+        let temperature = stated_temperature(path, &mut raw, &preamble);
         let factor = match kind {
             ModulusKind::Young => 1.0,
             ModulusKind::Shear => {
@@ -155,8 +166,14 @@ impl DmaData {
         };
         let (points, lines, steps) =
             checks::check_points(&place, raw, &names, factor, &mut warnings)?;
+        let files = vec![DmaFile {
+            path: path.to_path_buf(),
+            points: 0..points.len(),
+            temperature,
+        }];
         Ok(DmaData {
             path: path.to_path_buf(),
+            files,
             points,
             lines,
             steps,
@@ -182,6 +199,14 @@ impl DmaData {
         }
     }
 
+    /// The file the point `index` of [`DmaData::points`] was read from.
+    pub fn file_of(&self, index: usize) -> &Path {
+        self.files
+            .iter()
+            .find(|f| f.points.contains(&index))
+            .map_or(self.path.as_path(), |f| f.path.as_path())
+    }
+
     /// The isotherms' temperatures (°C, ascending; see
     /// [`DmaData::grouping`]).
     pub fn temperatures(&self) -> Vec<f64> {
@@ -190,6 +215,39 @@ impl DmaData {
             .iter()
             .map(|i| i.temperature)
             .collect()
+    }
+}
+
+/// Where the temperature of the points `raw` comes from: their T column,
+/// else a line of `preamble` or the file's name that states one, which is
+/// then given to every point (the module doc of [`files`]).
+fn stated_temperature(
+    path: &Path,
+    raw: &mut [form::RawPoint],
+    preamble: &[(usize, String)],
+) -> TemperatureOrigin {
+    if raw.iter().any(|p| p.temperature.is_some()) {
+        return TemperatureOrigin::Column;
+    }
+    let lines = preamble.iter().map(|(n, l)| (*n, l.as_str()));
+    let (origin, t) = match stated_temperature::in_lines(lines) {
+        Some((line, t)) => (TemperatureOrigin::Line(line, t), t),
+        None => match stated_temperature::in_file_name(path) {
+            Some(t) => (TemperatureOrigin::FileName(t), t),
+            None => return TemperatureOrigin::None,
+        },
+    };
+    for p in raw {
+        p.temperature = Some(t);
+    }
+    origin
+}
+
+/// What the options tell the column recognition.
+fn told(options: &DmaOptions) -> header::Told {
+    header::Told {
+        kind: options.kind,
+        modulus_unit: options.modulus_unit,
     }
 }
 
@@ -205,7 +263,7 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
         source,
     })?;
     let (mut read, format, sheet, notes) = if is_workbook(path, &bytes) {
-        let (read, name, notes) = sheet::parse(path, bytes, sheet)?;
+        let (read, name, notes) = sheet::parse(path, bytes, sheet, told(options))?;
         (read, "workbook", Some(name), notes)
     } else if let Some(sheet) = sheet {
         return Err(DmaSheetError::SheetOfText {
@@ -214,17 +272,18 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
         }
         .into());
     } else {
-        let text = decode::decode(path, &bytes)?;
+        let (text, decoded) = decode::decode_noted(path, &bytes)?;
         if trios::is_lims(&text) {
             let read = trios::parse(path, &text, options)?;
-            return Ok((read, "trios-lims", None, Vec::new()));
+            return Ok((read, "trios-lims", None, decoded));
         }
-        let (read, notes) = csv_form::parse(path, &text)?;
+        let (read, mut notes) = csv_form::parse(path, &text, told(options))?;
+        notes.splice(0..0, decoded);
         (read, "csv", None, notes)
     };
     if options.kind.is_some_and(|k| k != read.kind) {
         read.warnings.push(format!(
-            "{}: the column names say {} moduli; the requested modulus kind applies to TRIOS files only and is ignored",
+            "{}: the column names say {} moduli; the requested modulus kind applies where they do not and is ignored",
             path.display(),
             read.kind.name()
         ));

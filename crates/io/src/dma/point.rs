@@ -98,10 +98,13 @@ impl DmaWlf {
 /// How to read and shift a DMA file beyond what the file says.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct DmaOptions {
-    /// Overrides the shear/tensile decision for a TRIOS file (a CSV says
-    /// it with its column names, `E_…` or `G_…`).
+    /// Overrides the shear/tensile decision for a TRIOS file, and says it
+    /// for files whose column names do not (`Storage Modulus`).
     pub kind: Option<ModulusKind>,
     /// The DMA's own WLF constants; when given they shift the DMA
     /// temperatures instead of the fit's shift.
     pub wlf: Option<DmaWlf>,
+    /// The unit of moduli a file gives none for (name, pascals per unit:
+    /// [`super::modulus_unit`]); default Pa.
+    pub modulus_unit: Option<(&'static str, f64)>,
 }

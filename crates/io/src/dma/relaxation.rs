@@ -309,6 +309,8 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
         ModulusKind::Young => 1.0,
         ModulusKind::Shear => 2.0 * (1.0 + poisson),
     };
+    let mut header = header;
+    let units_line = units_row(text, start, delimiter, &names, &mut header);
     let mut points = Vec::new();
     let mut lines = Vec::new();
     let mut reader = crate::csv_columns::reader_with(&text[start..], false, true, delimiter);
@@ -321,7 +323,7 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
             error,
         })?;
         let at = index.csv_line_after(start, record.position());
-        if at <= line || record.iter().all(str::is_empty) {
+        if at <= line || Some(at) == units_line || record.iter().all(str::is_empty) {
             continue;
         }
         points.push(row(path, (at, decimal_comma), &header, &record, factor)?);
@@ -347,6 +349,69 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
         kind: header.kind,
         notes,
     })
+}
+
+/// The line of a units row right below the header (`s,MPa,°C,-`: no
+/// number, and a unit of the relaxation vocabulary under a column read),
+/// whose units it gives to `header`'s columns whose names carry none.
+fn units_row(
+    text: &str,
+    start: usize,
+    delimiter: char,
+    names: &[String],
+    header: &mut Header,
+) -> Option<usize> {
+    let mut reader = crate::csv_columns::reader_with(&text[start..], false, true, delimiter);
+    let index = LineIndex::new(text);
+    let mut records = reader
+        .records()
+        .filter_map(Result::ok)
+        .filter(|r| !r.iter().all(str::is_empty));
+    records.next()?;
+    let row = records.next()?;
+    let cells: Vec<String> = row
+        .iter()
+        .map(|c| {
+            c.trim()
+                .trim_matches(['[', ']', '(', ')'])
+                .trim()
+                .to_string()
+        })
+        .collect();
+    if cells
+        .iter()
+        .any(|c| c.replace(',', ".").parse::<f64>().is_ok())
+    {
+        return None;
+    }
+    let mut any = false;
+    let columns = [
+        (Some(&mut header.time), &TIME_UNITS[..]),
+        (Some(&mut header.modulus), &MODULUS_UNITS[..]),
+        (header.temperature.as_mut(), &TEMPERATURE_UNITS[..]),
+    ];
+    for (column, units) in columns {
+        let Some(column) = column else { continue };
+        // A unit in the name wins over the units row.
+        let name = names[column.index].as_str();
+        let spelled = SPELLINGS
+            .iter()
+            .any(|(_, spellings)| spellings.iter().any(|(base, _)| *base == name));
+        let named_unit = !spelled
+            && (name.ends_with([')', ']'])
+                || units.iter().any(|u| name.ends_with(&format!("_{}", u.0))));
+        let Some(unit) = cells.get(column.index) else {
+            continue;
+        };
+        if let Some((factor, offset)) = units.iter().find(|u| u.0 == unit).map(|u| (u.1, u.2)) {
+            any = true;
+            if !named_unit {
+                column.factor = factor;
+                column.offset = offset;
+            }
+        }
+    }
+    any.then(|| index.csv_line_after(start, row.position()))
 }
 
 /// The point of the record on line `line`.
@@ -437,8 +502,12 @@ fn check_isotherms(
         });
     }
     for (temperature, indices) in groups(points) {
-        let time: Vec<f64> = indices.iter().map(|&i| points[i].time).collect();
-        if let Some(k) = rollfit_fit::master::relaxation::time_turn(&time) {
+        // Equal times are rounded stamps, averaged by the master curve
+        // (`crate::relaxation_master`); a time that falls is a new run.
+        let falls = indices
+            .windows(2)
+            .position(|w| points[w[1]].time < points[w[0]].time);
+        if let Some(k) = falls.map(|j| j + 1) {
             let (a, b) = (indices[k - 1], indices[k]);
             return Err(RelaxationError::NotIncreasing {
                 path: path.to_path_buf(),

@@ -37,6 +37,7 @@ pub(super) fn parse(
     path: &Path,
     bytes: Vec<u8>,
     wanted: Option<&str>,
+    told: header::Told,
 ) -> Result<(FormRead, String, Vec<String>), IoError> {
     let workbook = |error: DataError| -> IoError {
         DmaSheetError::Workbook {
@@ -80,12 +81,18 @@ pub(super) fn parse(
         ));
     }
     let first_data = at + 1 + usize::from(units.is_some());
-    let header = header::columns(&place, row_number(&rows[at]), names, units)?;
+    let header = header::columns(&place, row_number(&rows[at]), names, units, told)?;
     let mut read = read_rows(&place, &rows[first_data..], &header)?;
+    read.preamble = rows[..at]
+        .iter()
+        .filter(|r| !r.is_blank())
+        .map(|r| (row_number(r), texts(r).join(" ")))
+        .collect();
     read.warnings.splice(0..0, header_warning(path, &header));
     let notes = notes
         .into_iter()
         .map(|n| format!("{}: {n}", path.display()))
+        .chain(header.notes(path))
         .collect();
     Ok((read, sheet, notes))
 }

@@ -168,6 +168,7 @@ pub(crate) fn parse(path: &Path, text: &str, options: &DmaOptions) -> Result<For
         kind,
         names,
         warnings,
+        preamble: Vec::new(),
     })
 }
 

@@ -116,6 +116,28 @@ pub enum DmaMasterError {
         /// The points about the turn, in file order.
         turn: Vec<TurnPoint>,
     },
+    /// `--temperatures` (or a scene's `temperatures`) lists a number
+    /// other than one per file.
+    #[error(
+        "{given} temperatures given for {files} DMA files: give one per file, in the order of \
+         the files"
+    )]
+    TemperatureCount { given: usize, files: usize },
+    /// A DMA file among several that states no temperature anywhere.
+    #[error(
+        "DMA file {}: no temperature: the file has no T column, no line above its header \
+         states one (`Temperature: 20 °C`) and its name carries none (`…_20C.csv`); give \
+         --temperatures T1,T2,… in the order of the files",
+        path.display()
+    )]
+    FileWithoutTemperature { path: PathBuf },
+    /// A folder given as DMA data without a data file in it.
+    #[error(
+        "DMA folder {}: no data file in it (read: {})",
+        path.display(),
+        crate::dma::files::DATA_EXTENSIONS.join(", ")
+    )]
+    EmptyFolder { path: PathBuf },
     /// The fit library refused the isotherms, the settings or the fit (its
     /// message, shown, not a source).
     #[error("{error}")]

@@ -361,11 +361,16 @@ impl MaterialSection {
             },
             vertical: self.vertical.unwrap_or(false),
         };
+        let input = dma_master::DmaInput {
+            files: vec![base_dir.join(file)],
+            sheet: self.sheet.clone(),
+            kind: self.modulus.map(ModulusName::kind),
+            temperatures: None,
+            modulus_unit: None,
+        };
         let built = Arc::new(dma_master::build(
-            &base_dir.join(file),
+            &input,
             self.dma.poisson.unwrap_or(DEFAULT_POISSON),
-            self.modulus.map(ModulusName::kind),
-            self.sheet.as_deref(),
             &settings,
         )?);
         let _ = self.dma.built.set(Arc::clone(&built));

@@ -26,7 +26,10 @@ pub(super) fn read(
     // ν matters only for shear moduli: a bad ν is refused only then, and
     // named as the scene's (the DMA reader would call it the fit's).
     let usable = rollfit_model::check_poisson(poisson).is_ok();
-    let options = DmaOptions { kind, wlf: None };
+    let options = DmaOptions {
+        kind,
+        ..DmaOptions::default()
+    };
     let data = DmaData::read_sheet(path, if usable { poisson } else { 0.5 }, &options, sheet)
         .map_err(|e| TableError::Dma { error: Box::new(e) })?;
     if !usable && data.kind == ModulusKind::Shear {

@@ -37,7 +37,7 @@ use crate::stdout;
 /// Runs `rollfit master` on a relaxation file (DIR already checked).
 pub(super) fn run(args: &Args, settings: &rollfit_fit::master::MasterSettings) -> Result<()> {
     let (poisson, whose) = crate::commands::compare::poisson_source(args.poisson);
-    let built = relaxation_master::build(&args.dma, poisson, settings)?;
+    let built = relaxation_master::build(&args.dma[0], poisson, settings)?;
     if args.dma_modulus.is_some() {
         eprintln!(
             "warning: --dma-modulus applies to TRIOS files; a relaxation file says Young's or \
