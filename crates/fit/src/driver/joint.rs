@@ -23,6 +23,18 @@ use super::assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warn
 use super::terms::terms_record;
 use super::{fit_measured, fit_on_grid};
 
+/// The DMA part alone. What is wrong with the isotherms as a whole is the
+/// DMA file's problem: the message names that file, not the rolling data's.
+fn dma_part_alone(dma: &DmaRows, sigma: Option<f64>) -> Result<DmaAlone, FitError> {
+    dma_alone(dma, sigma).map_err(|e| match e {
+        FitError::InsufficientData(why) => FitError::DmaData {
+            file: dma.source().to_string(),
+            why,
+        },
+        other => other,
+    })
+}
+
 /// The joint fit of `rows` and the DMA isotherms of `params`.
 pub(super) fn fit_joint(
     rows: &Measurements,
@@ -36,15 +48,7 @@ pub(super) fn fit_joint(
     let rows = with_temperature(rows, params)?;
     let condensed = condense(&rows)?;
     let data = condensed.as_ref().map_or(&rows, |c| &c.data);
-    // What is wrong with the isotherms as a whole is the DMA file's
-    // problem: the message names that file, not the rolling data's.
-    let alone = dma_alone(&dma, params.dma_sigma).map_err(|e| match e {
-        FitError::InsufficientData(why) => FitError::DmaData {
-            file: dma.source().to_string(),
-            why,
-        },
-        other => other,
-    })?;
+    let alone = dma_part_alone(&dma, params.dma_sigma)?;
     let start = joint_start(data, &dma, params, &alone)?;
     let rolling_alone = fit_measured(data, None, &rolling_params(data, params, &start))?;
     let (weighted, rolling_sigma) = weighted_rows(data, &rolling_alone)?;

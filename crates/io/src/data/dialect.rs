@@ -187,6 +187,26 @@ pub(crate) fn split_line(line: &str, delimiter: char) -> Vec<Cell> {
     cells
 }
 
+/// The delimiter of a text (a DMA CSV or relaxation file) and the byte where its header starts, by the
+/// shared dialect detection ([`detect`]) with `is_header`; None
+/// for a text without a line. Without a header the vocabulary knows, the
+/// first line, split by the delimiter it holds most of.
+pub(crate) fn dialect_of(
+    text: &str,
+    is_header: impl Fn(&Row) -> bool,
+) -> Option<(char, usize, Option<Found<'_>>)> {
+    let all = lines(text);
+    let found = detect(all.clone(), is_header);
+    let (delimiter, start) = match &found {
+        Some(found) => (found.delimiter, found.line.start),
+        None => {
+            let first = all.clone().next()?;
+            (likeliest(first.text), first.start)
+        }
+    };
+    Some((delimiter, start, found))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -27,8 +27,7 @@ use std::path::Path;
 
 use super::form::{FormRead, Place, RawPoint};
 use super::header::{self, Column, Header};
-use crate::csv_columns::{LineIndex, dma_number};
-use crate::data::cell::{Cell, parse_number};
+use crate::csv_columns::LineIndex;
 use crate::data::dialect;
 use crate::error::{ColumnRef, IoError};
 
@@ -44,7 +43,7 @@ pub(crate) fn parse(
 ) -> Result<(FormRead, Vec<String>), IoError> {
     // No header the vocabulary knows: the first line is read as one, for
     // the message naming what it lacks.
-    let Some((delimiter, start, found)) = dialect_of(text, super::sheet::is_header) else {
+    let Some((delimiter, start, found)) = dialect::dialect_of(text, super::sheet::is_header) else {
         return Err(IoError::NoHeader {
             path: path.to_path_buf(),
         });
@@ -111,17 +110,7 @@ pub(crate) fn parse(
     let units = units
         .as_ref()
         .map(|(line, cells)| (*line, cells.as_slice()));
-    let times = super::relaxation::time_columns(&names);
-    if !times.is_empty() {
-        notes.push(format!(
-            "{}: time column{} {} ignored: a file with a frequency column is read as a frequency \
-             sweep (E′, E″ against ω); a stress-relaxation file has a time column and no \
-             frequency column",
-            path.display(),
-            if times.len() == 1 { "" } else { "s" },
-            times.join(", ")
-        ));
-    }
+    notes.extend(super::relaxation::ignored_time_columns(path, &names));
     let header = header::columns(&place, header_line, names, units, told)?;
     notes.extend(header.notes(path));
     let mut warnings = Vec::new();
@@ -161,43 +150,6 @@ pub(crate) fn parse(
         .filter(|(_, line)| !line.trim().is_empty())
         .collect();
     Ok((read, notes))
-}
-
-/// The number in `field` of column `c` on line `line`, with a decimal
-/// comma where `decimal_comma` allows one: the one reading of a DMA CSV
-/// cell, for frequency sweeps and relaxation runs alike.
-pub(super) fn number(
-    path: &Path,
-    line: usize,
-    c: &Column,
-    field: &str,
-    decimal_comma: bool,
-) -> Result<f64, IoError> {
-    match parse_number(&Cell::text(field), decimal_comma) {
-        Ok(Some(number)) => Ok(number.value),
-        // The error as for any cell that is not a finite number.
-        _ => dma_number(path, line, || c.reference.clone(), field),
-    }
-}
-
-/// The delimiter of a DMA CSV and the byte where its header starts, by the
-/// shared dialect detection ([`dialect::detect`]) with `is_header`; None
-/// for a text without a line. Without a header the vocabulary knows, the
-/// first line, split by the delimiter it holds most of.
-pub(super) fn dialect_of(
-    text: &str,
-    is_header: impl Fn(&crate::data::cell::Row) -> bool,
-) -> Option<(char, usize, Option<dialect::Found<'_>>)> {
-    let all = dialect::lines(text);
-    let found = dialect::detect(all.clone(), is_header);
-    let (delimiter, start) = match &found {
-        Some(found) => (found.delimiter, found.line.start),
-        None => {
-            let first = all.clone().next()?;
-            (dialect::likeliest(first.text), first.start)
-        }
-    };
-    Some((delimiter, start, found))
 }
 
 /// Where a record is and how its numbers read.
@@ -246,7 +198,7 @@ fn row(
         ));
     }
     let value = |c: &Column| -> Result<f64, IoError> {
-        let v = number(path, line, c, &record[c.index], decimal_comma)?;
+        let v = c.number(path, line, &record[c.index], decimal_comma)?;
         Ok(c.convert(v))
     };
     Ok(RawPoint {

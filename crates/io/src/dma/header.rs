@@ -30,6 +30,8 @@ use super::moduli::Moduli;
 use super::point::ModulusKind::{self, Shear, Young};
 pub use super::vocabulary::modulus_unit;
 use super::vocabulary::{Quantity, classify};
+use crate::csv_columns::dma_number;
+use crate::data::cell::{Cell, parse_number};
 use crate::error::{ColumnRef, Contradiction, DmaUnknownUnit, DuplicateQuantity, IoError};
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE};
 
@@ -54,6 +56,23 @@ pub(super) struct Column {
 }
 
 impl Column {
+    /// The number in `field` of this column on line `line`, with a decimal
+    /// comma where `decimal_comma` allows one: the one reading of a DMA CSV
+    /// cell, for frequency sweeps and relaxation runs alike.
+    pub(crate) fn number(
+        &self,
+        path: &Path,
+        line: usize,
+        field: &str,
+        decimal_comma: bool,
+    ) -> Result<f64, IoError> {
+        match parse_number(&Cell::text(field), decimal_comma) {
+            Ok(Some(number)) => Ok(number.value),
+            // The error as for any cell that is not a finite number.
+            _ => dma_number(path, line, || self.reference.clone(), field),
+        }
+    }
+
     /// `value` in SI.
     pub fn convert(&self, value: f64) -> f64 {
         value * self.factor + self.offset

@@ -219,7 +219,7 @@ fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, 
 }
 
 /// The header row of a CSV text in the shared dialect
-/// ([`super::csv_form::dialect_of`]: `,`, `;` or tab, title lines above
+/// ([`crate::data::dialect::dialect_of`]: `,`, `;` or tab, title lines above
 /// it): (line, names, delimiter, byte where the header starts), or None
 /// without one.
 fn header_row(text: &str) -> Option<(usize, Vec<String>, char, usize)> {
@@ -229,7 +229,7 @@ fn header_row(text: &str) -> Option<(usize, Vec<String>, char, usize)> {
             Ok(None)
         )
     };
-    let (delimiter, start, _) = super::csv_form::dialect_of(text, is_header)?;
+    let (delimiter, start, _) = crate::data::dialect::dialect_of(text, is_header)?;
     let mut reader = crate::csv_columns::reader_with(&text[start..], false, true, delimiter);
     let index = LineIndex::new(text);
     for record in reader.records() {
@@ -244,14 +244,24 @@ fn header_row(text: &str) -> Option<(usize, Vec<String>, char, usize)> {
     None
 }
 
-/// The names of `names` read as a time column (`t`, `time`, with a unit):
-/// a frequency sweep's reader ignores them, and says so.
-pub(crate) fn time_columns(names: &[String]) -> Vec<&str> {
-    names
+/// The note a frequency sweep's reader gives for the names of `names`
+/// read as a time column (`t`, `time`, with a unit), which it ignores.
+pub(crate) fn ignored_time_columns(path: &Path, names: &[String]) -> Option<String> {
+    let times: Vec<&str> = names
         .iter()
         .filter(|n| matches!(recognise(n), Some((Quantity::Time, ..))))
         .map(String::as_str)
-        .collect()
+        .collect();
+    (!times.is_empty()).then(|| {
+        format!(
+            "{}: time column{} {} ignored: a file with a frequency column is read as a frequency \
+             sweep (E′, E″ against ω); a stress-relaxation file has a time column and no \
+             frequency column",
+            path.display(),
+            if times.len() == 1 { "" } else { "s" },
+            times.join(", ")
+        )
+    })
 }
 
 /// Whether `text` is a relaxation file: its header has a time column and
@@ -433,7 +443,7 @@ fn row(
         });
     }
     let value = |c: &Column| -> Result<f64, IoError> {
-        let v = super::csv_form::number(path, line, c, &record[c.index], decimal_comma)?;
+        let v = c.number(path, line, &record[c.index], decimal_comma)?;
         Ok(v * c.factor + c.offset)
     };
     let time = value(&header.time)?;
