@@ -58,7 +58,7 @@ fn t_ref_at_a_singular_temperature_is_refused_naming_it() {
     let out = tmp.path().join("m");
     let cases: [(&[&str], &[&str]); 3] = [
         (
-            &["--T-ref", "-81.6"],
+            &["--T-ref", "-81.6", "--shift", "wlf"],
             &[
                 "T_ref = -81.6 °C",
                 "singular at",
@@ -66,7 +66,7 @@ fn t_ref_at_a_singular_temperature_is_refused_naming_it() {
             ],
         ),
         (
-            &["--T-ref", "-80"],
+            &["--T-ref", "-80", "--shift", "wlf"],
             &[
                 "T_ref = -80 °C",
                 "singular at",
@@ -92,7 +92,7 @@ fn t_ref_at_a_singular_temperature_is_refused_naming_it() {
         "scene.toml",
         &format!(
             "[geometry]\nshape = \"sphere\"\nradius = 0.005\nload = 1.0\n[substrate]\npoisson = \
-             0.5\n[material]\nmodel = \"dma\"\nfile = {dma:?}\nT_ref = -81.6\n[sweep]\nv_min = \
+             0.5\n[material]\nmodel = \"dma\"\nfile = {dma:?}\nT_ref = -81.6\nshift_law = \"wlf\"\n[sweep]\nv_min = \
              1e-6\nv_max = 1.0\ncount = 5\n"
         ),
     );

@@ -160,7 +160,7 @@ mod tests {
 
     /// Every option of every command that takes a value allows hyphen
     /// values, except those whose value cannot be a number: paths, names
-    /// (sheet, solver, physics, shift law, friction factor) and fixed
+    /// (sheet, solver, physics, shift law, friction factor, unit) and fixed
     /// choices.
     #[test]
     fn every_numeric_option_takes_a_leading_minus() {
@@ -171,6 +171,8 @@ mod tests {
             TypeId::of::<Physics>(),
             TypeId::of::<ShiftKind>(),
             TypeId::of::<FrictionFactor>(),
+            // `master --units`: a unit's name with its factor to pascals.
+            TypeId::of::<(&'static str, f64)>(),
         ];
         let cli = Cli::command();
         let mut checked = 0;

@@ -57,7 +57,7 @@ fn check_occupant<'a>(
     }
     let owned = |name: &str| occupant.as_ref().is_some_and(|o| o.owns(name));
     for name in names {
-        if dir.join(name).exists() && !owned(name) {
+        if dir.join(name).exists() && !owned(name) && !only_leftovers(&dir.join(name)) {
             return Err(IoError::from(FolderError::NotOurFile {
                 dir: dir.to_path_buf(),
                 name: name.to_string(),
@@ -79,6 +79,20 @@ fn check_occupant<'a>(
         }
     }
     Ok(occupant)
+}
+
+/// Whether `path` is a folder that holds nothing but what killed runs of
+/// rollfit leave (hidden `.tmp` names, removed before writing), or nothing
+/// at all: no user's file is lost by writing there.
+fn only_leftovers(path: &Path) -> bool {
+    path.is_dir()
+        && fs::read_dir(path).is_ok_and(|entries| {
+            entries.flatten().all(|e| {
+                let name = e.file_name();
+                let name = name.to_string_lossy();
+                name.starts_with('.') && name.ends_with(".tmp")
+            })
+        })
 }
 
 /// Whether `dir` is the current folder or one that holds it: a folder
