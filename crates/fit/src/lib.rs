@@ -73,7 +73,6 @@ pub mod driver;
 pub mod error;
 pub mod exact_physics;
 pub mod extrapolation;
-pub mod fit;
 pub mod joint;
 pub mod master;
 pub mod params;

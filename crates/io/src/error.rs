@@ -4,9 +4,13 @@
 //! (docs/ARCHITECTURE.md, "Contract", "Commands"): the file, `, line N`
 //! where one line is at fault, what is wrong and, where it helps, what to
 //! do. A system error is the [`std::error::Error::source`], which the
-//! command line's `{:#}` prints after a colon. Measured data, modulus
-//! tables, TRIOS exports and DMA workbooks have an enum each ([`DataError`],
-//! [`TableError`], [`TriosError`], [`DmaSheetError`]), reached as one variant of [`IoError`].
+//! command line's `{:#}` prints after a colon. Each reader has an enum of
+//! its own, reached as one variant of [`IoError`]: measured data
+//! ([`DataError`]), modulus tables ([`TableError`]), TRIOS exports
+//! ([`TriosError`]), DMA workbooks ([`DmaSheetError`]), the DMA master
+//! curve ([`DmaMasterError`]), relaxation files ([`RelaxationError`]),
+//! scenes ([`SceneError`]), manifests ([`ManifestError`]), input files
+//! ([`InputError`]) and result folders ([`FolderError`]).
 
 use std::path::PathBuf;
 

@@ -6,8 +6,9 @@
 //! - [`manifest`]: the batch manifest of `rollfit batch`;
 //! - [`dma_master`]: a DMA file made a master curve (`rollfit master`, a
 //!   scene's `model = "dma"`), [`dma_joint`]: a DMA file as the isotherms
-//!   of a joint fit (`dma = FILE`), and [`material_file`]: the
-//!   material.toml `rollfit master` writes;
+//!   of a joint fit (`dma = FILE`), [`relaxation_master`]: a relaxation
+//!   file made a master curve, and [`material_file`]: the material.toml
+//!   `rollfit master` writes;
 //! - [`data`]: measured rolling friction, text (`,`, `;` or tab, decimal
 //!   commas, any common encoding) or a workbook, with header aliases and
 //!   units converted to SI;

@@ -23,11 +23,11 @@ use rollfit_fit::{
     FitError, FitReport, FitSettings, FrictionFactor, Lambda, Method, Physics, PhysicsRecord,
     RollingSetup, ShiftKind, ShiftRecord, TermRule,
 };
-use rollfit_io::fit_dir::{FitFiles, FitInput, Measured};
+use rollfit_io::fit_dir::{FitFolder, FitInput, Measured, MuCsv};
 use rollfit_io::output;
 use rollfit_model::Shape;
 
-use rollfit_io::data::read_sheet;
+use rollfit_io::data::{DataTable, read_sheet};
 use rollfit_io::scene as scene_file;
 
 use crate::{hints, progress};
@@ -301,26 +301,40 @@ pub struct Job<'a> {
 /// swapped.
 pub const USAGE: &str = "rollfit fit SCENE.toml DATA.csv";
 
-/// A finished fit and its result files, encoded but not yet written.
+/// A finished fit and its result files, checked and encoded (mu.csv, which
+/// grows with the data, is written row by row when committed).
 pub struct Outcome {
     pub report: FitReport,
     /// The one temperature of the data's `T` column, °C.
     pub temperature: Option<f64>,
-    /// fit.json, modulus.csv and mu.csv.
-    files: FitFiles,
+    /// The data as read, which mu.csv repeats row by row.
+    table: DataTable,
+    /// fit.json and modulus.csv.
+    files: FitFolder,
 }
 
 impl Outcome {
     /// Writes the result files, replacing the folder `dir` as a whole
-    /// ([`output::replace_folder`]): a reader finds either the previous
-    /// complete result or this one.
+    /// ([`output::replace_folder_with`]): a reader finds either the
+    /// previous complete result or this one.
     pub fn commit(&self, dir: &Path, force: bool) -> Result<()> {
-        Ok(output::replace_folder(
+        let mu_csv = MuCsv::new(measured(&self.table), &self.report);
+        Ok(output::replace_folder_with(
             dir,
             output::Writer::Fit,
             force,
-            &self.files.named(),
+            &self.files.files(&mu_csv),
         )?)
+    }
+}
+
+/// The rows of `table` as mu.csv repeats them.
+fn measured(table: &DataTable) -> Measured<'_> {
+    Measured {
+        speeds: &table.speeds,
+        friction: &table.friction,
+        sigma: table.sigma.as_deref(),
+        temperature: table.temperature.as_deref(),
     }
 }
 
@@ -410,13 +424,8 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         ),
     })?;
 
-    // Everything is encoded before the disk is touched.
-    let measured = Measured {
-        speeds: &table.speeds,
-        friction: &table.friction,
-        sigma: table.sigma.as_deref(),
-        temperature: table.temperature.as_deref(),
-    };
+    // Everything is checked before the disk is touched.
+    let measured = measured(&table);
     let temperature = measured.single_temperature();
     let input = FitInput {
         scene: job.scene.display().to_string(),
@@ -424,10 +433,11 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
         temperature,
         rollfit_version: env!("CARGO_PKG_VERSION"),
     };
-    let files = FitFiles::encode(&report, &measured, &input)?;
+    let files = FitFolder::encode(&report, &measured, &input)?;
     Ok(Outcome {
         report,
         temperature,
+        table,
         files,
     })
 }

@@ -37,7 +37,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use rollfit_fit::master::pairwise::DETERMINED_SIGMA;
-use rollfit_fit::master::quality::{MasterQuality, Misfits};
+use rollfit_fit::master::quality::{Floors, MasterQuality, Misfits};
 use rollfit_fit::master::{MasterSettings, ShiftFactors, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
 use rollfit_io::dma::{DmaFile, DmaPoint, TemperatureOrigin};
@@ -232,10 +232,27 @@ pub fn run(args: &Args) -> Result<()> {
     for warning in &causal.warnings {
         eprintln!("warning: {warning}");
     }
-    let quality = built.master.quality(Misfits {
+    let all = Misfits {
         storage: causal.misfit_storage,
         loss: causal.misfit_loss,
-    });
+    };
+    let determined = match determined_floor(&built) {
+        Some(part) => {
+            let part = part?;
+            eprintln!(
+                "note: whether the data are causal is judged on the isotherms whose shifts are \
+                 determined: Kramers–Kronig floor there E′ {:.4}, E″ {:.4} decades (of every \
+                 point {:.4}, {:.4})",
+                part.misfit_storage, part.misfit_loss, all.storage, all.loss
+            );
+            Misfits {
+                storage: part.misfit_storage,
+                loss: part.misfit_loss,
+            }
+        }
+        None => all,
+    };
+    let quality = built.master.quality(Floors { all, determined });
     gate(&quality, args)?;
     strict_gate(&built.master.shift, args)?;
     let files = encode(&built, &causal, poisson, &quality)?;
@@ -357,11 +374,41 @@ fn temperature_sources(files: &[DmaFile]) -> String {
 /// `compare`): the floor the smooth Prony series' misfit is measured
 /// against.
 fn causal_floor(built: &DmaMaster) -> Result<CausalFit> {
+    causal_floor_of(built, |_| true)
+}
+
+/// The best causal fit of the determined isotherms' shifted points, where
+/// some isotherms are undetermined and some determined (None otherwise):
+/// only these can show that the data themselves are not causal.
+fn determined_floor(built: &DmaMaster) -> Option<Result<CausalFit>> {
+    let shifts = &built.master.shift.shifts;
+    let determined = shifts.iter().filter(|s| s.determined).count();
+    if determined == 0 || determined == shifts.len() {
+        return None;
+    }
+    // A point's isotherm is the shift of the nearest temperature.
+    let isotherm_determined = |t: f64| {
+        shifts
+            .iter()
+            .min_by(|a, b| {
+                (a.temperature - t)
+                    .abs()
+                    .total_cmp(&(b.temperature - t).abs())
+            })
+            .is_some_and(|s| s.determined)
+    };
+    Some(causal_floor_of(built, isotherm_determined))
+}
+
+/// The best causal fit of the shifted points whose isotherm temperature
+/// `keep` accepts.
+fn causal_floor_of(built: &DmaMaster, keep: impl Fn(f64) -> bool) -> Result<CausalFit> {
     let has_temperatures = built.data.points.iter().any(|p| p.temperature.is_some());
     let shifted: Vec<DmaPoint> = built
         .master
         .points
         .iter()
+        .filter(|p| keep(p.temperature))
         .map(|p| DmaPoint {
             omega: p.reduced_omega,
             storage: p.storage,

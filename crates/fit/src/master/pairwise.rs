@@ -58,7 +58,13 @@
 //! shift lies nearer to it); σ is then at least half their difference, so
 //! that the combined shift is never reported more precise than the choice
 //! between the quantities. A gap that a nearly flat curve's own noise
-//! explains is not a failure and does not widen σ.
+//! explains is not a failure and does not widen σ. Where only one curve
+//! fixes its shift and the other's best overlap lies at the overlap's end
+//! (tan δ of a β relaxation that keeps wanting less shift than E′),
+//! superposition fails when the other curve's own profile rejects the
+//! fixed curve's shift (Δχ² > 4 there) and the two differ by more than
+//! [`TTS_DISAGREEMENT`] and twice the fixed curve's 1σ: no shift in the
+//! overlap serves both.
 //!
 //! The coverage of these intervals on synthetic isotherms is measured in
 //! the tests (`master/tests.rs`).
@@ -304,11 +310,13 @@ fn test_superposition(
     // Each curve alone: its own best shift, whether its own profile
     // (noise from its own residuals there) fixes it, and its 1σ.
     let mut curve_sigma = [f64::INFINITY; 2];
+    let mut weight = [f64::NAN; 2];
     for k in 0..lower.len().min(2) {
         let own = |s: f64| parts(s).map_or(f64::INFINITY, |p| p[k].0);
         if let Some((sk, _, _)) = best_shift_in(&own, s_min, s_max) {
             let n = parts(sk).map_or(0, |p| p[k].1);
             let w = dof(free_offset[k], n) / own(sk).max(floor[k]).max(1e-24);
+            weight[k] = w;
             let profile = |s: f64| w * own(s);
             out.curve_shift[k] = sk;
             out.curve_bounded[k] = rises_on_both_sides(&profile, sk, s_min, s_max, 4.0);
@@ -332,6 +340,30 @@ fn test_superposition(
     // jackknife too.
     let disagreement = (out.curve_shift[0] - out.curve_shift[1]).abs();
     let beyond = |sigma: &[f64; 2]| disagreement > 2.0 * sigma[0].hypot(sigma[1]);
+    // One curve fixes its shift, the other's best lies at the overlap's
+    // end: superposition fails when that other curve's own profile
+    // rejects the first one's shift (Δχ² > 4 there), by more than
+    // TTS_DISAGREEMENT and twice the fixed curve's 1σ. A flat curve
+    // rejects nothing and is no evidence.
+    let one_sided = match out.curve_bounded {
+        [true, false] => Some((0, 1)),
+        [false, true] => Some((1, 0)),
+        _ => None,
+    };
+    if let Some((fixed, other)) = one_sided.filter(|_| lower.len() > 1) {
+        let own = |s: f64| parts(s).map_or(f64::INFINITY, |p| p[other].0) * weight[other];
+        let rise = own(out.curve_shift[fixed]) - own(out.curve_shift[other]);
+        let jackknife = jackknife_sigma(
+            &lower[fixed..=fixed],
+            &upper[fixed..=fixed],
+            &free_offset[fixed..=fixed],
+            (s_min, s_max),
+        );
+        out.tts_fails = rise > 4.0
+            && disagreement > TTS_DISAGREEMENT
+            && disagreement > 2.0 * curve_sigma[fixed].max(jackknife);
+        return;
+    }
     out.tts_fails = out.curve_bounded == [true, true]
         && disagreement > TTS_DISAGREEMENT
         && beyond(&curve_sigma);

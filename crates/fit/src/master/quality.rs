@@ -13,7 +13,10 @@
 //!    viscoelastic solid can get below. DMA scatter of 1–5 % gives a floor
 //!    of 0.004–0.021 decades, a global Kramers–Kronig violation of 50 % in
 //!    E″ near the loss peak 0.04 (the causality module's measurements); the
-//!    causality check warns from 0.03. The gate refuses from
+//!    causality check warns from 0.03. The floor that refuses is that of
+//!    the isotherms whose shifts the data determine ([`Floors`]): an
+//!    isotherm the law placed may sit where no material puts it, which
+//!    says nothing against the data. The gate refuses from
 //!    [`NONCAUSAL_FLOOR`] = 0.1 decades RMS (26 % RMS): five times the 5 %
 //!    scatter's floor, two and a half times the worst violation a real
 //!    material curve was seen to carry, so it refuses only what no
@@ -101,35 +104,55 @@ impl MasterQuality {
     }
 }
 
+/// The causal floors of a master curve's shifted points: of all of them,
+/// which the series' misfit is measured against, and of the isotherms
+/// whose shifts the data determine, which alone can show that the data
+/// are not causal (isotherms the law or the best overlap placed can sit
+/// where no material puts them without the data being at fault).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Floors {
+    /// The floor of every shifted point.
+    pub all: Misfits,
+    /// The floor of the determined isotherms' points (equal to `all`
+    /// when every isotherm is determined).
+    pub determined: Misfits,
+}
+
 impl MasterCurve {
-    /// The verdict on this curve, given the causal floor of its shifted
+    /// The verdict on this curve, given the causal floors of its shifted
     /// points (module doc).
-    pub fn quality(&self, floor: Misfits) -> MasterQuality {
+    pub fn quality(&self, floors: Floors) -> MasterQuality {
         let series = Misfits {
             storage: self.fit.misfit_storage,
             loss: self.fit.misfit_loss,
         };
-        assess(&self.shift, Some((series, floor)))
+        assess(&self.shift, Some((series, floors)))
     }
 }
 
 /// The verdict on a master curve of shift factors `shift` and, where a
-/// causal floor was computed, the series' misfit and that floor (module
+/// causal floor was computed, the series' misfit and the floors (module
 /// doc); relaxation data, without a floor, are judged by their shifts.
-pub fn assess(shift: &ShiftFactors, series: Option<(Misfits, Misfits)>) -> MasterQuality {
+pub fn assess(shift: &ShiftFactors, series: Option<(Misfits, Floors)>) -> MasterQuality {
     let mut reasons = shift_reasons(shift);
-    if let Some((misfit, floor)) = series {
+    if let Some((misfit, floors)) = series {
         let parts = [
-            ("E′", misfit.storage, floor.storage),
-            ("E″", misfit.loss, floor.loss),
+            (
+                "E′",
+                misfit.storage,
+                floors.all.storage,
+                floors.determined.storage,
+            ),
+            ("E″", misfit.loss, floors.all.loss, floors.determined.loss),
         ];
-        for (name, misfit, floor) in parts {
-            if floor > NONCAUSAL_FLOOR {
+        for (name, misfit, floor, determined_floor) in parts {
+            if determined_floor > NONCAUSAL_FLOOR {
                 reasons.push(format!(
                     "the shifted data are not causal: no linear viscoelastic (Prony) series \
-                     comes closer than {floor:.3} decades RMS to {name} (limit {NONCAUSAL_FLOOR}); \
-                     check the file's moduli (E′ and E″ columns, their units, E″ not tan δ) and \
-                     the isotherms' shifts (with --vertical if the isotherms step in modulus)"
+                     comes closer than {determined_floor:.3} decades RMS to {name} (limit \
+                     {NONCAUSAL_FLOOR}); check the file's moduli (E′ and E″ columns, their \
+                     units, E″ not tan δ) and the isotherms' shifts (with --vertical if the \
+                     isotherms step in modulus)"
                 ));
             } else if misfit - floor > SERIES_EXCESS {
                 reasons.push(format!(
@@ -198,4 +221,59 @@ fn shift_reasons(shift: &ShiftFactors) -> Vec<String> {
         ));
     }
     reasons
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One isotherm's shift factors: no shift reason, so the floors alone
+    /// decide.
+    fn one_isotherm() -> ShiftFactors {
+        ShiftFactors {
+            t_ref: 20.0,
+            law: ShiftLaw::Free,
+            reason: String::new(),
+            shifts: Vec::new(),
+            pairs: Vec::new(),
+            wlf: None,
+            arrhenius: None,
+            wlf_arrhenius: None,
+            rejected_laws: Vec::new(),
+            warnings: Vec::new(),
+        }
+    }
+
+    fn misfits(value: f64) -> Misfits {
+        Misfits {
+            storage: value,
+            loss: value,
+        }
+    }
+
+    /// Isotherms placed by the law that no causal series follows do not
+    /// make the data non-causal; the determined part's floor does.
+    #[test]
+    fn only_the_determined_part_shows_data_not_causal() {
+        let shift = one_isotherm();
+        let series = misfits(0.31);
+        let misplaced = Floors {
+            all: misfits(0.3),
+            determined: misfits(0.01),
+        };
+        assert!(assess(&shift, Some((series, misplaced))).is_good());
+        let noncausal = Floors {
+            all: misfits(0.3),
+            determined: misfits(0.25),
+        };
+        let q = assess(&shift, Some((series, noncausal)));
+        assert!(!q.is_good());
+        assert!(q.reasons[0].contains("not causal") && q.reasons[0].contains("0.250"));
+        // The series is still measured against the floor of every point.
+        let missed = Floors {
+            all: misfits(0.01),
+            determined: misfits(0.01),
+        };
+        assert!(!assess(&shift, Some((series, missed))).is_good());
+    }
 }

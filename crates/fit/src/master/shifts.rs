@@ -356,6 +356,10 @@ pub(crate) fn causes(pairs: &[PairShift], temps: &[f64], domain: Domain) -> Vec<
                 ),
             };
             match p.cause {
+                PairCause::Flat | PairCause::OverlapEnd if p.tts_fails => format!(
+                    "{between} superposition fails ({}); no shift in their overlap serves both",
+                    disagreement(p)
+                ),
                 PairCause::Flat => format!(
                     "{between} flat, a plateau ({varies}): any shift fits about equally well"
                 ),
@@ -393,10 +397,25 @@ pub(crate) fn causes(pairs: &[PairShift], temps: &[f64], domain: Domain) -> Vec<
 
 /// "E′ alone needs −1.92, tan δ alone −0.07 decades".
 fn disagreement(p: &PairShift) -> String {
-    format!(
-        "E′ alone needs {:.2}, tan δ alone {:.2} decades",
-        p.curve_shift[0], p.curve_shift[1]
-    )
+    let names = ["E′", "tan δ"];
+    match p.curve_bounded {
+        [true, false] | [false, true] => {
+            let (fixed, other) = if p.curve_bounded[0] { (0, 1) } else { (1, 0) };
+            format!(
+                "{} alone needs {:.2} decades, which {} rejects: {} alone fits best at {:.2}, \
+                 where the isotherms stop overlapping",
+                names[fixed],
+                p.curve_shift[fixed],
+                names[other],
+                names[other],
+                p.curve_shift[other]
+            )
+        }
+        _ => format!(
+            "E′ alone needs {:.2}, tan δ alone {:.2} decades",
+            p.curve_shift[0], p.curve_shift[1]
+        ),
+    }
 }
 
 /// A pair where superposition fails, for messages: its temperatures, the

@@ -67,14 +67,6 @@ impl ShiftRecord {
         }
     }
 
-    /// (C1, C2) of a WLF shift.
-    pub fn wlf_constants(&self) -> Option<(f64, f64)> {
-        match self {
-            ShiftRecord::Wlf { c1, c2, .. } => Some((*c1, *c2)),
-            ShiftRecord::Arrhenius { .. } | ShiftRecord::Free { .. } => None,
-        }
-    }
-
     /// log10 a_T at temperature `t` (°C), when `t` is one of the set's.
     pub fn log_shift_at(&self, t: f64) -> Option<f64> {
         self.log_shifts()

@@ -28,18 +28,20 @@ use crate::text_file::read_utf8_file;
 pub mod columns;
 pub mod digest;
 mod json_error;
+pub mod mu_csv;
 pub mod quality;
 mod read;
 pub mod summary;
 pub mod write;
 
+pub use mu_csv::MuCsv;
 pub use quality::{CondensedSummary, QualitySummary, RunsSummary, ScaleSummary};
 pub use read::{FrictionRow, ModulusRow};
 pub use summary::{
     AnchorSummary, FitSummary, InputSummary, LambdaSummary, LogShiftSummary, ModelSummary,
     PhysicsSummary, RunSummary, ShiftSummary, WindowSummary,
 };
-pub use write::{FitFiles, FitInput, Measured};
+pub use write::{FitFiles, FitFolder, FitInput, Measured};
 
 /// A fit directory read back.
 #[derive(Debug, Clone)]

@@ -1,18 +1,21 @@
 //! Writing a fit folder (docs/ARCHITECTURE.md, "Contract", "Fit folder"):
-//! mu.csv, modulus.csv and fit.json, encoded completely in memory
-//! ([`FitFiles::encode`]) to be swapped in together, fit.json last
-//! ([`FitFiles::named`], for [`crate::output::replace_folder`]).
+//! mu.csv, modulus.csv and fit.json, checked and encoded before the disk is
+//! touched, to be swapped in together, fit.json last. [`FitFiles`] holds all
+//! three in memory (for callers that keep them); [`FitFolder`] holds
+//! modulus.csv and fit.json and writes mu.csv row by row as the folder is
+//! filled ([`MuCsv`]), for data of a million rows.
 
 use rollfit_fit::{FitReport, ModulusPoint};
 use serde::Serialize;
 
 use super::columns::{
-    ABS_E, ABS_E_SIGMA, E_LOSS, E_LOSS_SIGMA, E_STORAGE, E_STORAGE_SIGMA, EXACT_CORRECTION,
-    FIT_JSON, LOG_AT, MODULUS_COLUMNS, MODULUS_CSV, MU_CSV, MU_FIT, MU_MEASURED, OMEGA, RESIDUAL,
-    SIGMA, T, TAN_DELTA, TAN_DELTA_SIGMA, V, V_REDUCED,
+    ABS_E, ABS_E_SIGMA, E_LOSS, E_LOSS_SIGMA, E_STORAGE, E_STORAGE_SIGMA, FIT_JSON,
+    MODULUS_COLUMNS, MODULUS_CSV, MU_CSV, OMEGA, TAN_DELTA, TAN_DELTA_SIGMA,
 };
+use super::mu_csv::MuCsv;
 use crate::csv_text::csv_bytes;
 use crate::error::{Fault, IoError};
+use crate::output::FileContent;
 
 /// A column of modulus.csv and its value in a curve point.
 type ModulusColumn = (&'static str, fn(&ModulusPoint) -> f64);
@@ -113,10 +116,11 @@ impl FitFiles {
         measured: &Measured<'_>,
         input: &FitInput,
     ) -> Result<FitFiles, IoError> {
+        let folder = FitFolder::encode(report, measured, input)?;
         Ok(FitFiles {
-            mu_csv: mu_csv(measured, report)?,
-            modulus_csv: modulus_csv(report)?,
-            fit_json: fit_json(report, input)?,
+            mu_csv: MuCsv::new(*measured, report).encode()?,
+            modulus_csv: folder.modulus_csv,
+            fit_json: folder.fit_json,
         })
     }
 
@@ -124,8 +128,8 @@ impl FitFiles {
     pub fn named(&self) -> [(&'static str, &[u8]); 3] {
         [
             (MU_CSV, self.mu_csv.as_slice()),
-            (MODULUS_CSV, self.modulus_csv.as_slice()),
-            (FIT_JSON, self.fit_json.as_slice()),
+            (MODULUS_CSV, &self.modulus_csv),
+            (FIT_JSON, &self.fit_json),
         ]
     }
 }
@@ -159,61 +163,37 @@ fn modulus_csv(report: &FitReport) -> Result<Vec<u8>, IoError> {
     )
 }
 
-/// mu.csv: v, mu_measured, mu_fit, [sigma], residual = (μ_fit − μ)/μ, for
-/// a temperature set T, log_aT and v_reduced = v·a_T (the speed on the
-/// master curve at T_ref), and with `physics = "exact"` exact_correction
-/// (μ_exact/μ_approx), in the data's order.
-fn mu_csv(measured: &Measured<'_>, report: &FitReport) -> Result<Vec<u8>, IoError> {
-    let points = measured.speeds.len();
-    let correction = report.physics.as_ref().map(|p| &p.correction);
-    for fitted in [Some(&report.mu_fit), correction].into_iter().flatten() {
-        if fitted.len() != points {
-            return Err(Fault::FittedCount {
-                fitted: fitted.len(),
-                points,
-            }
-            .into());
-        }
+/// A fit folder's modulus.csv and fit.json, encoded, with its mu.csv
+/// checked but written only as the folder is filled ([`FitFolder::files`]).
+#[derive(Debug, Clone)]
+pub struct FitFolder {
+    modulus_csv: Vec<u8>,
+    fit_json: Vec<u8>,
+}
+
+impl FitFolder {
+    /// Encodes modulus.csv and fit.json of `report`, a fit of `measured`,
+    /// and checks its mu.csv ([`MuCsv::check`]).
+    pub fn encode(
+        report: &FitReport,
+        measured: &Measured<'_>,
+        input: &FitInput,
+    ) -> Result<FitFolder, IoError> {
+        MuCsv::new(*measured, report).check()?;
+        Ok(FitFolder {
+            modulus_csv: modulus_csv(report)?,
+            fit_json: fit_json(report, input)?,
+        })
     }
-    let mut header = vec![V, MU_MEASURED, MU_FIT];
-    if measured.sigma.is_some() {
-        header.push(SIGMA);
+
+    /// (file name, content) in the order they are written, fit.json last,
+    /// with `mu_csv` (of the same report and data as [`FitFolder::encode`]
+    /// was given) written as it is encoded.
+    pub fn files<'a>(&'a self, mu_csv: &'a MuCsv<'a>) -> [(&'static str, &'a dyn FileContent); 3] {
+        [
+            (MU_CSV, mu_csv),
+            (MODULUS_CSV, &self.modulus_csv),
+            (FIT_JSON, &self.fit_json),
+        ]
     }
-    header.push(RESIDUAL);
-    let shift = report.shift.as_ref();
-    if shift.is_some() {
-        header.extend([T, LOG_AT, V_REDUCED]);
-    }
-    if correction.is_some() {
-        header.push(EXACT_CORRECTION);
-    }
-    let mut rows = Vec::with_capacity(points);
-    for i in 0..points {
-        let (v, mu, fit) = (measured.speeds[i], measured.friction[i], report.mu_fit[i]);
-        let mut row = vec![v, mu, fit];
-        if let Some(sigma) = measured.sigma {
-            row.push(sigma[i]);
-        }
-        row.push((fit - mu) / mu);
-        if let Some(shift) = shift {
-            // Rows without a T column under a shift are a joint fit's
-            // rolling data, measured at T_ref (the fit's own rule).
-            let t = measured.temperature.map_or(shift.t_ref(), |t| t[i]);
-            let log_a = shift
-                .log_shifts()
-                .iter()
-                .min_by(|a, b| {
-                    (a.temperature - t)
-                        .abs()
-                        .total_cmp(&(b.temperature - t).abs())
-                })
-                .map_or(f64::NAN, |s| s.log_shift);
-            row.extend([t, log_a, v * 10f64.powf(log_a)]);
-        }
-        if let Some(correction) = correction {
-            row.push(correction[i]);
-        }
-        rows.push(row);
-    }
-    csv_bytes(&header, rows)
 }

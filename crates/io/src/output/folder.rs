@@ -5,10 +5,11 @@
 //! files (`record.rs`).
 
 use std::fs::{self, OpenOptions};
-use std::io::{self, Write};
+use std::io::{self, BufWriter};
 use std::path::Path;
 
 use super::atomic::write_atomically;
+use super::content::FileContent;
 use super::dirs::{create_folder, parent_of};
 use super::record::{self, Occupant, RECORD_FILE, Writer};
 use super::temporary::{TEMPORARY_PREFIX, loop_temporary, remove_stale, temporary_pid};
@@ -123,6 +124,21 @@ pub fn replace_folder(
     force: bool,
     files: &[(&str, &[u8])],
 ) -> Result<(), IoError> {
+    let contents: Vec<(&str, &dyn FileContent)> = files
+        .iter()
+        .map(|(name, bytes)| (*name, bytes as &dyn FileContent))
+        .collect();
+    replace_folder_with(dir, writer, force, &contents)
+}
+
+/// [`replace_folder`] with files whose content is written as it is
+/// encoded ([`FileContent`]).
+pub fn replace_folder_with(
+    dir: &Path,
+    writer: Writer,
+    force: bool,
+    files: &[(&str, &dyn FileContent)],
+) -> Result<(), IoError> {
     let occupant = check_occupant(dir, writer, force, files.iter().map(|f| f.0))?;
     let parent = parent_of(dir);
     create_folder(&parent)?;
@@ -215,7 +231,7 @@ fn fill_and_swap(
     stage: &Path,
     occupant: Option<&Occupant>,
     writer: Writer,
-    files: &[(&str, &[u8])],
+    files: &[(&str, &dyn FileContent)],
 ) -> io::Result<()> {
     if dir.is_dir() {
         for entry in fs::read_dir(dir)? {
@@ -236,13 +252,15 @@ fn fill_and_swap(
         }
     }
     let record = record::encode(writer, files.iter().map(|f| f.0.to_string()));
-    for (name, bytes) in files.iter().chain([&(RECORD_FILE, record.as_slice())]) {
-        let mut file = OpenOptions::new()
+    let record: (&str, &dyn FileContent) = (RECORD_FILE, &record);
+    for (name, content) in files.iter().chain([&record]) {
+        let file = OpenOptions::new()
             .write(true)
             .create_new(true)
             .open(stage.join(name))?;
-        file.write_all(bytes)?;
-        file.sync_all()?;
+        let mut out = BufWriter::new(file);
+        content.write_to(&mut out)?;
+        out.into_inner().map_err(|e| e.into_error())?.sync_all()?;
     }
     sync_folder(stage);
     if !dir.exists() {

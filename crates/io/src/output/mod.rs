@@ -10,6 +10,7 @@
 //! leftovers from a live one's: [`remove_stale`]).
 
 mod atomic;
+mod content;
 mod dirs;
 mod folder;
 mod lock;
@@ -17,7 +18,11 @@ mod record;
 mod temporary;
 
 pub use atomic::{check_target, write_atomically};
-pub use folder::{add_files, check_free_file, check_replaceable, claim_folder, replace_folder};
+pub use content::FileContent;
+pub use folder::{
+    add_files, check_free_file, check_replaceable, claim_folder, replace_folder,
+    replace_folder_with,
+};
 pub use lock::FolderLock;
 pub use record::{RECORD_FILE, Writer};
 pub use temporary::remove_stale;

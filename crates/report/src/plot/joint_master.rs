@@ -18,6 +18,7 @@ use plotters::prelude::*;
 use super::dma_master::{DmaMasterFigure, MasterCurveFit, ShiftMarker, ShiftedPoint};
 use super::isotherm_key::celsius;
 use super::parts::isotherms;
+use super::shift_panel::fitted_law_legend;
 use super::{DrawResult, Figure};
 use rollfit_fit::JointRecord;
 use rollfit_io::fit_dir::FitDir;
@@ -43,6 +44,8 @@ pub struct JointMasterFigure {
     pub shifts: Vec<ShiftMarker>,
     /// The shift law (T °C, log10 a_T), densely; empty for free shifts.
     pub shift_curve: Vec<(f64, f64)>,
+    /// The law and its constants, for the shift panel's legend.
+    pub shift_law: Vec<String>,
     /// The DMA file, as fit.json names it.
     pub dma_source: String,
 }
@@ -124,6 +127,7 @@ impl JointMasterFigure {
             t_ref,
             shifts,
             shift_curve,
+            shift_law: shift.map(fitted_law_legend).unwrap_or_default(),
             dma_source: joint.dma_source.clone(),
         }
     }
@@ -135,7 +139,7 @@ impl JointMasterFigure {
             t_ref: self.t_ref,
             shifts: &self.shifts,
             shift_curve: &self.shift_curve,
-            shift_law: &[],
+            shift_law: &self.shift_law,
             modulus_symbol: "E",
             verdict: None,
         }
@@ -176,7 +180,7 @@ impl Figure for JointMasterFigure {
     fn caption(&self) -> String {
         let isotherms = isotherms(self.points.iter().map(|p| p.temperature));
         format!(
-            "Joint master curve at T_ref = {}: the {} points of {} DMA isotherm{} ({}) at their reduced frequencies ω a_T under the joint shift, E′ (filled) and E″ (open) coloured by temperature, with the joint fit's Prony curve (black) that also describes the rolling friction; tan δ = E″/E′ below; right, log10 a_T per temperature (hollow: the law's value applied) and the fitted shift curve.",
+            "Joint master curve at T_ref = {}: the {} points of {} DMA isotherm{} ({}) at their reduced frequencies ω a_T under the joint shift, E′ (filled) and E″ (open) coloured by temperature, with the joint fit's Prony curve (black) that also describes the rolling friction; tan δ = E″/E′ below; right, log10 a_T per temperature (hollow: the law's value applied) and the shift law with its constants.",
             celsius(self.t_ref),
             self.points.len(),
             isotherms.len(),

@@ -20,6 +20,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 use rollfit_fit::master::{ShiftFactors, ShiftLaw};
+use rollfit_io::fit_dir::ShiftSummary;
 
 use super::axes::linear_range;
 use super::isotherm_key::{celsius, draw_colour_key, text_style};
@@ -294,23 +295,10 @@ pub fn law_legend(shift: &ShiftFactors) -> Vec<String> {
     let reference = format!("T_ref = {}", celsius(shift.t_ref));
     match shift.law {
         ShiftLaw::Wlf => shift.wlf.map_or_else(Vec::new, |w| {
-            vec![
-                format!("WLF, {reference}:"),
-                format!(
-                    "C1 = {}, C2 = {} K",
-                    with_sigma(w.c1, w.c1_sigma),
-                    with_sigma(w.c2, w.c2_sigma)
-                ),
-            ]
+            wlf_legend(&reference, (w.c1, w.c1_sigma), (w.c2, w.c2_sigma))
         }),
         ShiftLaw::Arrhenius => shift.arrhenius.map_or_else(Vec::new, |a| {
-            vec![
-                format!("Arrhenius, {reference}:"),
-                format!(
-                    "E_a = {} kJ/mol",
-                    with_sigma(a.activation_energy / 1e3, a.activation_energy_sigma / 1e3)
-                ),
-            ]
+            arrhenius_legend(&reference, (a.activation_energy, a.activation_energy_sigma))
         }),
         ShiftLaw::WlfArrhenius => shift.wlf_arrhenius.map_or_else(Vec::new, |w| {
             vec![
@@ -333,6 +321,57 @@ pub fn law_legend(shift: &ShiftFactors) -> Vec<String> {
         ],
         ShiftLaw::Auto => Vec::new(),
     }
+}
+
+/// The legend of a fit's shift law as fit.json records it (WLF or
+/// Arrhenius with their constants; free shifts, measured); empty for a
+/// law fit.json does not name.
+pub fn fitted_law_legend(shift: &ShiftSummary) -> Vec<String> {
+    let reference = format!("T_ref = {}", celsius(shift.t_ref));
+    let sigma = |s: Option<f64>| s.unwrap_or(f64::NAN);
+    match (
+        shift.model.as_str(),
+        shift.c1,
+        shift.c2,
+        shift.activation_energy,
+    ) {
+        ("wlf", Some(c1), Some(c2), _) => wlf_legend(
+            &reference,
+            (c1, sigma(shift.c1_sigma)),
+            (c2, sigma(shift.c2_sigma)),
+        ),
+        ("arrhenius", _, _, Some(ea)) => {
+            arrhenius_legend(&reference, (ea, sigma(shift.activation_energy_sigma)))
+        }
+        ("free", ..) => vec![
+            format!("free (measured), {reference}:"),
+            "linear in T between temperatures".to_string(),
+        ],
+        _ => Vec::new(),
+    }
+}
+
+/// "WLF, T_ref = …:" and its constants (value, 1σ), C2 in K.
+fn wlf_legend(reference: &str, c1: (f64, f64), c2: (f64, f64)) -> Vec<String> {
+    vec![
+        format!("WLF, {reference}:"),
+        format!(
+            "C1 = {}, C2 = {} K",
+            with_sigma(c1.0, c1.1),
+            with_sigma(c2.0, c2.1)
+        ),
+    ]
+}
+
+/// "Arrhenius, T_ref = …:" and E_a (value, 1σ, J/mol) in kJ/mol.
+fn arrhenius_legend(reference: &str, activation_energy: (f64, f64)) -> Vec<String> {
+    vec![
+        format!("Arrhenius, {reference}:"),
+        format!(
+            "E_a = {} kJ/mol",
+            with_sigma(activation_energy.0 / 1e3, activation_energy.1 / 1e3)
+        ),
+    ]
 }
 
 /// "8.86 ± 0.12": the value to the decimals of its standard error's two

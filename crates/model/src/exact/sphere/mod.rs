@@ -286,17 +286,6 @@ impl RollingSphere {
         )
     }
 
-    /// Hertz radius (m) with the glassy effective modulus (plane strain:
-    /// the half-width).
-    pub fn glassy_contact_radius(&self) -> f64 {
-        hertz_contact_size(
-            self.element.shape(),
-            self.radius,
-            self.load,
-            1.0 / self.compliance.instantaneous,
-        )
-    }
-
     /// The contact radius expected at speed v: Hertz with the compliance
     /// after the contact time 2r/v, iterated.
     fn expected_radius(&self, v: f64) -> f64 {
