@@ -56,6 +56,7 @@ pub mod reach;
 pub mod relaxation;
 mod relaxation_prony;
 mod scale;
+mod shift_profile;
 mod shifts;
 pub mod temperature_law;
 pub mod van_gurp_palmen;

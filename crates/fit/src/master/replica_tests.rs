@@ -201,7 +201,6 @@ fn eplexor_like_replica_superposes_where_it_can_and_says_where_not() {
         );
         let valid = MasterSettings::default().check(&isotherms).unwrap();
         let factors = shift_factors(&isotherms, &valid).unwrap();
-        let vgp = van_gurp_palmen(&isotherms);
         assert!(factors.shifts.iter().any(|s| s.determined));
         for &k in &holds {
             let p = factors
@@ -238,47 +237,40 @@ fn eplexor_like_replica_superposes_where_it_can_and_says_where_not() {
                 factors.warnings
             );
         }
-        let told = fails
-            .iter()
-            .filter(|&&k| {
-                factors
-                    .pairs
-                    .iter()
-                    .any(|p| p.lower == k && p.upper == k + 1 && p.tts_fails)
-            })
-            .count();
-        // The van Gurp–Palmen test names a failure without any shift,
-        // where a nearly flat E′ leaves its own shift unfixed.
-        let by_vgp = fails
-            .iter()
-            .filter(|&&k| {
-                vgp.pairs
-                    .iter()
-                    .any(|p| p.t_lower == temps[k] && p.collapses() == Some(false))
-            })
-            .count();
-        let named = fails
-            .iter()
-            .filter(|&&k| {
-                factors
-                    .pairs
-                    .iter()
-                    .any(|p| p.lower == k && p.upper == k + 1 && p.tts_fails)
-                    || vgp
-                        .pairs
-                        .iter()
-                        .any(|p| p.t_lower == temps[k] && p.collapses() == Some(false))
-            })
-            .count();
-        eprintln!(
-            "seed {seed}: of {} failing pairs {told} named by their shifts, {by_vgp} by van \
-             Gurp–Palmen, {named} by either",
-            fails.len()
-        );
+        report_named(&factors, &isotherms, &fails, seed);
         for s in &factors.shifts {
             assert_eq!(s.determined, s.log_shift_measured_sigma <= DETERMINED_SIGMA);
         }
     }
+}
+
+/// Prints how many of the failing pairs `fails` the summary names as
+/// superposition failures: by their shifts, by the van Gurp–Palmen test,
+/// or by either.
+fn report_named(factors: &ShiftFactors, isotherms: &[Isotherm], fails: &[usize], seed: u64) {
+    // The van Gurp–Palmen test names a failure without any shift, where a
+    // nearly flat E′ leaves its own shift unfixed.
+    let vgp = van_gurp_palmen(isotherms);
+    let by_shifts = |k: usize| {
+        factors
+            .pairs
+            .iter()
+            .any(|p| p.lower == k && p.upper == k + 1 && p.tts_fails)
+    };
+    let by_vgp = |k: usize| {
+        vgp.pairs
+            .iter()
+            .any(|p| p.t_lower == isotherms[k].temperature && p.collapses() == Some(false))
+    };
+    let count = |named: &dyn Fn(usize) -> bool| fails.iter().filter(|&&k| named(k)).count();
+    eprintln!(
+        "seed {seed}: of {} failing pairs {} named by their shifts, {} by van Gurp–Palmen, {} \
+         by either",
+        fails.len(),
+        count(&by_shifts),
+        count(&by_vgp),
+        count(&|k| by_shifts(k) || by_vgp(k))
+    );
 }
 
 /// The foam-like set: 19 isotherms from −35 to 60 °C, 10 frequencies over
@@ -352,7 +344,6 @@ fn big_steps_on_narrow_windows_are_measured() {
         );
         let valid = MasterSettings::default().check(&isotherms).unwrap();
         let factors = shift_factors(&isotherms, &valid).unwrap();
-        let vgp = van_gurp_palmen(&isotherms);
         let p = factors.pairs[0];
         assert!(
             p.verdict == PairVerdict::Determined && (p.shift + 2.2).abs() <= 0.1,

@@ -16,10 +16,41 @@ use rollfit_fit::FitReport;
 use super::columns::{
     EXACT_CORRECTION, LOG_AT, MU_FIT, MU_MEASURED, RESIDUAL, SIGMA, T, V, V_REDUCED,
 };
-use super::write::Measured;
 use crate::csv_text::number;
 use crate::error::{Fault, IoError};
 use crate::output::FileContent;
+
+/// The measured data of a fit, which mu.csv repeats row by row in the
+/// data's order.
+#[derive(Debug, Clone, Copy)]
+pub struct Measured<'a> {
+    /// Speeds, m/s.
+    pub speeds: &'a [f64],
+    /// Measured μ.
+    pub friction: &'a [f64],
+    /// Standard deviations of μ, when the data have them.
+    pub sigma: Option<&'a [f64]>,
+    /// Temperatures, °C, when the data have them.
+    pub temperature: Option<&'a [f64]>,
+}
+
+impl Measured<'_> {
+    /// The one temperature of the `T` column, °C, which fit.json's
+    /// `input.T` records: None without a `T` column or for a temperature
+    /// set (several temperatures, which the report's shift lists).
+    pub fn single_temperature(&self) -> Option<f64> {
+        let mut distinct: Vec<f64> = Vec::new();
+        for &t in self.temperature.into_iter().flatten() {
+            if !distinct.contains(&t) {
+                distinct.push(t);
+            }
+        }
+        match distinct.as_slice() {
+            [t] => Some(*t),
+            _ => None,
+        }
+    }
+}
 
 /// mu.csv of the fit `report` of `measured`.
 #[derive(Debug, Clone, Copy)]

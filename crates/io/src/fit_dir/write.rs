@@ -12,7 +12,7 @@ use super::columns::{
     ABS_E, ABS_E_SIGMA, E_LOSS, E_LOSS_SIGMA, E_STORAGE, E_STORAGE_SIGMA, FIT_JSON,
     MODULUS_COLUMNS, MODULUS_CSV, MU_CSV, OMEGA, TAN_DELTA, TAN_DELTA_SIGMA,
 };
-use super::mu_csv::MuCsv;
+use super::mu_csv::{Measured, MuCsv};
 use crate::csv_text::csv_bytes;
 use crate::error::{Fault, IoError};
 use crate::output::FileContent;
@@ -33,38 +33,6 @@ pub(super) const MODULUS_VALUES: [ModulusColumn; 9] = [
     (TAN_DELTA_SIGMA, |p| p.tan_delta_sigma),
     (ABS_E_SIGMA, |p| p.magnitude_sigma),
 ];
-
-/// The measured data of a fit, which mu.csv repeats row by row in the
-/// data's order.
-#[derive(Debug, Clone, Copy)]
-pub struct Measured<'a> {
-    /// Speeds, m/s.
-    pub speeds: &'a [f64],
-    /// Measured μ.
-    pub friction: &'a [f64],
-    /// Standard deviations of μ, when the data have them.
-    pub sigma: Option<&'a [f64]>,
-    /// Temperatures, °C, when the data have them.
-    pub temperature: Option<&'a [f64]>,
-}
-
-impl Measured<'_> {
-    /// The one temperature of the `T` column, °C, which fit.json's
-    /// `input.T` records: None without a `T` column or for a temperature
-    /// set (several temperatures, which the report's shift lists).
-    pub fn single_temperature(&self) -> Option<f64> {
-        let mut distinct: Vec<f64> = Vec::new();
-        for &t in self.temperature.into_iter().flatten() {
-            if !distinct.contains(&t) {
-                distinct.push(t);
-            }
-        }
-        match distinct.as_slice() {
-            [t] => Some(*t),
-            _ => None,
-        }
-    }
-}
 
 /// Where a fit came from, for fit.json's `input` and `rollfit_version`.
 #[derive(Debug, Clone)]
