@@ -99,6 +99,29 @@ fn tan_delta_rms(report: &FitReport, truth: &Prony) -> f64 {
     (sum / n).sqrt()
 }
 
+/// Every run of the replica's fits, free and auto (`SEED=n`, default 1):
+/// where the evaluations go.
+/// `cargo test --release -p rollfit-fit --test verdict probe -- --ignored --nocapture`
+#[test]
+#[ignore = "probe: run by hand"]
+fn probe() {
+    let seed = std::env::var("SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
+    let set = data(seed);
+    for kind in [ShiftKind::Free, ShiftKind::Auto] {
+        let r = fit(&set, &params(kind)).unwrap();
+        for run in &r.runs {
+            eprintln!(
+                "{kind:?}: {:<60} λ {:.3e} it {:>5} ev {:>5} V {:.6e} {}",
+                run.stage, run.lambda, run.iterations, run.evaluations, run.objective, run.stop_reason
+            );
+        }
+        eprintln!("{kind:?}: {} evaluations, λ {:.3e}", r.evaluations, r.lambda.value);
+    }
+}
+
 /// The replica is fitted and accepted with `shift = "free"` and with the
 /// default settings: not "invalid" (E0 lies beyond the window and is
 /// reported as an extrapolation with its bound), log10 a_T within 0.05
