@@ -98,6 +98,10 @@ fn rolling_data_shift_the_isotherms_the_dma_alone_cannot() {
         assert!(n > 0, "{kind:?}: no curve inside the window");
         assert!(tan_delta <= 0.05, "{kind:?}: tan δ {tan_delta}");
         assert!(modulus <= 0.05, "{kind:?}: |E| {modulus}");
+        // The DMA part's σ, estimated from the part alone, is the noise
+        // drawn (1 %), not the misfit of isotherms placed by a law.
+        let sigma = record.sigma.dma;
+        assert!((0.007..=0.014).contains(&sigma), "{kind:?}: DMA σ {sigma}");
         // What the DMA part alone determines: over one decade nothing,
         // over two the coldest pair only.
         let alone = &record.dma_alone;
