@@ -98,6 +98,20 @@ fn rolling_data_shift_the_isotherms_the_dma_alone_cannot() {
         assert!(n > 0, "{kind:?}: no curve inside the window");
         assert!(tan_delta <= 0.05, "{kind:?}: tan δ {tan_delta}");
         assert!(modulus <= 0.05, "{kind:?}: |E| {modulus}");
+        // `auto` chooses on both parts' shifts together: the kink at 0 °C
+        // rejects every law.
+        if kind == ShiftKind::Auto {
+            let model = report.shift.as_ref().map(|s| s.model_name());
+            assert_eq!(model, Some("free"), "{:?}", report.warnings);
+            assert!(
+                report
+                    .warnings
+                    .iter()
+                    .any(|w| w.contains("chosen on both parts' shifts together")),
+                "{:?}",
+                report.warnings
+            );
+        }
         // The DMA part's σ, estimated from the part alone, is the noise
         // drawn (1 %), not the misfit of isotherms placed by a law.
         let sigma = record.sigma.dma;
