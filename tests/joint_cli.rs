@@ -166,6 +166,38 @@ fn a_bad_dma_point_names_file_and_line() {
     }
 }
 
+/// A DMA isotherm whose shift neither part determines (a flat isotherm at
+/// 200 °C, far above the rolling temperatures, overlapping no other
+/// isotherm) is the DMA file's problem: the message names that file and
+/// the temperature, not the rolling data's file; nothing is written. The
+/// isotherms without it are fitted, and the summary says what the DMA part
+/// alone determines.
+#[test]
+fn a_shift_neither_part_determines_names_the_dma_file() {
+    let dir = folder("undetermined");
+    dir.write("scene.toml", &scene_text(None));
+    let mut far = fs::read_to_string(dir.path().join("dma.csv")).unwrap();
+    for f in ["0.1", "0.316228", "1", "3.16228", "10", "31.6228", "100"] {
+        far += &format!("{f},1e6,1e4,200\n");
+    }
+    dir.write("far.csv", &far);
+    let out = fit_in(dir.path(), "scene.toml", &["--dma", "far.csv"]);
+    let stderr = assert_failure(&out, &["DMA file far.csv", "200 °C", "neither part"]);
+    assert!(!stderr.contains("data file tset.csv"), "{stderr}");
+    assert!(!dir.path().join("out").exists());
+    let out = fit_in(dir.path(), "scene.toml", &["--dma", "dma.csv"]);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("DMA part alone: the DMA isotherms alone determine every shift"),
+        "{stderr}"
+    );
+    let joint = joint_record(&dir.path().join("out"));
+    let shifts = joint["dma_alone"]["shifts"].as_array().unwrap();
+    assert_eq!(shifts.len(), 9);
+    assert!(shifts.iter().all(|s| s["determined"] == true), "{shifts:?}");
+}
+
 /// The settings only a joint fit reads are refused without DMA data,
 /// naming the flag.
 #[test]

@@ -90,6 +90,7 @@ fn record(fit: &FitDir, compatible: bool) -> JointRecord {
             dma_alone_parameters: 14.0,
             joint_parameters: 16.0,
         },
+        dma_alone: Default::default(),
         compatibility: Compatibility {
             statistic: if compatible { 8.0 } else { 64.75 },
             dof: 10.0,

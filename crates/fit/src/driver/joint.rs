@@ -10,14 +10,17 @@ use crate::analysis::probed_window;
 use crate::condense::condense;
 use crate::data::Measurements;
 use crate::error::FitError;
+use crate::joint::alone::{DmaAlone, dma_alone};
 use crate::joint::consistency::{
     PartShare, Parts, compatibility, friction_factor, residual_ranges,
 };
-use crate::joint::start::{DmaAlone, JointStart, dma_alone, joint_start};
+use crate::joint::law::joint_law;
+use crate::joint::start::{JointStart, StartChoice, joint_start};
 use crate::joint::{DmaFitPoint, DmaRows, JointRecord, JointSigma, PartChi2, moduli_at};
+use crate::master::DEFAULT_T_REF;
 use crate::params::{FrictionFactor, ShiftKind, ValidFitParams};
 use crate::report::{FitReport, RunRecord};
-use crate::shift::distinct_temperatures;
+use crate::shift::{distinct_temperatures, index_of};
 
 use super::assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
 use super::terms::terms_record;
@@ -49,8 +52,7 @@ pub(super) fn fit_joint(
     let condensed = condense(&rows)?;
     let data = condensed.as_ref().map_or(&rows, |c| &c.data);
     let alone = dma_part_alone(&dma, params.dma_sigma)?;
-    let start = joint_start(data, &dma, params, &alone)?;
-    let rolling_alone = fit_measured(data, None, &rolling_params(data, params, &start))?;
+    let (start, rolling_alone) = start_from_parts(data, &dma, params, &alone)?;
     let (weighted, rolling_sigma) = weighted_rows(data, &rolling_alone)?;
     let rolling_unit = rolling_sigma.map_or(1.0, |s| s * s);
     let mut joint = params.clone();
@@ -152,6 +154,31 @@ pub(super) fn fit_joint(
     Ok(report)
 }
 
+/// The joint law and start, and the rolling part fitted alone under
+/// that law ([`crate::joint::start`]).
+fn start_from_parts(
+    data: &Measurements,
+    dma: &DmaRows,
+    params: &ValidFitParams,
+    alone: &DmaAlone,
+) -> Result<(JointStart, FitReport), FitError> {
+    let t_ref = reference_temperature(data, dma, params, alone);
+    let (kind, rolling_alone, law_note) = rolling_and_law(data, params, alone, t_ref)?;
+    let mut start = joint_start(
+        data,
+        dma,
+        params,
+        alone,
+        StartChoice {
+            kind,
+            t_ref,
+            rolling: &rolling_alone,
+        },
+    )?;
+    start.notes.splice(0..0, law_note);
+    Ok((start, rolling_alone))
+}
+
 /// The rows weighted by their σ: their own, or the rolling fit alone's
 /// relative noise times μ (returned too) when they have no σ column.
 fn weighted_rows(
@@ -248,13 +275,106 @@ fn with_temperature(
     )
 }
 
-/// The settings of the rolling part fitted alone: no DMA, the joint law
+/// The joint T_ref, °C: the given one, else the DMA master's, else
+/// 20 °C where the temperatures of both parts reach it, else the one of
+/// them nearest to it.
+fn reference_temperature(
+    data: &Measurements,
+    dma: &DmaRows,
+    params: &ValidFitParams,
+    alone: &DmaAlone,
+) -> f64 {
+    if let Some(t) = params.shift.t_ref {
+        return t;
+    }
+    if let Some(master) = &alone.master {
+        return master.shift.t_ref;
+    }
+    let mut temps = distinct_temperatures(data);
+    temps.extend(dma.temperatures());
+    temps.sort_by(f64::total_cmp);
+    let (lo, hi) = (temps[0], temps[temps.len() - 1]);
+    if (lo..=hi).contains(&DEFAULT_T_REF) {
+        return DEFAULT_T_REF;
+    }
+    temps
+        .into_iter()
+        .min_by(|a, b| {
+            (a - DEFAULT_T_REF)
+                .abs()
+                .total_cmp(&(b - DEFAULT_T_REF).abs())
+        })
+        .unwrap_or(DEFAULT_T_REF)
+}
+
+/// The joint law, the rolling part fitted alone under it, and what the
+/// choice says. The law asked for, or with `auto` the one both parts'
+/// shifts support ([`crate::joint::law`], from the rolling fit's free
+/// shifts; the rolling part is then fitted again under that law when it
+/// is not free); with one temperature in all, free.
+fn rolling_and_law(
+    data: &Measurements,
+    params: &ValidFitParams,
+    alone: &DmaAlone,
+    t_ref: f64,
+) -> Result<(ShiftKind, FitReport, Option<String>), FitError> {
+    let rolling_temps = distinct_temperatures(data);
+    let all = alone
+        .temperatures
+        .iter()
+        .filter(|&&t| index_of(&rolling_temps, t).is_none())
+        .count()
+        + rolling_temps.len();
+    match (all, params.shift.kind) {
+        (1, _) => {
+            let rolling = rolling_fit(data, params, ShiftKind::Free, t_ref)?;
+            return Ok((ShiftKind::Free, rolling, None));
+        }
+        (_, ShiftKind::Auto) => {}
+        (_, kind) => return Ok((kind, rolling_fit(data, params, kind, t_ref)?, None)),
+    }
+    let free = (rolling_temps.len() > 1)
+        .then(|| rolling_fit(data, params, ShiftKind::Free, t_ref))
+        .transpose()?;
+    let (kind, note) = joint_law(alone, free.as_ref().and_then(|f| f.shift.as_ref()), t_ref);
+    let rolling = match free {
+        Some(free) if kind == ShiftKind::Free => free,
+        Some(free) => {
+            let mut law = rolling_fit(data, params, kind, t_ref)?;
+            law.runs = free
+                .runs
+                .into_iter()
+                .map(|mut r| {
+                    r.stage = format!("free shifts for the law: {}", r.stage);
+                    r
+                })
+                .chain(law.runs)
+                .collect();
+            law
+        }
+        None => rolling_fit(data, params, kind, t_ref)?,
+    };
+    Ok((kind, rolling, Some(note)))
+}
+
+/// The rolling part fitted alone under `kind` about `t_ref`.
+fn rolling_fit(
+    data: &Measurements,
+    params: &ValidFitParams,
+    kind: ShiftKind,
+    t_ref: f64,
+) -> Result<FitReport, FitError> {
+    fit_measured(data, None, &rolling_params(data, params, kind, t_ref))
+}
+
+/// The settings of the rolling part fitted alone: no DMA, the law `kind`
 /// (at the joint T_ref unless free shifts need a rolling temperature), no
 /// cross-check and no scale profile (its χ² is what the test needs).
 fn rolling_params(
     data: &Measurements,
     params: &ValidFitParams,
-    start: &JointStart,
+    kind: ShiftKind,
+    t_ref: f64,
 ) -> ValidFitParams {
     let mut single = params.clone();
     single.dma = None;
@@ -263,14 +383,14 @@ fn rolling_params(
     single.shift.cross_check = false;
     single.profile = false;
     single.evidence = true;
-    single.shift.kind = start.kind;
+    single.shift.kind = kind;
     let rolling_temps = distinct_temperatures(data);
-    single.shift.t_ref = match start.kind {
+    single.shift.t_ref = match kind {
         ShiftKind::Free => rolling_temps
             .iter()
-            .any(|&t| (t - start.t_ref).abs() < 1e-9)
-            .then_some(start.t_ref),
-        _ => Some(start.t_ref),
+            .any(|&t| (t - t_ref).abs() < 1e-9)
+            .then_some(t_ref),
+        _ => Some(t_ref),
     };
     single
 }
@@ -363,6 +483,7 @@ impl JointAccount<'_> {
                 dma_alone_parameters: self.parts.dma_alone.1,
                 joint_parameters: self.parts.joint.1,
             },
+            dma_alone: self.alone.record(),
             compatibility: compatibility(&self.parts),
             friction_factor,
             residual_ranges: residual_ranges_all,

@@ -27,16 +27,23 @@
 //! does not give.
 //!
 //! Steps (`crate::driver`'s `joint.rs`):
-//! 1. The DMA part alone: `rollfit master`'s master curve ([`start`]), its
-//!    χ² and effective parameters, its σ when not given.
-//! 2. The start: its law (for `shift = "auto"`), its shifts at every
-//!    temperature of either part relative to the joint T_ref (the given
-//!    one, else the DMA master's), its spectrum on the joint τ grid, which
-//!    covers the band the rolling speeds probe and the DMA's reduced
-//!    frequencies.
-//! 3. The rolling part alone: the usual fit (same law, no scale profile,
-//!    λ by the marginal likelihood), its χ² and effective parameters, its
-//!    σ when not given.
+//! 1. The DMA part alone ([`alone`]): `rollfit master`'s master curve, or
+//!    each isotherm its own curve where the isotherms determine no shift
+//!    between them; its χ² and effective parameters, its σ when not
+//!    given, and which shifts it determines. It never refuses the joint
+//!    fit by itself.
+//! 2. The rolling part alone: the usual fit (no scale profile, λ by the
+//!    marginal likelihood) under the law asked for; with `shift = "auto"`
+//!    first with free shifts, whose pairs join the DMA's determined pairs
+//!    to choose the law on both parts together ([`law`]), then again
+//!    under that law when it is not free. Its χ², effective parameters
+//!    and σ when not given.
+//! 3. The start ([`start`]): at every temperature of either part the DMA
+//!    part's shift where it determines it, else the rolling fit's; a
+//!    temperature neither determines is refused, named, as the DMA file's
+//!    problem. The spectrum of the DMA master curve (or of a series on the
+//!    DMA points at those shifts) on the joint τ grid, which covers the
+//!    band the rolling speeds probe and the DMA's reduced frequencies.
 //! 4. Both together: the λ path of [`crate::driver`] on the joint objective
 //!    from that start, one start (the DMA master is the exploration), the
 //!    usual analysis: bands, shift σ, window (the DMA points widen the
@@ -51,7 +58,9 @@
 //! exact physics is not available in a joint fit (its defect correction
 //! acts on the rolling rows alone).
 
+pub(crate) mod alone;
 pub(crate) mod consistency;
+pub(crate) mod law;
 mod record;
 mod residuals;
 pub(crate) mod start;
@@ -59,8 +68,8 @@ pub(crate) mod start;
 pub use crate::dma_rows::{DMA_MODULUS_RANGE, DMA_OMEGA_RANGE, DmaRows};
 pub use crate::params::DMA_SIGMA_RANGE;
 pub use record::{
-    Compatibility, DmaFitPoint, FrictionFactorRecord, JointRecord, JointSigma, PartChi2,
-    ResidualRange,
+    Compatibility, DmaAloneRecord, DmaAloneShift, DmaFitPoint, FrictionFactorRecord, JointRecord,
+    JointSigma, PartChi2, ResidualRange,
 };
 pub(crate) use residuals::DmaBlock;
 pub(crate) use residuals::moduli_at;

@@ -18,6 +18,11 @@ pub struct JointRecord {
     pub sigma: JointSigma,
     /// Each part's χ² at the joint optimum and fitted alone.
     pub chi2: PartChi2,
+    /// What the DMA part says alone: which shifts it determines, with
+    /// their σ, and its verdict (absent in records written before it was
+    /// reported).
+    #[serde(default)]
+    pub dma_alone: DmaAloneRecord,
     /// Whether the two parts describe one material.
     pub compatibility: Compatibility,
     /// μ_measured = κ μ_theory: fitted with `friction_factor = "free"`
@@ -32,6 +37,41 @@ pub struct JointRecord {
     pub dma: Vec<DmaFitPoint>,
     /// How the start and the law were found, and what the user should know.
     pub notes: Vec<String>,
+}
+
+/// The DMA part fitted alone ([`super::alone`]).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct DmaAloneRecord {
+    /// One sentence for the user: which shifts the isotherms alone
+    /// determine, and where the others come from.
+    pub verdict: String,
+    /// The law of the DMA master curve alone ("wlf", "arrhenius",
+    /// "wlf-arrhenius", "free"); None where the isotherms determine no
+    /// shift.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub law: Option<String>,
+    /// Its reference temperature, °C.
+    #[serde(rename = "T_ref", skip_serializing_if = "Option::is_none")]
+    pub t_ref: Option<f64>,
+    /// Per isotherm, ascending in temperature.
+    pub shifts: Vec<DmaAloneShift>,
+}
+
+/// One isotherm's shift as the DMA part alone measures it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DmaAloneShift {
+    /// Temperature, °C.
+    #[serde(rename = "T")]
+    pub temperature: f64,
+    /// Whether the isotherms alone determine this shift.
+    pub determined: bool,
+    /// log10 a_T measured by the overlaps, about the DMA part's T_ref
+    /// (null where not determined).
+    #[serde(rename = "log_aT")]
+    pub log_shift: Option<f64>,
+    /// Its 1σ, decades (null where not determined).
+    #[serde(rename = "log_aT_sigma")]
+    pub log_shift_sigma: Option<f64>,
 }
 
 /// The relative standard deviations each part is weighted by.

@@ -1,92 +1,44 @@
-//! What the DMA isotherms say alone, and where the joint fit starts from.
+//! Where the joint fit starts from.
 //!
-//! The DMA part alone is what `rollfit master` makes of the file
-//! ([`crate::master`]): shifts found by overlapping neighbouring
-//! isotherms, a law fitted to them, and a smooth Prony series on the
-//! shifted points. Its residuals in ln E′ and ln E″ give
+//! Its law (chosen by the driver: the one asked for, or for
+//! `shift = "auto"` [`super::law`]'s choice on both parts) and its shifts
+//! at every temperature of either part, relative to the joint T_ref:
 //!
-//!   χ²_DMA,alone = Σ r²/σ²,   σ² = Σ r²/(2N − p)  when σ is not given,
+//! - where the DMA isotherms alone determine a shift ([`super::alone`]),
+//!   their measured shift, moved onto the rolling fit's axis by the mean
+//!   difference at the temperatures both cover (the DMA part's values
+//!   as they are where the rolling data cover none);
+//! - elsewhere the rolling fit alone's shift: its law, or its free shifts
+//!   interpolated linearly in T between the rolling temperatures;
+//! - a temperature neither part determines (outside the rolling
+//!   temperatures and undetermined by the isotherms; with a law, farther
+//!   than one neighbour spacing beyond them) is refused, named.
 //!
-//! p the Prony fit's effective parameters plus the law's (or the
-//! determined free shifts'), which the compatibility test needs.
-//!
-//! The joint fit starts from that master curve: its law (for
-//! `shift = "auto"`) and its shifts at every temperature of either part,
-//! relative to the joint T_ref; its spectrum moved onto the joint τ grid,
-//! which covers the band the rolling speeds probe (at the starting
-//! shifts) and the DMA's reduced frequencies.
+//! Its spectrum: the DMA master curve's where the isotherms make one,
+//! else a smooth series fitted to the DMA points at the starting shifts,
+//! moved onto the joint τ grid, which covers the
+//! band the rolling speeds probe (at the starting shifts) and the DMA's
+//! reduced frequencies.
 
-use rollfit_model::ViscoelasticModulus;
+use rollfit_model::modulus::{Arrhenius, Wlf};
+use rollfit_model::{Prony, ViscoelasticModulus};
 
 use crate::data::Measurements;
 use crate::error::FitError;
-use crate::master::{MasterCurve, MasterSettings, ShiftLaw, build_master_curve};
+use crate::master::{MasterCurve, fit_prony};
 use crate::parametrization::Parametrization;
 use crate::params::{FrictionFactor, ShiftKind, ShiftSettings, TermRule, ValidFitParams};
-use crate::shift::{ShiftParam, distinct_temperatures, index_of};
+use crate::report::FitReport;
+use crate::shift::{ShiftParam, ShiftRecord, distinct_temperatures, index_of};
 use crate::tau_grid::{probed_band, relaxation_times};
 use crate::temperature_set::ShiftStart;
 
 use super::DmaRows;
+use super::alone::DmaAlone;
 
 /// A strength below this fraction of the largest one is raised to it in
 /// the start: ln H of an empty term would be −∞.
 const START_FLOOR: f64 = 1e-3;
-
-/// The DMA isotherms fitted alone.
-pub(crate) struct DmaAlone {
-    /// The master curve of the isotherms.
-    pub master: MasterCurve,
-    /// Relative σ of E′ and E″.
-    pub sigma: f64,
-    /// Whether σ was given (`dma_sigma`) rather than estimated.
-    pub sigma_given: bool,
-    /// Σ r²/σ² of the master curve at the DMA points.
-    pub chi2: f64,
-    /// Effective parameters of the DMA fit alone.
-    pub parameters: f64,
-}
-
-/// The master curve of `rows` and its χ² (module doc).
-pub(crate) fn dma_alone(rows: &DmaRows, sigma: Option<f64>) -> Result<DmaAlone, FitError> {
-    let settings = MasterSettings::default().check(rows.isotherms())?;
-    let master = build_master_curve(rows.isotherms(), &settings)?;
-    let prony = &master.fit.prony;
-    let squares: f64 = master
-        .points
-        .iter()
-        .map(|p| {
-            let e = prony.modulus(p.reduced_omega);
-            (e.re / p.storage).ln().powi(2) + (e.im / p.loss).ln().powi(2)
-        })
-        .sum();
-    let shift = &master.shift;
-    let law_parameters = match shift.law {
-        ShiftLaw::Wlf => 2.0,
-        ShiftLaw::Arrhenius => 1.0,
-        ShiftLaw::WlfArrhenius => 3.0,
-        ShiftLaw::Free | ShiftLaw::Auto => {
-            shift.shifts.iter().filter(|s| s.determined).count() as f64 - 1.0
-        }
-    }
-    .max(0.0);
-    let parameters = master.fit.effective_parameters + law_parameters;
-    let residuals = 2.0 * rows.len() as f64;
-    let (sigma, sigma_given) = match sigma {
-        Some(s) => (s, true),
-        None => ((squares / (residuals - parameters).max(1.0)).sqrt(), false),
-    };
-    // A perfect series (synthetic data without noise) would give σ = 0:
-    // the floor is the smallest σ `dma_sigma` accepts.
-    let sigma = sigma.max(super::DMA_SIGMA_RANGE.0);
-    Ok(DmaAlone {
-        chi2: squares / (sigma * sigma),
-        master,
-        sigma,
-        sigma_given,
-        parameters,
-    })
-}
 
 /// Where the joint fit starts.
 pub(crate) struct JointStart {
@@ -105,13 +57,27 @@ pub(crate) struct JointStart {
     pub notes: Vec<String>,
 }
 
+/// The law and reference temperature the driver chose for the joint fit,
+/// and the rolling fit alone under that law.
+pub(crate) struct StartChoice<'a> {
+    /// The joint law (never `Auto`).
+    pub kind: ShiftKind,
+    /// The joint reference temperature before free shifts move it to a
+    /// measured one, °C.
+    pub t_ref: f64,
+    /// The rolling part fitted alone.
+    pub rolling: &'a FitReport,
+}
+
 /// The start of the joint fit of `data` (with temperatures) and `rows`
-/// from the DMA part alone (module doc).
+/// from the parts alone (module doc). A temperature neither part
+/// determines is refused as the DMA file's problem, named.
 pub(crate) fn joint_start(
     data: &Measurements,
     rows: &DmaRows,
     params: &ValidFitParams,
     alone: &DmaAlone,
+    choice: StartChoice,
 ) -> Result<JointStart, FitError> {
     let mut temps = distinct_temperatures(data);
     for t in rows.temperatures() {
@@ -121,26 +87,8 @@ pub(crate) fn joint_start(
     }
     temps.sort_by(f64::total_cmp);
     let mut notes = Vec::new();
-    let master_shift = &alone.master.shift;
-    let kind = match (temps.len(), params.shift.kind) {
-        (1, _) => ShiftKind::Free,
-        (_, ShiftKind::Auto) => {
-            let kind = match master_shift.law {
-                ShiftLaw::Wlf => ShiftKind::Wlf,
-                ShiftLaw::Arrhenius => ShiftKind::Arrhenius,
-                _ => ShiftKind::Free,
-            };
-            notes.push(format!(
-                "shift law {}: the law the DMA isotherms alone choose ({}: {})",
-                kind_name(kind),
-                master_shift.law.name(),
-                master_shift.reason
-            ));
-            kind
-        }
-        (_, kind) => kind,
-    };
-    let mut t_ref = params.shift.t_ref.unwrap_or(master_shift.t_ref);
+    let kind = choice.kind;
+    let mut t_ref = choice.t_ref;
     if kind == ShiftKind::Free && index_of(&temps, t_ref).is_none() {
         let nearest = temps
             .iter()
@@ -153,13 +101,25 @@ pub(crate) fn joint_start(
         ));
         t_ref = nearest;
     }
+    let rolling = RollingShift::of(data, choice.rolling, kind);
+    let log_shift =
+        start_shifts(&temps, t_ref, alone, &rolling).map_err(|open| FitError::DmaData {
+            file: rows.source().to_string(),
+            why: undetermined_message(&open, alone, &rolling),
+        })?;
+    if alone.master.is_none() {
+        notes.push(format!(
+            "DMA part: its isotherms alone determine no shift ({}); the joint fit starts from \
+             the rolling fit's shifts and fits every shift to both parts",
+            alone.undetermined.as_deref().unwrap_or("no overlap")
+        ));
+    }
     let settings = ShiftSettings {
         kind,
         t_ref: Some(t_ref),
         ..params.shift.clone()
     };
     let param = ShiftParam::over(data, temps.clone(), &settings)?;
-    let log_shift = start_shifts(&temps, t_ref, alone);
     let mut theta = param.theta_of_log_shifts(&log_shift);
     if params.friction_factor == FrictionFactor::Free {
         theta.push(0.0);
@@ -171,21 +131,23 @@ pub(crate) fn joint_start(
         notes: Vec::new(),
     }
     .with_theta(data, theta);
-    let prony = &alone.master.fit.prony;
-    let rolling = probed_band(
+    let (prony, dma_range) = match &alone.master {
+        Some(master) => (master.fit.prony.clone(), master_shift_range(master)),
+        None => shifted_master(rows, &temps, &log_shift)?,
+    };
+    let band = probed_band(
         &params.setup,
         shift.range,
         prony.static_modulus(),
         prony.glassy_modulus().min(params.e1_max),
     );
-    let dma_range = master_shift_range(alone);
-    let band = (rolling.0.min(dma_range.0), rolling.1.max(dma_range.1));
+    let band = (band.0.min(dma_range.0), band.1.max(dma_range.1));
     let rule = match &params.terms {
         TermRule::Auto => TermRule::PerDecade(2.0),
         rule => rule.clone(),
     };
     let tau = relaxation_times(band, &rule);
-    let material = material_on(&tau, params, prony);
+    let material = material_on(&tau, params, &prony);
     Ok(JointStart {
         shift,
         tau,
@@ -205,38 +167,185 @@ pub(crate) fn kind_name(kind: ShiftKind) -> &'static str {
     }
 }
 
-/// log10 a_T at each of `temps` relative to `t_ref` from the DMA part's
-/// law (its applied shifts interpolated for a free law); where it has no
-/// value (outside a free law's isotherms, below the WLF divergence) the
-/// nearest temperature's.
-fn start_shifts(temps: &[f64], t_ref: f64, alone: &DmaAlone) -> Vec<f64> {
-    let law = &alone.master.shift;
-    let known: Vec<(f64, f64)> = temps
-        .iter()
-        .chain(std::iter::once(&t_ref))
-        .filter_map(|&t| law.law_at(t).map(|s| (t, s)))
-        .collect();
-    let at = |t: f64| {
-        law.law_at(t).unwrap_or_else(|| {
-            known
-                .iter()
-                .min_by(|a, b| (a.0 - t).abs().total_cmp(&(b.0 - t).abs()))
-                .map_or(0.0, |k| k.1)
-        })
-    };
-    let reference = at(t_ref);
-    temps.iter().map(|&t| at(t) - reference).collect()
+/// The rolling fit alone's shift, as the start reads it.
+struct RollingShift {
+    /// Its record (None: rolling data at one temperature).
+    record: Option<ShiftRecord>,
+    /// The temperatures it covers, °C: its measured ones, a law one
+    /// neighbour spacing beyond them.
+    covered: (f64, f64),
 }
 
-/// The DMA points' reduced frequencies (rad/s) at the DMA part's shifts.
-fn master_shift_range(alone: &DmaAlone) -> (f64, f64) {
-    alone
-        .master
+impl RollingShift {
+    fn of(data: &Measurements, rolling: &FitReport, kind: ShiftKind) -> RollingShift {
+        let temps = distinct_temperatures(data);
+        let (lo, hi) = (temps[0], temps[temps.len() - 1]);
+        let record = rolling.shift.clone();
+        let law = matches!(
+            (kind, &record),
+            (ShiftKind::Wlf, Some(ShiftRecord::Wlf { .. }))
+                | (ShiftKind::Arrhenius, Some(ShiftRecord::Arrhenius { .. }))
+        );
+        let reach = if law {
+            temps.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max)
+        } else {
+            0.0
+        };
+        RollingShift {
+            record,
+            covered: (lo - reach, hi + reach),
+        }
+    }
+
+    /// log10 a_T at `t` about the rolling fit's T_ref where it covers `t`
+    /// (0 for data at one temperature, at that temperature).
+    fn at(&self, t: f64) -> Option<f64> {
+        if !(self.covered.0..=self.covered.1).contains(&t) {
+            return None;
+        }
+        let Some(record) = &self.record else {
+            return Some(0.0);
+        };
+        match record {
+            ShiftRecord::Wlf { t_ref, c1, c2, .. } => {
+                Wlf::new(*t_ref, *c1, *c2).ok()?.log10_shift(t).ok()
+            }
+            ShiftRecord::Arrhenius {
+                t_ref,
+                activation_energy,
+                ..
+            } => Arrhenius::new(*t_ref, *activation_energy)
+                .ok()?
+                .log10_shift(t)
+                .ok(),
+            ShiftRecord::Free { log_shift, .. } => {
+                let x: Vec<f64> = log_shift.iter().map(|s| s.temperature).collect();
+                let y: Vec<f64> = log_shift.iter().map(|s| s.log_shift).collect();
+                Some(linear(&x, &y, t))
+            }
+        }
+    }
+}
+
+/// Linear interpolation of ascending (x, y) at `at` (inside x).
+fn linear(x: &[f64], y: &[f64], at: f64) -> f64 {
+    if x.len() == 1 {
+        return y[0];
+    }
+    let k = x.partition_point(|&xi| xi <= at).clamp(1, x.len() - 1);
+    let w = (at - x[k - 1]) / (x[k] - x[k - 1]);
+    y[k - 1] * (1.0 - w) + y[k] * w
+}
+
+/// log10 a_T at each of `temps` relative to `t_ref` (module doc): the DMA
+/// part's determined shifts on their own reference where they reach
+/// `t_ref`, else moved onto the rolling fit's; elsewhere the rolling fit's.
+/// Err: the temperatures neither part determines.
+fn start_shifts(
+    temps: &[f64],
+    t_ref: f64,
+    alone: &DmaAlone,
+    rolling: &RollingShift,
+) -> Result<Vec<f64>, Vec<f64>> {
+    let determined: Vec<(f64, f64)> = temps
+        .iter()
+        .filter_map(|&t| alone.determined_shift(t).map(|s| (t, s)))
+        .collect();
+    // The DMA part's value at T_ref where its determined isotherms reach
+    // it (its law, or its shifts interpolated).
+    let dma_ref = match (&alone.master, determined.first(), determined.last()) {
+        (Some(m), Some(lo), Some(hi)) if (lo.0..=hi.0).contains(&t_ref) => m.shift.law_at(t_ref),
+        _ => None,
+    };
+    let rolling_ref = rolling.at(t_ref);
+    let common: Vec<(f64, f64)> = determined
+        .iter()
+        .filter_map(|&(t, d)| rolling.at(t).map(|r| (d, r)))
+        .collect();
+    let mean = |f: &dyn Fn(f64, f64) -> f64| {
+        (!common.is_empty())
+            .then(|| common.iter().map(|&(d, r)| f(d, r)).sum::<f64>() / common.len() as f64)
+    };
+    // Both parts on the joint axis, 0 at T_ref: x = d + c_dma, x = r + c_rolling.
+    let (c_dma, c_rolling) = match (dma_ref, rolling_ref) {
+        (Some(d0), Some(r0)) => (Some(-d0), Some(-r0)),
+        (Some(d0), None) => (Some(-d0), mean(&|d, r| d - d0 - r)),
+        (None, Some(r0)) => (mean(&|d, r| r - r0 - d), Some(-r0)),
+        (None, None) => (None, None),
+    };
+    let mut open = Vec::new();
+    let values: Vec<f64> = temps
+        .iter()
+        .map(|&t| {
+            let dma = alone.determined_shift(t).zip(c_dma).map(|(d, c)| d + c);
+            let from_rolling = rolling.at(t).zip(c_rolling).map(|(r, c)| r + c);
+            dma.or(from_rolling).unwrap_or_else(|| {
+                open.push(t);
+                0.0
+            })
+        })
+        .collect();
+    if open.is_empty() {
+        Ok(values)
+    } else {
+        Err(open)
+    }
+}
+
+/// Why the temperatures `open` have no shift: neither the isotherms'
+/// overlaps nor the rolling data reach them.
+fn undetermined_message(open: &[f64], alone: &DmaAlone, rolling: &RollingShift) -> String {
+    let list: Vec<String> = open.iter().map(|t| format!("{t}")).collect();
+    let dma = match &alone.undetermined {
+        Some(why) => format!("the isotherms alone determine no shift ({why})"),
+        None => "their isotherms do not overlap the isotherms whose shifts are determined".into(),
+    };
+    format!(
+        "the shift at {} °C is determined by neither part: {dma}, and the rolling data cover \
+         {} to {} °C only; measure DMA isotherms that overlap their neighbours there (closer in \
+         temperature or over a wider frequency range) or rolling data at that temperature",
+        list.join(", "),
+        rolling.covered.0,
+        rolling.covered.1
+    )
+}
+
+/// The DMA points' reduced frequencies (rad/s) at the DMA master's shifts.
+fn master_shift_range(master: &MasterCurve) -> (f64, f64) {
+    master
         .points
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
             (lo.min(p.reduced_omega), hi.max(p.reduced_omega))
         })
+}
+
+/// The DMA points at the start's shifts `log_shift` at `temps`, with a
+/// smooth causal Prony series fitted to them ([`fit_prony`]) and their
+/// range of reduced frequencies (rad/s): the DMA master curve on the
+/// rolling data's shifts, where the isotherms alone give none. Why not the
+/// rolling fit's own spectrum: without an anchor it places the modulus
+/// scale only weakly (μ goes roughly as tan δ |E|^(−1/3)), and started
+/// off the DMA moduli the free shifts slide the isotherms along the curve
+/// to where its modulus matches theirs, decades from the truth.
+fn shifted_master(
+    rows: &DmaRows,
+    temps: &[f64],
+    log_shift: &[f64],
+) -> Result<(Prony, (f64, f64)), FitError> {
+    let mut points: Vec<(f64, f64, f64)> = rows
+        .points()
+        .map(|(t, w, e1, e2)| {
+            let x = index_of(temps, t).map_or(0.0, |k| log_shift[k]);
+            (w * 10f64.powf(x), e1, e2)
+        })
+        .collect();
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let omega: Vec<f64> = points.iter().map(|p| p.0).collect();
+    let storage: Vec<f64> = points.iter().map(|p| p.1).collect();
+    let loss: Vec<f64> = points.iter().map(|p| p.2).collect();
+    let fit = fit_prony(&omega, &storage, &loss)?;
+    Ok((fit.prony, (omega[0], omega[omega.len() - 1])))
 }
 
 /// The DMA part's spectrum on the grid `tau`: each of its strengths added

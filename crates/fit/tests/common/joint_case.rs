@@ -76,27 +76,42 @@ pub fn sampled_isotherms<M: ViscoelasticModulus>(
     seed: u64,
     count: usize,
 ) -> Vec<Isotherm> {
+    let omega: Vec<f64> = (0..count)
+        .map(|i| {
+            let step = 3.0 * i as f64 / (count - 1) as f64;
+            2.0 * std::f64::consts::PI * 0.1 * 10f64.powf(step)
+        })
+        .collect();
+    isotherms_with_shifts(truth, &DMA_TEMPERATURES, &omega, wlf_truth, noise, seed)
+}
+
+/// Isotherms of `truth` at `temperatures` (°C), each at the frequencies
+/// `omega` (rad/s), shifted by `log_shift` (log10 a_T of T, 0 at the
+/// truth's reference), E′ and E″ each with relative Gaussian noise `noise`
+/// (ChaCha8 with `seed`, drawn isotherm by isotherm, E′ before E″).
+pub fn isotherms_with_shifts<M: ViscoelasticModulus>(
+    truth: &M,
+    temperatures: &[f64],
+    omega: &[f64],
+    log_shift: impl Fn(f64) -> f64,
+    noise: f64,
+    seed: u64,
+) -> Vec<Isotherm> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let normal = Normal::new(0.0, noise).unwrap();
-    DMA_TEMPERATURES
+    temperatures
         .iter()
         .map(|&t| {
-            let omega: Vec<f64> = (0..count)
-                .map(|i| {
-                    let step = 3.0 * i as f64 / (count - 1) as f64;
-                    2.0 * std::f64::consts::PI * 0.1 * 10f64.powf(step)
-                })
-                .collect();
-            let a = 10f64.powf(wlf_truth(t));
+            let a = 10f64.powf(log_shift(t));
             let (mut storage, mut loss) = (Vec::new(), Vec::new());
-            for &w in &omega {
+            for &w in omega {
                 let e = truth.modulus(w * a);
                 storage.push(e.re * (1.0 + normal.sample(&mut rng)));
                 loss.push(e.im * (1.0 + normal.sample(&mut rng)));
             }
             Isotherm {
                 temperature: t,
-                omega,
+                omega: omega.to_vec(),
                 storage,
                 loss,
             }

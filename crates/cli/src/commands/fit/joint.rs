@@ -135,7 +135,8 @@ fn percent(p: f64) -> String {
 }
 
 /// The summary's block about a joint fit: each part's χ² together and
-/// alone, the compatibility verdict and κ if fitted.
+/// alone, which shifts the DMA part alone determines, the compatibility
+/// verdict and κ if fitted.
 pub fn summary_lines(joint: &JointRecord) -> String {
     let chi2 = &joint.chi2;
     let mut text = format!(
@@ -150,6 +151,9 @@ pub fn summary_lines(joint: &JointRecord) -> String {
         "  χ² rolling {:.1} joint / {:.1} alone; χ² DMA {:.1} joint / {:.1} alone\n",
         chi2.rolling_joint, chi2.rolling_alone, chi2.dma_joint, chi2.dma_alone
     );
+    if !joint.dma_alone.verdict.is_empty() {
+        text += &format!("  DMA part alone: {}\n", joint.dma_alone.verdict);
+    }
     text += &format!("  {}\n", joint.compatibility.verdict);
     if let Some(k) = &joint.friction_factor {
         // The verdict states κ and its σ.
