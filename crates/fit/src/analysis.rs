@@ -183,7 +183,7 @@ pub(crate) fn residual_dof(jacobian: &DMatrix<f64>, data_count: usize) -> f64 {
     let h = informative.transpose() * informative;
     let jd = jacobian.rows(0, data_count);
     let (h_inv, _) = pseudo_inverse(&h);
-    let influence = &jd * h_inv * jd.transpose();
+    let influence = jd * h_inv * jd.transpose();
     let trace = influence.trace();
     let squares = influence.norm_squared();
     (data_count as f64 - 2.0 * trace + squares).max(1.0)

@@ -374,35 +374,32 @@ fn study_held_out() {
         .unwrap_or(5);
     let only = std::env::var("CASE").ok();
     let polymer = common::broad_polymer::truth();
-    let mut runs: Vec<(String, Box<dyn Fn(u64) -> Measurements>, ValidRun)> = vec![(
-        "broad polymer".into(),
-        Box::new(|seed| common::broad_polymer::lab_set(15, 0.03, seed)),
-        ValidRun {
-            params: common::broad_polymer::params(rollfit_fit::ShiftKind::Auto, false),
-            truth: Truth::Prony(polymer),
-        },
-    )];
+    let mut runs = vec![HeldOut {
+        name: "broad polymer".into(),
+        data: Box::new(|seed| common::broad_polymer::lab_set(15, 0.03, seed)),
+        params: common::broad_polymer::params(rollfit_fit::ShiftKind::Auto, false),
+        truth: Truth::Prony(polymer),
+    }];
     for (name, s, truth, v_min, decades) in truths() {
         if !name.starts_with("HN") {
             continue;
         }
         let t = truth.clone();
-        runs.push((
-            name.into(),
-            Box::new(move |seed| lab_data(s, &t, v_min, decades, seed)),
-            ValidRun {
-                params: FitParams::default().check(s).unwrap(),
-                truth,
-            },
-        ));
+        runs.push(HeldOut {
+            name: name.into(),
+            data: Box::new(move |seed| lab_data(s, &t, v_min, decades, seed)),
+            params: FitParams::default().check(s).unwrap(),
+            truth,
+        });
     }
     let (mut written, mut failed) = (0, Vec::new());
-    for (name, data, run) in &runs {
+    for run in &runs {
+        let name = &run.name;
         if only.as_deref().is_some_and(|o| !name.contains(o)) {
             continue;
         }
         for seed in 0..seeds {
-            let r = fit(&data(seed), &run.params).unwrap();
+            let r = fit(&(run.data)(seed), &run.params).unwrap();
             let (w, inside, ratio) = held_out(&r, run.truth.modulus());
             let sc = r.scale.as_ref().unwrap();
             eprintln!(
@@ -417,6 +414,9 @@ fn study_held_out() {
                 r.fit_quality.verdict
             );
             if w {
+                for p in &sc.profile {
+                    eprintln!("    E0 {:.3e}: Δχ² {:.2}", p[0], p[1]);
+                }
                 written += 1;
                 if inside < 1.0 || ratio > 1.5 {
                     failed.push(format!("{name} seed {seed}"));
@@ -427,8 +427,11 @@ fn study_held_out() {
     eprintln!("{written} results written; the target missed in {failed:?}");
 }
 
-/// An unanchored case's settings and truth.
-struct ValidRun {
+/// An unanchored case of [`study_held_out`]: its name, data for a seed,
+/// settings and truth.
+struct HeldOut {
+    name: String,
+    data: Box<dyn Fn(u64) -> Measurements>,
     params: rollfit_fit::ValidFitParams,
     truth: Truth,
 }
