@@ -4,9 +4,10 @@
 //! [`crate::analysis`]'s).
 
 use nalgebra::DMatrix;
-use rollfit_model::{Prony, ViscoelasticModulus};
 
-use crate::analysis::{Curvature, add_bias, curvature, modulus_point, probed_window};
+use crate::analysis::{
+    Curvature, add_bias, curvature, modulus_of, modulus_point, probed_window, residual_dof,
+};
 use crate::error::FitError;
 use crate::objective::Objective;
 use crate::parametrization::{Mapped, Parametrization};
@@ -175,11 +176,12 @@ pub(super) fn analyse(
         .as_ref()
         .ok_or(FitError::Internal("the forward model returned no Jacobian"))?;
     let sigma_known = objective.noise_known;
-    let noise_variance = match sigma_known {
-        true => Some(1.0),
-        false => chosen.evidence_noise_variance,
-    };
     let n_rows = objective.data_rows();
+    let noise_variance = match (sigma_known, &objective.dma) {
+        (true, _) => Some(1.0),
+        (false, Some(_)) => chosen.evidence_noise_variance,
+        (false, None) => Some(e.misfit / residual_dof(jac, n_rows)),
+    };
     let c = curvature(jac, n_rows, e.misfit, noise_variance);
     let param = &objective.param;
     let n_material = param.free_count();
@@ -321,17 +323,14 @@ impl Material<'_> {
         let (omega_min, omega_max) = (self.omega_min, self.omega_max);
         let decades = (omega_max / omega_min).log10();
         let points = (decades * CURVE_DENSITY).ceil().max(1.0) as usize + 1;
-        let other: Option<Prony> = match less_smoothed {
-            Some(theta) => Some(param.prony(&param.map(&theta[..n_material]))?),
-            None => None,
-        };
+        let other = less_smoothed.map(|theta| param.map(&theta[..n_material]));
         Ok((0..points)
             .map(|i| {
                 let omega =
                     omega_min * (omega_max / omega_min).powf(i as f64 / (points - 1) as f64);
                 let mut point = modulus_point(param, &self.mapped, &material_covariance, omega);
                 if let Some(other) = &other {
-                    add_bias(&mut point, other.modulus(omega));
+                    add_bias(&mut point, modulus_of(other, param.tau(), omega));
                 }
                 point
             })
