@@ -53,6 +53,7 @@ pub mod pairwise;
 pub mod prony_fit;
 pub mod quality;
 pub mod reach;
+mod creep_prony;
 pub mod relaxation;
 mod relaxation_prony;
 mod scale;

@@ -158,6 +158,35 @@ pub fn modulus_unit(unit: &str) -> Option<(&'static str, f64)> {
     }
 }
 
+/// 1/Pa per `unit` of a compliance: the reciprocal of a modulus unit
+/// (`1/MPa`, `MPa^-1`, `MPa⁻¹`, `MPa-1`) or an area per force (`m²/N`,
+/// `mm²/N`, `µm²/N`, and `cm²/dyn`, the CGS unit of the classic creep
+/// literature: 1 dyn/cm² = 0.1 Pa). The table of creep-compliance units.
+pub fn compliance_unit(unit: &str) -> Option<f64> {
+    let unit = unit.trim();
+    let per = |modulus: &str| modulus_unit(modulus).map(|(_, pascals)| 1.0 / pascals);
+    if let Some(modulus) = unit.strip_prefix("1/") {
+        return per(modulus);
+    }
+    for power in ["^-1", "⁻¹", "-1"] {
+        if let Some(modulus) = unit.strip_suffix(power) {
+            return per(modulus);
+        }
+    }
+    let area = unit
+        .strip_suffix("/N")
+        .map(|a| (a, 1.0))
+        .or_else(|| unit.strip_suffix("/dyn").map(|a| (a, 1e5)))?;
+    let square = match area.0.trim_end_matches(['²', '2', '^']) {
+        "m" => 1.0,
+        "cm" => 1e-4,
+        "mm" => 1e-6,
+        "µm" | "μm" | "um" => 1e-12,
+        _ => return None,
+    };
+    Some(square * area.1)
+}
+
 /// The canonical (CSV) names, each with its unit suffixes: the name
 /// alone, or `name_SUFFIX`.
 const CANONICAL: [(&str, Quantity, &[&str]); 7] = [
