@@ -13,8 +13,8 @@ use rollfit_fit::master::relaxation::{
     RelaxationIsotherm, TimeQuantity, build_relaxation_master, build_time_master,
     relaxation_shift_factors, time_turn,
 };
-use rollfit_model::exact::CreepCompliance;
 use rollfit_fit::master::{MasterSettings, ShiftLaw};
+use rollfit_model::exact::CreepCompliance;
 use rollfit_model::{Prony, Scene};
 
 /// The truth at T_ref = 20 °C: a broad transition, a smooth spectrum

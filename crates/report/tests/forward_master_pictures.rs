@@ -459,6 +459,7 @@ fn a_single_isotherm_leaves_the_shift_panel_to_a_note() {
         shift_curve: &[],
         shift_law: &[],
         modulus_symbol: "G",
+        creep: false,
         verdict: None,
     })
     .unwrap();
@@ -655,6 +656,7 @@ fn relaxation_isotherms_get_their_master_picture() {
         shift_curve: &shift_curve,
         shift_law: &law,
         modulus_symbol: "G",
+        creep: false,
         verdict: None,
     })
     .unwrap();

@@ -171,7 +171,11 @@ pub(super) fn creep_rows(
         }
         // A retardation time within rounding of a relaxation time gives
         // non-finite derivatives; its term then moves with nothing.
-        if row_lambda.iter().chain(&row_strength).all(|v| v.is_finite()) {
+        if row_lambda
+            .iter()
+            .chain(&row_strength)
+            .all(|v| v.is_finite())
+        {
             for p in 0..parameters {
                 d_lambda[(j, p)] = row_lambda[p];
                 d_strength[(j, p)] = row_strength[p];
@@ -221,7 +225,9 @@ mod tests {
             5e7f64.ln(),
             2e6f64.ln(),
         ];
-        let time: Vec<f64> = (0..25).map(|i| 10f64.powf(-4.0 + 0.25 * i as f64)).collect();
+        let time: Vec<f64> = (0..25)
+            .map(|i| 10f64.powf(-4.0 + 0.25 * i as f64))
+            .collect();
         let ln_data = vec![0.0; time.len()];
         let rows = |theta: &[f64]| {
             let h: Vec<f64> = theta[1..].iter().map(|t| t.exp()).collect();

@@ -45,6 +45,7 @@
 //!   guide", Rheology Bulletin 78(2) (2009) 16–31.
 
 pub mod condense;
+mod creep_prony;
 pub(crate) mod horizontal;
 mod isotherm;
 pub mod law_choice;
@@ -53,7 +54,6 @@ pub mod pairwise;
 pub mod prony_fit;
 pub mod quality;
 pub mod reach;
-mod creep_prony;
 pub mod relaxation;
 mod relaxation_prony;
 mod scale;
