@@ -459,7 +459,6 @@ fn a_single_isotherm_leaves_the_shift_panel_to_a_note() {
         shift_curve: &[],
         shift_law: &[],
         modulus_symbol: "G",
-        creep: false,
         verdict: None,
     })
     .unwrap();

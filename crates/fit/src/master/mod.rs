@@ -46,6 +46,7 @@
 
 pub mod condense;
 mod creep_prony;
+mod creep_rows;
 pub(crate) mod horizontal;
 mod isotherm;
 pub mod law_choice;

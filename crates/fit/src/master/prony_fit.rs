@@ -117,8 +117,8 @@ pub(super) enum Data<'a> {
         ln_modulus: Vec<f64>,
     },
     /// ln D(t), the tensile creep compliance, at reduced t (s), fitted
-    /// through the series' exact creep compliance:
-    /// [`super::creep_prony`].
+    /// through the series' exact creep compliance
+    /// ([`super::creep_rows`]).
     Creep {
         time: &'a [f64],
         ln_compliance: Vec<f64>,
@@ -179,10 +179,11 @@ impl Problem<'_> {
             Data::Creep {
                 time,
                 ln_compliance,
-            } => super::creep_prony::creep_rows(
+            } => super::creep_rows::creep_rows(
                 (time, ln_compliance),
                 self.tau,
-                (e0, &h),
+                // The floor `series_of` gives E0: the series must be a solid.
+                (e0.max(STATIC_FLOOR * h.iter().sum::<f64>()), &h),
                 &mut residuals,
                 &mut jacobian,
             ),
