@@ -336,3 +336,34 @@ fn split_unit(raw: &str) -> (&str, Option<&str>) {
         _ => (raw, None),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::compliance_unit;
+
+    /// Each spelling of a compliance unit against its value in 1/Pa worked
+    /// out by hand; a modulus unit or nonsense is none.
+    #[test]
+    fn compliance_units_in_reciprocal_pascals() {
+        for (unit, per_pascal) in [
+            ("1/Pa", 1.0),
+            ("1/kPa", 1e-3),
+            ("1/MPa", 1e-6),
+            ("MPa^-1", 1e-6),
+            ("GPa⁻¹", 1e-9),
+            ("Pa-1", 1.0),
+            ("m²/N", 1.0),
+            ("mm²/N", 1e-6),
+            ("µm²/N", 1e-12),
+            ("um2/N", 1e-12),
+            // 1 dyn = 1e-5 N, 1 cm² = 1e-4 m².
+            ("cm²/dyn", 10.0),
+        ] {
+            let found = compliance_unit(unit).unwrap_or_else(|| panic!("{unit}"));
+            assert!((found / per_pascal - 1.0).abs() < 1e-15, "{unit}: {found}");
+        }
+        for unit in ["MPa", "Pa", "1/s", "km²/N", ""] {
+            assert_eq!(compliance_unit(unit), None, "{unit}");
+        }
+    }
+}
