@@ -275,3 +275,42 @@ fn relaxation_data_compare_as_e_of_t() {
         assert!((rms - expected.abs()).abs() < 1e-6, "{json}");
     }
 }
+
+/// A creep file against a fit (issue 45, item 4): the fit's series is
+/// converted to its exact creep compliance D(t) (retardation times from
+/// the zeros of its Laplace transform) and compared over the times its
+/// window determines. Shear data made from that compliance
+/// (J = 2(1+ν) D, in 1/MPa) compare to rounding; the same data 10 % more
+/// compliant show the fit's D 9.1 % (1/1.1) lower.
+#[test]
+fn creep_data_compare_as_d_of_t() {
+    let dir = TempDir::new("creep");
+    let fit = copy_fit(&dir, "hn-rubber");
+    let read = rollfit_io::FitDir::read(&fit).unwrap();
+    let creep = rollfit_model::exact::CreepCompliance::from_prony(&read.master_curve);
+    let shear = 2.0 * (1.0 + read.summary.poisson);
+    let write = |name: &str, factor: f64| {
+        let mut text = String::from("time (s),Creep Compliance (1/MPa)\n");
+        for j in 0..=80 {
+            let t = 10f64.powf(-8.0 + 0.1 * j as f64);
+            let j_mpa = factor * shear * creep.at(t) * 1e6;
+            text += &format!("{t:e},{j_mpa:e}\n");
+        }
+        dir.write(name, &text)
+    };
+    for (factor, expected) in [(1.0f64, 0.0f64), (1.1, 1.0 / 1.1 - 1.0)] {
+        let data = write(&format!("creep-{factor}.csv"), factor);
+        let out = rollfit(&[OsStr::new("compare"), fit.as_os_str(), data.as_os_str()]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        assert!(text(&out.stdout).contains("D_creep_rms_rel"));
+        let json: serde_json::Value =
+            serde_json::from_slice(&fs::read(fit.join("compare.json")).unwrap()).unwrap();
+        assert_eq!(json["dma_format"], "csv-creep");
+        assert!(json.get("E_relax_rms_rel").is_none(), "{json}");
+        assert!(json["n_points"].as_u64().unwrap() > 10, "{json}");
+        let max = json["D_creep_max_rel"].as_f64().unwrap();
+        let rms = json["D_creep_rms_rel"].as_f64().unwrap();
+        assert!((max - expected.abs()).abs() < 1e-6, "{json}");
+        assert!((rms - expected.abs()).abs() < 1e-6, "{json}");
+    }
+}

@@ -677,7 +677,20 @@ fn relaxation_isotherms_make_a_master_curve_and_a_material() {
         let expected = t[i] / 10f64.powf(wlf(temp[i]));
         assert!((t_r[i] / expected - 1.0).abs() < 0.15, "row {i}");
     }
-    let (t_lo, t_hi) = (t_r[0], t_r[t_r.len() - 1]);
+    let worst = friction_against_truth(&tmp, &dir, (t_r[0], t_r[t_r.len() - 1]));
+    eprintln!(
+        "μ(v) of material.toml against the truth: {:.3} %",
+        100.0 * worst
+    );
+    assert!(worst <= 0.02, "μ(v) differs by {worst}");
+}
+
+/// The largest relative difference of μ(v) of a scene with DIR's
+/// material.toml from μ(v) of [`relaxation_truth`], at the speeds that
+/// probe the reduced window [t_lo, t_hi] (derived as in the fit crate's
+/// relaxation test: v from m r_max/t_max to r_min/(10 m t_min),
+/// m = 2 + √3).
+fn friction_against_truth(tmp: &TempDir, dir: &Path, (t_lo, t_hi): (f64, f64)) -> f64 {
     let truth = relaxation_truth();
     // The ball of the scene below: R = 0.01 m, F = 0.05 N, ν = 0.5.
     let radius = |e: f64| (3.0 * 0.05 * 0.01 / (4.0 * e / 0.75)).cbrt();
@@ -706,12 +719,162 @@ fn relaxation_isotherms_make_a_master_curve_and_a_material() {
     let exact = tmp.write("truth.toml", &format!("{ball}{true_material}\n{sweep}"));
     let a = forward(&fitted, &tmp.path().join("a.csv"));
     let b = forward(&exact, &tmp.path().join("b.csv"));
-    let worst = largest_difference(&a, &b);
+    largest_difference(&a, &b)
+}
+
+/// A shear creep CSV (`time (s)`, `J(t) (1/MPa)`, `T (°C)`): at each of
+/// `temps`, 31 times over 1 … 1000 s, J = 2(1+ν) D = 3 D of the exact creep
+/// compliance of [`relaxation_truth`] at t/a_T (WLF above), 1 % noise.
+fn creep_csv(temps: &[f64], seed: u64) -> String {
+    let creep = rollfit_model::exact::CreepCompliance::from_prony(&relaxation_truth());
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let mut out = String::from("# synthetic creep\nT (°C),time (s),J(t) (1/MPa)\n");
+    for &t in temps {
+        let a = 10f64.powf(wlf(t));
+        for j in 0..=30 {
+            let time = 10f64.powf(j as f64 / 10.0);
+            let shear = 3.0 * creep.at(time / a) * (1.0 + 0.01 * normal.sample(&mut rng));
+            out += &format!("{t},{time:e},{:e}\n", shear * 1e6);
+        }
+    }
+    out
+}
+
+/// `rollfit master` on creep isotherms (issue 45, item 4): the shifts are
+/// the truth's within 0.05 decade, master.csv holds D = J/3 times b_T,
+/// master.json says the quantity and the method, creep.csv holds the
+/// series' exact creep compliance, and a scene with the written
+/// material.toml gives μ(v) within 2 % of the true series.
+#[test]
+fn creep_isotherms_make_a_master_curve_and_a_material() {
+    let tmp = TempDir::new("creep");
+    let temps = [-20.0, -10.0, 0.0, 10.0, 20.0, 30.0];
+    let data = tmp.write("creep.csv", &creep_csv(&temps, 5));
+    let dir = tmp.path().join("master");
+    let out = master(&data, &dir, &[]);
+    let stderr = text(&out.stderr);
+    let stdout = succeed(out);
+    assert!(
+        stdout.contains("Creep")
+            && stdout.contains("6 isotherms")
+            && stdout.contains("exact creep"),
+        "{stdout}"
+    );
+    assert!(stderr.contains("D = J/(2(1+ν))"), "{stderr}");
+    for name in [
+        "master.csv",
+        "shift.csv",
+        "creep.csv",
+        "relaxation.csv",
+        "modulus.csv",
+        "material.toml",
+        "master.json",
+        "master.png",
+    ] {
+        assert!(dir.join(name).is_file(), "{name} missing");
+    }
+    let json: serde_json::Value =
+        serde_json::from_slice(&fs::read(dir.join("master.json")).unwrap()).unwrap();
+    assert_eq!(json["quantity"], "creep");
+    assert_eq!(json["dma_format"], "csv-creep");
+    assert!(
+        json["prony"]["method"]
+            .as_str()
+            .unwrap()
+            .contains("exact creep compliance")
+    );
+    let misfit = json["prony"]["misfit_creep"].as_f64().unwrap();
+    // 1 % scatter is 0.0043 decades RMS.
+    assert!(misfit < 0.006, "{json}");
+    let shift = Table::read(&dir.join("shift.csv"));
+    for (t, log_a) in shift.column("T").iter().zip(shift.column("log_aT")) {
+        assert!(
+            (log_a - wlf(*t)).abs() <= 0.05,
+            "T = {t}: {log_a} vs {}",
+            wlf(*t)
+        );
+    }
+    let points = Table::read(&dir.join("master.csv"));
+    let (t_r, d) = (points.column("t"), points.column("D_creep"));
+    let creep = rollfit_model::exact::CreepCompliance::from_prony(&relaxation_truth());
+    for i in 0..t_r.len() {
+        // 1 % noise, shifts within 0.05 decade: a few per cent at most.
+        assert!((d[i] / creep.at(t_r[i]) - 1.0).abs() < 0.08, "row {i}");
+    }
+    let worst = friction_against_truth(&tmp, &dir, (t_r[0], t_r[t_r.len() - 1]));
     eprintln!(
-        "μ(v) of material.toml against the truth: {:.3} %",
+        "creep: μ(v) of material.toml against the truth: {:.3} %",
         100.0 * worst
     );
     assert!(worst <= 0.02, "μ(v) differs by {worst}");
+}
+
+/// The same compliances named `Creep Compliance` and read as tensile with
+/// `--dma-modulus young`, or named `D(t)`: the same master curve to the
+/// last digit; read as shear (the default for that name), a third of it.
+#[test]
+fn creep_compliance_kind_follows_dma_modulus() {
+    let tmp = TempDir::new("creep-kind");
+    let plain = creep_csv(&[0.0, 10.0, 20.0], 8);
+    let named = |header: &str| plain.replace("J(t) (1/MPa)", header);
+    let tensile = tmp.write("tensile.csv", &named("D(t) (1/MPa)"));
+    let unsaid = tmp.write("unsaid.csv", &named("Creep Compliance [MPa^-1]"));
+    let (a, b, c) = (
+        tmp.path().join("a"),
+        tmp.path().join("b"),
+        tmp.path().join("c"),
+    );
+    succeed(master(&tensile, &a, &[]));
+    succeed(master(&unsaid, &b, &["--dma-modulus", "young"]));
+    succeed(master(&unsaid, &c, &["--dma-modulus", "shear"]));
+    let (a, b, c) = (
+        Table::read(&a.join("master.csv")),
+        Table::read(&b.join("master.csv")),
+        Table::read(&c.join("master.csv")),
+    );
+    assert_eq!(a.column("D_creep"), b.column("D_creep"));
+    for (x, y) in a.column("D_creep").iter().zip(c.column("D_creep")) {
+        assert!((y * 3.0 / x - 1.0).abs() < 1e-12, "{x} vs {y}");
+    }
+}
+
+/// Creep files that are not creep compliances are refused naming the
+/// file, the line and the column, and nothing is written: a negative
+/// compliance, and a column that falls with time (a modulus put there).
+#[test]
+fn bad_creep_files_are_refused() {
+    let tmp = TempDir::new("creep-bad");
+    let text = creep_csv(&[10.0, 20.0], 9);
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    // File line 10 is the 8th row of the 10 °C run.
+    let cells: Vec<String> = lines[9].split(',').map(str::to_string).collect();
+    lines[9] = format!("{},{},-{}", cells[0], cells[1], cells[2]);
+    let negative = tmp.write("negative.csv", &(lines.join("\n") + "\n"));
+    let dir = tmp.path().join("master");
+    assert_failure(
+        &master(&negative, &dir, &[]),
+        &[
+            "negative.csv",
+            "line 10",
+            "J(t) (1/MPa)",
+            "not a creep compliance",
+        ],
+    );
+    assert!(!dir.exists(), "a folder was written on error");
+    // A relaxation modulus in the compliance column: it falls with time.
+    let truth = relaxation_truth();
+    let mut falling = String::from("T (°C),time (s),J(t) (1/MPa)\n");
+    for j in 0..=30 {
+        let time = 10f64.powf(j as f64 / 10.0);
+        falling += &format!("20,{time:e},{:e}\n", truth.relaxation_modulus(time) * 1e-12);
+    }
+    let falling = tmp.write("falling.csv", &falling);
+    assert_failure(
+        &master(&falling, &dir, &[]),
+        &["falling.csv", "line 2", "J(t) (1/MPa)", "falls with time"],
+    );
+    assert!(!dir.exists(), "a folder was written on error");
 }
 
 /// A relaxation file whose times do not increase within an isotherm is

@@ -1,7 +1,8 @@
-//! Stress-relaxation master curves (issue 33, item 4b): isotherms of E(t)
+//! Time-domain master curves: isotherms of the relaxation modulus E(t)
+//! (issue 33, item 4b) or of the creep compliance D(t) (issue 45, item 4)
 //! made from a known Prony series under known WLF shifts, with 1 %
-//! multiplicative noise, superposed and fitted; the shifts, E(t) and μ(v)
-//! of the series are held against the truth.
+//! multiplicative noise, superposed and fitted; the shifts, E(t) or D(t)
+//! and μ(v) of the series are held against the truth.
 
 mod common;
 
@@ -9,9 +10,11 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use rollfit_fit::master::relaxation::{
-    RelaxationIsotherm, build_relaxation_master, relaxation_shift_factors, time_turn,
+    RelaxationIsotherm, TimeQuantity, build_relaxation_master, build_time_master,
+    relaxation_shift_factors, time_turn,
 };
 use rollfit_fit::master::{MasterSettings, ShiftLaw};
+use rollfit_model::exact::CreepCompliance;
 use rollfit_model::{Prony, Scene};
 
 /// The truth at T_ref = 20 °C: a broad transition, a smooth spectrum
@@ -32,11 +35,22 @@ fn truth() -> Prony {
     Prony::new(e0 + h.iter().sum::<f64>(), h, tau).unwrap()
 }
 
-/// Isotherms at `temperatures`: 31 times over 1 … 1000 s (10 per decade,
-/// three decades), E(t, T) = E_ref(t/a_T) under the WLF truth, times
-/// (1 + 0.01 n) with n standard normal from ChaCha8(`seed`) in row order.
+/// Relaxation isotherms at `temperatures` ([`time_isotherms`]).
 fn isotherms(temperatures: &[f64], seed: u64) -> Vec<RelaxationIsotherm> {
-    let truth = truth();
+    time_isotherms(TimeQuantity::Relaxation, temperatures, seed)
+}
+
+/// Isotherms of `quantity` at `temperatures`: 31 times over 1 … 1000 s
+/// (10 per decade, three decades), E(t, T) = E_ref(t/a_T) or
+/// D(t, T) = D_ref(t/a_T) (the truth's exact creep compliance) under the
+/// WLF truth, times (1 + 0.01 n) with n standard normal from
+/// ChaCha8(`seed`) in row order.
+fn time_isotherms(
+    quantity: TimeQuantity,
+    temperatures: &[f64],
+    seed: u64,
+) -> Vec<RelaxationIsotherm> {
+    let truth = quantity.of_series(&truth());
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let normal = Normal::new(0.0, 1.0).unwrap();
     temperatures
@@ -44,14 +58,14 @@ fn isotherms(temperatures: &[f64], seed: u64) -> Vec<RelaxationIsotherm> {
         .map(|&temperature| {
             let a = 10f64.powf(common::wlf_truth(temperature));
             let time: Vec<f64> = (0..=30).map(|j| 10f64.powf(j as f64 / 10.0)).collect();
-            let modulus = time
+            let value = time
                 .iter()
-                .map(|&t| truth.relaxation_modulus(t / a) * (1.0 + 0.01 * normal.sample(&mut rng)))
+                .map(|&t| truth(t / a) * (1.0 + 0.01 * normal.sample(&mut rng)))
                 .collect();
             RelaxationIsotherm {
                 temperature,
                 time,
-                modulus,
+                value,
             }
         })
         .collect()
@@ -103,6 +117,59 @@ fn recovers_shifts_relaxation_and_friction() {
             "seed {seed}: shift {worst_shift:.4} decades, E(t) {:.3} %, μ(v) {:.3} %",
             100.0 * worst_modulus,
             100.0 * worst_mu
+        );
+    }
+}
+
+/// Creep: shifts within 0.05 decade of the WLF truth, the fitted series'
+/// exact creep compliance within 2 % of the truth's over the reduced
+/// window, and μ(v) of a ball rolling on the series within 2 % at the
+/// speeds that probe that window; for three noise seeds.
+#[test]
+fn recovers_shifts_creep_and_friction() {
+    for seed in [1, 2, 3] {
+        let sets = time_isotherms(TimeQuantity::Creep, &TEMPERATURES, seed);
+        let settings = MasterSettings::default()
+            .check_time(&sets, TimeQuantity::Creep)
+            .unwrap();
+        let master = build_time_master(&sets, TimeQuantity::Creep, &settings).unwrap();
+        eprintln!("seed {seed}: {}", master.shift.reason);
+        let mut worst_shift: f64 = 0.0;
+        for s in &master.shift.shifts {
+            let truth = common::wlf_truth(s.temperature);
+            let measured = s.log_shift_measured.expect("every shift determined");
+            worst_shift = worst_shift
+                .max((s.log_shift - truth).abs())
+                .max((measured - truth).abs());
+        }
+        assert!(worst_shift < 0.05, "seed {seed}: shift error {worst_shift}");
+
+        let points = &master.points;
+        let (t_lo, t_hi) = (
+            points[0].reduced_time,
+            points[points.len() - 1].reduced_time,
+        );
+        let truth = truth();
+        let (exact, fitted) = (
+            CreepCompliance::from_prony(&truth),
+            CreepCompliance::from_prony(&master.fit.prony),
+        );
+        let worst_compliance = (0..=200)
+            .map(|j| t_lo * (t_hi / t_lo).powf(j as f64 / 200.0))
+            .map(|t| (fitted.at(t) / exact.at(t) - 1.0).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst_compliance < 0.02,
+            "seed {seed}: D(t) error {worst_compliance}"
+        );
+        let worst_mu = friction_error(&truth, &master.fit.prony, (t_lo, t_hi));
+        assert!(worst_mu < 0.02, "seed {seed}: μ(v) error {worst_mu}");
+        eprintln!(
+            "seed {seed}: shift {worst_shift:.4} decades, D(t) {:.3} %, μ(v) {:.3} %, misfit {:.4} \
+             decades",
+            100.0 * worst_compliance,
+            100.0 * worst_mu,
+            master.fit.misfit
         );
     }
 }

@@ -34,3 +34,8 @@ pub const TIME_MEASURED: &str = "t_measured";
 pub const E_RELAX: &str = "E_relax";
 /// The shear relaxation modulus G(t) of a relaxation file, Pa.
 pub const G_RELAX: &str = "G_relax";
+/// The tensile creep compliance D(t) of a creep file and of the master.csv
+/// and creep.csv `rollfit master` writes from one, 1/Pa.
+pub const D_CREEP: &str = "D_creep";
+/// The shear creep compliance J(t) of a creep file, 1/Pa.
+pub const J_CREEP: &str = "J_creep";

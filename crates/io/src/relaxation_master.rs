@@ -1,17 +1,17 @@
-//! A stress-relaxation file to a master curve: read the file
+//! A stress-relaxation or creep file to a master curve: read the file
 //! ([`crate::dma::relaxation`]), group its points into isotherms, and run
 //! `rollfit_fit::master::relaxation` on them (shifts in log t, a smooth
-//! Prony series of E(t)). The twin of [`crate::dma_master`] for frequency
+//! Prony series of E(t), fitted to E(t) or through its exact creep
+//! compliance to D(t)). The twin of [`crate::dma_master`] for frequency
 //! sweeps; `rollfit master` writes the folder, [`crate::material_file`]
 //! its material.toml in the same form.
 
 use std::path::Path;
 
-use rollfit_fit::master::relaxation::{
-    RelaxationIsotherm, RelaxationMaster, build_relaxation_master,
-};
+use rollfit_fit::master::relaxation::{RelaxationIsotherm, RelaxationMaster, build_time_master};
 use rollfit_fit::master::{DEFAULT_T_REF, MasterSettings, ValidMasterSettings};
 
+use crate::dma::ModulusKind;
 use crate::dma::relaxation::{RelaxationData, groups};
 use crate::error::{DmaMasterError, IoError};
 
@@ -26,13 +26,16 @@ pub struct RelaxationBuilt {
 }
 
 /// Reads `path` and builds its master curve; `poisson` converts a shear
-/// G(t). Errors name the file and, where one point is at fault, its line.
+/// G(t) or J(t), `kind` states a creep compliance's
+/// ([`RelaxationData::read_as`]). Errors name the file and, where one
+/// point is at fault, its line.
 pub fn build(
     path: &Path,
     poisson: f64,
+    kind: Option<ModulusKind>,
     settings: &MasterSettings,
 ) -> Result<RelaxationBuilt, IoError> {
-    let mut data = RelaxationData::read(path, poisson)?;
+    let mut data = RelaxationData::read_as(path, poisson, kind)?;
     let mut isotherms: Vec<RelaxationIsotherm> = Vec::new();
     for (temperature, indices) in groups(&data.points) {
         // No temperatures: the file is one curve, taken at T_ref.
@@ -44,7 +47,7 @@ pub fn build(
         let mut isotherm = RelaxationIsotherm {
             temperature,
             time: Vec::new(),
-            modulus: Vec::new(),
+            value: Vec::new(),
         };
         // Time stamps printed with too few digits repeat: each run of one
         // time is averaged into one point (the reader refused times that
@@ -52,9 +55,9 @@ pub fn build(
         let runs = indices.chunk_by(|&a, &b| data.points[a].time == data.points[b].time);
         let mut repeated = 0;
         for run in runs {
-            let mean = run.iter().map(|&i| data.points[i].modulus).sum::<f64>() / run.len() as f64;
+            let mean = run.iter().map(|&i| data.points[i].value).sum::<f64>() / run.len() as f64;
             isotherm.time.push(data.points[run[0]].time);
-            isotherm.modulus.push(mean);
+            isotherm.value.push(mean);
             repeated += if run.len() > 1 { run.len() } else { 0 };
         }
         if repeated > 0 {
@@ -71,9 +74,9 @@ pub fn build(
         source: Box::new(source),
     };
     let valid = settings
-        .check_relaxation(&isotherms)
+        .check_time(&isotherms, data.quantity)
         .map_err(|error| in_file(DmaMasterError::Fit { error }))?;
-    let master = build_relaxation_master(&isotherms, &valid).map_err(|error| {
+    let master = build_time_master(&isotherms, data.quantity, &valid).map_err(|error| {
         DmaMasterError::MasterCurve {
             path: path.to_path_buf(),
             source: Box::new(DmaMasterError::Fit { error }),

@@ -1,5 +1,5 @@
-//! A fit's master curve against stress-relaxation data (`rollfit compare
-//! DIR RELAXATION.csv`, issue 33).
+//! A fit's master curve against stress-relaxation or creep data
+//! (`rollfit compare DIR RELAXATION.csv`, `rollfit compare DIR CREEP.csv`).
 //!
 //! Which way to convert, and why: the fit's Prony series is converted to
 //! the time domain, E_fit(t) = E0 + Σ_k H_k e^(−t/τ_k) (exact for a Prony
@@ -24,6 +24,13 @@
 //! `log10_E_relax_rms` the RMS of log10(E_fit/E) in decades. All moduli
 //! are Young's (a G(t) converted with the fit's ν).
 //!
+//! Creep data are compared the same way, with the series' exact creep
+//! compliance D_fit(t) (`rollfit_model::exact::CreepCompliance`, from the
+//! zeros of its Laplace transform) in place of E_fit(t): the forward map
+//! again, never D ≈ 1/E. The keys are `D_creep_rms_rel`,
+//! `D_creep_max_rel`, `log10_D_creep_rms`; compliances are tensile (a J(t)
+//! converted with D = J/(2(1+ν)), the fit's ν).
+//!
 //! # References
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
 //!   1980, ch. 3–4.
@@ -32,6 +39,7 @@
 
 use serde::Serialize;
 
+use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_io::FitDir;
 use rollfit_io::dma::DmaOptions;
 use rollfit_io::dma::group_temperatures;
@@ -50,18 +58,12 @@ pub struct RelaxationComparison {
     pub t_min: Option<f64>,
     /// Longest reduced time among them, s.
     pub t_max: Option<f64>,
-    /// RMS relative error of E(t).
-    #[serde(rename = "E_relax_rms_rel")]
-    pub modulus_rms_rel: Option<f64>,
-    /// Largest |relative error| of E(t).
-    #[serde(rename = "E_relax_max_rel")]
-    pub modulus_max_rel: Option<f64>,
-    /// RMS log10 error of E(t), decades.
-    #[serde(rename = "log10_E_relax_rms")]
-    pub log10_modulus_rms: Option<f64>,
-    /// The relaxation file.
+    /// The errors, under the keys of the quantity compared.
+    #[serde(flatten)]
+    pub metrics: TimeMetrics,
+    /// The relaxation or creep file.
     pub dma_file: String,
-    /// "csv-relaxation".
+    /// "csv-relaxation" or "csv-creep".
     pub dma_format: &'static str,
     /// "young" or "shear".
     pub modulus_kind: &'static str,
@@ -83,7 +85,56 @@ pub struct RelaxationComparison {
     pub warnings: Vec<String>,
 }
 
-/// Compares the fit's E(t) with `data` (module doc).
+/// The errors of E(t) or D(t), each under its compare.json key.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum TimeMetrics {
+    /// Relaxation modulus E(t).
+    Relaxation {
+        /// RMS relative error of E(t).
+        #[serde(rename = "E_relax_rms_rel")]
+        rms_rel: Option<f64>,
+        /// Largest |relative error| of E(t).
+        #[serde(rename = "E_relax_max_rel")]
+        max_rel: Option<f64>,
+        /// RMS log10 error of E(t), decades.
+        #[serde(rename = "log10_E_relax_rms")]
+        log10_rms: Option<f64>,
+    },
+    /// Tensile creep compliance D(t).
+    Creep {
+        /// RMS relative error of D(t).
+        #[serde(rename = "D_creep_rms_rel")]
+        rms_rel: Option<f64>,
+        /// Largest |relative error| of D(t).
+        #[serde(rename = "D_creep_max_rel")]
+        max_rel: Option<f64>,
+        /// RMS log10 error of D(t), decades.
+        #[serde(rename = "log10_D_creep_rms")]
+        log10_rms: Option<f64>,
+    },
+}
+
+impl TimeMetrics {
+    /// (RMS relative, largest |relative|, RMS log10 decades).
+    pub fn values(&self) -> (Option<f64>, Option<f64>, Option<f64>) {
+        match *self {
+            TimeMetrics::Relaxation {
+                rms_rel,
+                max_rel,
+                log10_rms,
+            }
+            | TimeMetrics::Creep {
+                rms_rel,
+                max_rel,
+                log10_rms,
+            } => (rms_rel, max_rel, log10_rms),
+        }
+    }
+}
+
+/// Compares the fit's E(t), or its creep compliance, with `data` (module
+/// doc).
 pub fn compare_relaxation(
     fit: &FitDir,
     data: &RelaxationData,
@@ -92,7 +143,7 @@ pub fn compare_relaxation(
     let isotherms = group_temperatures(data.points.iter().map(|p| p.temperature));
     let (log_shifts, notes) = isotherm_shifts(&data.path, &isotherms, fit, options)?;
     // (t_r, E): t_r = t/a_T.
-    let mut points: Vec<(f64, f64)> = data.points.iter().map(|p| (p.time, p.modulus)).collect();
+    let mut points: Vec<(f64, f64)> = data.points.iter().map(|p| (p.time, p.value)).collect();
     for (iso, (_, log_shift)) in isotherms.iter().zip(&log_shifts) {
         let factor = 10f64.powf(*log_shift);
         for &i in &iso.points {
@@ -108,31 +159,47 @@ pub fn compare_relaxation(
         .filter(|p| p.0 >= t_lo && p.0 <= t_hi)
         .collect();
     let (mut relative, mut decades) = (Vec::new(), Vec::new());
+    let series = data.quantity.of_series(&fit.master_curve);
     for &(t, e) in &inside {
-        let fitted = fit.master_curve.relaxation_modulus(t);
+        let fitted = series(t);
         relative.push(fitted / e - 1.0);
         decades.push((fitted / e).log10());
     }
-    let (modulus_rms_rel, modulus_max_rel) = rms_max(&relative);
+    let (rms_rel, max_rel) = rms_max(&relative);
+    let log10_rms = rms_max(&decades).0;
+    let creep = data.quantity == TimeQuantity::Creep;
+    let metrics = if creep {
+        TimeMetrics::Creep {
+            rms_rel,
+            max_rel,
+            log10_rms,
+        }
+    } else {
+        TimeMetrics::Relaxation {
+            rms_rel,
+            max_rel,
+            log10_rms,
+        }
+    };
     let range = [points[0].0, points[points.len() - 1].0];
     let mut warnings = Vec::new();
     if inside.is_empty() {
         warnings.push(format!(
-            "no relaxation point lies in the times the fit determines: [{t_lo:.3e}, {t_hi:.3e}] \
+            "no {} point lies in the times the fit determines: [{t_lo:.3e}, {t_hi:.3e}] \
              s (1/ω of the fit's window) and the data's [{:.3e}, {:.3e}] s at the fit's \
              reference state do not overlap; no metric can be computed",
-            range[0], range[1]
+            data.quantity.name(),
+            range[0],
+            range[1]
         ));
     }
     Ok(RelaxationComparison {
         n_points: inside.len(),
         t_min: inside.first().map(|p| p.0),
         t_max: inside.last().map(|p| p.0),
-        modulus_rms_rel,
-        modulus_max_rel,
-        log10_modulus_rms: rms_max(&decades).0,
+        metrics,
         dma_file: data.path.display().to_string(),
-        dma_format: "csv-relaxation",
+        dma_format: if creep { "csv-creep" } else { "csv-relaxation" },
         modulus_kind: data.kind.name(),
         poisson: fit.summary.poisson,
         fit_window_time: [t_lo, t_hi],

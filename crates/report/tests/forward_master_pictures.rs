@@ -655,6 +655,7 @@ fn relaxation_isotherms_get_their_master_picture() {
         shift_curve: &shift_curve,
         shift_law: &law,
         modulus_symbol: "G",
+        creep: false,
         verdict: None,
     })
     .unwrap();

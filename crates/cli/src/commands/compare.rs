@@ -12,6 +12,7 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_io::FitDir;
 use rollfit_io::dma::relaxation::RelaxationData;
 use rollfit_io::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind, WLF_USAGE};
@@ -189,14 +190,16 @@ pub fn table(c: &Comparison) -> String {
     out
 }
 
-/// `rollfit compare DIR RELAXATION.csv`: the fit's series as E(t) against
-/// the measured relaxation modulus (`rollfit_report::relaxation_compare`,
-/// whose module doc says why in the time domain). compare.json gets the
-/// relaxation keys (`E_relax_rms_rel`, `E_relax_max_rel`,
-/// `log10_E_relax_rms`, …).
+/// `rollfit compare DIR RELAXATION.csv` (or a creep file): the fit's
+/// series as E(t), or as its exact creep compliance D(t), against the
+/// measured values (`rollfit_report::relaxation_compare`, whose module doc
+/// says why in the time domain). compare.json gets the relaxation keys
+/// (`E_relax_rms_rel`, `E_relax_max_rel`, `log10_E_relax_rms`, …) or the
+/// creep keys (`D_creep_rms_rel`, …).
 fn run_relaxation(args: &Args) -> Result<()> {
     let fit = FitDir::read(&args.dir).context("cannot read the fit")?;
-    let data = RelaxationData::read(&args.dma, fit.summary.poisson)
+    let kind = args.flags.dma_modulus.map(DmaModulus::kind);
+    let data = RelaxationData::read_as(&args.dma, fit.summary.poisson, kind)
         .context("cannot read the relaxation file")?;
     let c = compare_relaxation(&fit, &data, &args.flags.options())
         .context("cannot compare the fit with the relaxation data")?;
@@ -211,12 +214,24 @@ fn run_relaxation(args: &Args) -> Result<()> {
         eprintln!("warning: {warning}");
     }
     let value = |x: Option<f64>| x.map_or("—".to_string(), |x| format!("{x:.4}"));
+    let (rms_rel, max_rel, log10_rms) = c.metrics.values();
+    let creep = data.quantity == TimeQuantity::Creep;
+    let (title, values, symbol, key) = if creep {
+        ("Creep", "compliances", "D(t)", "D_creep")
+    } else {
+        ("Relaxation", "moduli", "E(t)", "E_relax")
+    };
+    let series = if creep {
+        "the fit's series' exact creep compliance"
+    } else {
+        "the fit's series as E(t)"
+    };
     let table = format!(
-        "Relaxation {} ({} moduli), {} points at the fit's reference state, t = {:.3e} … {:.3e} s\n\
+        "{title} {} ({} {values}), {} points at the fit's reference state, t = {:.3e} … {:.3e} s\n\
          fit window as times {:.3e} … {:.3e} s; overlap: {} points\n\n\
-         E_relax_rms_rel     {:>10}  RMS relative error of E(t) (the fit's series as E(t))\n\
-         E_relax_max_rel     {:>10}  largest |relative error| of E(t)\n\
-         log10_E_relax_rms   {:>10}  RMS log10 error of E(t), decades\n",
+         {:<19} {:>10}  RMS relative error of {symbol} ({series})\n\
+         {:<19} {:>10}  largest |relative error| of {symbol}\n\
+         {:<19} {:>10}  RMS log10 error of {symbol}, decades\n",
         c.dma_file,
         c.modulus_kind,
         c.dma_points,
@@ -225,9 +240,12 @@ fn run_relaxation(args: &Args) -> Result<()> {
         c.fit_window_time[0],
         c.fit_window_time[1],
         c.n_points,
-        value(c.modulus_rms_rel),
-        value(c.modulus_max_rel),
-        value(c.log10_modulus_rms),
+        format!("{key}_rms_rel"),
+        value(rms_rel),
+        format!("{key}_max_rel"),
+        value(max_rel),
+        format!("log10_{key}_rms"),
+        value(log10_rms),
     );
     stdout::write_stdout(table.as_bytes())?;
     eprintln!("wrote {}", target.display());

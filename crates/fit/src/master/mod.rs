@@ -45,6 +45,8 @@
 //!   guide", Rheology Bulletin 78(2) (2009) 16–31.
 
 pub mod condense;
+mod creep_prony;
+mod creep_rows;
 pub(crate) mod horizontal;
 mod isotherm;
 pub mod law_choice;

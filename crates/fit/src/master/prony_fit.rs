@@ -116,6 +116,13 @@ pub(super) enum Data<'a> {
         time: &'a [f64],
         ln_modulus: Vec<f64>,
     },
+    /// ln D(t), the tensile creep compliance, at reduced t (s), fitted
+    /// through the series' exact creep compliance
+    /// ([`super::creep_rows`]).
+    Creep {
+        time: &'a [f64],
+        ln_compliance: Vec<f64>,
+    },
 }
 
 /// The least-squares problem at one λ.
@@ -137,7 +144,7 @@ impl Problem<'_> {
     pub(super) fn data_count(&self) -> usize {
         match &self.data {
             Data::Frequency { omega, .. } => 2 * omega.len(),
-            Data::Time { time, .. } => time.len(),
+            Data::Time { time, .. } | Data::Creep { time, .. } => time.len(),
         }
     }
 
@@ -166,6 +173,17 @@ impl Problem<'_> {
                 (time, ln_modulus),
                 self.tau,
                 (e0, &h),
+                &mut residuals,
+                &mut jacobian,
+            ),
+            Data::Creep {
+                time,
+                ln_compliance,
+            } => super::creep_rows::creep_rows(
+                (time, ln_compliance),
+                self.tau,
+                // The floor `series_of` gives E0: the series must be a solid.
+                (e0.max(STATIC_FLOOR * h.iter().sum::<f64>()), &h),
                 &mut residuals,
                 &mut jacobian,
             ),

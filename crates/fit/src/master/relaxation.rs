@@ -29,6 +29,16 @@
 //! E(t) = E0 + Σ H_k e^(−t/τ_k) is the same object as the frequency fit's,
 //! so material.toml carries it in the same form.
 //!
+//! Creep isotherms ([`TimeQuantity::Creep`]: the tensile creep compliance
+//! D(t) after a step of stress, a shear J(t) converted by the reader) go
+//! through the same pipeline. The compliance of one spectrum shifts as its
+//! modulus does, D(t, T) = D_ref(t/a_T)/b_T, so 1/D(t, T) =
+//! b_T (1/D_ref)(t/a_T): the shift compares log10 (1/D) against −log10 t,
+//! exactly the relaxation curve with 1/D in place of E, and every shift
+//! statement above holds unchanged. The reduced points carry D b_T. The
+//! series is then fitted through its exact creep compliance
+//! ([`fit_creep_prony`]), not through D ≈ 1/E.
+//!
 //! # References
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
 //!   1980, ch. 3 (E(t) and E*(ω) of one spectrum), ch. 11 (reduced
@@ -38,7 +48,8 @@
 //! - J. Dealy, D. Plazek, "Time–temperature superposition — a users
 //!   guide", Rheology Bulletin 78(2) (2009) 16–31.
 
-pub use super::relaxation_prony::{RelaxationFit, fit_relaxation_prony};
+pub use super::creep_prony::{CREEP_METHOD, fit_creep_prony};
+pub use super::relaxation_prony::{RELAXATION_METHOD, RelaxationFit, fit_relaxation_prony};
 
 use super::horizontal::{Domain, Superposable};
 use super::shifts::{ShiftFactors, superpose};
@@ -47,33 +58,91 @@ use crate::error::FitError;
 use crate::shift::overlap::Curve;
 use rollfit_model::ViscoelasticModulus;
 
-/// One stress-relaxation isotherm: E(t) at one temperature.
+/// What a time-domain isotherm measures (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TimeQuantity {
+    /// The relaxation modulus E(t) after a step of strain (Young's), Pa.
+    Relaxation,
+    /// The creep compliance D(t) after a step of stress (tensile), 1/Pa.
+    Creep,
+}
+
+impl TimeQuantity {
+    /// "relaxation" or "creep" (master.json's `quantity`).
+    pub fn name(self) -> &'static str {
+        match self {
+            TimeQuantity::Relaxation => "relaxation",
+            TimeQuantity::Creep => "creep",
+        }
+    }
+
+    /// The symbol of the (Young's or tensile) quantity: E(t) or D(t).
+    pub fn symbol(self) -> &'static str {
+        match self {
+            TimeQuantity::Relaxation => "E(t)",
+            TimeQuantity::Creep => "D(t)",
+        }
+    }
+
+    /// Its SI unit.
+    pub fn unit(self) -> &'static str {
+        match self {
+            TimeQuantity::Relaxation => "Pa",
+            TimeQuantity::Creep => "1/Pa",
+        }
+    }
+
+    /// The value as the modulus the shift compares: E, or 1/D.
+    pub fn as_modulus(self, value: f64) -> f64 {
+        match self {
+            TimeQuantity::Relaxation => value,
+            TimeQuantity::Creep => 1.0 / value,
+        }
+    }
+
+    /// A Prony series' value of this quantity at time `t` (s): E(t), or
+    /// its exact creep compliance.
+    pub fn of_series(self, prony: &rollfit_model::Prony) -> impl Fn(f64) -> f64 + use<> {
+        let (quantity, prony) = (self, prony.clone());
+        let creep = (quantity == TimeQuantity::Creep)
+            .then(|| rollfit_model::exact::CreepCompliance::from_prony(&prony));
+        move |t| match &creep {
+            None => prony.relaxation_modulus(t),
+            Some(creep) => creep.at(t),
+        }
+    }
+}
+
+/// One time-domain isotherm: E(t) or D(t) at one temperature.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RelaxationIsotherm {
     /// Temperature, °C.
     pub temperature: f64,
-    /// Times since the step of strain, s, increasing.
+    /// Times since the step of strain or stress, s, increasing.
     pub time: Vec<f64>,
-    /// Relaxation modulus E(t) at each time (Young's), Pa.
-    pub modulus: Vec<f64>,
+    /// The quantity at each time: E(t) (Young's), Pa, or D(t) (tensile),
+    /// 1/Pa.
+    pub value: Vec<f64>,
 }
 
-/// One relaxation point on the master curve.
+/// One time-domain point on the master curve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RelaxationPoint {
     /// Reduced time t/a_T, s.
     pub reduced_time: f64,
-    /// E(t)/b_T, Pa.
-    pub modulus: f64,
+    /// E(t)/b_T, Pa, or D(t) b_T, 1/Pa.
+    pub value: f64,
     /// The isotherm's temperature, °C.
     pub temperature: f64,
     /// The measured time t, s.
     pub time: f64,
 }
 
-/// A relaxation master curve built from isotherms.
+/// A time-domain master curve built from isotherms.
 #[derive(Debug, Clone)]
 pub struct RelaxationMaster {
+    /// What the isotherms measure.
+    pub quantity: TimeQuantity,
     /// The shift factors and their law.
     pub shift: ShiftFactors,
     /// Every point at the reference state, ascending in reduced time.
@@ -98,7 +167,16 @@ impl RelaxationMaster {
     pub fn quality(&self) -> super::quality::MasterQuality {
         let mut quality = super::quality::assess(&self.shift, None);
         let (misfit, limit) = (self.fit.misfit, super::quality::NONCAUSAL_FLOOR);
-        if misfit.is_nan() || misfit > limit {
+        if (misfit.is_nan() || misfit > limit) && self.quantity == TimeQuantity::Creep {
+            quality.reasons.push(format!(
+                "the Prony series' creep compliance misses D(t) by {misfit:.3} decades RMS \
+                 (limit {limit}): a creep compliance never falls with time and bends as one \
+                 spectrum allows, and no non-negative series comes closer to these data; check \
+                 that the column is a creep compliance J(t) or D(t) after a step of stress, its \
+                 unit, and that the times count from the step"
+            ));
+            quality.verdict = "poor";
+        } else if misfit.is_nan() || misfit > limit {
             quality.reasons.push(format!(
                 "the Prony series misses E(t) by {misfit:.3} decades RMS (limit {limit}): a \
                  relaxation modulus never rises with time, and no non-negative series comes \
@@ -127,28 +205,64 @@ impl MasterSettings {
         &self,
         isotherms: &[RelaxationIsotherm],
     ) -> Result<ValidMasterSettings, FitError> {
+        self.check_time(isotherms, TimeQuantity::Relaxation)
+    }
+
+    /// [`MasterSettings::check_relaxation`] for isotherms of `quantity`:
+    /// a creep compliance D(t) must lie where 1/D is a modulus
+    /// ([`super::scale::check_modulus_scale`]'s range turned over).
+    pub fn check_time(
+        &self,
+        isotherms: &[RelaxationIsotherm],
+        quantity: TimeQuantity,
+    ) -> Result<ValidMasterSettings, FitError> {
         if isotherms.is_empty() {
-            return Err(FitError::InsufficientData(
-                "no isotherms: a master curve needs relaxation points".into(),
-            ));
+            return Err(FitError::InsufficientData(format!(
+                "no isotherms: a master curve needs {} points",
+                quantity.name()
+            )));
         }
         for iso in isotherms {
-            check_isotherm(iso)?;
+            check_isotherm(iso, quantity)?;
         }
         for iso in isotherms {
-            let points = (1..).zip(&iso.modulus).map(|(k, &e)| (k, "E(t)", e));
-            super::scale::check_modulus_scale(iso.temperature, points)?;
+            match quantity {
+                TimeQuantity::Relaxation => {
+                    let points = (1..).zip(&iso.value).map(|(k, &e)| (k, "E(t)", e));
+                    super::scale::check_modulus_scale(iso.temperature, points)?;
+                }
+                TimeQuantity::Creep => check_compliance_scale(iso)?,
+            }
         }
         self.check_temperatures(isotherms.iter().map(|i| i.temperature).collect())
     }
 }
 
+/// Refuses a creep compliance whose reciprocal lies outside the moduli a
+/// master curve takes (1 … 1e13 Pa).
+fn check_compliance_scale(iso: &RelaxationIsotherm) -> Result<(), FitError> {
+    let (lo, hi) = crate::dma_rows::DMA_MODULUS_RANGE;
+    match (1..)
+        .zip(&iso.value)
+        .find(|&(_, &d)| !(d.is_finite() && (1.0 / hi..=1.0 / lo).contains(&d)))
+    {
+        None => Ok(()),
+        Some((point, d)) => Err(FitError::InsufficientData(format!(
+            "isotherm at {} °C, point {point}: D(t) = {d} 1/Pa must lie in 1e-13 … 1 1/Pa (is \
+             the compliance in 1/Pa? a rubber's compliance in 1/MPa read as 1/Pa lies a factor \
+             1e6 too high: give the column its unit, e.g. \"J [1/MPa]\")",
+            iso.temperature
+        ))),
+    }
+}
+
 /// Finite positive values of equal lengths, increasing times.
-fn check_isotherm(iso: &RelaxationIsotherm) -> Result<(), FitError> {
+fn check_isotherm(iso: &RelaxationIsotherm, quantity: TimeQuantity) -> Result<(), FitError> {
     let t = iso.temperature;
     let refuse = |what: String| {
         Err(FitError::InsufficientData(format!(
-            "relaxation isotherm {t} °C: {what}"
+            "{} isotherm {t} °C: {what}",
+            quantity.name()
         )))
     };
     if !(t.is_finite() && t > -273.15) {
@@ -157,17 +271,23 @@ fn check_isotherm(iso: &RelaxationIsotherm) -> Result<(), FitError> {
         )));
     }
     let n = iso.time.len();
-    if n == 0 || iso.modulus.len() != n {
+    let values = match quantity {
+        TimeQuantity::Relaxation => "moduli",
+        TimeQuantity::Creep => "compliances",
+    };
+    if n == 0 || iso.value.len() != n {
         return refuse(format!(
-            "{n} times and {} moduli: need equal, non-zero counts",
-            iso.modulus.len()
+            "{n} times and {} {values}: need equal, non-zero counts",
+            iso.value.len()
         ));
     }
-    for (i, (&time, &e)) in iso.time.iter().zip(&iso.modulus).enumerate() {
+    for (i, (&time, &e)) in iso.time.iter().zip(&iso.value).enumerate() {
         if !(time > 0.0 && e > 0.0 && time.is_finite() && e.is_finite()) {
             return refuse(format!(
-                "point {} has t = {time} s, E(t) = {e} Pa: both must be finite and positive",
-                i + 1
+                "point {} has t = {time} s, {} = {e} {}: both must be finite and positive",
+                i + 1,
+                quantity.symbol(),
+                quantity.unit()
             ));
         }
     }
@@ -183,13 +303,14 @@ fn check_isotherm(iso: &RelaxationIsotherm) -> Result<(), FitError> {
     Ok(())
 }
 
-/// The curve the shift compares: log10 E(t) against −log10 t (module doc).
-fn curve(iso: &RelaxationIsotherm) -> Curve {
+/// The curve the shift compares: log10 E(t), or log10 (1/D(t)), against
+/// −log10 t (module doc).
+fn curve(iso: &RelaxationIsotherm, quantity: TimeQuantity) -> Curve {
     Curve::new(
         iso.time
             .iter()
-            .zip(&iso.modulus)
-            .map(|(t, e)| (-t.log10(), e.log10()))
+            .zip(&iso.value)
+            .map(|(t, &v)| (-t.log10(), quantity.as_modulus(v).log10()))
             .collect(),
     )
 }
@@ -199,12 +320,21 @@ pub fn relaxation_shift_factors(
     isotherms: &[RelaxationIsotherm],
     settings: &ValidMasterSettings,
 ) -> Result<ShiftFactors, FitError> {
+    time_shift_factors(isotherms, TimeQuantity::Relaxation, settings)
+}
+
+/// The shift factors of time-domain isotherms of `quantity` (module doc).
+pub fn time_shift_factors(
+    isotherms: &[RelaxationIsotherm],
+    quantity: TimeQuantity,
+    settings: &ValidMasterSettings,
+) -> Result<ShiftFactors, FitError> {
     let input = isotherms
         .iter()
         .map(|iso| Superposable {
             temperature: iso.temperature,
             points: iso.time.len(),
-            curves: vec![curve(iso)],
+            curves: vec![curve(iso, quantity)],
         })
         .collect();
     superpose(input, settings, Domain::Time)
@@ -215,15 +345,26 @@ pub fn build_relaxation_master(
     isotherms: &[RelaxationIsotherm],
     settings: &ValidMasterSettings,
 ) -> Result<RelaxationMaster, FitError> {
-    let shift = relaxation_shift_factors(isotherms, settings)?;
+    build_time_master(isotherms, TimeQuantity::Relaxation, settings)
+}
+
+/// Shifts time-domain isotherms of `quantity` and fits the Prony series,
+/// to E(t) directly or through its exact creep compliance (module doc).
+pub fn build_time_master(
+    isotherms: &[RelaxationIsotherm],
+    quantity: TimeQuantity,
+    settings: &ValidMasterSettings,
+) -> Result<RelaxationMaster, FitError> {
+    let shift = time_shift_factors(isotherms, quantity, settings)?;
     let mut points = Vec::new();
     for iso in isotherms {
         let (a, b) = shift.factors_of(iso.temperature)?;
-        for (&t, &e) in iso.time.iter().zip(&iso.modulus) {
+        for (&t, &v) in iso.time.iter().zip(&iso.value) {
             points.push(RelaxationPoint {
                 // t_r = t/a_T (module doc): the opposite of ω a_T.
                 reduced_time: t / a,
-                modulus: e / b,
+                // E_ref = E/b_T; D_ref = D b_T.
+                value: quantity.as_modulus(quantity.as_modulus(v) / b),
                 temperature: iso.temperature,
                 time: t,
             });
@@ -236,16 +377,26 @@ pub fn build_relaxation_master(
     )?;
     points.sort_by(|p, q| p.reduced_time.total_cmp(&q.reduced_time));
     let time: Vec<f64> = points.iter().map(|p| p.reduced_time).collect();
-    let modulus: Vec<f64> = points.iter().map(|p| p.modulus).collect();
-    let fit = fit_relaxation_prony(&time, &modulus)?;
-    let lowest = modulus.iter().fold(f64::INFINITY, |m, &e| m.min(e));
+    let value: Vec<f64> = points.iter().map(|p| p.value).collect();
+    let fit = match quantity {
+        TimeQuantity::Relaxation => fit_relaxation_prony(&time, &value)?,
+        TimeQuantity::Creep => fit_creep_prony(&time, &value)?,
+    };
+    let lowest = value
+        .iter()
+        .fold(f64::INFINITY, |m, &v| m.min(quantity.as_modulus(v)));
+    let measured = match quantity {
+        TimeQuantity::Relaxation => "E(t)",
+        TimeQuantity::Creep => "1/D(t)",
+    };
     let warnings = series_warnings(
         &shift,
         (lowest, fit.prony.static_modulus()),
         fit.converged,
-        ("E(t)", "at long times beyond the data"),
+        (measured, "at long times beyond the data"),
     );
     Ok(RelaxationMaster {
+        quantity,
         shift,
         points,
         fit,

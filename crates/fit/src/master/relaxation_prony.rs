@@ -59,11 +59,18 @@ pub struct RelaxationFit {
     pub lambda: f64,
     /// How λ was chosen.
     pub rule: LambdaRule,
-    /// RMS log10 misfit of E(t), decades.
+    /// RMS log10 misfit of the quantity fitted (E(t), or D(t) of a creep
+    /// run), decades.
     pub misfit: f64,
     /// Whether the final Levenberg–Marquardt run converged.
     pub converged: bool,
+    /// How the series was fitted, in words (summaries, master.json).
+    pub method: &'static str,
 }
+
+/// How the relaxation series is fitted, for summaries and master.json.
+pub const RELAXATION_METHOD: &str = "the Prony series E(t) fitted to E(t) in log E by \
+    Levenberg–Marquardt, smoothness λ by the marginal likelihood";
 
 /// Fits a smooth non-negative Prony series to E(t) (Pa, > 0) at reduced
 /// times `time` (s, > 0); see the module doc.
@@ -95,11 +102,13 @@ pub fn fit_relaxation_prony(time: &[f64], modulus: &[f64]) -> Result<RelaxationF
         rule: LambdaRule::MarginalLikelihood,
         misfit: misfit[0],
         converged,
+        method: RELAXATION_METHOD,
     })
 }
 
-/// Alfrey's first-approximation start (module doc).
-fn start(time: &[f64], modulus: &[f64], tau: &[f64]) -> Vec<f64> {
+/// Alfrey's first-approximation start (module doc); also the creep fit's,
+/// from 1/D(t).
+pub(super) fn start(time: &[f64], modulus: &[f64], tau: &[f64]) -> Vec<f64> {
     // Third-decade bins of E against log t.
     let mut bins: std::collections::BTreeMap<i64, (f64, usize)> = Default::default();
     for (t, e) in time.iter().zip(modulus) {

@@ -68,6 +68,7 @@ mod point;
 pub mod relaxation;
 mod sheet;
 pub mod stated_temperature;
+mod time_isotherms;
 pub mod trios;
 mod vocabulary;
 

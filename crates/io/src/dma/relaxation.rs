@@ -1,7 +1,8 @@
-//! The stress-relaxation form of a DMA file (docs/ARCHITECTURE.md,
+//! The time-domain forms of a DMA file (docs/ARCHITECTURE.md,
 //! "Contract", "DMA files"): a CSV of the relaxation modulus E(t) or G(t)
-//! against the time t since a step of strain, optionally at several
-//! temperatures T. A header line, then one point per line; `#` lines are
+//! against the time t since a step of strain, or of the creep compliance
+//! J(t) (shear) or D(t) (tensile) against the time since a step of stress,
+//! optionally at several temperatures T. A header line, then one point per line; `#` lines are
 //! comments; other columns are ignored. The dialect is the frequency
 //! form's ([`super::csv_form`]): `,`, `;` or tab between the cells, title
 //! lines above the header, decimal commas with `;` or tab.
@@ -11,28 +12,44 @@
 //! | time        | `t`, `time` (any case)                       | `s`, `ms`, `min`, `h`      |
 //! | Young's     | `E_relax`, `E(t)`, `E_t`, `E`                | `Pa`, `kPa`, `MPa`, `GPa`  |
 //! | shear       | `G_relax`, `G(t)`, `G_t`, `G`                | `Pa`, `kPa`, `MPa`, `GPa`  |
+//! | shear creep | `J_creep`, `J(t)`, `J_t`, `J`, `Creep Compliance`, `Shear Creep Compliance` | `1/Pa`, `1/MPa`, `MPa^-1`, `µm²/N`, `cm²/dyn`, … ([`super::vocabulary::compliance_unit`]) |
+//! | tensile creep | `D_creep`, `D(t)`, `D_t`, `D`, `Tensile Creep Compliance` | as shear creep |
 //! | temperature | `T`, `temperature` (any case), optional      | `C` (or `°C`), `K`         |
 //!
 //! A unit follows the name after an underscore, or in parentheses or
 //! brackets: `t_s`, `time (s)`, `t [min]`, `E_relax_MPa`, `E(t) (MPa)`,
 //! `G [kPa]`, `T_K`, `T (°C)`. `t` and `T` are told apart by case (time and
 //! temperature); `E`, `G` are case-sensitive as everywhere in rollfit.
-//! A file is this form when its header has a time and a relaxation-modulus
-//! column and no frequency column (`omega…`, `f`, `f_…`): a frequency
+//! `Creep Compliance` does not say whether the test was in shear or in
+//! tension: it is read as shear (a rheometer's J(t)) unless
+//! `--dma-modulus young` says tensile. A file is this form when its header
+//! has a time and a relaxation-modulus or creep-compliance column and no
+//! frequency column (`omega…`, `f`, `f_…`): a frequency
 //! sweep's reader ([`super::csv_form`]) is unchanged.
 //!
 //! Shear moduli become Young's with E(t) = 2(1 + ν) G(t) (ν
-//! frequency-independent, as for E*(ω): [`super`]). Checks: t in
+//! frequency-independent, as for E*(ω): [`super`]), and a shear creep
+//! compliance tensile with D(t) = J(t)/(2(1 + ν)). Checks: t in
 //! [1e-30, 1e30] s and E(t) in (0, 1e13] Pa, every number finite, T in (−273.15, 1000] °C, all rows
 //! with a temperature or none; within each isotherm (grouped as the
 //! frequency form's, [`super::isotherms`]) the times increase in file
-//! order, else the two lines are named.
+//! order, else the two lines are named. A creep compliance D(t) is in
+//! (0, 1] 1/Pa and never falls with time (every linear viscoelastic
+//! solid's creep compliance rises from the step of stress, Ferry ch. 3):
+//! a point more than [`COMPLIANCE_FALL`] below an earlier point of its
+//! isotherm — far beyond a DMA's scatter — is refused naming both lines
+//! and the column.
 
 use std::path::{Path, PathBuf};
 
+use rollfit_fit::master::relaxation::TimeQuantity;
+
+pub use super::time_isotherms::{COMPLIANCE_FALL, RelaxationPoint, groups};
+
 use super::header::Column;
 use super::point::ModulusKind;
-use crate::columns::{E_RELAX, G_RELAX, TIME};
+use super::time_isotherms::check_isotherms;
+use crate::columns::{D_CREEP, E_RELAX, G_RELAX, J_CREEP, TIME};
 use crate::csv_columns::LineIndex;
 use crate::error::{ColumnRef, IoError, RelaxationError};
 
@@ -40,27 +57,19 @@ use crate::error::{ColumnRef, IoError, RelaxationError};
 /// frequency form's accepted ω (1e-30 … 1e30 rad/s).
 const TIME_RANGE: (f64, f64) = (1e-30, 1e30);
 
-/// One point of a relaxation file, the modulus as Young's.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RelaxationPoint {
-    /// Time since the step of strain, s.
-    pub time: f64,
-    /// Young's relaxation modulus E(t), Pa.
-    pub modulus: f64,
-    /// °C, when the file gives one.
-    pub temperature: Option<f64>,
-}
-
-/// A relaxation file read, its moduli as Young's in Pa.
+/// A relaxation or creep file read, its moduli as Young's in Pa or its
+/// compliances as tensile in 1/Pa.
 #[derive(Debug, Clone)]
 pub struct RelaxationData {
     /// The file.
     pub path: PathBuf,
+    /// Relaxation or creep.
+    pub quantity: TimeQuantity,
     /// The points in file order.
     pub points: Vec<RelaxationPoint>,
     /// The file line (from 1) of each point.
     pub lines: Vec<usize>,
-    /// What the file held (before conversion to Young's).
+    /// What the file held (before conversion to Young's or tensile).
     pub kind: ModulusKind,
     /// How the file was read where the file said so (shear converted).
     pub notes: Vec<String>,
@@ -72,6 +81,9 @@ enum Quantity {
     Time,
     Young,
     Shear,
+    /// J(t), or a creep compliance whose name says no kind.
+    ShearCompliance,
+    TensileCompliance,
     Temperature,
 }
 
@@ -92,7 +104,7 @@ const TEMPERATURE_UNITS: [(&str, f64, f64); 3] =
 
 /// The spellings of each quantity: (name, case-sensitive), longest first
 /// where one is the start of another.
-const SPELLINGS: [(Quantity, &[(&str, bool)]); 4] = [
+const SPELLINGS: [(Quantity, &[(&str, bool)]); 6] = [
     (Quantity::Time, &[("time", false), (TIME, true)]),
     (
         Quantity::Young,
@@ -103,17 +115,53 @@ const SPELLINGS: [(Quantity, &[(&str, bool)]); 4] = [
         &[(G_RELAX, true), ("G(t)", true), ("G_t", true), ("G", true)],
     ),
     (
+        Quantity::ShearCompliance,
+        &[
+            (J_CREEP, true),
+            ("J(t)", true),
+            ("J_t", true),
+            ("J", true),
+            ("Shear Creep Compliance", false),
+            ("Creep Compliance", false),
+        ],
+    ),
+    (
+        Quantity::TensileCompliance,
+        &[
+            (D_CREEP, true),
+            ("D(t)", true),
+            ("D_t", true),
+            ("D", true),
+            ("Tensile Creep Compliance", false),
+        ],
+    ),
+    (
         Quantity::Temperature,
         &[("temperature", false), ("T", true)],
     ),
 ];
 
-/// The unit of a name's tail after its base: "" (the default), `_X`,
-/// `(X)`, `[X]` (spaces allowed before a bracket), X one of `units`.
-fn unit_of(tail: &str, units: &[(&str, f64, f64)]) -> Option<(f64, f64)> {
+/// The factor and offset to SI (s, Pa, 1/Pa, °C) of `unit` for a column
+/// of `quantity`.
+fn unit_factor(quantity: Quantity, unit: &str) -> Option<(f64, f64)> {
+    let table: &[(&str, f64, f64)] = match quantity {
+        Quantity::Time => &TIME_UNITS,
+        Quantity::Young | Quantity::Shear => &MODULUS_UNITS,
+        Quantity::ShearCompliance | Quantity::TensileCompliance => {
+            return super::vocabulary::compliance_unit(unit).map(|f| (f, 0.0));
+        }
+        Quantity::Temperature => &TEMPERATURE_UNITS,
+    };
+    table.iter().find(|u| u.0 == unit).map(|u| (u.1, u.2))
+}
+
+/// The unit of a name's tail after its base: "" (the default: s, Pa,
+/// 1/Pa, °C), `_X`, `(X)`, `[X]` (spaces allowed before a bracket), X a
+/// unit of `quantity`.
+fn unit_of(tail: &str, quantity: Quantity) -> Option<(f64, f64)> {
     let tail = tail.trim_start();
     let unit = if tail.is_empty() {
-        return Some((units[0].1, units[0].2));
+        return Some((1.0, 0.0));
     } else if let Some(u) = tail.strip_prefix('_') {
         u
     } else if let Some(u) = tail.strip_prefix('(').and_then(|u| u.strip_suffix(')')) {
@@ -121,17 +169,12 @@ fn unit_of(tail: &str, units: &[(&str, f64, f64)]) -> Option<(f64, f64)> {
     } else {
         tail.strip_prefix('[')?.strip_suffix(']')?.trim()
     };
-    units.iter().find(|u| u.0 == unit).map(|u| (u.1, u.2))
+    unit_factor(quantity, unit)
 }
 
 /// What column `name` holds, with its map to SI.
 fn recognise(name: &str) -> Option<(Quantity, f64, f64)> {
     for (quantity, spellings) in SPELLINGS {
-        let units: &[(&str, f64, f64)] = match quantity {
-            Quantity::Time => &TIME_UNITS,
-            Quantity::Young | Quantity::Shear => &MODULUS_UNITS,
-            Quantity::Temperature => &TEMPERATURE_UNITS,
-        };
         for &(base, exact) in spellings {
             let Some(head) = name.get(..base.len()) else {
                 continue;
@@ -141,7 +184,7 @@ fn recognise(name: &str) -> Option<(Quantity, f64, f64)> {
             } else {
                 head.eq_ignore_ascii_case(base)
             };
-            if matches && let Some((factor, offset)) = unit_of(&name[base.len()..], units) {
+            if matches && let Some((factor, offset)) = unit_of(&name[base.len()..], quantity) {
                 return Some((quantity, factor, offset));
             }
         }
@@ -155,12 +198,14 @@ fn is_frequency(name: &str) -> bool {
     name == "f" || name.starts_with("f_") || name.starts_with("omega")
 }
 
-/// The columns of a relaxation header.
+/// The columns of a relaxation or creep header.
 struct Header {
     width: usize,
     time: Column,
-    modulus: Column,
-    kind: ModulusKind,
+    /// The relaxation modulus or the creep compliance.
+    value: Column,
+    /// Which of them, and what the name says of its kind.
+    quantity: Quantity,
     temperature: Option<Column>,
 }
 
@@ -199,21 +244,37 @@ fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, 
     let Some(time) = one(&[Quantity::Time], "time")? else {
         return Ok(None);
     };
-    let Some(modulus) = one(&[Quantity::Young, Quantity::Shear], "relaxation modulus")? else {
-        return Err(RelaxationError::NoModulusColumn {
-            path: path.to_path_buf(),
-            header: names.to_vec(),
-        });
+    const MODULI: [Quantity; 2] = [Quantity::Young, Quantity::Shear];
+    const COMPLIANCES: [Quantity; 2] = [Quantity::ShearCompliance, Quantity::TensileCompliance];
+    let modulus = one(&MODULI, "relaxation modulus")?;
+    let compliance = one(&COMPLIANCES, "creep compliance")?;
+    let value = match (modulus, compliance) {
+        (Some(a), Some(b)) => {
+            let (a, b) = if a.index < b.index { (a, b) } else { (b, a) };
+            return Err(RelaxationError::TwoColumns {
+                path: path.to_path_buf(),
+                line,
+                quantity: "relaxation modulus or creep compliance",
+                columns: Box::new((a.reference, b.reference)),
+            });
+        }
+        (Some(value), None) | (None, Some(value)) => value,
+        (None, None) => {
+            return Err(RelaxationError::NoModulusColumn {
+                path: path.to_path_buf(),
+                header: names.to_vec(),
+            });
+        }
     };
-    let kind = match found.iter().find(|(_, c)| c.index == modulus.index) {
-        Some((Quantity::Shear, _)) => ModulusKind::Shear,
-        _ => ModulusKind::Young,
-    };
+    let quantity = found
+        .iter()
+        .find(|(_, c)| c.index == value.index)
+        .map_or(Quantity::Young, |(q, _)| *q);
     Ok(Some(Header {
         width: names.len(),
         time,
-        modulus,
-        kind,
+        value,
+        quantity,
         temperature: one(&[Quantity::Temperature], "temperature")?,
     }))
 }
@@ -288,9 +349,20 @@ pub fn is_relaxation_file(path: &Path) -> bool {
 }
 
 impl RelaxationData {
-    /// Reads a relaxation file; shear moduli become Young's with
-    /// `poisson`.
+    /// Reads a relaxation or creep file; shear moduli become Young's and
+    /// shear compliances tensile with `poisson`.
     pub fn read(path: &Path, poisson: f64) -> Result<RelaxationData, IoError> {
+        Self::read_as(path, poisson, None)
+    }
+
+    /// [`RelaxationData::read`], a creep compliance read as `kind` where
+    /// given (`--dma-modulus`: shear J(t) or tensile D(t), whatever its
+    /// name says); a relaxation file's kind is its column name's.
+    pub fn read_as(
+        path: &Path,
+        poisson: f64,
+        kind: Option<ModulusKind>,
+    ) -> Result<RelaxationData, IoError> {
         rollfit_model::check_poisson(poisson).map_err(|problem| IoError::DmaPoisson {
             path: path.to_path_buf(),
             problem,
@@ -300,12 +372,18 @@ impl RelaxationData {
             source,
         })?;
         let text = super::decode::decode(path, &bytes)?;
-        parse(path, &text, poisson)
+        parse(path, &text, poisson, kind)
     }
 }
 
-/// Parses the text of a relaxation file (the module doc).
-pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, IoError> {
+/// Parses the text of a relaxation or creep file (the module doc); `kind`
+/// as [`RelaxationData::read_as`].
+pub fn parse(
+    path: &Path,
+    text: &str,
+    poisson: f64,
+    kind: Option<ModulusKind>,
+) -> Result<RelaxationData, IoError> {
     let (line, names, delimiter, start) = header_row(text).ok_or_else(|| IoError::NoHeader {
         path: path.to_path_buf(),
     })?;
@@ -315,9 +393,20 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
             header: names,
         });
     };
-    let factor = match header.kind {
-        ModulusKind::Young => 1.0,
-        ModulusKind::Shear => 2.0 * (1.0 + poisson),
+    let (quantity, kind) = match (header.quantity, kind) {
+        (Quantity::Shear, _) => (TimeQuantity::Relaxation, ModulusKind::Shear),
+        (Quantity::ShearCompliance | Quantity::TensileCompliance, Some(kind)) => {
+            (TimeQuantity::Creep, kind)
+        }
+        (Quantity::ShearCompliance, None) => (TimeQuantity::Creep, ModulusKind::Shear),
+        (Quantity::TensileCompliance, None) => (TimeQuantity::Creep, ModulusKind::Young),
+        _ => (TimeQuantity::Relaxation, ModulusKind::Young),
+    };
+    // E = 2(1+ν)G, so D = J/(2(1+ν)).
+    let factor = match (quantity, kind) {
+        (_, ModulusKind::Young) => 1.0,
+        (TimeQuantity::Relaxation, ModulusKind::Shear) => 2.0 * (1.0 + poisson),
+        (TimeQuantity::Creep, ModulusKind::Shear) => 1.0 / (2.0 * (1.0 + poisson)),
     };
     let mut header = header;
     let units_line = units_row(text, start, delimiter, &names, &mut header);
@@ -336,7 +425,13 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
         if at <= line || Some(at) == units_line || record.iter().all(str::is_empty) {
             continue;
         }
-        points.push(row(path, (at, decimal_comma), &header, &record, factor)?);
+        points.push(row(
+            path,
+            (at, decimal_comma),
+            &header,
+            &record,
+            (quantity, factor),
+        )?);
         lines.push(at);
     }
     if points.is_empty() {
@@ -344,19 +439,26 @@ pub fn parse(path: &Path, text: &str, poisson: f64) -> Result<RelaxationData, Io
             path: path.to_path_buf(),
         });
     }
-    check_isotherms(path, &points, &lines)?;
-    let notes = match header.kind {
-        ModulusKind::Young => Vec::new(),
-        ModulusKind::Shear => vec![format!(
+    check_isotherms(path, (quantity, &header.value.reference), &points, &lines)?;
+    let notes = match (quantity, kind) {
+        (_, ModulusKind::Young) => Vec::new(),
+        (TimeQuantity::Relaxation, ModulusKind::Shear) => vec![format!(
             "{}: shear relaxation modulus G(t) converted to Young's with E = 2(1+ν)G, ν = {poisson} (the fit's)",
             path.display()
+        )],
+        (TimeQuantity::Creep, ModulusKind::Shear) => vec![format!(
+            "{}: shear creep compliance J(t) ({}) converted to tensile with D = J/(2(1+ν)), ν = \
+             {poisson} (the fit's)",
+            path.display(),
+            header.value.reference
         )],
     };
     Ok(RelaxationData {
         path: path.to_path_buf(),
+        quantity,
         points,
         lines,
-        kind: header.kind,
+        kind,
         notes,
     })
 }
@@ -396,24 +498,28 @@ fn units_row(
     }
     let mut any = false;
     let columns = [
-        (Some(&mut header.time), &TIME_UNITS[..]),
-        (Some(&mut header.modulus), &MODULUS_UNITS[..]),
-        (header.temperature.as_mut(), &TEMPERATURE_UNITS[..]),
+        (Some(&mut header.time), Quantity::Time),
+        (Some(&mut header.value), header.quantity),
+        (header.temperature.as_mut(), Quantity::Temperature),
     ];
-    for (column, units) in columns {
+    for (column, quantity) in columns {
         let Some(column) = column else { continue };
-        // A unit in the name wins over the units row.
+        // A unit in the name wins over the units row: a recognised name
+        // that is not a bare spelling carries one.
         let name = names[column.index].as_str();
-        let spelled = SPELLINGS
-            .iter()
-            .any(|(_, spellings)| spellings.iter().any(|(base, _)| *base == name));
-        let named_unit = !spelled
-            && (name.ends_with([')', ']'])
-                || units.iter().any(|u| name.ends_with(&format!("_{}", u.0))));
+        let named_unit = !SPELLINGS.iter().any(|(_, spellings)| {
+            spellings.iter().any(|&(base, exact)| {
+                if exact {
+                    base == name
+                } else {
+                    base.eq_ignore_ascii_case(name)
+                }
+            })
+        });
         let Some(unit) = cells.get(column.index) else {
             continue;
         };
-        if let Some((factor, offset)) = units.iter().find(|u| u.0 == unit).map(|u| (u.1, u.2)) {
+        if let Some((factor, offset)) = unit_factor(quantity, unit) {
             any = true;
             if !named_unit {
                 column.factor = factor;
@@ -424,13 +530,14 @@ fn units_row(
     any.then(|| index.csv_line_after(start, row.position()))
 }
 
-/// The point of the record on line `line`.
+/// The point of the record on line `line`; `factor` turns the value
+/// column into Young's or tensile.
 fn row(
     path: &Path,
     (line, decimal_comma): (usize, bool),
     header: &Header,
     record: &csv::StringRecord,
-    factor: f64,
+    (quantity, factor): (TimeQuantity, f64),
 ) -> Result<RelaxationPoint, IoError> {
     if record.len() != header.width {
         return Err(IoError::FieldCount {
@@ -468,15 +575,28 @@ fn row(
         }
         .into());
     }
-    let modulus = value(&header.modulus)? * factor;
-    if !(modulus > 0.0 && modulus <= 1e13) {
-        return Err(RelaxationError::ModulusOutOfRange {
-            path: path.to_path_buf(),
-            line,
-            column: header.modulus.reference.clone(),
-            value: modulus,
+    let measured = value(&header.value)? * factor;
+    let column = || header.value.reference.clone();
+    match quantity {
+        TimeQuantity::Relaxation if !(measured > 0.0 && measured <= 1e13) => {
+            return Err(RelaxationError::ModulusOutOfRange {
+                path: path.to_path_buf(),
+                line,
+                column: column(),
+                value: measured,
+            }
+            .into());
         }
-        .into());
+        TimeQuantity::Creep if !(measured > 0.0 && measured <= 1.0) => {
+            return Err(RelaxationError::ComplianceOutOfRange {
+                path: path.to_path_buf(),
+                line,
+                column: column(),
+                value: measured,
+            }
+            .into());
+        }
+        _ => {}
     }
     let temperature = header.temperature.as_ref().map(&value).transpose()?;
     if let Some(t) = temperature
@@ -491,60 +611,7 @@ fn row(
     }
     Ok(RelaxationPoint {
         time,
-        modulus,
+        value: measured,
         temperature,
     })
-}
-
-/// All rows with a temperature or none; increasing times in each isotherm
-/// (file order), else the two lines where they stop.
-fn check_isotherms(
-    path: &Path,
-    points: &[RelaxationPoint],
-    lines: &[usize],
-) -> Result<(), RelaxationError> {
-    let with_t = points.iter().filter(|p| p.temperature.is_some()).count();
-    if with_t > 0 && with_t < points.len() {
-        return Err(RelaxationError::TemperatureMissing {
-            path: path.to_path_buf(),
-            missing: points.len() - with_t,
-            total: points.len(),
-        });
-    }
-    for (temperature, indices) in groups(points) {
-        // Equal times are rounded stamps, averaged by the master curve
-        // (`crate::relaxation_master`); a time that falls is a new run.
-        let falls = indices
-            .windows(2)
-            .position(|w| points[w[1]].time < points[w[0]].time);
-        if let Some(k) = falls.map(|j| j + 1) {
-            let (a, b) = (indices[k - 1], indices[k]);
-            return Err(RelaxationError::NotIncreasing {
-                path: path.to_path_buf(),
-                temperature,
-                lines: (lines[a], lines[b]),
-                times: (points[a].time, points[b].time),
-            });
-        }
-    }
-    Ok(())
-}
-
-/// The isotherms of `points` as (temperature °C, indices in file order);
-/// one at NaN when the file has no temperatures (a master curve puts it at
-/// T_ref).
-pub fn groups(points: &[RelaxationPoint]) -> Vec<(f64, Vec<usize>)> {
-    if points.iter().all(|p| p.temperature.is_none()) {
-        return vec![(f64::NAN, (0..points.len()).collect())];
-    }
-    super::group_temperatures(points.iter().map(|p| p.temperature))
-        .into_iter()
-        .map(|iso| {
-            // File order: the grouping sorts by temperature, and a
-            // controller's scatter would shuffle a run.
-            let mut indices = iso.points;
-            indices.sort_unstable();
-            (iso.temperature, indices)
-        })
-        .collect()
 }

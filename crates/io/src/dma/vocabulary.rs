@@ -158,6 +158,35 @@ pub fn modulus_unit(unit: &str) -> Option<(&'static str, f64)> {
     }
 }
 
+/// 1/Pa per `unit` of a compliance: the reciprocal of a modulus unit
+/// (`1/MPa`, `MPa^-1`, `MPa⁻¹`, `MPa-1`) or an area per force (`m²/N`,
+/// `mm²/N`, `µm²/N`, and `cm²/dyn`, the CGS unit of the classic creep
+/// literature: 1 dyn/cm² = 0.1 Pa). The table of creep-compliance units.
+pub fn compliance_unit(unit: &str) -> Option<f64> {
+    let unit = unit.trim();
+    let per = |modulus: &str| modulus_unit(modulus).map(|(_, pascals)| 1.0 / pascals);
+    if let Some(modulus) = unit.strip_prefix("1/") {
+        return per(modulus);
+    }
+    for power in ["^-1", "⁻¹", "-1"] {
+        if let Some(modulus) = unit.strip_suffix(power) {
+            return per(modulus);
+        }
+    }
+    let area = unit
+        .strip_suffix("/N")
+        .map(|a| (a, 1.0))
+        .or_else(|| unit.strip_suffix("/dyn").map(|a| (a, 1e5)))?;
+    let square = match area.0.trim_end_matches(['²', '2', '^']) {
+        "m" => 1.0,
+        "cm" => 1e-4,
+        "mm" => 1e-6,
+        "µm" | "μm" | "um" => 1e-12,
+        _ => return None,
+    };
+    Some(square * area.1)
+}
+
 /// The canonical (CSV) names, each with its unit suffixes: the name
 /// alone, or `name_SUFFIX`.
 const CANONICAL: [(&str, Quantity, &[&str]); 7] = [
@@ -305,5 +334,36 @@ fn split_unit(raw: &str) -> (&str, Option<&str>) {
             Some(raw[start + 1..raw.len() - 1].trim()),
         ),
         _ => (raw, None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::compliance_unit;
+
+    /// Each spelling of a compliance unit against its value in 1/Pa worked
+    /// out by hand; a modulus unit or nonsense is none.
+    #[test]
+    fn compliance_units_in_reciprocal_pascals() {
+        for (unit, per_pascal) in [
+            ("1/Pa", 1.0),
+            ("1/kPa", 1e-3),
+            ("1/MPa", 1e-6),
+            ("MPa^-1", 1e-6),
+            ("GPa⁻¹", 1e-9),
+            ("Pa-1", 1.0),
+            ("m²/N", 1.0),
+            ("mm²/N", 1e-6),
+            ("µm²/N", 1e-12),
+            ("um2/N", 1e-12),
+            // 1 dyn = 1e-5 N, 1 cm² = 1e-4 m².
+            ("cm²/dyn", 10.0),
+        ] {
+            let found = compliance_unit(unit).unwrap_or_else(|| panic!("{unit}"));
+            assert!((found / per_pascal - 1.0).abs() < 1e-15, "{unit}: {found}");
+        }
+        for unit in ["MPa", "Pa", "1/s", "km²/N", ""] {
+            assert_eq!(compliance_unit(unit), None, "{unit}");
+        }
     }
 }

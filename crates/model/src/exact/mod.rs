@@ -129,7 +129,7 @@ mod solver;
 mod sphere;
 
 pub use body::{ExactFriction, ExactRolling, ExactStart, exact_body};
-pub use creep::CreepCompliance;
+pub use creep::{CreepCompliance, NEGLIGIBLE_SHARE};
 pub use pressure_map::{CYLINDER_PROFILE_POINTS, ContactPressure, PressureMap};
 pub use sphere::{RollingSphere, SphereSettings, SphereSolution};
 

@@ -10,7 +10,9 @@
 //! shows as a band of its colour off zero. At the right the shift factors
 //! with the law and its constants ([`super::shift_panel`]) and the key to
 //! the colours; a verdict that is not "good" is the picture's title
-//! ([`super::verdict_banner`]). Shear data (G(t)) are drawn as G.
+//! ([`super::verdict_banner`]). Shear data (G(t)) are drawn as G. Creep
+//! isotherms are drawn the same way as their compliance D(t) (or shear
+//! J(t)), 1/Pa, with the series' exact creep compliance as the line.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -33,9 +35,10 @@ const MIN_MISFIT_AXIS: f64 = 0.01;
 pub struct ShiftedRelaxation {
     /// Reduced time t/a_T, s.
     pub reduced_time: f64,
-    /// Relaxation modulus E(t) (or G(t)), divided by b_T, Pa.
+    /// Relaxation modulus E(t) (or G(t)), divided by b_T, Pa; or creep
+    /// compliance D(t) (or J(t)) times b_T, 1/Pa.
     pub modulus: f64,
-    /// The fitted series at the point's reduced time, Pa.
+    /// The fitted series at the point's reduced time, Pa (1/Pa).
     pub fitted: f64,
     /// Temperature of the point's isotherm, °C.
     pub temperature: f64,
@@ -56,13 +59,25 @@ pub struct RelaxationMasterFigure<'a> {
     pub shift_curve: &'a [(f64, f64)],
     /// The legend's lines naming the law and its constants.
     pub shift_law: &'a [String],
-    /// "E" (Young's modulus) or "G" (shear modulus).
+    /// "E" (Young's modulus) or "G" (shear modulus); "D" (tensile) or
+    /// "J" (shear) of a creep compliance.
     pub modulus_symbol: &'static str,
+    /// Creep isotherms: the values are compliances, 1/Pa.
+    pub creep: bool,
     /// The verdict, in the title when it is not "good".
     pub verdict: Option<Verdict<'a>>,
 }
 
 impl RelaxationMasterFigure<'_> {
+    /// The title's word and the unit of the values.
+    fn words(&self) -> (&'static str, &'static str) {
+        if self.creep {
+            ("Creep", "1/Pa")
+        } else {
+            ("Relaxation", "Pa")
+        }
+    }
+
     fn isotherms(&self) -> Vec<f64> {
         isotherms(self.points.iter().map(|p| p.temperature))
     }
@@ -85,7 +100,8 @@ impl Figure for RelaxationMasterFigure<'_> {
         let s = self.modulus_symbol;
         let n = self.isotherms().len();
         format!(
-            "Relaxation master curve from {n} isotherm{} at T_ref = {}: {s}(t/a_T) coloured by temperature with the fitted Prony series (black), each point's misfit log10 {s}/{s}_Prony below, the shift factors at the right.",
+            "{} master curve from {n} isotherm{} at T_ref = {}: {s}(t/a_T) coloured by temperature with the fitted Prony series (black), each point's misfit log10 {s}/{s}_Prony below, the shift factors at the right.",
+            self.words().0,
             if n == 1 { "" } else { "s" },
             celsius(self.t_ref)
         )
@@ -171,7 +187,11 @@ impl RelaxationMasterFigure<'_> {
         let mut chart = ChartBuilder::on(area)
             .margin(12)
             .caption(
-                format!("Relaxation master curve at T_ref = {}", celsius(self.t_ref)),
+                format!(
+                    "{} master curve at T_ref = {}",
+                    self.words().0,
+                    celsius(self.t_ref)
+                ),
                 ("sans-serif", style::CAPTION),
             )
             .x_label_area_size(45)
@@ -180,7 +200,7 @@ impl RelaxationMasterFigure<'_> {
         draw_mesh(
             &mut chart,
             &self.x_description(),
-            &format!("{s}(t) (Pa)"),
+            &format!("{s}(t) ({})", self.words().1),
             true,
         )?;
         chart

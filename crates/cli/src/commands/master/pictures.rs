@@ -13,6 +13,7 @@
 
 use anyhow::Result;
 use rollfit_fit::master::quality::MasterQuality;
+use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_fit::master::{ShiftFactors, ShiftLaw};
 use rollfit_io::dma::ModulusKind;
 use rollfit_io::dma_master::DmaMaster;
@@ -183,8 +184,9 @@ pub(super) fn frequency(
     Ok(master_files.into_iter().chain(vgp_files).collect())
 }
 
-/// master.png/.svg of a relaxation master curve; `grid` is the reduced
-/// times relaxation.csv holds the series at.
+/// master.png/.svg of a relaxation or creep master curve; `grid` is the
+/// reduced times relaxation.csv holds the series at. A creep curve is
+/// drawn as the compliance the file held: D, or J = 2(1+ν) D.
 pub(super) fn relaxation(
     built: &RelaxationBuilt,
     grid: &[f64],
@@ -192,22 +194,24 @@ pub(super) fn relaxation(
     quality: &MasterQuality,
 ) -> Result<PictureFiles> {
     let master = &built.master;
-    let prony = &master.fit.prony;
-    let (symbol, scale) = drawn_modulus(built.data.kind, poisson);
+    let creep = master.quantity == TimeQuantity::Creep;
+    let series_at = master.quantity.of_series(&master.fit.prony);
+    let (symbol, scale) = match (drawn_modulus(built.data.kind, poisson), creep) {
+        ((symbol, scale), false) => (symbol, scale),
+        (("E", _), true) => ("D", 1.0),
+        ((_, scale), true) => ("J", 1.0 / scale),
+    };
     let points: Vec<ShiftedRelaxation> = master
         .points
         .iter()
         .map(|p| ShiftedRelaxation {
             reduced_time: p.reduced_time,
-            modulus: p.modulus * scale,
-            fitted: prony.relaxation_modulus(p.reduced_time) * scale,
+            modulus: p.value * scale,
+            fitted: series_at(p.reduced_time) * scale,
             temperature: p.temperature,
         })
         .collect();
-    let series: Vec<(f64, f64)> = grid
-        .iter()
-        .map(|&t| (t, prony.relaxation_modulus(t) * scale))
-        .collect();
+    let series: Vec<(f64, f64)> = grid.iter().map(|&t| (t, series_at(t) * scale)).collect();
     let shift = ShiftParts::of(&master.shift);
     files(
         &RelaxationMasterFigure {
@@ -218,6 +222,7 @@ pub(super) fn relaxation(
             shift_curve: &shift.curve,
             shift_law: &shift.law,
             modulus_symbol: symbol,
+            creep,
             verdict: Some(verdict(quality)),
         },
         "master.png",

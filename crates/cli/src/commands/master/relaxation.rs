@@ -1,20 +1,27 @@
 //! `rollfit master` on a stress-relaxation file (E(t) or G(t) against t,
-//! several temperatures): the isotherms superposed in log t with the shift
-//! machinery of the frequency sweeps (t_r = t/a_T), a smooth Prony series
-//! E(t) = E0 + Σ H_k e^(−t/τ_k) fitted to the master curve
-//! (`rollfit_fit::master::relaxation`), and the same material.toml.
+//! several temperatures) or a creep file (J(t) or D(t)): the isotherms
+//! superposed in log t with the shift machinery of the frequency sweeps
+//! (t_r = t/a_T), a smooth Prony series E(t) = E0 + Σ H_k e^(−t/τ_k)
+//! fitted to the master curve — to E(t), or through its exact creep
+//! compliance to D(t) (`rollfit_fit::master::relaxation`) — and the same
+//! material.toml.
 //!
 //! Writes, to DIR as a whole (nothing on an error):
 //! - master.csv: every point at the reference state — t (t/a_T, s),
-//!   E_relax (Young's, Pa, divided by b_T), T (°C), t_measured (s);
+//!   E_relax (Young's, Pa, divided by b_T) or D_creep (tensile, 1/Pa,
+//!   times b_T), T (°C), t_measured (s);
 //! - shift.csv: as for frequency sweeps;
 //! - relaxation.csv: the series' E(t) over the data's reduced times, t,
 //!   E_relax;
+//! - creep.csv (creep files): the series' exact creep compliance over the
+//!   same times, t, D_creep;
 //! - modulus.csv: the same series as E′, E″, tan δ over ω = 1/t of the
 //!   data's reduced times (omega, E_storage, E_loss, tan_delta);
 //! - material.toml: as for frequency sweeps;
 //! - master.json: `domain` = "time", `time_range`, `omega_range`, the shift
-//!   keys of a frequency master.json, `prony` with `misfit_relaxation`;
+//!   keys of a frequency master.json, `quantity` ("relaxation" or
+//!   "creep"), `prony` with `method` and `misfit_relaxation` (or
+//!   `misfit_creep`, RMS log10 D, decades);
 //! - master.png and master.svg: E(t/a_T) of the isotherms with the series,
 //!   each point's misfit and the shift factors (`super::pictures`).
 //!
@@ -23,7 +30,8 @@
 
 use anyhow::{Context, Result};
 use rollfit_fit::master::quality::MasterQuality;
-use rollfit_io::columns::{E_RELAX, TIME, TIME_MEASURED};
+use rollfit_fit::master::relaxation::TimeQuantity;
+use rollfit_io::columns::{D_CREEP, E_RELAX, TIME, TIME_MEASURED};
 use rollfit_io::fit_dir::columns::{MODULUS_COLUMNS, MODULUS_CSV, T};
 use rollfit_io::relaxation_master::{self, RelaxationBuilt};
 use rollfit_io::{csv_text, material_file, output};
@@ -37,8 +45,12 @@ use crate::stdout;
 /// Runs `rollfit master` on a relaxation file (DIR already checked).
 pub(super) fn run(args: &Args, settings: &rollfit_fit::master::MasterSettings) -> Result<()> {
     let (poisson, whose) = crate::commands::compare::poisson_source(args.poisson);
-    let built = relaxation_master::build(&args.dma[0], poisson, settings)?;
-    if args.dma_modulus.is_some() {
+    let kind = args
+        .dma_modulus
+        .map(crate::commands::compare::DmaModulus::kind);
+    let built = relaxation_master::build(&args.dma[0], poisson, kind, settings)?;
+    let creep = built.data.quantity == TimeQuantity::Creep;
+    if args.dma_modulus.is_some() && !creep {
         eprintln!(
             "warning: --dma-modulus applies to TRIOS files; a relaxation file says Young's or \
              shear with its column name (E_relax or G_relax): ignored"
@@ -92,18 +104,29 @@ fn encode(
 ) -> Result<Vec<(&'static str, Vec<u8>)>> {
     let master = &built.master;
     let prony = &master.fit.prony;
+    let creep = master.quantity == TimeQuantity::Creep;
+    let value = if creep { D_CREEP } else { E_RELAX };
     let master_csv = csv_text::csv_bytes(
-        &[TIME, E_RELAX, T, TIME_MEASURED],
+        &[TIME, value, T, TIME_MEASURED],
         master
             .points
             .iter()
-            .map(|p| vec![p.reduced_time, p.modulus, p.temperature, p.time]),
+            .map(|p| vec![p.reduced_time, p.value, p.temperature, p.time]),
     )?;
     let grid = times(built);
     let relaxation_csv = csv_text::csv_bytes(
         &[TIME, E_RELAX],
         grid.iter().map(|&t| vec![t, prony.relaxation_modulus(t)]),
     )?;
+    let creep_csv = if creep {
+        let series = master.quantity.of_series(prony);
+        Some(csv_text::csv_bytes(
+            &[TIME, D_CREEP],
+            grid.iter().map(|&t| vec![t, series(t)]),
+        )?)
+    } else {
+        None
+    };
     // ω = 1/t over the same range, ascending.
     let modulus_csv = csv_text::csv_bytes(
         &MODULUS_COLUMNS[..4],
@@ -125,17 +148,20 @@ fn encode(
         ("master.json", json),
     ]
     .into_iter()
+    .chain(creep_csv.map(|bytes| ("creep.csv", bytes)))
     .chain(picture)
     .collect())
 }
 
-/// master.json of a relaxation file.
+/// master.json of a relaxation or creep file.
 #[derive(Serialize)]
 struct Summary {
     dma_file: String,
     dma_format: &'static str,
-    /// "time": relaxation isotherms.
+    /// "time": relaxation or creep isotherms.
     domain: &'static str,
+    /// "relaxation" or "creep".
+    quantity: &'static str,
     modulus_kind: &'static str,
     poisson: f64,
     #[serde(rename = "T_ref")]
@@ -167,8 +193,15 @@ struct PronySummary {
     #[serde(rename = "E1")]
     glassy_modulus: f64,
     lambda: f64,
-    /// RMS log10 misfit of E(t), decades.
-    misfit_relaxation: f64,
+    /// How the series was fitted.
+    method: &'static str,
+    /// RMS log10 misfit of E(t), decades (relaxation files).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    misfit_relaxation: Option<f64>,
+    /// RMS log10 misfit of D(t) by the series' exact creep compliance,
+    /// decades (creep files).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    misfit_creep: Option<f64>,
     converged: bool,
 }
 
@@ -181,8 +214,12 @@ impl Summary {
         );
         Summary {
             dma_file: built.data.path.display().to_string(),
-            dma_format: "csv-relaxation",
+            dma_format: match m.quantity {
+                TimeQuantity::Relaxation => "csv-relaxation",
+                TimeQuantity::Creep => "csv-creep",
+            },
             domain: "time",
+            quantity: m.quantity.name(),
             modulus_kind: built.data.kind.name(),
             poisson,
             t_ref: built.settings.t_ref(),
@@ -200,7 +237,9 @@ impl Summary {
                 static_modulus: m.fit.prony.static_modulus(),
                 glassy_modulus: m.fit.prony.glassy_modulus(),
                 lambda: m.fit.lambda,
-                misfit_relaxation: m.fit.misfit,
+                method: m.fit.method,
+                misfit_relaxation: (m.quantity == TimeQuantity::Relaxation).then_some(m.fit.misfit),
+                misfit_creep: (m.quantity == TimeQuantity::Creep).then_some(m.fit.misfit),
                 converged: m.fit.converged,
             },
             quality: quality.clone(),
@@ -213,8 +252,14 @@ impl Summary {
 /// The readable summary of stdout.
 fn summary(built: &RelaxationBuilt) -> String {
     let m = &built.master;
+    let creep = m.quantity == TimeQuantity::Creep;
+    let (title, values) = if creep {
+        ("Creep", "compliances")
+    } else {
+        ("Relaxation", "moduli")
+    };
     let mut out = format!(
-        "Relaxation {} ({} moduli): {}\n",
+        "{title} {} ({} {values}): {}\n",
         built.data.path.display(),
         built.data.kind.name(),
         headline(&m.shift, m.points.len(), &built.settings, " (t/a_T)")
@@ -222,10 +267,18 @@ fn summary(built: &RelaxationBuilt) -> String {
     out += &shift_text(&m.shift);
     out += &super::shift_out::window_text(&m.shift, None, "", "");
     out += &format!(
-        "Prony series: {} terms, λ = {:.3e}; RMS misfit E(t) {:.4} decades\n",
+        "Prony series: {} terms, λ = {:.3e}; RMS misfit {} {:.4} decades\n",
         m.fit.prony.relaxation_times().len(),
         m.fit.lambda,
+        if creep {
+            "D(t) (the series' exact creep compliance)"
+        } else {
+            "E(t)"
+        },
         m.fit.misfit
     );
+    if creep {
+        out += &format!("Method: {}\n", m.fit.method);
+    }
     out
 }

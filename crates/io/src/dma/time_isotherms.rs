@@ -1,0 +1,122 @@
+//! The points of a relaxation or creep file ([`super::relaxation`]) and
+//! their isotherms: grouping by temperature, and the checks every
+//! isotherm of a time-domain file passes (times that increase; a creep
+//! compliance that does not fall, since every linear viscoelastic solid's
+//! creep compliance rises from the step of stress: Ferry 1980, ch. 3).
+//!
+//! # References
+//! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
+//!   1980, ch. 3.
+
+use std::path::Path;
+
+use rollfit_fit::master::relaxation::TimeQuantity;
+
+use crate::error::{ColumnRef, RelaxationError};
+
+/// The largest fall of a creep compliance below an earlier value of its
+/// isotherm that is read as scatter: 20 %, twenty times a DMA's per cent
+/// and far beyond rounding, while a relaxation modulus or a stress put in
+/// the column falls by much more over a run.
+pub const COMPLIANCE_FALL: f64 = 0.2;
+
+/// One point of a relaxation or creep file, as Young's or tensile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RelaxationPoint {
+    /// Time since the step of strain or stress, s.
+    pub time: f64,
+    /// Young's relaxation modulus E(t), Pa, or tensile creep compliance
+    /// D(t), 1/Pa.
+    pub value: f64,
+    /// °C, when the file gives one.
+    pub temperature: Option<f64>,
+}
+
+/// All rows with a temperature or none; increasing times in each isotherm
+/// (file order), else the two lines where they stop; a creep compliance
+/// that does not fall (module doc).
+pub(super) fn check_isotherms(
+    path: &Path,
+    (quantity, column): (TimeQuantity, &ColumnRef),
+    points: &[RelaxationPoint],
+    lines: &[usize],
+) -> Result<(), RelaxationError> {
+    let with_t = points.iter().filter(|p| p.temperature.is_some()).count();
+    if with_t > 0 && with_t < points.len() {
+        return Err(RelaxationError::TemperatureMissing {
+            path: path.to_path_buf(),
+            missing: points.len() - with_t,
+            total: points.len(),
+        });
+    }
+    for (temperature, indices) in groups(points) {
+        // Equal times are rounded stamps, averaged by the master curve
+        // (`crate::relaxation_master`); a time that falls is a new run.
+        let falls = indices
+            .windows(2)
+            .position(|w| points[w[1]].time < points[w[0]].time);
+        if let Some(k) = falls.map(|j| j + 1) {
+            let (a, b) = (indices[k - 1], indices[k]);
+            return Err(RelaxationError::NotIncreasing {
+                path: path.to_path_buf(),
+                quantity,
+                temperature,
+                lines: (lines[a], lines[b]),
+                times: (points[a].time, points[b].time),
+            });
+        }
+        if quantity == TimeQuantity::Creep {
+            check_rising(path, column, temperature, (points, lines), &indices)?;
+        }
+    }
+    Ok(())
+}
+
+/// A creep isotherm (`indices` in time order) whose compliance falls more
+/// than [`COMPLIANCE_FALL`] below the highest earlier value is refused,
+/// naming that value's line and the first line below the limit.
+fn check_rising(
+    path: &Path,
+    column: &ColumnRef,
+    temperature: f64,
+    (points, lines): (&[RelaxationPoint], &[usize]),
+    indices: &[usize],
+) -> Result<(), RelaxationError> {
+    let mut highest: Option<usize> = None;
+    for &i in indices {
+        let value = points[i].value;
+        match highest {
+            Some(h) if value < (1.0 - COMPLIANCE_FALL) * points[h].value => {
+                return Err(RelaxationError::ComplianceFalls {
+                    path: path.to_path_buf(),
+                    column: column.clone(),
+                    temperature,
+                    lines: (lines[h], lines[i]),
+                    values: (points[h].value, value),
+                });
+            }
+            Some(h) if value <= points[h].value => {}
+            _ => highest = Some(i),
+        }
+    }
+    Ok(())
+}
+
+/// The isotherms of `points` as (temperature °C, indices in file order);
+/// one at NaN when the file has no temperatures (a master curve puts it at
+/// T_ref).
+pub fn groups(points: &[RelaxationPoint]) -> Vec<(f64, Vec<usize>)> {
+    if points.iter().all(|p| p.temperature.is_none()) {
+        return vec![(f64::NAN, (0..points.len()).collect())];
+    }
+    super::group_temperatures(points.iter().map(|p| p.temperature))
+        .into_iter()
+        .map(|iso| {
+            // File order: the grouping sorts by temperature, and a
+            // controller's scatter would shuffle a run.
+            let mut indices = iso.points;
+            indices.sort_unstable();
+            (iso.temperature, indices)
+        })
+        .collect()
+}
