@@ -484,7 +484,7 @@ impl JointAccount<'_> {
                 joint_parameters: self.parts.joint.1,
             },
             dma_alone: self.alone.record(),
-            compatibility: compatibility(&self.parts),
+            compatibility: compatibility(&self.parts, fit.friction_factor.is_some()),
             friction_factor,
             residual_ranges: residual_ranges_all,
             dma: points,

@@ -116,8 +116,9 @@ fn effect_and_tolerance(parts: &Parts) -> (f64, f64) {
     (effect, tolerance)
 }
 
-/// The parameter goodness-of-fit test (module doc).
-pub(crate) fn compatibility(parts: &Parts) -> Compatibility {
+/// The parameter goodness-of-fit test (module doc); `factor_free`: κ was
+/// fitted (`friction_factor = "free"`), so advice to free it is moot.
+pub(crate) fn compatibility(parts: &Parts, factor_free: bool) -> Compatibility {
     let statistic = (parts.joint.0 - parts.rolling_alone.0 - parts.dma_alone.0).max(0.0);
     let dof = (parts.rolling_alone.1 + parts.dma_alone.1 - parts.joint.1).max(1.0);
     let p_value = if parts.estimated_dof > 0.0 {
@@ -140,8 +141,12 @@ pub(crate) fn compatibility(parts: &Parts) -> Compatibility {
              shared degrees of freedom (p = {p_value:.1e}), and {size}; the rolling friction is \
              not the bulk hysteresis of the DMA's material (an extra dissipation such as \
              adhesion or a surface layer, a strain-amplitude effect, or a different compound or \
-             temperature calibration). See residual_ranges for where they disagree; \
-             friction_factor = \"free\" measures an extra dissipation as κ"
+             temperature calibration). See residual_ranges for where they disagree; {}",
+            if factor_free {
+                "κ is already fitted, so the difference is not one constant factor of μ"
+            } else {
+                "friction_factor = \"free\" measures an extra dissipation as κ"
+            }
         )
     } else if significant {
         format!(
@@ -248,7 +253,7 @@ mod tests {
             ],
         };
         // dof = 8 + 14 − 16 = 6, median ≈ 5.35.
-        let c = compatibility(&parts(145.35));
+        let c = compatibility(&parts(145.35), false);
         assert!(
             (c.dof - 6.0).abs() < 1e-12 && (c.p_value - 0.5).abs() < 0.01,
             "{c:?}"
@@ -256,14 +261,19 @@ mod tests {
         assert!(c.compatible);
         // Δχ² = 30 over 168 rows: significant, but 0.006 decade against a
         // tolerance of 0.012 (2 % and 1 % noise): the model's own error.
-        let near = compatibility(&parts(140.0 + 30.0));
+        let near = compatibility(&parts(140.0 + 30.0), false);
         assert!(near.p_value < 1e-4, "{near:?}");
         assert!(near.compatible && near.effect_decades < near.tolerance_decades);
         assert!(near.verdict.contains("within what the model itself misses"));
         // Δχ² = 3000: each part bent by several times its noise.
-        let far = compatibility(&parts(140.0 + 3000.0));
+        let far = compatibility(&parts(140.0 + 3000.0), false);
         assert!(!far.compatible && far.effect_decades > 0.05, "{far:?}");
         assert!(far.verdict.contains("incompatible"));
+        assert!(far.verdict.contains("friction_factor = \"free\" measures"));
+        // With κ fitted already, freeing it is no advice.
+        let freed = compatibility(&parts(140.0 + 3000.0), true);
+        assert!(!freed.verdict.contains("friction_factor = \"free\""));
+        assert!(freed.verdict.contains("κ is already fitted"));
     }
 
     /// The effect size is the bend per point: the same Δχ² per point on ten
@@ -288,7 +298,10 @@ mod tests {
                 },
             ],
         };
-        let (few, many) = (compatibility(&parts(1.0)), compatibility(&parts(10.0)));
+        let (few, many) = (
+            compatibility(&parts(1.0), false),
+            compatibility(&parts(10.0), false),
+        );
         assert!(many.p_value < 1e-3 * few.p_value, "{few:?} {many:?}");
         assert!((few.effect_decades - many.effect_decades).abs() < 1e-12);
         assert!(few.compatible && many.compatible);
