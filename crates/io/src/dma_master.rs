@@ -13,15 +13,14 @@
 //! give the same series. Nothing is written here: `rollfit master` writes
 //! the folder, [`crate::material_file`] its material.toml.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
 
-use crate::dma::{
-    DmaData, DmaOptions, ISOTHERM_GAP, ISOTHERM_SPAN, ModulusKind, files, range, read_files,
-};
+pub use crate::dma::files::DmaInput;
+use crate::dma::{DmaData, ISOTHERM_GAP, ISOTHERM_SPAN, range};
 use crate::error::{DmaMasterError, IoError, TurnPoint};
 
 /// A master curve built from a DMA file.
@@ -36,31 +35,6 @@ pub struct DmaMaster {
     /// in the order of the isotherms; empty for a file without
     /// temperatures).
     pub ranges: Vec<(f64, f64)>,
-}
-
-/// The DMA data a master curve is built from.
-#[derive(Debug, Clone, Default)]
-pub struct DmaInput {
-    /// The files, or folders of files ([`files::expand`]).
-    pub files: Vec<PathBuf>,
-    /// The sheet of a workbook (default: the first).
-    pub sheet: Option<String>,
-    /// Overrides a TRIOS file's shear/tensile decision.
-    pub kind: Option<ModulusKind>,
-    /// One temperature per file (°C), for files that state none.
-    pub temperatures: Option<Vec<f64>>,
-    /// The unit of moduli the files give none for (name, pascals).
-    pub modulus_unit: Option<(&'static str, f64)>,
-}
-
-impl DmaInput {
-    /// One file, read as it says.
-    pub fn file(path: &Path) -> DmaInput {
-        DmaInput {
-            files: vec![path.to_path_buf()],
-            ..DmaInput::default()
-        }
-    }
 }
 
 /// Reads `input` and builds its master curve ([`read_isotherms`], then
@@ -140,17 +114,9 @@ pub fn read_isotherms(
     poisson: f64,
     untimed: Option<f64>,
 ) -> Result<DmaIsotherms, IoError> {
-    let options = DmaOptions {
-        kind: input.kind,
-        wlf: None,
-        modulus_unit: input.modulus_unit,
-    };
-    let read = |input: &DmaInput| {
-        let paths = files::expand(&input.files)?;
-        let given = input.temperatures.as_deref();
-        read_files(&paths, poisson, &options, input.sheet.as_deref(), given)
-    };
-    let mut data = read(input).map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
+    let mut data = input
+        .read(poisson, None)
+        .map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
     let path = data.path.clone();
     let path = path.as_path();
     let with_t = data

@@ -20,7 +20,7 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use super::{DmaData, DmaOptions};
+use super::{DmaData, DmaOptions, DmaWlf, ModulusKind};
 use crate::error::{DmaMasterError, IoError};
 
 /// The file extensions read from a folder of DMA files.
@@ -74,6 +74,60 @@ pub struct DmaFile {
     pub path: PathBuf,
     pub points: Range<usize>,
     pub temperature: TemperatureOrigin,
+}
+
+/// The DMA data of a command: files or folders, and what the command line
+/// (or a scene) says about them. Every reader of DMA frequency data takes
+/// its files through [`DmaInput::read`], so that each file's temperature
+/// comes from the same places in the same order.
+#[derive(Debug, Clone, Default)]
+pub struct DmaInput {
+    /// The files, or folders of files ([`expand`]).
+    pub files: Vec<PathBuf>,
+    /// The sheet of a workbook (default: the first).
+    pub sheet: Option<String>,
+    /// Overrides the shear/tensile decision where the file's names do not
+    /// state it.
+    pub kind: Option<ModulusKind>,
+    /// One temperature per file (°C), for files that state none.
+    pub temperatures: Option<Vec<f64>>,
+    /// The unit of moduli the files give none for (name, pascals).
+    pub modulus_unit: Option<(&'static str, f64)>,
+}
+
+impl DmaInput {
+    /// One file, read as it says.
+    pub fn file(path: &Path) -> DmaInput {
+        DmaInput {
+            files: vec![path.to_path_buf()],
+            ..DmaInput::default()
+        }
+    }
+
+    /// Reads the files (folders expanded) as one data set, shear moduli
+    /// converted with `poisson`; `wlf`, the DMA's own shift where a
+    /// comparison uses it.
+    pub fn read(&self, poisson: f64, wlf: Option<DmaWlf>) -> Result<DmaData, IoError> {
+        let options = DmaOptions {
+            kind: self.kind,
+            wlf,
+            modulus_unit: self.modulus_unit,
+        };
+        let paths = expand(&self.files)?;
+        let given = self.temperatures.as_deref();
+        read_files(&paths, poisson, &options, self.sheet.as_deref(), given)
+    }
+
+    /// The files as messages name them: the one file, or every one.
+    pub fn names(&self) -> String {
+        names(&self.files)
+    }
+}
+
+/// Paths as messages name them: `a.csv, b.csv`.
+pub fn names(paths: &[PathBuf]) -> String {
+    let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+    names.join(", ")
 }
 
 /// The files `inputs` name: each file as given, each folder as its data

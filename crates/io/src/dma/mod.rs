@@ -72,7 +72,7 @@ pub mod trios;
 mod vocabulary;
 
 use crate::data::workbook::is_workbook;
-pub use files::{DmaFile, TemperatureOrigin, read_files};
+pub use files::{DmaFile, DmaInput, TemperatureOrigin, read_files};
 use form::{FormRead, Place};
 pub use header::modulus_unit;
 pub use isotherm::{
