@@ -13,8 +13,6 @@
 //! give the same series. Nothing is written here: `rollfit master` writes
 //! the folder, [`crate::material_file`] its material.toml.
 
-use std::path::Path;
-
 use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
@@ -35,6 +33,8 @@ pub struct DmaMaster {
     /// in the order of the isotherms; empty for a file without
     /// temperatures).
     pub ranges: Vec<(f64, f64)>,
+    /// Sweeps at one temperature merged into one isotherm, as said.
+    pub merged: Vec<String>,
 }
 
 /// Reads `input` and builds its master curve ([`read_isotherms`], then
@@ -64,6 +64,7 @@ pub fn build_told(
         data,
         isotherms,
         indices,
+        merged,
     } = read_isotherms(input, poisson, Some(untimed))?;
     on_read(&data);
     let path = data.path.as_path();
@@ -88,6 +89,7 @@ pub fn build_told(
         settings: valid.resolved(&master.shift),
         master,
         ranges,
+        merged,
     })
 }
 
@@ -100,6 +102,9 @@ pub struct DmaIsotherms {
     /// For each isotherm, the indices of its points in `data.points` (and
     /// `data.lines`), in the isotherm's order.
     pub indices: Vec<Vec<usize>>,
+    /// Sweeps at one temperature from several files or result blocks,
+    /// merged into one isotherm: what was merged (also among the notes).
+    pub merged: Vec<String>,
 }
 
 /// Reads `input` and groups its points into isotherms ([`crate::dma::isotherm`]: by step,
@@ -164,9 +169,12 @@ pub fn read_isotherms(
     };
     let mut sets = Vec::with_capacity(groups.len());
     let mut kept = Vec::with_capacity(groups.len());
+    let mut merges = Vec::new();
     for (temperature, mut indices) in groups {
-        let merged = merge_files(&data, temperature, &mut indices);
-        data.notes.extend(merged);
+        if let Some(merged) = merge_files(&data, temperature, &mut indices) {
+            data.notes.push(merged.clone());
+            merges.push(merged);
+        }
         let (isotherm, firsts, note) = average_repeats(&data, temperature, &indices);
         data.notes.extend(note);
         check_monotone(&data, temperature, &firsts).map_err(|source| DmaMasterError::InFile {
@@ -177,6 +185,7 @@ pub fn read_isotherms(
         kept.push(firsts);
     }
     Ok(DmaIsotherms {
+        merged: merges,
         data,
         isotherms: sets,
         indices: kept,
@@ -184,14 +193,16 @@ pub fn read_isotherms(
 }
 
 /// Orders the points `indices` of an isotherm by frequency when they come
-/// from more than one file (sweeps at one temperature merged), saying so.
+/// from more than one file or result block (sweeps at one temperature
+/// merged), saying so.
 fn merge_files(data: &DmaData, temperature: f64, indices: &mut [usize]) -> Option<String> {
-    let mut from: Vec<&Path> = indices.iter().map(|&i| data.file_of(i)).collect();
+    let mut from: Vec<&crate::dma::DmaFile> =
+        indices.iter().filter_map(|&i| data.source_of(i)).collect();
     from.dedup();
     if from.len() < 2 {
         return None;
     }
-    let names: Vec<String> = from.iter().map(|p| p.display().to_string()).collect();
+    let names: Vec<String> = from.iter().map(|f| f.name()).collect();
     indices.sort_by(|&a, &b| data.points[a].omega.total_cmp(&data.points[b].omega));
     Some(format!(
         "{} sweeps at {temperature:.2} °C ({}) merged into one isotherm, ordered by frequency",

@@ -534,6 +534,9 @@ fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
     );
     out += &isotherms_line(&built.ranges);
     out += &temperature_sources(&built.data.files);
+    for merged in &built.merged {
+        out += &format!("  {merged}\n");
+    }
     out += &shift_text(&m.shift);
     out += &shift_out::window_text(&m.shift, m.determined_window, "ω a_T", "rad/s");
     out += &shift_out::vgp_text(&m.van_gurp_palmen);

@@ -74,6 +74,19 @@ pub struct DmaFile {
     pub path: PathBuf,
     pub points: Range<usize>,
     pub temperature: TemperatureOrigin,
+    /// The line a result block starts on, for a file of several
+    /// (RheoCompass); None: the whole file.
+    pub block: Option<usize>,
+}
+
+impl DmaFile {
+    /// The file, or its block, as messages name it.
+    pub fn name(&self) -> String {
+        match self.block {
+            Some(line) => format!("{} (block on line {line})", self.path.display()),
+            None => self.path.display().to_string(),
+        }
+    }
 }
 
 /// The DMA data of a command: files or folders, and what the command line
@@ -199,7 +212,8 @@ pub fn read_files(
         if let Some(t) = given.map(|g| g[k]) {
             give_temperature(&mut data, t);
         }
-        if paths.len() > 1 && data.files[0].temperature == TemperatureOrigin::None {
+        let untold = |f: &DmaFile| f.temperature == TemperatureOrigin::None;
+        if paths.len() > 1 && data.files.iter().any(untold) {
             return Err(DmaMasterError::FileWithoutTemperature { path: path.clone() }.into());
         }
         all = Some(match all {
@@ -241,8 +255,8 @@ fn give_temperature(data: &mut DmaData, t: f64) {
 }
 
 /// `a` followed by `b`: points, lines and files concatenated; steps kept
-/// apart when both have them.
-fn join(mut a: DmaData, b: DmaData) -> DmaData {
+/// apart when both have them; a note both have said once.
+pub(super) fn join(mut a: DmaData, b: DmaData) -> DmaData {
     let offset = a.points.len();
     a.steps = match (a.steps.take(), b.steps) {
         (Some(mut first), Some(second)) => {
@@ -270,7 +284,11 @@ fn join(mut a: DmaData, b: DmaData) -> DmaData {
         a.format = "mixed";
     }
     a.warnings.extend(b.warnings);
-    a.notes.extend(b.notes);
+    for note in b.notes {
+        if !a.notes.contains(&note) {
+            a.notes.push(note);
+        }
+    }
     a
 }
 
