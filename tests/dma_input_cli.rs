@@ -528,7 +528,11 @@ fn rheocompass(in_column: bool, split: bool) -> String {
         out.push(format!("\t\t[Hz]\t[Pa]\t[Pa]{t_unit}\t[]"));
         for (k, row) in rows.iter().enumerate() {
             let cells = row.replace(',', "\t").replace('.', ",");
-            let t_cell = if in_column { format!("\t{t}") } else { String::new() };
+            let t_cell = if in_column {
+                format!("\t{t}")
+            } else {
+                String::new()
+            };
             out.push(format!("\t{}\t{cells}{t_cell}\tDy_auto", k + 1));
         }
         out.push(String::new());
@@ -563,7 +567,11 @@ fn master_reads_rheocompass_result_blocks() {
     );
 
     let mut bytes = vec![0xFF, 0xFE];
-    bytes.extend(rheocompass(true, false).encode_utf16().flat_map(u16::to_le_bytes));
+    bytes.extend(
+        rheocompass(true, false)
+            .encode_utf16()
+            .flat_map(u16::to_le_bytes),
+    );
     let utf16 = tmp.path().join("rc16.txt");
     fs::write(&utf16, bytes).unwrap();
     let out = master_files(&[&utf16], &tmp.path().join("rc16"), &shear);
@@ -631,7 +639,11 @@ fn master_reads_messy_exports_with_a_note_each() {
         ),
         (
             "aligned.txt",
-            format!("  f   G_storage   G_loss   T\n{}\n", each(&aligned).join("\n")).into_bytes(),
+            format!(
+                "  f   G_storage   G_loss   T\n{}\n",
+                each(&aligned).join("\n")
+            )
+            .into_bytes(),
             "columns aligned with runs of spaces",
         ),
         (
@@ -676,5 +688,40 @@ fn master_reads_messy_exports_with_a_note_each() {
     assert_failure(&out, &["two temperature columns"]);
     let cut = format!("{}\n{}\n0.1,2e6\n", body[0], rows.join("\n"));
     let out = master(&tmp.write("cut.csv", &cut), &tmp.path().join("cut"));
-    assert_failure(&out, &["cut.csv, line 119: 2 fields, but the header has 4 columns"]);
+    assert_failure(
+        &out,
+        &["cut.csv, line 119: 2 fields, but the header has 4 columns"],
+    );
+}
+
+/// Temperatures in °F, as a `T_F` column or a units row, read by the one
+/// table of temperature units the measured-data reader uses: the plain
+/// file's master curve within 1e-6 (the conversion intervenes).
+#[test]
+fn master_reads_temperatures_in_fahrenheit() {
+    let tmp = TempDir::new("fahrenheit");
+    let plain = tmp.write("plain.csv", &bundled());
+    succeed(master(&plain, &tmp.path().join("plain")));
+    let expected = numbers(&tmp.path().join("plain"));
+    let fahrenheit = |c: Vec<&str>| match c[3].parse::<f64>() {
+        Ok(t) => format!("{},{},{},{}", c[0], c[1], c[2], t * 9.0 / 5.0 + 32.0),
+        Err(_) => c.join(","),
+    };
+    let body = with_cells(&bundled(), fahrenheit);
+    for (name, text) in [
+        (
+            "suffix.csv",
+            body.replace("f,G_storage,G_loss,T\n", "f,G_storage,G_loss,T_F\n"),
+        ),
+        (
+            "row.csv",
+            body.replace("G_loss,T\n", "G_loss,T\nHz,Pa,Pa,°F\n"),
+        ),
+    ] {
+        let path = tmp.write(name, &text);
+        assert!(text.contains(",-4\n"), "-20 °C is -4 °F");
+        let dir = tmp.path().join(name.replace('.', "_"));
+        succeed(master(&path, &dir));
+        agree(&numbers(&dir), &expected, 1e-6).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
 }
