@@ -48,41 +48,12 @@ pub(crate) fn parse(
             path: path.to_path_buf(),
         });
     };
-    // No header by one delimiter: numbers aligned in columns by runs of
-    // spaces, as a printout or an old instrument writes them.
     if found.is_none()
-        && let Some(aligned) = dialect::aligned(text)
-        && dialect::dialect_of(&aligned, super::sheet::is_header).is_some_and(|d| d.2.is_some())
+        && let Some(read) = parse_aligned(path, text, told)
     {
-        let (read, mut notes) = parse(path, &aligned, told)?;
-        notes.insert(
-            0,
-            format!(
-                "{}: columns aligned with runs of spaces: read as separated by them",
-                path.display()
-            ),
-        );
-        return Ok((read, notes));
+        return read;
     }
-    let mut notes = Vec::new();
-    if let Some(found) = &found {
-        if found.index > 0 {
-            notes.push(format!(
-                "{}: header on line {}; the {} line{} above it (titles) ignored",
-                path.display(),
-                found.line.number,
-                found.index,
-                if found.index == 1 { "" } else { "s" }
-            ));
-        }
-        if delimiter != ',' {
-            notes.push(format!(
-                "{}: columns separated by {}, decimal commas allowed",
-                path.display(),
-                if delimiter == ';' { "`;`" } else { "tabs" }
-            ));
-        }
-    }
+    let mut notes = dialect_notes(path, delimiter, found.as_ref());
     let decimal_comma = dialect::decimal_comma(delimiter);
     let body = &text[start..];
     let mut reader = crate::csv_columns::reader_with(body, false, true, delimiter);
@@ -169,6 +140,49 @@ pub(crate) fn parse(
         .filter(|(_, line)| !line.trim().is_empty())
         .collect();
     Ok((read, notes))
+}
+
+/// No header by one delimiter: numbers aligned in columns by runs of
+/// spaces, as a printout or an old instrument writes them, read as
+/// separated by them (None: no header that way either).
+fn parse_aligned(
+    path: &Path,
+    text: &str,
+    told: header::Told,
+) -> Option<Result<(FormRead, Vec<String>), IoError>> {
+    let aligned = dialect::aligned(text)?;
+    dialect::dialect_of(&aligned, super::sheet::is_header)?.2?;
+    Some(parse(path, &aligned, told).map(|(read, mut notes)| {
+        let said = "columns aligned with runs of spaces: read as separated by them";
+        notes.insert(0, format!("{}: {said}", path.display()));
+        (read, notes)
+    }))
+}
+
+/// What the dialect detection decided, as notes: title lines skipped, a
+/// delimiter other than `,`.
+fn dialect_notes(path: &Path, delimiter: char, found: Option<&dialect::Found>) -> Vec<String> {
+    let mut notes = Vec::new();
+    let Some(found) = found else {
+        return notes;
+    };
+    if found.index > 0 {
+        notes.push(format!(
+            "{}: header on line {}; the {} line{} above it (titles) ignored",
+            path.display(),
+            found.line.number,
+            found.index,
+            if found.index == 1 { "" } else { "s" }
+        ));
+    }
+    if delimiter != ',' {
+        notes.push(format!(
+            "{}: columns separated by {}, decimal commas allowed",
+            path.display(),
+            if delimiter == ';' { "`;`" } else { "tabs" }
+        ));
+    }
+    notes
 }
 
 /// Rows whose cell count differs from the header's where no column read
