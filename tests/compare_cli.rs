@@ -37,16 +37,7 @@ fn root() -> PathBuf {
 
 /// A copy of a committed fit folder in `dir`.
 fn copy_fit(dir: &TempDir, name: &str) -> PathBuf {
-    let target = dir.path().join(name);
-    fs::create_dir_all(&target).unwrap();
-    for file in ["fit.json", "mu.csv", "modulus.csv"] {
-        fs::copy(
-            root().join("examples/fits").join(name).join(file),
-            target.join(file),
-        )
-        .unwrap();
-    }
-    target
+    common::committed_fit_as(dir, name, name)
 }
 
 /// The fit's master curve and WLF, read from its fit.json and written out

@@ -493,3 +493,235 @@ fn master_reads_utf16_with_a_stray_trailing_byte() {
         outputs(&tmp.path().join("plain"))
     );
 }
+
+/// The bundled isotherms as an Anton Paar RheoCompass export: a `Test:`
+/// line, then one `Result:` block per temperature with its `Interval`
+/// lines, a header row, units in brackets on a row of their own,
+/// tab-separated cells with decimal commas and a point number and status
+/// the reader does not know. `in_column`: each block's temperature in a T
+/// column, else only in its Result line (`20C-cooling`). `split`: the
+/// 20 °C sweep written as two blocks (every other point).
+fn rheocompass(in_column: bool, split: bool) -> String {
+    let mut out = vec!["Project:\tHN rubber".to_string(), "Test:\tFS".to_string()];
+    let mut blocks: Vec<(String, Vec<String>)> = Vec::new();
+    for (t, rows) in per_temperature() {
+        match split && t == "20" {
+            true => {
+                for part in 0..2 {
+                    let mine = rows.iter().skip(part).step_by(2).cloned().collect();
+                    blocks.push((t.clone(), mine));
+                }
+            }
+            false => blocks.push((t, rows)),
+        }
+    }
+    for (t, rows) in blocks {
+        let (title, t_name, t_unit) = match in_column {
+            true => ("Frequency sweep".to_string(), "\tTemperature", "\t[°C]"),
+            false => (format!("Frequency sweep {t}C-cooling"), "", ""),
+        };
+        out.push(format!("Result:\t{title}"));
+        out.push(format!("Interval and data points:\t1\t{}", rows.len()));
+        out.push(format!(
+            "Interval data:\tPoint No.\tFrequency\tStorage Modulus\tLoss Modulus{t_name}\tStatus"
+        ));
+        out.push(format!("\t\t[Hz]\t[Pa]\t[Pa]{t_unit}\t[]"));
+        for (k, row) in rows.iter().enumerate() {
+            let cells = row.replace(',', "\t").replace('.', ",");
+            let t_cell = if in_column {
+                format!("\t{t}")
+            } else {
+                String::new()
+            };
+            out.push(format!("\t{}\t{cells}{t_cell}\tDy_auto", k + 1));
+        }
+        out.push(String::new());
+    }
+    out.join("\r\n") + "\r\n"
+}
+
+/// RheoCompass exports, UTF-8 and UTF-16, with the temperature in each
+/// block's T column or only in its Result line: the master curve of the
+/// plain CSV to the last digit, the summary naming each block's source;
+/// two blocks at one temperature are merged into one isotherm and the
+/// summary says so.
+#[test]
+fn master_reads_rheocompass_result_blocks() {
+    let tmp = TempDir::new("rheocompass");
+    let plain = tmp.write("plain.csv", &bundled());
+    succeed(master(&plain, &tmp.path().join("plain")));
+    let expected = outputs(&tmp.path().join("plain"));
+    let shear = ["--dma-modulus", "shear"];
+    let utf8 = tmp.write("rc8.txt", &rheocompass(false, false));
+    let out = master_files(&[&utf8], &tmp.path().join("rc8"), &shear);
+    let stderr = text(&out.stderr);
+    let stdout = succeed(out);
+    assert_eq!(outputs(&tmp.path().join("rc8")), expected);
+    assert!(
+        stderr.contains("rc8.txt: an Anton Paar RheoCompass export of 9 result block(s)"),
+        "{stderr}"
+    );
+    assert!(
+        stdout.contains("rc8.txt: 13 points, -20 °C, stated on line 3"),
+        "{stdout}"
+    );
+
+    let mut bytes = vec![0xFF, 0xFE];
+    bytes.extend(
+        rheocompass(true, false)
+            .encode_utf16()
+            .flat_map(u16::to_le_bytes),
+    );
+    let utf16 = tmp.path().join("rc16.txt");
+    fs::write(&utf16, bytes).unwrap();
+    let out = master_files(&[&utf16], &tmp.path().join("rc16"), &shear);
+    let stdout = succeed(out);
+    assert_eq!(outputs(&tmp.path().join("rc16")), expected);
+    assert!(
+        stdout.contains("rc16.txt: 13 points, from its T column"),
+        "{stdout}"
+    );
+
+    let split = tmp.write("split.txt", &rheocompass(false, true));
+    let out = master_files(&[&split], &tmp.path().join("split"), &shear);
+    let stdout = succeed(out);
+    assert_eq!(outputs(&tmp.path().join("split")), expected);
+    assert!(
+        stdout.contains("2 sweeps at 20.00 °C (")
+            && stdout.contains("(block on line 75)")
+            && stdout.contains("merged into one isotherm"),
+        "{stdout}"
+    );
+}
+
+/// Rheometer exports as they come, each the plain CSV's master curve to
+/// the last digit with a note: a column name repeated, a header naming
+/// more columns than its rows fill, rows ending in empty cells, numbers
+/// aligned with runs of spaces, a Latin-1 `°` in a units row, CR-only
+/// line ends and a UTF-8 byte-order mark.
+#[test]
+fn master_reads_messy_exports_with_a_note_each() {
+    let tmp = TempDir::new("messy");
+    let plain = tmp.write("plain.csv", &bundled());
+    succeed(master(&plain, &tmp.path().join("plain")));
+    let expected = outputs(&tmp.path().join("plain"));
+    let body: Vec<String> = bundled()
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(str::to_string)
+        .collect();
+    let rows = &body[1..];
+    let each = |f: &dyn Fn(&str) -> String| rows.iter().map(|r| f(r)).collect::<Vec<_>>();
+    let t_of = |r: &str| r.rsplit(',').next().unwrap().to_string();
+    let aligned = |r: &str| {
+        let cells: Vec<String> = r.split(',').map(|c| format!("{c:>14}")).collect();
+        cells.join("  ")
+    };
+    let variants: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "twotemp.csv",
+            format!(
+                "f,G_storage,G_loss,Temp,Temp\n{}\n",
+                each(&|r| format!("{r},{}", t_of(r))).join("\n")
+            )
+            .into_bytes(),
+            "column 4 (Temp) and column 5 (Temp) have one name: the first is read",
+        ),
+        (
+            "short.csv",
+            format!("{},Comment,Operator\n{}\n", body[0], rows.join("\n")).into_bytes(),
+            "117 row(s) hold fewer cells than the header's 6 columns (the first on line 2)",
+        ),
+        (
+            "trailing.csv",
+            format!("{}\n{}\n", body[0], each(&|r| format!("{r},,")).join("\n")).into_bytes(),
+            "117 row(s) end with empty cells beyond the header's 4 columns",
+        ),
+        (
+            "aligned.txt",
+            format!(
+                "  f   G_storage   G_loss   T\n{}\n",
+                each(&aligned).join("\n")
+            )
+            .into_bytes(),
+            "columns aligned with runs of spaces",
+        ),
+        (
+            "latin1.csv",
+            [
+                format!("{}\nHz,Pa,Pa,", body[0]).as_bytes(),
+                &[0xB0, b'C', b'\n'],
+                rows.join("\n").as_bytes(),
+                b"\n",
+            ]
+            .concat(),
+            "not UTF-8: read as Latin-1",
+        ),
+        (
+            "cr.csv",
+            (body.join("\r") + "\r").into_bytes(),
+            "lines end with CR only",
+        ),
+        (
+            "bom.csv",
+            [&[0xEF, 0xBB, 0xBF], (body.join("\n") + "\n").as_bytes()].concat(),
+            "UTF-8 byte-order mark ignored",
+        ),
+    ];
+    for (name, bytes, said) in variants {
+        let path = tmp.path().join(name);
+        fs::write(&path, bytes).unwrap();
+        let dir = tmp.path().join(name.replace('.', "_"));
+        let out = master(&path, &dir);
+        let stderr = text(&out.stderr);
+        succeed(out);
+        assert_eq!(outputs(&dir), expected, "{name}");
+        assert!(stderr.contains(said), "{name}: {said}\n{stderr}");
+    }
+    // A second temperature column of another name is still refused, and a
+    // short row that misses a column read is refused at its line.
+    let two = format!(
+        "f,G_storage,G_loss,T,Temp\n{}\n",
+        each(&|r| format!("{r},{}", t_of(r))).join("\n")
+    );
+    let out = master(&tmp.write("two.csv", &two), &tmp.path().join("two"));
+    assert_failure(&out, &["two temperature columns"]);
+    let cut = format!("{}\n{}\n0.1,2e6\n", body[0], rows.join("\n"));
+    let out = master(&tmp.write("cut.csv", &cut), &tmp.path().join("cut"));
+    assert_failure(
+        &out,
+        &["cut.csv, line 119: 2 fields, but the header has 4 columns"],
+    );
+}
+
+/// Temperatures in °F, as a `T_F` column or a units row, read by the one
+/// table of temperature units the measured-data reader uses: the plain
+/// file's master curve within 1e-6 (the conversion intervenes).
+#[test]
+fn master_reads_temperatures_in_fahrenheit() {
+    let tmp = TempDir::new("fahrenheit");
+    let plain = tmp.write("plain.csv", &bundled());
+    succeed(master(&plain, &tmp.path().join("plain")));
+    let expected = numbers(&tmp.path().join("plain"));
+    let fahrenheit = |c: Vec<&str>| match c[3].parse::<f64>() {
+        Ok(t) => format!("{},{},{},{}", c[0], c[1], c[2], t * 9.0 / 5.0 + 32.0),
+        Err(_) => c.join(","),
+    };
+    let body = with_cells(&bundled(), fahrenheit);
+    for (name, text) in [
+        (
+            "suffix.csv",
+            body.replace("f,G_storage,G_loss,T\n", "f,G_storage,G_loss,T_F\n"),
+        ),
+        (
+            "row.csv",
+            body.replace("G_loss,T\n", "G_loss,T\nHz,Pa,Pa,°F\n"),
+        ),
+    ] {
+        let path = tmp.write(name, &text);
+        assert!(text.contains(",-4\n"), "-20 °C is -4 °F");
+        let dir = tmp.path().join(name.replace('.', "_"));
+        succeed(master(&path, &dir));
+        agree(&numbers(&dir), &expected, 1e-6).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}

@@ -43,16 +43,7 @@ fn fifteen_term_fit(tmp: &TempDir) -> PathBuf {
 
 /// A copy of a committed fit's three result files.
 fn committed_fit(tmp: &TempDir, name: &str) -> PathBuf {
-    let dir = tmp.path().join(name);
-    fs::create_dir_all(&dir).unwrap();
-    for file in ["fit.json", "mu.csv", "modulus.csv"] {
-        fs::copy(
-            workspace().join("examples/fits").join(name).join(file),
-            dir.join(file),
-        )
-        .unwrap();
-    }
-    dir
+    common::committed_fit_as(tmp, name, name)
 }
 
 fn report(dir: &Path, extra: &[&OsStr]) -> std::process::Output {

@@ -213,3 +213,19 @@ pub fn copy_tree(from: &Path, to: &Path) {
         fs::write(target, bytes).unwrap();
     }
 }
+
+/// A copy of the committed fit `examples/fits/<name>`'s three result
+/// files in the folder `to` of `tmp`.
+pub fn committed_fit_as(tmp: &TempDir, name: &str, to: &str) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let target = tmp.path().join(to);
+    fs::create_dir_all(&target).unwrap();
+    for file in ["fit.json", "mu.csv", "modulus.csv"] {
+        fs::copy(
+            root.join("examples/fits").join(name).join(file),
+            target.join(file),
+        )
+        .unwrap();
+    }
+    target
+}

@@ -1,5 +1,5 @@
 //! The DMA file of a joint fit (issue 35; `dma = FILE` in a scene's
-//! `[fit]` or a batch manifest, `rollfit fit --dma FILE`, the Python
+//! `[fit]` or a batch manifest, `rollfit fit --dma FILE...|FOLDER`, the Python
 //! module's `dma=` keyword): read and grouped into isotherms by
 //! [`crate::dma_master::read_isotherms`], as `rollfit master` reads a DMA
 //! file, then checked by the fit library ([`DmaRows::new`]). Where the
@@ -32,8 +32,14 @@ pub struct JointDma {
 /// without one). Errors name the file and, where one point is at fault,
 /// its line.
 pub fn read(path: &Path, poisson: f64, t_ref: Option<f64>) -> Result<JointDma, IoError> {
-    let read = read_isotherms(&DmaInput::file(path), poisson, t_ref)?;
-    let source = path.display().to_string();
+    read_input(&DmaInput::file(path), poisson, t_ref)
+}
+
+/// [`read`] of several files or folders (one isotherm per file, each
+/// file's temperature found as [`crate::dma::files`] finds it).
+pub fn read_input(input: &DmaInput, poisson: f64, t_ref: Option<f64>) -> Result<JointDma, IoError> {
+    let read = read_isotherms(input, poisson, t_ref)?;
+    let source = input.names();
     // Each isotherm alone first, so that a point the library refuses is
     // found in the isotherm it named.
     for (isotherm, indices) in read.isotherms.iter().zip(&read.indices) {
@@ -58,7 +64,6 @@ fn refused(
     isotherm: Option<(&Isotherm, &Vec<usize>)>,
     error: FitError,
 ) -> IoError {
-    let path = read.data.path.clone();
     let source = Box::new(DmaMasterError::Fit { error });
     let outside = |x: f64, (lo, hi): (f64, f64)| !(x.is_finite() && x >= lo && x <= hi);
     let point = isotherm.and_then(|(iso, indices)| {
@@ -71,6 +76,9 @@ fn refused(
             .or((iso.omega.len() == 1).then_some(0))?;
         indices.get(k).copied()
     });
+    // Of several files, the point's own.
+    let path = point.map_or(read.data.path.as_path(), |i| read.data.file_of(i));
+    let path = path.to_path_buf();
     let line = point.and_then(|i| read.data.lines.get(i).copied());
     match line {
         Some(number) => DmaMasterError::AtPoint {

@@ -13,15 +13,12 @@
 //! give the same series. Nothing is written here: `rollfit master` writes
 //! the folder, [`crate::material_file`] its material.toml.
 
-use std::path::{Path, PathBuf};
-
 use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
 
-use crate::dma::{
-    DmaData, DmaOptions, ISOTHERM_GAP, ISOTHERM_SPAN, ModulusKind, files, range, read_files,
-};
+pub use crate::dma::files::DmaInput;
+use crate::dma::{DmaData, ISOTHERM_GAP, ISOTHERM_SPAN, range};
 use crate::error::{DmaMasterError, IoError, TurnPoint};
 
 /// A master curve built from a DMA file.
@@ -36,31 +33,8 @@ pub struct DmaMaster {
     /// in the order of the isotherms; empty for a file without
     /// temperatures).
     pub ranges: Vec<(f64, f64)>,
-}
-
-/// The DMA data a master curve is built from.
-#[derive(Debug, Clone, Default)]
-pub struct DmaInput {
-    /// The files, or folders of files ([`files::expand`]).
-    pub files: Vec<PathBuf>,
-    /// The sheet of a workbook (default: the first).
-    pub sheet: Option<String>,
-    /// Overrides a TRIOS file's shear/tensile decision.
-    pub kind: Option<ModulusKind>,
-    /// One temperature per file (°C), for files that state none.
-    pub temperatures: Option<Vec<f64>>,
-    /// The unit of moduli the files give none for (name, pascals).
-    pub modulus_unit: Option<(&'static str, f64)>,
-}
-
-impl DmaInput {
-    /// One file, read as it says.
-    pub fn file(path: &Path) -> DmaInput {
-        DmaInput {
-            files: vec![path.to_path_buf()],
-            ..DmaInput::default()
-        }
-    }
+    /// Sweeps at one temperature merged into one isotherm, as said.
+    pub merged: Vec<String>,
 }
 
 /// Reads `input` and builds its master curve ([`read_isotherms`], then
@@ -90,6 +64,7 @@ pub fn build_told(
         data,
         isotherms,
         indices,
+        merged,
     } = read_isotherms(input, poisson, Some(untimed))?;
     on_read(&data);
     let path = data.path.as_path();
@@ -114,6 +89,7 @@ pub fn build_told(
         settings: valid.resolved(&master.shift),
         master,
         ranges,
+        merged,
     })
 }
 
@@ -126,6 +102,9 @@ pub struct DmaIsotherms {
     /// For each isotherm, the indices of its points in `data.points` (and
     /// `data.lines`), in the isotherm's order.
     pub indices: Vec<Vec<usize>>,
+    /// Sweeps at one temperature from several files or result blocks,
+    /// merged into one isotherm: what was merged (also among the notes).
+    pub merged: Vec<String>,
 }
 
 /// Reads `input` and groups its points into isotherms ([`crate::dma::isotherm`]: by step,
@@ -140,17 +119,9 @@ pub fn read_isotherms(
     poisson: f64,
     untimed: Option<f64>,
 ) -> Result<DmaIsotherms, IoError> {
-    let options = DmaOptions {
-        kind: input.kind,
-        wlf: None,
-        modulus_unit: input.modulus_unit,
-    };
-    let read = |input: &DmaInput| {
-        let paths = files::expand(&input.files)?;
-        let given = input.temperatures.as_deref();
-        read_files(&paths, poisson, &options, input.sheet.as_deref(), given)
-    };
-    let mut data = read(input).map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
+    let mut data = input
+        .read(poisson, None)
+        .map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
     let path = data.path.clone();
     let path = path.as_path();
     let with_t = data
@@ -198,9 +169,12 @@ pub fn read_isotherms(
     };
     let mut sets = Vec::with_capacity(groups.len());
     let mut kept = Vec::with_capacity(groups.len());
+    let mut merges = Vec::new();
     for (temperature, mut indices) in groups {
-        let merged = merge_files(&data, temperature, &mut indices);
-        data.notes.extend(merged);
+        if let Some(merged) = merge_files(&data, temperature, &mut indices) {
+            data.notes.push(merged.clone());
+            merges.push(merged);
+        }
         let (isotherm, firsts, note) = average_repeats(&data, temperature, &indices);
         data.notes.extend(note);
         check_monotone(&data, temperature, &firsts).map_err(|source| DmaMasterError::InFile {
@@ -211,6 +185,7 @@ pub fn read_isotherms(
         kept.push(firsts);
     }
     Ok(DmaIsotherms {
+        merged: merges,
         data,
         isotherms: sets,
         indices: kept,
@@ -218,14 +193,16 @@ pub fn read_isotherms(
 }
 
 /// Orders the points `indices` of an isotherm by frequency when they come
-/// from more than one file (sweeps at one temperature merged), saying so.
+/// from more than one file or result block (sweeps at one temperature
+/// merged), saying so.
 fn merge_files(data: &DmaData, temperature: f64, indices: &mut [usize]) -> Option<String> {
-    let mut from: Vec<&Path> = indices.iter().map(|&i| data.file_of(i)).collect();
+    let mut from: Vec<&crate::dma::DmaFile> =
+        indices.iter().filter_map(|&i| data.source_of(i)).collect();
     from.dedup();
     if from.len() < 2 {
         return None;
     }
-    let names: Vec<String> = from.iter().map(|p| p.display().to_string()).collect();
+    let names: Vec<String> = from.iter().map(|f| f.name()).collect();
     indices.sort_by(|&a, &b| data.points[a].omega.total_cmp(&data.points[b].omega));
     Some(format!(
         "{} sweeps at {temperature:.2} °C ({}) merged into one isotherm, ordered by frequency",

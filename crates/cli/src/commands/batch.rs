@@ -472,7 +472,7 @@ fn run_entry(
         scene: &entry.scene,
         data: &entry.data,
         sheet: entry.sheet.as_deref(),
-        dma: entry.dma.as_deref(),
+        dma: entry.dma.as_ref().map(std::slice::from_ref),
         dir: &folder,
         settings,
         usage: "in the manifest, scene = \"SCENE.toml\" and data = \"DATA.csv\"",

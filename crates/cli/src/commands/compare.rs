@@ -15,7 +15,7 @@ use anyhow::{Context, Result};
 use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_io::FitDir;
 use rollfit_io::dma::relaxation::RelaxationData;
-use rollfit_io::dma::{DmaData, DmaOptions, DmaWlf, ModulusKind, WLF_USAGE};
+use rollfit_io::dma::{DmaInput, DmaOptions, DmaWlf, ModulusKind, WLF_USAGE};
 use rollfit_io::output;
 use rollfit_report::compare::{Comparison, compare};
 use rollfit_report::relaxation_compare::compare_relaxation;
@@ -29,8 +29,10 @@ pub struct Args {
     pub dir: PathBuf,
     /// DMA file: CSV (omega or f; E_storage, E_loss or G_storage, G_loss;
     /// optional T), a TA Instruments TRIOS LIMS text export, or a workbook
-    /// (.xlsx, .xls, .ods; the same columns, or an Eplexor export's).
-    pub dma: PathBuf,
+    /// (.xlsx, .xls, .ods; the same columns, or an Eplexor export's); or
+    /// several files (one isotherm each), or a folder of them.
+    #[arg(required = true, num_args = 1..)]
+    pub dma: Vec<PathBuf>,
     #[command(flatten)]
     pub flags: DmaFlags,
 }
@@ -76,6 +78,52 @@ pub struct DmaFlags {
     /// The sheet of a workbook DMA file to read (default: the first).
     #[arg(long, value_name = "NAME")]
     pub sheet: Option<String>,
+    #[command(flatten)]
+    pub files: DmaFileFlags,
+}
+
+/// What the command line says about DMA files that do not say it
+/// themselves: shared by every command that reads DMA frequency data.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct DmaFileFlags {
+    /// The temperature of each DMA file, °C, in the order of the files
+    /// (a folder's: by name), for files that state none (in a T column, a
+    /// line above the header or the file name).
+    #[arg(
+        long,
+        value_name = "T1,T2,…",
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    pub temperatures: Option<Vec<f64>>,
+    /// The unit of moduli a DMA file gives without one: Pa, kPa, MPa or
+    /// GPa (default Pa, said in a note).
+    #[arg(long, value_name = "UNIT", value_parser = parse_modulus_unit)]
+    pub units: Option<(&'static str, f64)>,
+}
+
+impl DmaFileFlags {
+    /// The DMA input of `files` (files or folders) read with these flags.
+    pub fn input(
+        &self,
+        files: &[PathBuf],
+        sheet: Option<&str>,
+        kind: Option<DmaModulus>,
+    ) -> DmaInput {
+        DmaInput {
+            files: files.to_vec(),
+            sheet: sheet.map(str::to_string),
+            kind: kind.map(DmaModulus::kind),
+            temperatures: self.temperatures.clone(),
+            modulus_unit: self.units,
+        }
+    }
+}
+
+/// `--units`: a modulus unit of the DMA readers' one table.
+pub fn parse_modulus_unit(text: &str) -> Result<(&'static str, f64), String> {
+    rollfit_io::dma::modulus_unit(text)
+        .ok_or_else(|| format!("{text:?} is not a unit of modulus (Pa, kPa, MPa, GPa, N/mm²)"))
 }
 
 /// ν of `rollfit master` (`--poisson`, else 0.5) and whose it is, in the
@@ -93,7 +141,7 @@ impl DmaFlags {
         DmaOptions {
             kind: self.dma_modulus.map(DmaModulus::kind),
             wlf: self.dma_wlf,
-            ..DmaOptions::default()
+            modulus_unit: self.files.units,
         }
     }
 }
@@ -112,25 +160,44 @@ fn parse_wlf(text: &str) -> Result<DmaWlf, String> {
     DmaWlf::new(t_ref, c1, c2).map_err(|problem| format!("\"{text}\": {problem}"))
 }
 
-/// Reads the fit and the DMA file and compares them (no output written).
-pub fn comparison(
-    dir: &std::path::Path,
-    dma: &std::path::Path,
-    flags: &DmaFlags,
-) -> Result<Comparison> {
+/// Reads the fit and the DMA files (or folders) `dma` and compares them
+/// (no output written).
+pub fn comparison(dir: &std::path::Path, dma: &[PathBuf], flags: &DmaFlags) -> Result<Comparison> {
     const USAGE: &str = "rollfit compare DIR DMA.csv (DIR the folder `rollfit fit` wrote)";
+    let first = &dma[0];
     let fit = FitDir::read(dir).context("cannot read the fit");
-    let fit = hints::with_hint(fit, || hints::for_fit_folder(dir, Some(dma), USAGE))?;
+    let fit = hints::with_hint(fit, || hints::for_fit_folder(dir, Some(first), USAGE))?;
     let options = flags.options();
-    let data = DmaData::read_sheet(dma, fit.summary.poisson, &options, flags.sheet.as_deref())
+    let input = flags
+        .files
+        .input(dma, flags.sheet.as_deref(), flags.dma_modulus);
+    let data = input
+        .read(fit.summary.poisson, options.wlf)
         .context("cannot read the DMA file");
-    let data = hints::with_hint(data, || hints::for_dma(dma, USAGE))?;
+    let data = hints::with_hint(data, || hints::for_dma(first, USAGE))?;
     compare(&fit, &data, &options).context("cannot compare the fit with the DMA data")
+}
+
+/// Whether the DMA input `dma` is a stress-relaxation file; several
+/// files of which the first is one are refused.
+pub fn is_relaxation(dma: &[PathBuf]) -> Result<bool> {
+    let first = &dma[0];
+    if !rollfit_io::dma::relaxation::is_relaxation_file(first) {
+        return Ok(false);
+    }
+    if dma.len() > 1 || first.is_dir() {
+        anyhow::bail!(
+            "relaxation file {}: several relaxation files are not read together yet; put \
+             their isotherms in one file with a T column",
+            first.display()
+        );
+    }
+    Ok(true)
 }
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
-    if rollfit_io::dma::relaxation::is_relaxation_file(&args.dma) {
+    if is_relaxation(&args.dma)? {
         return run_relaxation(args);
     }
     let result = comparison(&args.dir, &args.dma, &args.flags)?;
@@ -199,7 +266,7 @@ pub fn table(c: &Comparison) -> String {
 fn run_relaxation(args: &Args) -> Result<()> {
     let fit = FitDir::read(&args.dir).context("cannot read the fit")?;
     let kind = args.flags.dma_modulus.map(DmaModulus::kind);
-    let data = RelaxationData::read_as(&args.dma, fit.summary.poisson, kind)
+    let data = RelaxationData::read_as(&args.dma[0], fit.summary.poisson, kind)
         .context("cannot read the relaxation file")?;
     let c = compare_relaxation(&fit, &data, &args.flags.options())
         .context("cannot compare the fit with the relaxation data")?;

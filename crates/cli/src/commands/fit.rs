@@ -54,9 +54,11 @@ pub struct Args {
     /// DMA isotherms (any form `rollfit master` reads; shear moduli
     /// converted with the scene's ν) fitted jointly with DATA: one master
     /// curve for both, and a test of whether they describe one material.
-    /// Relative to the current folder; overrides [fit] dma.
-    #[arg(long, value_name = "DMAFILE")]
-    pub dma: Option<PathBuf>,
+    /// Relative to the current folder; overrides [fit] dma. Several files
+    /// (one isotherm each, the temperature in each file or its name) or a
+    /// folder of them are read as `rollfit master` reads them.
+    #[arg(long, value_name = "DMAFILE", num_args = 1..)]
+    pub dma: Option<Vec<PathBuf>>,
     /// Folder for fit.json, modulus.csv and mu.csv (created if missing).
     /// Default: fits/<DATA file stem>.
     #[arg(short, long, value_name = "DIR")]
@@ -279,7 +281,7 @@ pub struct Job<'a> {
     pub sheet: Option<&'a str>,
     /// The DMA file of a joint fit (`--dma`, a manifest's `dma`), over the
     /// scene's `[fit] dma`.
-    pub dma: Option<&'a Path>,
+    pub dma: Option<&'a [PathBuf]>,
     pub dir: &'a Path,
     /// Over the scene's `[fit]`: the flags (for a batch, also the
     /// manifest's settings, checked when the manifest was read).

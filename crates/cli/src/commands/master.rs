@@ -50,7 +50,7 @@ use rollfit_model::ViscoelasticModulus;
 use rollfit_report::causality::{self, CausalFit};
 use serde::Serialize;
 
-use crate::commands::compare::{DmaModulus, poisson_source};
+use crate::commands::compare::{DmaFileFlags, DmaModulus, is_relaxation, poisson_source};
 use crate::{hints, progress, stdout};
 
 mod pictures;
@@ -67,20 +67,8 @@ pub struct Args {
     /// or several files (one isotherm each), or a folder of them.
     #[arg(required = true, num_args = 1..)]
     pub dma: Vec<PathBuf>,
-    /// The temperature of each DMA file, °C, in the order of the files
-    /// (a folder's: by name), for files that state none (in a T column, a
-    /// line above the header or the file name).
-    #[arg(
-        long,
-        value_name = "T1,T2,…",
-        value_delimiter = ',',
-        allow_hyphen_values = true
-    )]
-    pub temperatures: Option<Vec<f64>>,
-    /// The unit of moduli a DMA file gives without one: Pa, kPa, MPa or
-    /// GPa (default Pa, said in a note).
-    #[arg(long, value_name = "UNIT", value_parser = parse_modulus_unit)]
-    pub units: Option<(&'static str, f64)>,
+    #[command(flatten)]
+    pub files: DmaFileFlags,
     /// The sheet of a workbook DMA file to read (default: the first).
     #[arg(long, value_name = "NAME")]
     pub sheet: Option<String>,
@@ -136,12 +124,6 @@ fn parse_poisson(text: &str) -> Result<f64, String> {
     rollfit_model::check_poisson(value).map_err(|e| e.to_string())
 }
 
-/// `--units`: a modulus unit of the DMA readers' one table.
-pub fn parse_modulus_unit(text: &str) -> Result<(&'static str, f64), String> {
-    rollfit_io::dma::modulus_unit(text)
-        .ok_or_else(|| format!("{text:?} is not a unit of modulus (Pa, kPa, MPa, GPa, N/mm²)"))
-}
-
 /// `--shift`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum ShiftChoice {
@@ -181,25 +163,14 @@ pub fn run(args: &Args) -> Result<()> {
         vertical: args.vertical,
     };
     let first = &args.dma[0];
-    if rollfit_io::dma::relaxation::is_relaxation_file(first) {
-        if args.dma.len() > 1 || first.is_dir() {
-            anyhow::bail!(
-                "relaxation file {}: several relaxation files are not read together yet; put \
-                 their isotherms in one file with a T column",
-                first.display()
-            );
-        }
+    if is_relaxation(&args.dma)? {
         return relaxation::run(args, &settings);
     }
     let (poisson, whose) = poisson_source(args.poisson);
     let spinner = progress::spinner(format!("master curve of {}", dma_name(args)));
-    let input = dma_master::DmaInput {
-        files: args.dma.clone(),
-        sheet: args.sheet.clone(),
-        kind: args.dma_modulus.map(DmaModulus::kind),
-        temperatures: args.temperatures.clone(),
-        modulus_unit: args.units,
-    };
+    let input = args
+        .files
+        .input(&args.dma, args.sheet.as_deref(), args.dma_modulus);
     // The file's notes and warnings come before the master curve's
     // verdict, so that a refusal is read next to the rows that explain it
     // (rows skipped for a temperature in a merged cell).
@@ -344,8 +315,7 @@ pub(super) fn strict_gate(shift: &ShiftFactors, args: &Args) -> Result<()> {
 
 /// The DMA files as messages name them: the one file, or every one.
 fn dma_name(args: &Args) -> String {
-    let names: Vec<String> = args.dma.iter().map(|p| p.display().to_string()).collect();
-    names.join(", ")
+    rollfit_io::dma::files::names(&args.dma)
 }
 
 /// Where each file's temperature came from, one line per file, when the
@@ -611,6 +581,9 @@ fn summary(built: &DmaMaster, causal: &CausalFit) -> String {
     );
     out += &isotherms_line(&built.ranges);
     out += &temperature_sources(&built.data.files);
+    for merged in &built.merged {
+        out += &format!("  {merged}\n");
+    }
     out += &shift_text(&m.shift);
     out += &shift_out::window_text(&m.shift, m.determined_window, "ω a_T", "rad/s");
     out += &shift_out::vgp_text(&m.van_gurp_palmen);

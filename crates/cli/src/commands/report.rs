@@ -38,9 +38,10 @@ pub struct Args {
     pub dir: PathBuf,
     /// DMA data to draw on the master curve and compare with: CSV (f or
     /// omega; E_storage, E_loss or G_storage, G_loss; optional T) or a TA
-    /// Instruments TRIOS "LIMS" text export.
-    #[arg(long, value_name = "DMA")]
-    pub dma: Option<PathBuf>,
+    /// Instruments TRIOS "LIMS" text export; or several files (one
+    /// isotherm each), or a folder of them.
+    #[arg(long, value_name = "DMA", num_args = 1..)]
+    pub dma: Option<Vec<PathBuf>>,
     /// The fit's scene file, for the fitted μ(v) on a dense grid of speeds
     /// in friction.png (default: the scene fit.json names, relative to the
     /// current folder).
@@ -63,7 +64,10 @@ pub fn run(args: &Args) -> Result<()> {
     })?;
 
     let comparison = match &args.dma {
-        Some(path) => Some((path, comparison(&args.dir, path, &args.dma_flags)?)),
+        Some(files) => Some((
+            rollfit_io::dma::files::names(files),
+            comparison(&args.dir, files, &args.dma_flags)?,
+        )),
         None => None,
     };
     let markers: Vec<DmaMarker> = comparison.as_ref().map_or_else(Vec::new, |(_, c)| {
@@ -79,7 +83,7 @@ pub fn run(args: &Args) -> Result<()> {
     let line = fitted_line(&fit, args.scene.as_deref())?;
     let pictures = plot::pictures(&fit, &markers, &line)?;
     let section = comparison.as_ref().map(|(path, c)| ComparisonSection {
-        dma_file: path.to_str().unwrap_or("DMA file"),
+        dma_file: path.as_str(),
         comparison: c,
     });
     let page = report_html(&fit, &pictures, section.as_ref());

@@ -207,6 +207,27 @@ pub(crate) fn dialect_of(
     Some((delimiter, start, found))
 }
 
+/// `text` with the cells of each line split at runs of spaces (or tabs)
+/// instead of one delimiter, rejoined by tabs: a table aligned for the
+/// eye. Line ends and `#` comments are kept as they are, so line numbers
+/// stay the file's. None when no line has two cells so split.
+pub(crate) fn aligned(text: &str) -> Option<String> {
+    let mut out = String::with_capacity(text.len());
+    let mut split = false;
+    for piece in text.split_inclusive(['\n', '\r']) {
+        let body = piece.trim_end_matches(['\n', '\r']);
+        if is_comment_or_blank(body) {
+            out.push_str(body);
+        } else {
+            let cells: Vec<&str> = body.split_whitespace().collect();
+            split |= cells.len() > 1;
+            out.push_str(&cells.join("\t"));
+        }
+        out.push_str(&piece[body.len()..]);
+    }
+    split.then_some(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -232,6 +253,10 @@ mod tests {
             (';', 1, 2)
         );
         assert!(detect(lines("1;2\nx;y\n"), named).is_none());
+        assert_eq!(
+            aligned("# a  b\r\n x   y\r\n  1  2.5\r").as_deref(),
+            Some("# a  b\r\nx\ty\r\n1\t2.5\r")
+        );
         assert_eq!(likeliest("a;b;c,d"), ';');
     }
 }

@@ -57,7 +57,7 @@ pub(crate) mod quantity;
 mod rows;
 mod source;
 mod text;
-mod units;
+pub(crate) mod units;
 pub(crate) mod workbook;
 
 use std::path::Path;

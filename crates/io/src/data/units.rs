@@ -8,7 +8,7 @@
 
 /// How values in a unit become SI values.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Conversion {
+pub(crate) enum Conversion {
     /// × 10^pow10 / divisor (the power of ten is applied to the decimal
     /// text, so that e.g. 0.0123 mm/s is the f64 nearest 1.23e-5 m/s).
     Scale { pow10: i32, divisor: f64 },
@@ -48,6 +48,16 @@ impl Conversion {
         }
     }
 
+    /// The conversion as a factor and an offset, SI = value × factor +
+    /// offset: for readers that convert a number, not its text.
+    pub fn factor_offset(self) -> (f64, f64) {
+        match self {
+            Conversion::Scale { pow10, divisor } => (10f64.powi(pow10) / divisor, 0.0),
+            Conversion::Kelvin => (1.0, -273.15),
+            Conversion::Fahrenheit => (5.0 / 9.0, -32.0 * 5.0 / 9.0),
+        }
+    }
+
     /// Converts `value`, written as `text` (a decimal number with a point).
     pub fn apply(self, value: f64, text: &str) -> f64 {
         // Temperatures are rounded to 1e-9 K, so that 293.15 K is 20 °C and
@@ -79,7 +89,7 @@ fn shift_decimal(text: &str, pow10: i32) -> Option<f64> {
 
 /// A unit as understood.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct Unit {
+pub(crate) struct Unit {
     /// As a note names it: "mm/s", "K".
     pub label: String,
     pub conversion: Conversion,
@@ -143,8 +153,9 @@ pub(super) fn time_unit(time: &str) -> Option<(i32, f64, &'static str)> {
     })
 }
 
-/// A temperature unit: °C, C, degC, celsius, K, kelvin, °F, F.
-pub(super) fn temperature_unit(unit: &str) -> Option<Unit> {
+/// A temperature unit: °C, C, ℃, degC, celsius, K, kelvin, °F, F: the one
+/// table of temperature units, for measured data and DMA files alike.
+pub(crate) fn temperature_unit(unit: &str) -> Option<Unit> {
     let unit: String = unit
         .trim()
         .to_lowercase()
@@ -153,7 +164,7 @@ pub(super) fn temperature_unit(unit: &str) -> Option<Unit> {
         .filter(|c| !(c.is_whitespace() || "°º_.".contains(*c)))
         .collect();
     let (label, conversion) = match unit.as_str() {
-        "c" | "celsius" => ("°C", Conversion::NONE),
+        "c" | "celsius" | "℃" => ("°C", Conversion::NONE),
         "k" | "kelvin" => ("K", Conversion::Kelvin),
         "f" | "fahrenheit" => ("°F", Conversion::Fahrenheit),
         _ => return None,

@@ -48,25 +48,12 @@ pub(crate) fn parse(
             path: path.to_path_buf(),
         });
     };
-    let mut notes = Vec::new();
-    if let Some(found) = &found {
-        if found.index > 0 {
-            notes.push(format!(
-                "{}: header on line {}; the {} line{} above it (titles) ignored",
-                path.display(),
-                found.line.number,
-                found.index,
-                if found.index == 1 { "" } else { "s" }
-            ));
-        }
-        if delimiter != ',' {
-            notes.push(format!(
-                "{}: columns separated by {}, decimal commas allowed",
-                path.display(),
-                if delimiter == ';' { "`;`" } else { "tabs" }
-            ));
-        }
+    if found.is_none()
+        && let Some(read) = parse_aligned(path, text, told)
+    {
+        return read;
     }
+    let mut notes = dialect_notes(path, delimiter, found.as_ref());
     let decimal_comma = dialect::decimal_comma(delimiter);
     let body = &text[start..];
     let mut reader = crate::csv_columns::reader_with(body, false, true, delimiter);
@@ -128,6 +115,7 @@ pub(crate) fn parse(
         .then(|| text.lines().count())
         .filter(|&n| n > 0);
     let mut points = Vec::new();
+    let mut ragged = Ragged::default();
     for record in records {
         let record = record.map_err(not_csv)?;
         let line = line_of(record.position());
@@ -140,8 +128,10 @@ pub(crate) fn parse(
             cut,
             decimal_comma,
         };
-        points.push(row(path, at, &header, &record, &mut warnings)?);
+        let said = (&mut warnings, &mut ragged);
+        points.push(row(path, at, &header, &record, said)?);
     }
+    notes.extend(ragged.notes(path, header.names.len()));
     let mut read = header.form(path, points, warnings)?;
     read.preamble = text[..start]
         .lines()
@@ -150,6 +140,79 @@ pub(crate) fn parse(
         .filter(|(_, line)| !line.trim().is_empty())
         .collect();
     Ok((read, notes))
+}
+
+/// No header by one delimiter: numbers aligned in columns by runs of
+/// spaces, as a printout or an old instrument writes them, read as
+/// separated by them (None: no header that way either).
+fn parse_aligned(
+    path: &Path,
+    text: &str,
+    told: header::Told,
+) -> Option<Result<(FormRead, Vec<String>), IoError>> {
+    let aligned = dialect::aligned(text)?;
+    dialect::dialect_of(&aligned, super::sheet::is_header)?.2?;
+    Some(parse(path, &aligned, told).map(|(read, mut notes)| {
+        let said = "columns aligned with runs of spaces: read as separated by them";
+        notes.insert(0, format!("{}: {said}", path.display()));
+        (read, notes)
+    }))
+}
+
+/// What the dialect detection decided, as notes: title lines skipped, a
+/// delimiter other than `,`.
+fn dialect_notes(path: &Path, delimiter: char, found: Option<&dialect::Found>) -> Vec<String> {
+    let mut notes = Vec::new();
+    let Some(found) = found else {
+        return notes;
+    };
+    if found.index > 0 {
+        notes.push(format!(
+            "{}: header on line {}; the {} line{} above it (titles) ignored",
+            path.display(),
+            found.line.number,
+            found.index,
+            if found.index == 1 { "" } else { "s" }
+        ));
+    }
+    if delimiter != ',' {
+        notes.push(format!(
+            "{}: columns separated by {}, decimal commas allowed",
+            path.display(),
+            if delimiter == ';' { "`;`" } else { "tabs" }
+        ));
+    }
+    notes
+}
+
+/// Rows whose cell count differs from the header's where no column read
+/// is missing: an export's header that names more columns than its rows
+/// fill, or rows ending in empty cells. Each: (first line, count).
+#[derive(Default)]
+struct Ragged {
+    short: Option<(usize, usize)>,
+    trailing: Option<(usize, usize)>,
+}
+
+impl Ragged {
+    /// What was read past, as notes.
+    fn notes(&self, path: &Path, width: usize) -> Vec<String> {
+        let path = path.display();
+        let mut notes = Vec::new();
+        if let Some((line, count)) = self.short {
+            notes.push(format!(
+                "{path}: {count} row(s) hold fewer cells than the header's {width} columns (the \
+                 first on line {line}): the missing trailing cells, of columns not read, are empty"
+            ));
+        }
+        if let Some((line, count)) = self.trailing {
+            notes.push(format!(
+                "{path}: {count} row(s) end with empty cells beyond the header's {width} columns \
+                 (the first on line {line}): ignored"
+            ));
+        }
+        notes
+    }
 }
 
 /// Where a record is and how its numbers read.
@@ -168,7 +231,7 @@ fn row(
     at: Row,
     header: &Header,
     record: &csv::StringRecord,
-    warnings: &mut Vec<String>,
+    (warnings, ragged): (&mut Vec<String>, &mut Ragged),
 ) -> Result<RawPoint, IoError> {
     let Row {
         line,
@@ -176,7 +239,19 @@ fn row(
         decimal_comma,
     } = at;
     let width = header.names.len();
-    if record.len() != width {
+    let read = [&header.omega, &header.storage, &header.loss]
+        .into_iter()
+        .chain(&header.temperature)
+        .chain(&header.step)
+        .map(|c| c.index)
+        .max()
+        .unwrap_or(0);
+    let empty_beyond = record.iter().skip(width).all(str::is_empty);
+    if record.len() > read && record.len() < width && !last_and_cut {
+        ragged.short.get_or_insert((line, 0)).1 += 1;
+    } else if record.len() > width && empty_beyond {
+        ragged.trailing.get_or_insert((line, 0)).1 += 1;
+    } else if record.len() != width {
         let missing = header.names[record.len().min(width)..]
             .iter()
             .enumerate()

@@ -28,6 +28,20 @@ pub fn decode(path: &Path, bytes: &[u8]) -> Result<String, IoError> {
 /// [`decode`], with a note on how the text was read where it was not
 /// plain UTF-8: the byte-order mark, Latin-1, a stray byte dropped.
 pub fn decode_noted(path: &Path, bytes: &[u8]) -> Result<(String, Vec<String>), IoError> {
+    let (text, mut notes) = decode_marked(path, bytes)?;
+    // Classic Mac OS line ends: read as line breaks (the lines are
+    // numbered as an editor numbers them), but worth saying.
+    if text.contains('\r') && !text.contains('\n') {
+        notes.push(format!(
+            "{}: lines end with CR only (classic Mac OS): read as line breaks",
+            path.display()
+        ));
+    }
+    Ok((text, notes))
+}
+
+/// [`decode_noted`] without the note on line ends.
+fn decode_marked(path: &Path, bytes: &[u8]) -> Result<(String, Vec<String>), IoError> {
     let note = |what: &str| vec![format!("{}: {what}", path.display())];
     match bytes {
         [0xFF, 0xFE, ..] | [0xFE, 0xFF, ..] => {

@@ -20,7 +20,7 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use super::{DmaData, DmaOptions};
+use super::{DmaData, DmaOptions, DmaWlf, ModulusKind};
 use crate::error::{DmaMasterError, IoError};
 
 /// The file extensions read from a folder of DMA files.
@@ -74,6 +74,73 @@ pub struct DmaFile {
     pub path: PathBuf,
     pub points: Range<usize>,
     pub temperature: TemperatureOrigin,
+    /// The line a result block starts on, for a file of several
+    /// (RheoCompass); None: the whole file.
+    pub block: Option<usize>,
+}
+
+impl DmaFile {
+    /// The file, or its block, as messages name it.
+    pub fn name(&self) -> String {
+        match self.block {
+            Some(line) => format!("{} (block on line {line})", self.path.display()),
+            None => self.path.display().to_string(),
+        }
+    }
+}
+
+/// The DMA data of a command: files or folders, and what the command line
+/// (or a scene) says about them. Every reader of DMA frequency data takes
+/// its files through [`DmaInput::read`], so that each file's temperature
+/// comes from the same places in the same order.
+#[derive(Debug, Clone, Default)]
+pub struct DmaInput {
+    /// The files, or folders of files ([`expand`]).
+    pub files: Vec<PathBuf>,
+    /// The sheet of a workbook (default: the first).
+    pub sheet: Option<String>,
+    /// Overrides the shear/tensile decision where the file's names do not
+    /// state it.
+    pub kind: Option<ModulusKind>,
+    /// One temperature per file (°C), for files that state none.
+    pub temperatures: Option<Vec<f64>>,
+    /// The unit of moduli the files give none for (name, pascals).
+    pub modulus_unit: Option<(&'static str, f64)>,
+}
+
+impl DmaInput {
+    /// One file, read as it says.
+    pub fn file(path: &Path) -> DmaInput {
+        DmaInput {
+            files: vec![path.to_path_buf()],
+            ..DmaInput::default()
+        }
+    }
+
+    /// Reads the files (folders expanded) as one data set, shear moduli
+    /// converted with `poisson`; `wlf`, the DMA's own shift where a
+    /// comparison uses it.
+    pub fn read(&self, poisson: f64, wlf: Option<DmaWlf>) -> Result<DmaData, IoError> {
+        let options = DmaOptions {
+            kind: self.kind,
+            wlf,
+            modulus_unit: self.modulus_unit,
+        };
+        let paths = expand(&self.files)?;
+        let given = self.temperatures.as_deref();
+        read_files(&paths, poisson, &options, self.sheet.as_deref(), given)
+    }
+
+    /// The files as messages name them: the one file, or every one.
+    pub fn names(&self) -> String {
+        names(&self.files)
+    }
+}
+
+/// Paths as messages name them: `a.csv, b.csv`.
+pub fn names(paths: &[PathBuf]) -> String {
+    let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+    names.join(", ")
 }
 
 /// The files `inputs` name: each file as given, each folder as its data
@@ -145,7 +212,8 @@ pub fn read_files(
         if let Some(t) = given.map(|g| g[k]) {
             give_temperature(&mut data, t);
         }
-        if paths.len() > 1 && data.files[0].temperature == TemperatureOrigin::None {
+        let untold = |f: &DmaFile| f.temperature == TemperatureOrigin::None;
+        if paths.len() > 1 && data.files.iter().any(untold) {
             return Err(DmaMasterError::FileWithoutTemperature { path: path.clone() }.into());
         }
         all = Some(match all {
@@ -187,8 +255,8 @@ fn give_temperature(data: &mut DmaData, t: f64) {
 }
 
 /// `a` followed by `b`: points, lines and files concatenated; steps kept
-/// apart when both have them.
-fn join(mut a: DmaData, b: DmaData) -> DmaData {
+/// apart when both have them; a note both have said once.
+pub(super) fn join(mut a: DmaData, b: DmaData) -> DmaData {
     let offset = a.points.len();
     a.steps = match (a.steps.take(), b.steps) {
         (Some(mut first), Some(second)) => {
@@ -216,7 +284,11 @@ fn join(mut a: DmaData, b: DmaData) -> DmaData {
         a.format = "mixed";
     }
     a.warnings.extend(b.warnings);
-    a.notes.extend(b.notes);
+    for note in b.notes {
+        if !a.notes.contains(&note) {
+            a.notes.push(note);
+        }
+    }
     a
 }
 

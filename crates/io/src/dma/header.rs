@@ -306,13 +306,32 @@ fn assemble(
     found: Vec<(Quantity, Column)>,
     requested: Option<ModulusKind>,
 ) -> Result<Header, IoError> {
+    let repeated = std::cell::RefCell::new(Vec::new());
     let one = |label: &'static str, wanted: &[Quantity]| {
         let all: Vec<&Column> = found
             .iter()
             .filter(|(q, _)| wanted.contains(q))
             .map(|(_, c)| c)
             .collect();
+        // One name written twice (an export's two `Temp` columns) is one
+        // quantity recorded twice: the first is read, and said.
+        let same_name = |a: &Column, b: &Column| {
+            names[a.index]
+                .trim()
+                .eq_ignore_ascii_case(names[b.index].trim())
+        };
         match all.as_slice() {
+            [a, rest @ ..] if !rest.is_empty() && rest.iter().all(|b| same_name(a, b)) => {
+                repeated.borrow_mut().push(format!(
+                    "{} and {} have one name: the first is read",
+                    a.reference,
+                    rest.iter()
+                        .map(|b| b.reference.to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+                Ok(Some((*a).clone()))
+            }
             [a, b, ..] => Err(IoError::DuplicateQuantity(Box::new(DuplicateQuantity {
                 path: place.path.to_path_buf(),
                 line: place.row(row),
@@ -356,6 +375,7 @@ fn assemble(
     }
     let temperature = one("temperature", &[Quantity::Temperature])?;
     let step = one("step", &[Quantity::Step])?;
+    notes.extend(repeated.into_inner());
     Ok(Header {
         names,
         both,

@@ -56,6 +56,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{DmaSheetError, IoError};
 
+mod blocks;
 mod checks;
 pub mod csv_form;
 pub mod decode;
@@ -73,7 +74,7 @@ pub mod trios;
 mod vocabulary;
 
 use crate::data::workbook::is_workbook;
-pub use files::{DmaFile, TemperatureOrigin, read_files};
+pub use files::{DmaFile, DmaInput, TemperatureOrigin, read_files};
 use form::{FormRead, Place};
 pub use header::modulus_unit;
 pub use isotherm::{
@@ -100,7 +101,8 @@ pub struct DmaData {
     pub sheet: Option<String>,
     /// What the file held (before conversion to Young's).
     pub kind: ModulusKind,
-    /// "csv", "trios-lims" or "workbook".
+    /// "csv", "rheocompass", "trios-lims" or "workbook" ("mixed" of
+    /// several files).
     pub format: &'static str,
     /// Points dropped, columns or steps skipped, and how the file was
     /// read where that was a decision (shear or tensile, ν).
@@ -135,7 +137,32 @@ impl DmaData {
             path: path.to_path_buf(),
             problem,
         })?;
-        let (read, format, sheet, mut notes) = read_form(path, options, sheet)?;
+        let (reads, format, sheet, notes) = read_form(path, options, sheet)?;
+        let blocks = reads.len() > 1;
+        let mut all: Option<DmaData> = None;
+        for read in reads {
+            let data = DmaData::of_form(path, read, (format, &sheet), poisson, blocks)?;
+            all = Some(match all {
+                None => data,
+                Some(so_far) => files::join(so_far, data),
+            });
+        }
+        let mut data = all.ok_or_else(|| IoError::NoDataPoints {
+            path: path.to_path_buf(),
+        })?;
+        data.notes.splice(0..0, notes);
+        Ok(data)
+    }
+
+    /// The data of one form read (a file, or one result block of it when
+    /// `block`), shear moduli converted with `poisson`.
+    fn of_form(
+        path: &Path,
+        read: FormRead,
+        (format, sheet): (&'static str, &Option<String>),
+        poisson: f64,
+        block: bool,
+    ) -> Result<DmaData, IoError> {
         let FormRead {
             points: mut raw,
             kind,
@@ -143,6 +170,7 @@ impl DmaData {
             mut warnings,
             preamble,
         } = read;
+        let mut notes = Vec::new();
         let temperature = stated_temperature(path, &mut raw, &preamble);
         let factor = match kind {
             ModulusKind::Young => 1.0,
@@ -171,6 +199,7 @@ impl DmaData {
             path: path.to_path_buf(),
             points: 0..points.len(),
             temperature,
+            block: block.then(|| preamble.first().map_or(0, |(line, _)| *line)),
         }];
         Ok(DmaData {
             path: path.to_path_buf(),
@@ -178,7 +207,7 @@ impl DmaData {
             points,
             lines,
             steps,
-            sheet,
+            sheet: sheet.clone(),
             kind,
             format,
             warnings,
@@ -202,10 +231,13 @@ impl DmaData {
 
     /// The file the point `index` of [`DmaData::points`] was read from.
     pub fn file_of(&self, index: usize) -> &Path {
-        self.files
-            .iter()
-            .find(|f| f.points.contains(&index))
+        self.source_of(index)
             .map_or(self.path.as_path(), |f| f.path.as_path())
+    }
+
+    /// The file, or result block, the point `index` was read from.
+    pub fn source_of(&self, index: usize) -> Option<&DmaFile> {
+        self.files.iter().find(|f| f.points.contains(&index))
     }
 
     /// The isotherms' temperatures (°C, ascending; see
@@ -252,9 +284,10 @@ fn told(options: &DmaOptions) -> header::Told {
     }
 }
 
-/// What the file's form reads: the points, the form's name, the sheet
-/// read (a workbook's) and the notes of reading it.
-type Form = (FormRead, &'static str, Option<String>, Vec<String>);
+/// What the file's form reads: the points (of each result block, for a
+/// RheoCompass export), the form's name, the sheet read (a workbook's)
+/// and the notes of reading it.
+type Form = (Vec<FormRead>, &'static str, Option<String>, Vec<String>);
 
 /// Reads `path` in its form: a workbook's sheet `sheet`, else decoded
 /// text as TRIOS LIMS or CSV.
@@ -263,9 +296,9 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
         path: path.to_path_buf(),
         source,
     })?;
-    let (mut read, format, sheet, notes) = if is_workbook(path, &bytes) {
+    let (mut reads, format, sheet, notes) = if is_workbook(path, &bytes) {
         let (read, name, notes) = sheet::parse(path, bytes, sheet, told(options))?;
-        (read, "workbook", Some(name), notes)
+        (vec![read], "workbook", Some(name), notes)
     } else if let Some(sheet) = sheet {
         return Err(DmaSheetError::SheetOfText {
             path: path.to_path_buf(),
@@ -276,18 +309,43 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
         let (text, decoded) = decode::decode_noted(path, &bytes)?;
         if trios::is_lims(&text) {
             let read = trios::parse(path, &text, options)?;
-            return Ok((read, "trios-lims", None, decoded));
+            return Ok((vec![read], "trios-lims", None, decoded));
         }
-        let (read, mut notes) = csv_form::parse(path, &text, told(options))?;
-        notes.splice(0..0, decoded);
-        (read, "csv", None, notes)
+        let mut notes = decoded;
+        match blocks::result_blocks(&text) {
+            Some(blocks) => {
+                notes.push(format!(
+                    "{}: an Anton Paar RheoCompass export of {} result block(s): each one isotherm",
+                    path.display(),
+                    blocks.len()
+                ));
+                let mut reads = Vec::with_capacity(blocks.len());
+                for block in &blocks {
+                    let (read, said) = csv_form::parse(path, block, told(options))?;
+                    for note in said {
+                        if !notes.contains(&note) {
+                            notes.push(note);
+                        }
+                    }
+                    reads.push(read);
+                }
+                (reads, "rheocompass", None, notes)
+            }
+            None => {
+                let (read, said) = csv_form::parse(path, &text, told(options))?;
+                notes.extend(said);
+                (vec![read], "csv", None, notes)
+            }
+        }
     };
-    if options.kind.is_some_and(|k| k != read.kind) {
-        read.warnings.push(format!(
-            "{}: the column names say {} moduli; the requested modulus kind applies where they do not and is ignored",
-            path.display(),
-            read.kind.name()
-        ));
+    for read in &mut reads {
+        if options.kind.is_some_and(|k| k != read.kind) {
+            read.warnings.push(format!(
+                "{}: the column names say {} moduli; the requested modulus kind applies where they do not and is ignored",
+                path.display(),
+                read.kind.name()
+            ));
+        }
     }
-    Ok((read, format, sheet, notes))
+    Ok((reads, format, sheet, notes))
 }

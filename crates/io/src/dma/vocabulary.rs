@@ -12,7 +12,7 @@
 //! | phase δ     | `Phase angle`, `phase`, `delta`, `δ`                  | °, rad |
 //! | tan δ       | `tan(delta)`, `tan delta`, `tan_delta`, `loss factor` | - |
 //! | viscosity   | `η*′`, `η'`; `η*″`, `η''`; `|η*|`, `Complex Viscosity` | Pa·s, mPa·s, kPa·s, MPa·s |
-//! | temperature | `T`, `temp`, `temperature`                            | °C, K |
+//! | temperature | `T`, `temp`, `temperature`                            | °C, K, °F |
 //! | step        | `Step`, `Set`, `Segment`                              | a label |
 //!
 //! # References
@@ -91,7 +91,7 @@ impl Quantity {
             Quantity::ViscosityStorage | Quantity::ViscosityLoss | Quantity::ViscosityComplex => {
                 "Pa·s, mPa·s, kPa·s, MPa·s"
             }
-            Quantity::Temperature => "°C, K",
+            Quantity::Temperature => "°C, K, °F",
             Quantity::Step => "none",
         }
     }
@@ -135,11 +135,9 @@ impl Quantity {
                     .trim_end_matches(['·', ' ', '.', '*', '⋅']);
                 modulus_unit(pascal_seconds).map(|(_, pascals)| (pascals, 0.0))
             }
-            Quantity::Temperature => match unit {
-                "°C" | "C" | "degC" | "deg C" | "℃" | "ºC" => Some((1.0, 0.0)),
-                "K" => Some((1.0, -273.15)),
-                _ => None,
-            },
+            Quantity::Temperature => {
+                crate::data::units::temperature_unit(unit).map(|u| u.conversion.factor_offset())
+            }
             // A label; whatever a units row writes above it.
             Quantity::Step => Some((1.0, 0.0)),
         }
@@ -196,7 +194,7 @@ const CANONICAL: [(&str, Quantity, &[&str]); 7] = [
     (E_LOSS, Quantity::Loss(Some(Young)), &MODULUS_SUFFIXES),
     (G_STORAGE, Quantity::Storage(Some(Shear)), &MODULUS_SUFFIXES),
     (G_LOSS, Quantity::Loss(Some(Shear)), &MODULUS_SUFFIXES),
-    (T, Quantity::Temperature, &["C", "K"]),
+    (T, Quantity::Temperature, &["C", "K", "F"]),
 ];
 
 const MODULUS_SUFFIXES: [&str; 4] = ["Pa", "kPa", "MPa", "GPa"];

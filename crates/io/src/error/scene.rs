@@ -178,6 +178,12 @@ pub enum SceneError {
     #[error("model \"{model}\" needs `file`")]
     NeedsFile { model: &'static str },
 
+    /// A list of files for a model that reads one.
+    #[error(
+        "model \"table\" reads one file: `file` is a list (several DMA files are model \"dma\")"
+    )]
+    TableFiles,
+
     // ------------------------------------------------------------ [material.shift]
     /// A shift that is not a finite number.
     #[error(

@@ -34,14 +34,14 @@ mod read;
 pub mod summary;
 pub mod write;
 
-pub use mu_csv::MuCsv;
+pub use mu_csv::{Measured, MuCsv};
 pub use quality::{CondensedSummary, QualitySummary, RunsSummary, ScaleSummary};
 pub use read::{FrictionRow, ModulusRow};
 pub use summary::{
     AnchorSummary, FitSummary, InputSummary, LambdaSummary, LogShiftSummary, ModelSummary,
     PhysicsSummary, RunSummary, ShiftSummary, WindowSummary,
 };
-pub use write::{FitFiles, FitFolder, FitInput, Measured};
+pub use write::{FitFiles, FitFolder, FitInput};
 
 /// A fit directory read back.
 #[derive(Debug, Clone)]

@@ -60,7 +60,10 @@ impl MaterialKind {
             MaterialKind::Prony => "E1, H, tau",
             MaterialKind::Table => "file",
             MaterialKind::HavriliakNegami => "E0, E1, tau, alpha, beta",
-            MaterialKind::Dma => "file, and optionally sheet, T_ref, modulus, shift_law, vertical",
+            MaterialKind::Dma => {
+                "file (one, a list or a folder), and optionally sheet, temperatures, T_ref, \
+                 modulus, shift_law, vertical"
+            }
         }
     }
 }
@@ -92,8 +95,12 @@ pub struct MaterialSection {
     #[serde(rename = "H")]
     pub h: Option<Vec<Real>>,
     /// Modulus table ("table") or DMA file ("dma"), relative to the scene
-    /// file's folder.
-    pub file: Option<PathBuf>,
+    /// file's folder; for "dma" also a list of files or a folder (one
+    /// isotherm per file).
+    pub file: Option<Files>,
+    /// The temperature of each DMA file, °C, for files that state none
+    /// ("dma"; as `rollfit master --temperatures`).
+    pub temperatures: Option<Vec<Real>>,
     /// The sheet of a workbook `file` ("dma", "table"; default: the
     /// first).
     pub sheet: Option<String>,
@@ -114,6 +121,24 @@ pub struct MaterialSection {
     /// The master curve of a "dma" material, built once.
     #[serde(skip)]
     pub(crate) dma: DmaCache,
+}
+
+/// `file` as written: one path, or a list ("dma").
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum Files {
+    One(PathBuf),
+    Many(Vec<PathBuf>),
+}
+
+impl Files {
+    /// The paths, as written.
+    fn paths(&self) -> Vec<PathBuf> {
+        match self {
+            Files::One(path) => vec![path.clone()],
+            Files::Many(paths) => paths.clone(),
+        }
+    }
 }
 
 /// `shift_law` of a "dma" material as written in the file.
@@ -192,6 +217,11 @@ impl MaterialSection {
         };
         let optional = [
             ("T_ref", self.t_ref.is_some(), &[MaterialKind::Dma][..]),
+            (
+                "temperatures",
+                self.temperatures.is_some(),
+                &[MaterialKind::Dma][..],
+            ),
             (
                 "shift_law",
                 self.shift_law.is_some(),
@@ -327,10 +357,11 @@ impl MaterialSection {
     /// accepts (shear columns converted with `[substrate] poisson`), and its
     /// path.
     pub fn read_table(&self, base_dir: &Path) -> Result<(PathBuf, table::ModulusTable), IoError> {
-        let file = self
-            .file
-            .as_ref()
-            .ok_or(SceneError::NeedsFile { model: "table" })?;
+        let file = match &self.file {
+            None => return Err(SceneError::NeedsFile { model: "table" }.into()),
+            Some(Files::One(file)) => file,
+            Some(Files::Many(_)) => return Err(SceneError::TableFiles.into()),
+        };
         let path = base_dir.join(file);
         let table = table::read_sheet(
             &path,
@@ -362,10 +393,10 @@ impl MaterialSection {
             vertical: self.vertical.unwrap_or(false),
         };
         let input = dma_master::DmaInput {
-            files: vec![base_dir.join(file)],
+            files: file.paths().iter().map(|f| base_dir.join(f)).collect(),
             sheet: self.sheet.clone(),
             kind: self.modulus.map(ModulusName::kind),
-            temperatures: None,
+            temperatures: (self.temperatures.as_ref()).map(|t| t.iter().map(|r| r.0).collect()),
             modulus_unit: None,
         };
         let built = Arc::new(dma_master::build(

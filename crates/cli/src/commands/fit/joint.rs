@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, anyhow, bail};
 use rollfit_fit::{FitSettings, JointRecord, ValidFitParams};
+use rollfit_io::dma::DmaInput;
 use rollfit_io::dma_joint;
 use rollfit_io::manifest::Entry;
 use rollfit_io::scene::SceneFile;
@@ -22,34 +23,58 @@ pub enum DmaOrigin {
 /// The DMA file of a job: `given` (the flag or the manifest) over the
 /// scene's `[fit] dma`.
 pub fn dma_file(
-    given: Option<&Path>,
+    given: Option<&[PathBuf]>,
     scene: &SceneFile,
     scene_path: &Path,
-) -> Option<(PathBuf, DmaOrigin)> {
+) -> Option<(Vec<PathBuf>, DmaOrigin)> {
     match given {
-        Some(path) => Some((path.to_path_buf(), DmaOrigin::Given)),
+        Some(paths) => Some((paths.to_vec(), DmaOrigin::Given)),
         None => scene
             .dma_file(scene_path.parent().unwrap_or(Path::new("")))
-            .map(|path| (path, DmaOrigin::Scene)),
+            .map(|path| (vec![path], DmaOrigin::Scene)),
     }
 }
 
-/// Reads the DMA file `path` (shear moduli converted with `poisson`, a
-/// file without temperatures taken at `t_ref`) and makes `valid` a joint
-/// fit with it; `log` receives how the file was read. `usage` names where
-/// `dma` came from when the fit refuses it (`--dma`, or the scene file).
+/// Reads the DMA files `paths` (files or folders; shear moduli converted
+/// with `poisson`, a file without temperatures taken at `t_ref`) and makes
+/// `valid` a joint fit with them; `log` receives how they were read.
+/// `origin` names where they came from when the fit refuses them
+/// (`--dma`, or the scene file).
 pub fn with_dma(
     valid: ValidFitParams,
-    (path, origin): (PathBuf, DmaOrigin),
+    (paths, origin): (Vec<PathBuf>, DmaOrigin),
     poisson: f64,
     t_ref: Option<f64>,
     scene_path: &Path,
     log: &impl Fn(&str),
 ) -> Result<ValidFitParams> {
+    for path in &paths {
+        check_exists(path, &origin, scene_path)?;
+    }
+    let input = DmaInput {
+        files: paths,
+        ..DmaInput::default()
+    };
+    let read = dma_joint::read_input(&input, poisson, t_ref)?;
+    for note in &read.notes {
+        log(&format!("note: {note}"));
+    }
+    for warning in &read.warnings {
+        log(&format!("warning: {warning}"));
+    }
+    valid.with_dma(read.rows).map_err(|e| match origin {
+        DmaOrigin::Given => anyhow!("--dma {}: {e}", input.names()),
+        DmaOrigin::Scene => anyhow!("scene file {}: {e}", scene_path.display()),
+    })
+}
+
+/// Refuses a DMA path that is neither a file, a folder nor a pipe,
+/// saying what it is relative to.
+fn check_exists(path: &Path, origin: &DmaOrigin, scene_path: &Path) -> Result<()> {
     // A pipe or `-` is read as a file is; the reader refuses devices.
     let piped = path.as_os_str() == rollfit_io::input_file::STANDARD_INPUT
-        || std::fs::metadata(&path).is_ok_and(|m| !m.is_file() && !m.is_dir());
-    if !path.is_file() && !piped {
+        || std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir());
+    if !path.is_file() && !piped && !path.is_dir() {
         let (what, whose) = match origin {
             DmaOrigin::Given => ("--dma", "the current folder".to_string()),
             DmaOrigin::Scene => (
@@ -61,23 +86,13 @@ pub fn with_dma(
             "DMA file {} {} ({what} is relative to {whose})",
             path.display(),
             if path.exists() {
-                "is not a file"
+                "is not a file or a folder"
             } else {
                 "does not exist"
             }
         );
     }
-    let read = dma_joint::read(&path, poisson, t_ref)?;
-    for note in &read.notes {
-        log(&format!("note: {note}"));
-    }
-    for warning in &read.warnings {
-        log(&format!("warning: {warning}"));
-    }
-    valid.with_dma(read.rows).map_err(|e| match origin {
-        DmaOrigin::Given => anyhow!("--dma {}: {e}", path.display()),
-        DmaOrigin::Scene => anyhow!("scene file {}: {e}", scene_path.display()),
-    })
+    Ok(())
 }
 
 /// Where a job's settings over the scene's `[fit]` were given.
