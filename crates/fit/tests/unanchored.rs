@@ -435,3 +435,18 @@ struct HeldOut {
     params: rollfit_fit::ValidFitParams,
     truth: Truth,
 }
+
+/// A scale profile that stays flat just above Δχ² = 4 down to the model's
+/// range (the broad replica, seed 6: about 4.8 from 6e5 to 2e7 Pa with its
+/// minimum at the top of the range) does not determine the scale: such a
+/// crossing excluded the true E0 in each of the three fits it wrote. The
+/// fit is written only when the scale is determined, so this one is not.
+#[test]
+fn a_plateau_just_over_two_sigma_does_not_determine_the_scale() {
+    let data = common::broad_polymer::lab_set(15, 0.03, 6);
+    let params = common::broad_polymer::params(rollfit_fit::ShiftKind::Auto, false);
+    let r = fit(&data, &params).unwrap();
+    let scale = r.scale.as_ref().unwrap();
+    assert_eq!(scale.status, "undetermined", "{scale:?}");
+    assert!(scale.low.is_none(), "{scale:?}");
+}

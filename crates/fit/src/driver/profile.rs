@@ -25,7 +25,9 @@
 //!    step (1 with a measured σ). The 2σ interval is where Δχ² ≤ 4 (a
 //!    profile-likelihood interval, Venzon & Moolgavkar), its ends refined by
 //!    one bisection of the bracketing step and interpolated linearly in
-//!    ln E0; an end that reaches the range's edge is open.
+//!    ln E0; an end that reaches the range's edge is open, and so is one
+//!    beyond which the profile stays below Δχ² = 9 ([`DECISIVE`], 3σ) up
+//!    to the range's edge (a plateau that noise lifts just over 4).
 //! 4. The scale counts as determined when the interval (an open end taken
 //!    at the range's edge: the model's own limits bound the scale there too)
 //!    spans at most a factor [`SCALE_FACTOR_LIMIT`] either side of its
@@ -105,6 +107,12 @@ const BISECTIONS: usize = 4;
 
 /// Δχ² of the 2σ interval.
 const TWO_SIGMA: f64 = 4.0;
+
+/// Δχ² that a profile must pass somewhere beyond a 2σ end, before the
+/// range's edge, for that end to bound the scale (module doc, step 3):
+/// 3σ. A plateau that noise lifts to just over 4 is no bound: chosen among
+/// many such fits, its crossing excludes the truth far more often than 5 %.
+const DECISIVE: f64 = 9.0;
 
 /// Δχ² of the steps that widen the bands (1σ).
 const ONE_SIGMA: f64 = 1.0;
@@ -483,6 +491,22 @@ impl Profiler<'_> {
                 *end = (steps[inner].e0 != edge).then_some(steps[inner].e0);
                 continue;
             };
+            // Beyond the crossing the profile stays below DECISIVE up to
+            // the range's edge: a plateau the noise lifts just over 2σ, not
+            // a bound the data set; that end is open.
+            let beyond = if k == 0 {
+                0..inner
+            } else {
+                inner + 1..steps.len()
+            };
+            let edge_reached = if k == 0 {
+                steps[0].e0 <= range[0]
+            } else {
+                steps[steps.len() - 1].e0 >= range[1]
+            };
+            if edge_reached && steps[beyond].iter().all(|s| delta(s) < DECISIVE) {
+                continue;
+            }
             let mut from = steps[inner].shape.clone();
             let (mut a, mut b) = (
                 (steps[inner].e0, delta(&steps[inner])),
