@@ -57,7 +57,7 @@
 //!   (1999) 1653–1675.
 
 use super::prony_fit::{Data, Problem, regularised, series_of, tau_grid};
-use super::relaxation_prony::{RelaxationFit, start};
+use super::relaxation_prony::{RelaxationFit, start, time_span};
 use crate::error::FitError;
 use crate::regularization::LambdaRule;
 
@@ -70,14 +70,7 @@ pub const CREEP_METHOD: &str = "the exact creep compliance of the Prony series E
 /// follows D(t) (1/Pa, > 0) at reduced times `time` (s, > 0); see the
 /// module doc. The misfit is RMS log10 D, decades.
 pub fn fit_creep_prony(time: &[f64], compliance: &[f64]) -> Result<RelaxationFit, FitError> {
-    let n = time.len();
-    if n < 3 || compliance.len() != n {
-        return Err(FitError::InsufficientData(format!(
-            "a Prony series needs at least three points of D(t) (got {n})"
-        )));
-    }
-    let t_lo = time.iter().fold(f64::INFINITY, |m, &t| m.min(t));
-    let t_hi = time.iter().fold(0.0f64, |m, &t| m.max(t));
+    let (t_lo, t_hi) = time_span(time, compliance, "D(t)")?;
     let d_lo = compliance.iter().fold(f64::INFINITY, |m, &d| m.min(d));
     let d_hi = compliance.iter().fold(0.0f64, |m, &d| m.max(d));
     let ratio = (d_hi / d_lo).max(1.0);
@@ -93,7 +86,7 @@ pub fn fit_creep_prony(time: &[f64], compliance: &[f64]) -> Result<RelaxationFit
     };
     let from = start(time, &modulus, &tau);
     let (theta, lambda, converged) = regularised(&mut problem, from);
-    let whole = std::iter::once(0..n).collect::<Vec<_>>();
+    let whole = std::iter::once(0..time.len()).collect::<Vec<_>>();
     let (prony, misfit) = series_of(&problem, &theta, &whole)?;
     Ok(RelaxationFit {
         prony,

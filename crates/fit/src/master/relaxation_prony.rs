@@ -72,17 +72,28 @@ pub struct RelaxationFit {
 pub const RELAXATION_METHOD: &str = "the Prony series E(t) fitted to E(t) in log E by \
     Levenberg–Marquardt, smoothness λ by the marginal likelihood";
 
-/// Fits a smooth non-negative Prony series to E(t) (Pa, > 0) at reduced
-/// times `time` (s, > 0); see the module doc.
-pub fn fit_relaxation_prony(time: &[f64], modulus: &[f64]) -> Result<RelaxationFit, FitError> {
+/// The shortest and longest of `time` (s), once there are at least three
+/// points with a `values` (of `quantity`) each.
+pub(super) fn time_span(
+    time: &[f64],
+    values: &[f64],
+    quantity: &str,
+) -> Result<(f64, f64), FitError> {
     let n = time.len();
-    if n < 3 || modulus.len() != n {
+    if n < 3 || values.len() != n {
         return Err(FitError::InsufficientData(format!(
-            "a Prony series needs at least three points of E(t) (got {n})"
+            "a Prony series needs at least three points of {quantity} (got {n})"
         )));
     }
     let t_lo = time.iter().fold(f64::INFINITY, |m, &t| m.min(t));
     let t_hi = time.iter().fold(0.0f64, |m, &t| m.max(t));
+    Ok((t_lo, t_hi))
+}
+
+/// Fits a smooth non-negative Prony series to E(t) (Pa, > 0) at reduced
+/// times `time` (s, > 0); see the module doc.
+pub fn fit_relaxation_prony(time: &[f64], modulus: &[f64]) -> Result<RelaxationFit, FitError> {
+    let (t_lo, t_hi) = time_span(time, modulus, "E(t)")?;
     let tau = tau_grid(1.0 / t_hi, 1.0 / t_lo);
     let mut problem = Problem {
         data: Data::Time {
@@ -94,7 +105,7 @@ pub fn fit_relaxation_prony(time: &[f64], modulus: &[f64]) -> Result<RelaxationF
     };
     let from = start(time, modulus, &tau);
     let (theta, lambda, converged) = regularised(&mut problem, from);
-    let whole = std::iter::once(0..n).collect::<Vec<_>>();
+    let whole = std::iter::once(0..time.len()).collect::<Vec<_>>();
     let (prony, misfit) = series_of(&problem, &theta, &whole)?;
     Ok(RelaxationFit {
         prony,
