@@ -34,7 +34,7 @@ use rayon::prelude::*;
 
 use super::condense::bins;
 use super::isotherm::Isotherm;
-use super::pairwise::{PairCause, PairShift, PairVerdict, pair_shift};
+use super::pairwise::{PairCause, PairShift, PairVerdict, pair_shift, pooled_scatter};
 use crate::shift::overlap::Curve;
 
 /// What the isotherms were measured against: frequency sweeps, or
@@ -156,6 +156,7 @@ pub(crate) fn curves(isotherm: &Isotherm) -> Vec<Curve> {
 /// determined is the network's question.
 pub(crate) fn pairs(sorted: &[Superposable], vertical: bool) -> Pairs {
     let all: Vec<&[Curve]> = sorted.iter().map(|i| i.curves.as_slice()).collect();
+    let noise = pooled_scatter(&all);
     let mut out = Pairs {
         pairs: Vec::new(),
         chained: vec![0.0],
@@ -167,7 +168,7 @@ pub(crate) fn pairs(sorted: &[Superposable], vertical: bool) -> Pairs {
     // at frequencies 10^s times higher.
     let neighbours: Vec<PairShift> = (0..all.len().saturating_sub(1))
         .into_par_iter()
-        .map(|k| pair_shift(all[k], all[k + 1], vertical, (k, k + 1)))
+        .map(|k| pair_shift(all[k], all[k + 1], vertical, &noise, (k, k + 1)))
         .collect();
     for (k, pair) in neighbours.into_iter().enumerate() {
         out.chained.push(out.chained[k] + pair.shift);
@@ -179,7 +180,7 @@ pub(crate) fn pairs(sorted: &[Superposable], vertical: bool) -> Pairs {
         .filter(|&k| undetermined(k) || undetermined(k + 1))
         .collect::<Vec<usize>>()
         .into_par_iter()
-        .map(|k| pair_shift(all[k], all[k + 2], vertical, (k, k + 2)))
+        .map(|k| pair_shift(all[k], all[k + 2], vertical, &noise, (k, k + 2)))
         .filter(|p| p.cause != PairCause::TooFewPoints)
         .collect();
     out.pairs.extend(bridges);
