@@ -142,7 +142,8 @@ type Refit = (GridOutcome, Vec<[f64; 2]>);
 /// as one curve ([`crate::temperature_set::material_first`]) at the first
 /// of `starts` whose one curve describes the data, else at the one whose
 /// shifts superpose the rows best (the lowest misfit of the one curve);
-/// `None` when every one-curve fit fails. With the terms
+/// `None` when every one-curve fit fails, or the joint fit from the
+/// chosen one lands on a material no Prony series holds. With the terms
 /// candidates of that fit; the runs of the other starts' one-curve fits
 /// come first among the outcome's runs.
 ///
@@ -189,7 +190,15 @@ pub(super) fn own_lambda(
         return Ok(None);
     };
     let candidates = first.terms.candidates.clone();
-    let mut joint = joint_from_material(data, params, first, start)?;
+    // A joint fit that lands on a material no Prony series holds in double
+    // precision (E1/E0 beyond 1e16: E0 = E1 − ΣH rounds to zero) is a
+    // route that failed, like a one-curve fit that fails: the caller's
+    // other route answers.
+    let mut joint = match joint_from_material(data, params, first, start) {
+        Ok(joint) => joint,
+        Err(FitError::Model(_)) => return Ok(None),
+        Err(e) => return Err(e),
+    };
     joint.fit.runs = others.into_iter().chain(joint.fit.runs).collect();
     Ok(Some((joint, candidates)))
 }
