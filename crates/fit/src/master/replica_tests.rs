@@ -249,7 +249,8 @@ fn eplexor_like_replica_superposes_where_it_can_and_says_where_not() {
 /// superposes every pair (thermorheologically simple), including the
 /// glassy pairs whose E′ is nearly flat and whose tan δ has its best
 /// overlap at the overlap's end. Over 40 seeds at 1 % noise no pair is
-/// named a superposition failure and no warning says so.
+/// named a superposition failure, no warning says so, and the van
+/// Gurp–Palmen test finds no pair apart.
 #[test]
 fn simple_eplexor_like_replica_is_never_called_complex() {
     let (material, temps, log_alpha, _) = eplexor_like();
@@ -260,6 +261,13 @@ fn simple_eplexor_like_replica_is_never_called_complex() {
         let factors = shift_factors(&isotherms, &valid).unwrap();
         let named: Vec<_> = factors.pairs.iter().filter(|p| p.tts_fails).collect();
         assert!(named.is_empty(), "seed {seed}: {named:?}");
+        let vgp = van_gurp_palmen(&isotherms);
+        let apart: Vec<_> = vgp
+            .pairs
+            .iter()
+            .filter(|p| p.collapses() == Some(false))
+            .collect();
+        assert!(apart.is_empty(), "seed {seed}: van Gurp–Palmen {apart:?}");
         assert!(
             !factors
                 .warnings
