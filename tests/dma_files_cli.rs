@@ -147,7 +147,9 @@ fn compare_and_report_read_one_file_per_temperature() {
 }
 
 /// `fit --dma FOLDER` fits what `fit --dma FILE` fits: fit.json equal but
-/// for the names of the DMA source.
+/// for the names of the DMA source; the folder with files that state no
+/// temperature is refused, and read with `--temperatures` as `master`
+/// reads it.
 #[test]
 fn a_joint_fit_reads_a_folder_of_isotherms() {
     let tmp = TempDir::new("dma-files-fit");
@@ -170,9 +172,9 @@ fn a_joint_fit_reads_a_folder_of_isotherms() {
     let six = tmp.write("six.csv", &six);
     let scene = root().join("data/hn-rubber-tset.toml");
     let data = root().join("data/hn-rubber-tset.csv");
-    let fit = |dma: &Path, out: &str| {
+    let fit_output = |dma: &Path, out: &str, flags: &[&str]| {
         let dir = tmp.path().join(out);
-        run(&[
+        let mut args = vec![
             OsStr::new("fit"),
             scene.as_os_str(),
             data.as_os_str(),
@@ -180,24 +182,33 @@ fn a_joint_fit_reads_a_folder_of_isotherms() {
             dma.as_os_str(),
             OsStr::new("-o"),
             dir.as_os_str(),
-        ]);
-        without_names(&dir.join("fit.json"))
+        ];
+        args.extend(flags.iter().map(OsStr::new));
+        (rollfit(&args), dir.join("fit.json"))
+    };
+    let fit = |dma: &Path, out: &str| {
+        let (output, json) = fit_output(dma, out, &[]);
+        assert!(output.status.success(), "{}", text(&output.stderr));
+        without_names(&json)
     };
     let (by_folder, by_file) = (fit(&named, "by-folder"), fit(&six, "by-file"));
     assert!(by_folder["joint"]["dma"].as_array().unwrap().len() == 78);
     assert!(by_folder == by_file, "fit.json differs");
     // The folder with files that state no temperature: refused, named.
-    let out = rollfit(&[
-        OsStr::new("fit"),
-        scene.as_os_str(),
-        data.as_os_str(),
-        OsStr::new("--dma"),
-        folder.as_os_str(),
-        OsStr::new("-o"),
-        tmp.path().join("refused").as_os_str(),
-    ]);
+    let (out, _) = fit_output(&folder, "refused", &[]);
     assert_failure(&out, &["6_sweep.csv: no temperature"]);
     assert!(!plain.with_file_name("refused").exists());
+    // With --temperatures (and --units stating the files' Pa), as
+    // `master` reads them: the nine files give the one file's fit.
+    let flags = ["--temperatures", GIVEN, "--units", "Pa"];
+    let (out, given) = fit_output(&folder, "given", &flags);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("read in Pa, as stated"), "{stderr}");
+    assert!(
+        without_names(&given) == fit(&plain, "all"),
+        "fit.json differs"
+    );
 }
 
 /// A scene's `model = "dma"` with `file` a list or a folder (and

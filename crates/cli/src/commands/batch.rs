@@ -32,6 +32,7 @@ use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 use rollfit_fit::{FitError, FitSettings};
+use rollfit_io::dma::DmaInput;
 use rollfit_io::fit_dir::columns::FIT_JSON;
 use rollfit_io::fit_dir::digest::Digest;
 use rollfit_io::{csv_text, output};
@@ -473,6 +474,7 @@ fn run_entry(
         data: &entry.data,
         sheet: entry.sheet.as_deref(),
         dma: entry.dma.as_ref().map(std::slice::from_ref),
+        dma_input: DmaInput::default(),
         dir: &folder,
         settings,
         usage: "in the manifest, scene = \"SCENE.toml\" and data = \"DATA.csv\"",

@@ -28,8 +28,10 @@ use rollfit_io::output;
 use rollfit_model::Shape;
 
 use rollfit_io::data::{DataTable, read_sheet};
+use rollfit_io::dma::DmaInput;
 use rollfit_io::scene as scene_file;
 
+use crate::commands::compare::{DmaFileFlags, DmaModulus};
 use crate::{hints, progress};
 
 mod joint;
@@ -59,6 +61,15 @@ pub struct Args {
     /// folder of them are read as `rollfit master` reads them.
     #[arg(long, value_name = "DMAFILE", num_args = 1..)]
     pub dma: Option<Vec<PathBuf>>,
+    /// How the --dma files' temperatures and moduli are read where they do
+    /// not say (as `rollfit master` reads them).
+    #[command(flatten)]
+    pub dma_files: DmaFileFlags,
+    /// Read the --dma files' storage and loss moduli as Young's or shear
+    /// moduli where their column names do not say (TRIOS: default from the
+    /// file's torque or force variables).
+    #[arg(long = "dma-modulus", value_enum, value_name = "KIND")]
+    pub dma_modulus: Option<DmaModulus>,
     /// Folder for fit.json, modulus.csv and mu.csv (created if missing).
     /// Default: fits/<DATA file stem>.
     #[arg(short, long, value_name = "DIR")]
@@ -180,6 +191,7 @@ pub fn run(args: &Args) -> Result<()> {
         data: &args.data,
         sheet: args.sheet.as_deref(),
         dma: args.dma.as_deref(),
+        dma_input: args.dma_files.input(&[], None, args.dma_modulus),
         dir: &dir,
         settings: &args.settings.fit_settings(),
         usage: USAGE,
@@ -282,6 +294,9 @@ pub struct Job<'a> {
     /// The DMA file of a joint fit (`--dma`, a manifest's `dma`), over the
     /// scene's `[fit] dma`.
     pub dma: Option<&'a [PathBuf]>,
+    /// How the DMA files are read (`--temperatures`, `--units`,
+    /// `--dma-modulus`); its files are `dma`'s or the scene's.
+    pub dma_input: DmaInput,
     pub dir: &'a Path,
     /// Over the scene's `[fit]`: the flags (for a batch, also the
     /// manifest's settings, checked when the manifest was read).
@@ -385,7 +400,7 @@ pub fn fit_files(job: &Job<'_>, log: impl Fn(&str)) -> Result<Outcome> {
     let valid = match joint::dma_file(job.dma, &file, scene_path) {
         Some(dma) => {
             let poisson = setup.substrate.poisson;
-            joint::with_dma(valid, dma, poisson, t_ref, scene_path, &log)?
+            joint::with_dma(valid, dma, &job.dma_input, poisson, t_ref, scene_path, &log)?
         }
         None => valid,
     };

@@ -35,14 +35,16 @@ pub fn dma_file(
     }
 }
 
-/// Reads the DMA files `paths` (files or folders; shear moduli converted
-/// with `poisson`, a file without temperatures taken at `t_ref`) and makes
+/// Reads the DMA files `paths` (files or folders, read as `how` says;
+/// shear moduli converted with `poisson`, a file without temperatures
+/// taken at `t_ref`) and makes
 /// `valid` a joint fit with them; `log` receives how they were read.
 /// `origin` names where they came from when the fit refuses them
 /// (`--dma`, or the scene file).
 pub fn with_dma(
     valid: ValidFitParams,
     (paths, origin): (Vec<PathBuf>, DmaOrigin),
+    how: &DmaInput,
     poisson: f64,
     t_ref: Option<f64>,
     scene_path: &Path,
@@ -53,7 +55,7 @@ pub fn with_dma(
     }
     let input = DmaInput {
         files: paths,
-        ..DmaInput::default()
+        ..how.clone()
     };
     let read = dma_joint::read_input(&input, poisson, t_ref)?;
     for note in &read.notes {
