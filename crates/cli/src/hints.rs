@@ -1,4 +1,4 @@
-//! Hints for files given in the wrong place (issue 33): a data table where
+//! Hints for files given in the wrong place: a data table where
 //! a scene belongs, a scene where data belong, a DMA file where a fit
 //! folder belongs. The readers' own errors stay as they are (a TOML parse
 //! error at line 1 is true of a CSV); a hint is put in front of them when

@@ -142,7 +142,7 @@ fn main() -> ExitCode {
 
 #[cfg(test)]
 mod tests {
-    //! Negative numbers as users type them (issue 31): `--T-ref -5`, not
+    //! Negative numbers as users type them: `--T-ref -5`, not
     //! only `--T-ref=-5`. clap reads a word starting with `-` as a flag
     //! unless the option allows hyphen values; every option that takes a
     //! number allows them, so its own parser judges the value (a range

@@ -1,5 +1,5 @@
 //! Progress on stderr for what can take more than a couple of seconds
-//! (issue 33): exact-physics fits, batches, exact and `auto` forward sweeps,
+//!: exact-physics fits, batches, exact and `auto` forward sweeps,
 //! `master`. Bars are for a person at a terminal and are kept out of logs
 //! and pipes: they are drawn only when stderr is a terminal, and
 //! `ROLLFIT_PROGRESS=never` hides them there too (a terminal recorder, a

@@ -233,7 +233,7 @@ mod tests {
         }
     }
 
-    /// Issue 14: values that overflow the weighted residuals are refused
+    /// Values that overflow the weighted residuals are refused
     /// by the library itself, naming the row, not only by the CLI's reader.
     #[test]
     fn values_outside_a_rolling_measurement_are_refused() {

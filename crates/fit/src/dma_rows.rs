@@ -1,4 +1,4 @@
-//! The DMA isotherms of a joint fit ([`crate::joint`], issue 35), validated
+//! The DMA isotherms of a joint fit ([`crate::joint`]), validated
 //! once, as [`crate::data`] validates the rolling rows.
 
 use crate::data::TEMPERATURE_RANGE;

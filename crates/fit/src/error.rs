@@ -11,6 +11,15 @@ use thiserror::Error;
 /// [`crate::FitReport::converged`] with the reason.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum FitError {
+    /// The causality check of measured moduli was given no points.
+    #[error("causality check: no DMA points")]
+    NoCausalityPoints,
+    /// Measured moduli whose weights in the causality check overflow.
+    #[error(
+        "causality check: the DMA moduli span more than a floating-point number can weigh (a \
+         modulus near 1e-308?)"
+    )]
+    CausalityModuliOutOfRange,
     /// A measured value is unusable (row numbers count data rows from 1).
     #[error("data row {row}: {column} = {value}: {requirement}")]
     InvalidData {

@@ -37,7 +37,7 @@
 //! measured data, exactly — also with relative weights (s_i = μ_i, whose
 //! corrected scale μ_i/r_i is the corrected datum's own relative weight).
 //! The driver sees ordinary data: χ², the runs test, the noise estimate and
-//! the λ rule are those of the measured μ against r μ_A; its sanity checks
+//! the λ rule are those of the measured μ against r μ_A; its plausibility checks
 //! of the measured μ are given the measured rows
 //! (`driver::fit_measured`). Only dense data are binned after the
 //! correction rather than before, a difference of second order in the
@@ -69,7 +69,7 @@
 //! to the rows by cubics in ln v.
 //!
 //! Every solve after the first at a node is started where the last solve
-//! at that node ended (`ExactRolling::exact_friction_from`; issue 34): the
+//! at that node ended (`ExactRolling::exact_friction_from`): the
 //! cylinder's secant from the last root, each of the sphere's grids from
 //! its last contact set and pressures (the coarse first sweep's 96- and
 //! 64-cell grids are the 1e-4 sweeps' two coarser ones). Between refits
@@ -82,10 +82,10 @@
 //!
 //! The cylinder (about 0.03 s per solve for the fitted series of the
 //! bench, at any accuracy) solves every sweep at the accuracy asked and
-//! adaptively, as the sphere does (below); until issue 34 its first sweep
-//! solved every other node and each later one every node (62 solves at
-//! σ = 1 % on the bench's fit against 22–24 now; the study of
-//! tests/exact_physics.rs gives the same errors to 0.01 %). Its error estimate is a second solve on a finer mesh
+//! adaptively, as the sphere does (below): adaptive sweeps need about a
+//! third of the solves of sweeps at every node, with the same errors in
+//! the study of tests/exact_physics.rs (BENCHMARKS.md, "Fit
+//! speed"). Its error estimate is a second solve on a finer mesh
 //! (q + 2 nodes per panel, about 0.045 s); only the last sweep's estimates
 //! are reported, and which sweep is last is known only once its change
 //! is, so the sweeps solve without it and the estimates of the last are
@@ -93,7 +93,7 @@
 //! (`ExactRolling::deferred_estimate`: the same numbers).
 //!
 //! The sphere (0.2–1 s of CPU per solve for the fitted series of the
-//! bench since issue 34, 0.4–1.5 s before; three grids of 96 cells and up
+//! bench; three grids of 96 cells and up
 //! at 1e-3, 144 at 1e-4) solves fewer and cheaper:
 //!
 //! - The first sweep is solved at 1e-3 ([`COARSE_ACCURACY`]) where a finer
@@ -117,9 +117,9 @@
 //! - The exact sphere's cost per solve itself fell (`rollfit_model::exact::
 //!   RollingSphere`: FFT lengths without large prime factors, real-data
 //!   transforms, the grids' influence tables built once per grid shape
-//!   rather than once per solve; BENCHMARKS.md), and fell by half again in
-//!   issue 34: the memory tables' tail integrals beyond the grid, 43 % of
-//!   a solve, evaluate the cell's influence by its multipole form through
+//!   rather than once per solve; BENCHMARKS.md), and the memory tables'
+//!   tail integrals beyond the grid, most of a solve with the corner form,
+//!   evaluate the cell's influence by its multipole form through
 //!   ρ⁻⁵ (one square root) instead of the corner form (eight logarithms),
 //!   to within the corner form's own rounding.
 //!
@@ -180,7 +180,7 @@ pub const ACCURACY_PER_NOISE: f64 = 0.1;
 pub const ACCURACY_RANGE: (f64, f64) = (1e-5, 1e-3);
 
 /// The approximate fit of corrected rows, with the measured rows for its
-/// sanity checks (`driver::fit_measured`, handed over by the driver, which
+/// plausibility checks (`driver::fit_measured`, handed over by the driver, which
 /// calls this module).
 pub(crate) type ApproximateFit =
     fn(&Measurements, Option<&Measurements>, &ValidFitParams) -> Result<FitReport, FitError>;
@@ -377,10 +377,9 @@ impl Schedule {
     /// grows steeply with the accuracy (144 cells at 1e-4 cost about three
     /// times 96 cells at 1e-3), so its first sweep, which only sets where
     /// the iteration starts, is solved at [`COARSE_ACCURACY`] (or the
-    /// accuracy asked, if coarser). Every sweep of both is adaptive
-    /// (issue 34 for the cylinder: until then its first sweep solved every
-    /// other node and each later one every node, 62 solves at σ = 1 % on
-    /// the bench's fit, now 22–24 with the study's figures unchanged).
+    /// accuracy asked, if coarser). Every sweep of both is adaptive: even
+    /// the cylinder's cheap solves are worth sparing (a third of the solves
+    /// of sweeps at every node, BENCHMARKS.md, "Fit speed").
     fn of(shape: Shape, accuracy: f64) -> Schedule {
         match shape {
             Shape::Cylinder => Schedule {

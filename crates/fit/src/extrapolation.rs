@@ -12,7 +12,7 @@
 //! data do set: E0 ≤ E′(ω_min) + 2σ and E1 ≥ E′(ω_max) − 2σ (2σ of the
 //! reported band at the window's end). Extrapolations are reported with
 //! that one-sided interval and never judge a fit
-//! ([`crate::sanity::fitted_material_warnings`]); the spectrum's own ends,
+//! ([`rollfit_model::plausibility::fitted_material_warnings`]); the spectrum's own ends,
 //! the terms outside the window, are the model record's `determined`.
 
 use serde::Serialize;

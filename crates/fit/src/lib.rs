@@ -5,28 +5,30 @@
 //! measurements μ(v).
 //!
 //! Where each piece lives:
-//! - [`data`]: validated measurements; [`condense`]: dense rows to bins.
-//! - [`params`]: fit settings, checked before any numerics run.
+//! - [`data`]: validated measurements; `condense`: dense rows to bins.
+//! - `params`: fit settings, checked before any numerics run.
 //! - [`tau_grid`]: the relaxation-time grid and the rule for its ends.
 //! - `parametrization`: θ ↦ Prony series, positivity and scale anchors.
 //! - `objective`: the objective of Eq. (B3) as residuals with exact Jacobian.
-//! - [`solvers`]: Levenberg–Marquardt (default), L-BFGS and Nelder–Mead, each
+//! - `solvers`: Levenberg–Marquardt (default), L-BFGS and Nelder–Mead, each
 //!   run on the objective through a wrapper that counts its evaluations.
 //! - `regularization`: the data-driven choice of the smoothness weight λ.
 //! - `shift`: the time–temperature shift of a temperature set (WLF or free)
 //!   and shifts by overlapping curves.
 //! - `analysis`: the determined window, determined terms, uncertainty bands.
 //! - [`quality`]: goodness of fit (χ² and runs tests).
-//! - [`sanity`]: warnings for inputs and results outside the theory or any lab;
-//!   [`extrapolation`]: the fitted values beyond the window the data determine.
+//! - `extrapolation`: the fitted values beyond the window the data determine.
 //! - `temperature_set`: the start and the cross-check of a temperature set's
-//!   shift; `vertical`: its vertical factors b_T, as a load per row.
+//!   shift; [`vertical`]: its vertical factors b_T, as a load per row.
 //! - [`exact_physics`]: fits against the exact rolling contact by defect
 //!   correction around the approximate model (`physics = "exact"`).
-//! - [`driver`]: the driver tying them together, entered by [`fit()`];
+//! - `driver`: the driver tying them together, entered by [`fit()`];
 //!   [`report`]: its result.
 //! - [`master`]: DMA isotherms to a master curve: shift factors, their
 //!   WLF or Arrhenius law, and a smooth causal Prony series.
+//! - [`causality`]: the Kramers–Kronig check of measured E′ and E″ (can any
+//!   linear viscoelastic solid have both?), by non-negative least squares;
+//!   [`compare`]: the errors of a fitted curve against measured values.
 
 //! # Example
 //!
@@ -65,32 +67,35 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-pub mod cancel;
-pub mod condense;
+// The modules other crates use.
+pub mod causality;
+pub mod compare;
 pub mod data;
-pub mod dma_rows;
-pub mod driver;
-pub mod error;
 pub mod exact_physics;
-pub mod extrapolation;
 pub mod joint;
 pub mod master;
-pub mod params;
-pub mod progress;
-pub mod regularization;
+pub mod quality;
 pub mod report;
-pub mod sanity;
 pub mod settings;
-pub mod solvers;
 pub mod tau_grid;
+pub mod vertical;
 
+// The inverse problem's machinery, reached through the items below.
 mod analysis;
+mod cancel;
+mod condense;
+mod dma_rows;
+mod driver;
+mod error;
+mod extrapolation;
 mod objective;
 mod parametrization;
-pub mod quality;
+mod params;
+mod progress;
+mod regularization;
 mod shift;
+mod solvers;
 mod temperature_set;
-pub mod vertical;
 
 pub use cancel::Cancel;
 pub use data::Measurements;

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use rollfit_model::exact::exact_body;
 use rollfit_model::modulus::FreeShift;
-use rollfit_model::{ContactSize, Geometry, ModelError, Prony, Substrate, VerticalShift};
+use rollfit_model::{ModelError, Prony, VerticalShift};
 
 use crate::cancel::Cancel;
 use crate::dma_rows::DmaRows;
@@ -16,7 +16,6 @@ use crate::progress::Observer;
 
 mod anchor;
 
-pub use anchor::MODULUS_SETTING_RANGE;
 use anchor::{modulus, reduce_anchor};
 
 /// The optimiser.
@@ -283,15 +282,7 @@ impl Default for FitParams {
 }
 
 /// The rolling set-up a fit works in: everything of a scene but the material.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RollingSetup {
-    /// Body and load.
-    pub geometry: Geometry,
-    /// Poisson's ratio and film.
-    pub substrate: Substrate,
-    /// Contact-size rule.
-    pub contact: ContactSize,
-}
+pub use rollfit_model::RollingSetup;
 
 /// A scale anchor reduced to one known |E| at one frequency (ω = 0 for the
 /// static modulus).

@@ -1,4 +1,4 @@
-//! Progress of a long fit, told to an observer the caller gives (issue 33):
+//! Progress of a long fit, told to an observer the caller gives:
 //! the fit is the problem, the observer how a front end shows it (a bar on
 //! a terminal, nothing in a log). The library draws nothing itself, so it
 //! needs no terminal crate, and an observer can only watch: it is given

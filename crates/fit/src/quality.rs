@@ -31,10 +31,10 @@
 //! runs test is the only check of a systematic misfit without a sigma
 //! column, and a missed misfit costs more than a false alarm (a biased
 //! curve inside bands that do not hold it, against a look at the
-//! residuals), so it is held at 1e-2: at 1e-3 a fit on 15 speeds needed
+//! residuals), so it is held at 1e-2: at 1e-3 a fit on 15 speeds needs
 //! 3 runs or fewer where 8.5 are expected (z ≤ −3.1) to be flagged, and the
-//! over-smoothed fit of issue 32 (4 runs where 8.5 were expected,
-//! p ≈ 0.01) was judged good. On so few signs the normal approximation's
+//! over-smoothed fit of `four_runs_in_fifteen_are_a_systematic_misfit` (4 runs where 8.5 are expected,
+//! p ≈ 0.01) would be judged good. On so few signs the normal approximation's
 //! tail is about half the exact one (n₊ = 7, n₋ = 8, R ≤ 4: 0.008 against
 //! 0.015), so the level is about 0.02 in exact terms. Smoothing makes
 //! neighbouring residuals slightly alike, and a good regularised fit has a
@@ -82,7 +82,7 @@ pub struct RunsTest {
 pub struct FitQuality {
     /// "good", "poor" (a test failed: the model does not describe the
     /// data) or "invalid" (at the fitted modulus the model's own
-    /// assumptions fail at a measured speed: see [`crate::sanity`]).
+    /// assumptions fail at a measured speed: see [`rollfit_model::plausibility`]).
     pub verdict: &'static str,
     /// "measured" (a sigma column) or "estimated" (from the residuals).
     pub noise_source: &'static str,
@@ -316,8 +316,8 @@ mod tests {
         assert!(q.reasons.iter().any(|r| r.contains("χ² test failed")));
     }
 
-    /// Issue 32's over-smoothed fit: 4 runs among 15 residuals where 8.5
-    /// are expected (p ≈ 0.008 in the normal approximation) was judged good
+    /// An over-smoothed fit: 4 runs among 15 residuals where 8.5
+    /// are expected (p ≈ 0.008 in the normal approximation) would pass
     /// at 1e-3; at the runs test's level it is poor, and the reason names
     /// the test and what it means. One run more (p ≈ 0.03) passes.
     #[test]

@@ -1,4 +1,4 @@
-//! Vertical factors in a temperature-set fit (issue 31): with a scene's
+//! Vertical factors in a temperature-set fit: with a scene's
 //! `[material.shift]` carrying b_T (a table or the density law,
 //! [`rollfit_model::VerticalShift`]), the master curve E*_ref is fitted at
 //! T_ref and the modulus at each measured temperature is

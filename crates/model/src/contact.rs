@@ -62,6 +62,26 @@ pub fn mean_pressure(shape: Shape, load: f64, size: f64) -> f64 {
     }
 }
 
+/// ln of [`hertz_contact_size`] (m) for ln E_eff = `ln_e_eff` (ln Pa),
+/// evaluated in logarithms: finite for every positive finite radius and
+/// load, where the product F R overflows (a load of 1e308 N typed by
+/// mistake must still give a plausibility warning with numbers, not NaN).
+pub fn ln_hertz_contact_size(shape: Shape, radius: f64, load: f64, ln_e_eff: f64) -> f64 {
+    match shape {
+        Shape::Sphere => (0.75f64.ln() + load.ln() + radius.ln() - ln_e_eff) / 3.0,
+        Shape::Cylinder => ((4.0 / PI).ln() + load.ln() + radius.ln() - ln_e_eff) / 2.0,
+    }
+}
+
+/// ln of [`mean_pressure`] (ln Pa) for a contact of size exp(`ln_size`) (m),
+/// in logarithms as [`ln_hertz_contact_size`].
+pub fn ln_mean_pressure(shape: Shape, load: f64, ln_size: f64) -> f64 {
+    match shape {
+        Shape::Sphere => load.ln() - PI.ln() - 2.0 * ln_size,
+        Shape::Cylinder => load.ln() - 2f64.ln() - ln_size,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -75,5 +95,31 @@ mod tests {
         assert!((a0 - 1.12838e-3).abs() < 1e-8, "{a0}");
         let p = mean_pressure(Shape::Sphere, 0.15, r0);
         assert!((p - 44.14e3).abs() < 50.0, "{p}");
+    }
+
+    /// The logarithmic forms are the linear ones where those are finite,
+    /// and stay finite where the product F R overflows.
+    #[test]
+    fn logarithmic_forms_match_and_stay_finite() {
+        for shape in [Shape::Sphere, Shape::Cylinder] {
+            for (radius, load, e_eff) in
+                [(0.01, 0.15, 1e6), (0.005, 1000.0, 2.7e6), (2e-5, 1e4, 1e10)]
+            {
+                let size = hertz_contact_size(shape, radius, load, e_eff);
+                let ln_size = ln_hertz_contact_size(shape, radius, load, e_eff.ln());
+                assert!(
+                    (ln_size.exp() / size - 1.0).abs() < 1e-13,
+                    "{shape:?} {radius} {load}"
+                );
+                let p = mean_pressure(shape, load, size);
+                let ln_p = ln_mean_pressure(shape, load, ln_size);
+                assert!(
+                    (ln_p.exp() / p - 1.0).abs() < 1e-13,
+                    "{shape:?} {radius} {load}"
+                );
+            }
+            let huge = ln_hertz_contact_size(shape, 1e308, 1e308, 1e6f64.ln());
+            assert!(huge.is_finite() && hertz_contact_size(shape, 1e308, 1e308, 1e6).is_infinite());
+        }
     }
 }

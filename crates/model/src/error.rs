@@ -258,8 +258,8 @@ pub(crate) fn require_non_negative(name: &str, value: f64) -> Result<f64, ModelE
 mod tests {
     use super::*;
 
-    /// The typed variants print what the untyped messages printed before
-    /// them: front ends and users read these texts.
+    /// The typed variants print fixed sentences: front ends and users read
+    /// these texts, and tests elsewhere assert them.
     #[test]
     fn messages_read_as_sentences() {
         let pole = ModelError::WlfBeyondPole {

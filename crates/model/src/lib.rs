@@ -10,17 +10,19 @@
 //! - [`modulus`]: E*(ω) — standard linear solid (Eq. 12), Prony series
 //!   (Eq. B2), Havriliak–Negami, tabulated master curves, time–temperature
 //!   shift (WLF).
-//! - [`contact`]: Hertz contact size and mean pressure (static and dynamic).
+//! - `contact`: Hertz contact size and mean pressure (static and dynamic).
 //! - [`film`]: the film factor S(qd) of a layer on a rigid base.
 //! - [`kernel`]: the universal kernels of the friction integrals — J1²(y)/y for
 //!   the cylinder (Eq. 11), x²G(x) for the sphere (Eq. 17 reduced to one
 //!   frequency integral) — and their product-integration weights.
-//! - [`friction`]: μ(v) and its derivatives with respect to Prony parameters.
+//! - `friction`: μ(v) and its derivatives with respect to Prony parameters.
 //! - [`exact`]: the exact steady rolling cylinder (Hunter 1961), the
 //!   reference Eq. (11) approximates.
 //! - [`ladder`]: the rungs of model fidelity and `auto`, the cheapest rung
 //!   that meets a requested accuracy.
-//! - [`asymptotes`]: the low-speed limit (Eqs. 18/19, generalised to
+//! - [`plausibility`]: warnings for inputs and materials outside the
+//!   theory's assumptions or any laboratory (a unit slip, most often).
+//! - `asymptotes`: the low-speed limit (Eqs. 18/19, generalised to
 //!   E″ ∝ ω^p), Greenwood–Tabor α
 //!   (Eqs. 20–21), pressure-centroid shift, friction maximum.
 //!
@@ -54,16 +56,20 @@
 //! compliance L(ω) = E″_eff/|E_eff|² = −Im 1/E_eff(ω) is what the paper calls
 //! "Im 1/E" (its Fourier convention gives the complex conjugate).
 
-pub mod asymptotes;
-pub mod contact;
-pub mod error;
+// The modules other crates use.
 pub mod exact;
 pub mod film;
-pub mod friction;
 pub mod kernel;
 pub mod ladder;
 pub mod modulus;
-pub mod scene;
+pub mod plausibility;
+
+// The forward model's parts, reached through the items below and `Scene`.
+mod asymptotes;
+mod contact;
+mod error;
+mod friction;
+mod scene;
 
 pub use contact::{ContactSize, Shape};
 pub use error::{ModelError, PoissonOutOfRange};
@@ -72,4 +78,6 @@ pub use modulus::{
     HavriliakNegami, Prony, Shifted, StandardLinearSolid, TabulatedModulus, VerticalShift,
     ViscoelasticModulus, Wlf,
 };
-pub use scene::{Geometry, POISSON_RANGE, Scene, Substrate, check_film_thickness, check_poisson};
+pub use scene::{
+    Geometry, POISSON_RANGE, RollingSetup, Scene, Substrate, check_film_thickness, check_poisson,
+};

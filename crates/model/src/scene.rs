@@ -2,7 +2,9 @@
 //! and material. Building one checks every parameter, so the friction code
 //! behind it never sees a negative radius, a Poisson ratio above ½ or a NaN.
 
-use crate::contact::{ContactSize, Shape, hertz_contact_size, mean_pressure};
+use crate::contact::{
+    ContactSize, Shape, hertz_contact_size, ln_hertz_contact_size, mean_pressure,
+};
 use crate::error::{ModelError, PoissonOutOfRange, require_positive};
 use crate::modulus::ViscoelasticModulus;
 
@@ -13,7 +15,7 @@ pub const RADIUS_RANGE: (f64, f64) = (1e-9, 1e3);
 /// Accepted loads on a sphere, N: a nanonewton (the forces of the smallest
 /// colloidal-probe rolling experiments; below it a continuum contact of a
 /// body of at least a nanometre carries too little to measure) to 1e8 N,
-/// four decades above the heaviest plausible rolling load (`fit::sanity`
+/// four decades above the heaviest plausible rolling load (`plausibility`
 /// warns from 1e4 N; crane wheels carry about 1e6 N). Outside these the
 /// numerics fail without naming the load (1e-300 N: "friction quadrature
 /// needs too many nodes"; 1e300 N: a contact of 1e97 m).
@@ -21,7 +23,7 @@ pub const SPHERE_LOAD_RANGE: (f64, f64) = (1e-9, 1e8);
 
 /// Accepted loads per length on a cylinder, N/m: a micronewton per metre
 /// (a nanonewton on a millimetre roller, the sphere's floor) to 1e10 N/m,
-/// four decades above the plausible bound (`fit::sanity` warns from
+/// four decades above the plausible bound (`plausibility` warns from
 /// 1e6 N/m).
 pub const CYLINDER_LOAD_RANGE: (f64, f64) = (1e-6, 1e10);
 
@@ -73,6 +75,71 @@ pub struct Substrate {
     pub poisson: f64,
     /// Thickness d (m) of a film bonded to a rigid base; `None` for a half-space.
     pub film_thickness: Option<f64>,
+}
+
+/// The rolling set-up: everything of a scene but the material (what a fit
+/// works in, and what the plausibility checks judge a material in).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollingSetup {
+    /// Body and load.
+    pub geometry: Geometry,
+    /// Poisson's ratio and film.
+    pub substrate: Substrate,
+    /// Contact-size rule.
+    pub contact: ContactSize,
+}
+
+impl RollingSetup {
+    /// 1 − ν².
+    fn plane_strain_factor(&self) -> f64 {
+        1.0 - self.substrate.poisson * self.substrate.poisson
+    }
+
+    /// ln of the Hertz contact size (m) for Young's modulus `modulus` (Pa)
+    /// ([`ln_hertz_contact_size`] of E_eff = E/(1 − ν²)), finite for any
+    /// positive finite radius and load.
+    pub fn ln_contact_size(&self, modulus: f64) -> f64 {
+        let g = self.geometry;
+        let ln_e_eff = modulus.ln() - self.plane_strain_factor().ln();
+        ln_hertz_contact_size(g.shape, g.radius, g.load, ln_e_eff)
+    }
+
+    /// The contact at speed `speed` (m/s) under the set-up's rule, in
+    /// logarithms: (ln of its size in m, the Young's modulus |E| in Pa that
+    /// set it). `modulus` is |E*(ω)| (Pa, ω in rad/s) and `static_modulus`
+    /// E0 (Pa). Static: E0's contact. Dynamic: the fixed point
+    /// r = r_Hertz(|E(v/r)|), approached from the static contact (the
+    /// largest) to 1e-6 in ln r; a contraction since |E| grows at most like
+    /// ω (slope ≤ ½). A modulus that is not finite and positive at some ω
+    /// ends the iteration at the last contact that was. (The model error's
+    /// `dynamic_contact_size` iterates the same map on a [`Scene`], in
+    /// linear terms and to 1e-9, for the estimate it feeds.)
+    pub fn ln_contact_at(
+        &self,
+        modulus: &dyn Fn(f64) -> f64,
+        static_modulus: f64,
+        speed: f64,
+    ) -> (f64, f64) {
+        let mut e = static_modulus;
+        let mut ln_r = self.ln_contact_size(e);
+        if self.contact == ContactSize::Static {
+            return (ln_r, e);
+        }
+        for _ in 0..50 {
+            let omega = (speed.ln() - ln_r).exp();
+            let next = modulus(omega);
+            if !(next.is_finite() && next > 0.0) {
+                break;
+            }
+            let ln_next = self.ln_contact_size(next);
+            let settled = (ln_next - ln_r).abs() < 1e-6;
+            (e, ln_r) = (next, ln_next);
+            if settled {
+                break;
+            }
+        }
+        (ln_r, e)
+    }
 }
 
 /// A validated scene: everything μ(v) depends on.
@@ -202,6 +269,15 @@ impl<M: ViscoelasticModulus> Scene<M> {
         &self.substrate
     }
 
+    /// The scene without its material.
+    pub fn rolling_setup(&self) -> RollingSetup {
+        RollingSetup {
+            geometry: self.geometry,
+            substrate: self.substrate,
+            contact: self.contact,
+        }
+    }
+
     /// Contact-size rule.
     pub fn contact(&self) -> ContactSize {
         self.contact
@@ -237,5 +313,53 @@ impl<M: ViscoelasticModulus> Scene<M> {
     pub fn static_mean_pressure(&self) -> f64 {
         let g = &self.geometry;
         mean_pressure(g.shape, g.load, self.static_contact_size())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The dynamic contact of a modulus |E| = E0 (1 + ω τ) solves
+    /// r = r_Hertz(|E(v/r)|), checked by substitution into the linear
+    /// Hertz law; the static rule gives E0's contact.
+    #[test]
+    fn the_dynamic_contact_is_the_fixed_point() {
+        let (e0, tau, nu) = (2e6, 1e-3, 0.5);
+        let modulus = |omega: f64| e0 * (1.0 + omega * tau);
+        let factor = 1.0 - nu * nu;
+        for shape in [Shape::Sphere, Shape::Cylinder] {
+            let mut setup = RollingSetup {
+                geometry: Geometry {
+                    shape,
+                    radius: 0.005,
+                    load: 1.0,
+                },
+                substrate: Substrate {
+                    poisson: nu,
+                    film_thickness: None,
+                },
+                contact: ContactSize::Dynamic,
+            };
+            let g = setup.geometry;
+            for speed in [1e-6, 1e-2, 1.0] {
+                let (ln_r, e) = setup.ln_contact_at(&modulus, e0, speed);
+                let omega = speed / ln_r.exp();
+                let r = hertz_contact_size(shape, g.radius, g.load, modulus(omega) / factor);
+                assert!(
+                    (r.ln() - ln_r).abs() < 1e-5,
+                    "{shape:?} v = {speed}: {r} vs {ln_r}"
+                );
+                assert!(
+                    (e / modulus(omega) - 1.0).abs() < 1e-5,
+                    "{shape:?} v = {speed}"
+                );
+            }
+            setup.contact = ContactSize::Static;
+            let (ln_r, e) = setup.ln_contact_at(&modulus, e0, 1.0);
+            assert_eq!(e, e0);
+            let r0 = hertz_contact_size(shape, g.radius, g.load, e0 / factor);
+            assert!((ln_r.exp() / r0 - 1.0).abs() < 1e-13, "{shape:?}");
+        }
     }
 }

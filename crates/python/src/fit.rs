@@ -19,7 +19,7 @@
 //!
 //! With DMA isotherms (the keyword `dma`, a path relative to the current
 //! folder, or the scene file's `[fit] dma`, relative to its folder) the fit
-//! is the joint fit of both (issue 35): the file is read by
+//! is the joint fit of both: the file is read by
 //! `rollfit_io::dma_joint::read`, as `rollfit fit --dma` reads it, and the
 //! result's `joint` is fit.json's `joint` record.
 //!

@@ -53,7 +53,7 @@ pub struct PyScene {
     /// The scene file, as given (fit.json's `input.scene`).
     pub(crate) source: Option<String>,
     /// `[fit] dma` of a scene file, resolved against its folder: the DMA
-    /// isotherms of a joint fit (issue 35), read when `fit` runs.
+    /// isotherms of a joint fit, read when `fit` runs.
     pub(crate) dma: Option<PathBuf>,
     /// `[sweep]` speeds of a scene file, m/s.
     speeds: Option<Vec<f64>>,

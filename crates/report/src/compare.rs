@@ -1,4 +1,6 @@
-//! The recovered master curve against DMA data.
+//! The recovered master curve against DMA data: the comparison's record
+//! (compare.json) and its rows as people read them. The errors are
+//! computed by [`rollfit_fit::compare`].
 //!
 //! The DMA points are moved to the fit's reference state
 //! ([`ToReference::shifted`]: reduced frequency ω_r = ω a_T) and compared with
@@ -15,13 +17,14 @@
 //!
 //! All moduli are Young's (shear DMA data converted with the fit's ν). The
 //! comparison also carries the causality check of the DMA points
-//! ([`crate::causality`], over all of them, not only the overlap):
+//! ([`rollfit_fit::causality`], over all of them, not only the overlap):
 //! `dma_kk_misfit_storage`, `dma_kk_misfit_loss`. When the window and the
 //! DMA frequencies do not overlap, N = 0 and every metric is null, with a
 //! warning giving both ranges.
 
 use serde::Serialize;
 
+use rollfit_fit::compare::modulus_errors;
 use rollfit_io::FitDir;
 use rollfit_io::dma::{DmaData, DmaOptions, DmaPoint};
 
@@ -288,16 +291,6 @@ impl MetricRow {
     }
 }
 
-/// RMS and max |·| of a set of errors; `None` for none.
-pub(crate) fn rms_max(errors: &[f64]) -> (Option<f64>, Option<f64>) {
-    if errors.is_empty() {
-        return (None, None);
-    }
-    let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
-    let max = errors.iter().map(|e| e.abs()).fold(0.0, f64::max);
-    (Some(rms), Some(max))
-}
-
 /// Compares the fit's master curve with `dma` (see the module doc).
 pub fn compare(
     fit: &FitDir,
@@ -308,21 +301,12 @@ pub fn compare(
     let points = shifted.points;
     let causal = causality::check(&points)?;
     let window = fit.summary.window;
-    let inside: Vec<&DmaPoint> = points
+    let inside: Vec<DmaPoint> = points
         .iter()
+        .copied()
         .filter(|p| p.omega >= window.omega_min && p.omega <= window.omega_max)
         .collect();
-    let (mut tan_delta, mut abs_modulus, mut storage, mut loss) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for p in &inside {
-        let e = fit.modulus_at(p.omega);
-        tan_delta.push((e.im / e.re - p.tan_delta()) / p.tan_delta());
-        abs_modulus.push((e.norm() - p.abs_modulus()) / p.abs_modulus());
-        storage.push((e.re / p.storage).log10());
-        loss.push((e.im / p.loss).log10());
-    }
-    let (tan_delta_rms_rel, tan_delta_max_rel) = rms_max(&tan_delta);
-    let (abs_modulus_rms_rel, abs_modulus_max_rel) = rms_max(&abs_modulus);
+    let errors = modulus_errors(&causality::samples(&inside), &|omega| fit.modulus_at(omega));
     let omega_lo = points[0].omega;
     let omega_hi = points[points.len() - 1].omega;
     let mut warnings = dma.warnings.clone();
@@ -338,12 +322,12 @@ pub fn compare(
         n_points: inside.len(),
         omega_min: inside.first().map(|p| p.omega),
         omega_max: inside.last().map(|p| p.omega),
-        tan_delta_rms_rel,
-        tan_delta_max_rel,
-        abs_modulus_rms_rel,
-        abs_modulus_max_rel,
-        log10_storage_rms: rms_max(&storage).0,
-        log10_loss_rms: rms_max(&loss).0,
+        tan_delta_rms_rel: errors.tan_delta_rms_rel,
+        tan_delta_max_rel: errors.tan_delta_max_rel,
+        abs_modulus_rms_rel: errors.abs_modulus_rms_rel,
+        abs_modulus_max_rel: errors.abs_modulus_max_rel,
+        log10_storage_rms: errors.log10_storage_rms,
+        log10_loss_rms: errors.log10_loss_rms,
         dma_kk_misfit_storage: causal.misfit_storage,
         dma_kk_misfit_loss: causal.misfit_loss,
         dma_kk_max_storage: causal.max_misfit_storage.0,

@@ -75,15 +75,9 @@ pub enum ReportError {
         /// The isotherms, °C.
         temperatures: Vec<f64>,
     },
-    /// The causality check was given no points.
-    #[error("causality check: no DMA points")]
-    NoPoints,
-    /// Moduli whose weights overflow.
-    #[error(
-        "causality check: the DMA moduli span more than a floating-point number can weigh (a \
-         modulus near 1e-308?)"
-    )]
-    ModuliOutOfRange,
+    /// The causality check of the DMA points failed.
+    #[error(transparent)]
+    Causality(#[from] rollfit_fit::FitError),
     /// The scene read for the dense fitted μ(v) does not give the fit's μ
     /// at the measured speeds (`fitted_friction`).
     #[error(

@@ -1,4 +1,4 @@
-//! The fitted μ(v) on a dense grid of speeds, for friction.png (issue 32):
+//! The fitted μ(v) on a dense grid of speeds, for friction.png:
 //! mu.csv holds the fit's μ at the measured speeds only, and a line
 //! through those has kinks where the data are sparse.
 //!

@@ -4,8 +4,9 @@
 //! window and bands, the relaxation spectrum, convergence, temperature-set
 //! plots), one self-contained HTML page that leads with the fit's verdict
 //! and scale, and the comparison of the recovered master curve with DMA
-//! data, including a causality (Kramers–Kronig) check of the DMA data
-//! themselves.
+//! data (its record and rows; the numbers, the errors and the causality
+//! (Kramers–Kronig) check of the DMA data themselves, are
+//! [`rollfit_fit::compare`] and [`rollfit_fit::causality`]).
 //!
 //! Everything here works on a fit folder and DMA data as the io crate reads
 //! them ([`rollfit_io::FitDir`], [`rollfit_io::dma::DmaData`]), and on the
@@ -15,7 +16,7 @@
 pub mod causality;
 pub mod compare;
 pub mod dma_shift;
-pub mod error;
+mod error;
 pub mod fitted_friction;
 pub mod html;
 pub mod plot;

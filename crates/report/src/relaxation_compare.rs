@@ -39,13 +39,14 @@
 
 use serde::Serialize;
 
+use rollfit_fit::compare::time_errors;
 use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_io::FitDir;
 use rollfit_io::dma::DmaOptions;
 use rollfit_io::dma::group_temperatures;
 use rollfit_io::dma::relaxation::RelaxationData;
 
-use crate::compare::{IsothermShift, rms_max};
+use crate::compare::IsothermShift;
 use crate::dma_shift::isotherm_shifts;
 use crate::error::ReportError;
 
@@ -158,15 +159,8 @@ pub fn compare_relaxation(
         .copied()
         .filter(|p| p.0 >= t_lo && p.0 <= t_hi)
         .collect();
-    let (mut relative, mut decades) = (Vec::new(), Vec::new());
     let series = data.quantity.of_series(&fit.master_curve);
-    for &(t, e) in &inside {
-        let fitted = series(t);
-        relative.push(fitted / e - 1.0);
-        decades.push((fitted / e).log10());
-    }
-    let (rms_rel, max_rel) = rms_max(&relative);
-    let log10_rms = rms_max(&decades).0;
+    let (rms_rel, max_rel, log10_rms) = time_errors(&inside, &series);
     let creep = data.quantity == TimeQuantity::Creep;
     let metrics = if creep {
         TimeMetrics::Creep {

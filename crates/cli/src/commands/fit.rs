@@ -11,7 +11,7 @@
 //! unless `--allow-unconverged` or `--allow-poor-fit`.
 //!
 //! With DMA isotherms (`--dma FILE`, or the scene's `[fit] dma`), the fit
-//! is the joint fit of both (issue 35, [`joint`]): one master curve and
+//! is the joint fit of both ([`joint`]): one master curve and
 //! shift law for the DMA moduli and the rolling friction, and a summary
 //! block that says whether the two describe one material.
 

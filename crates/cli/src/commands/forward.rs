@@ -28,13 +28,12 @@ use anyhow::{Context, Result};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
-use rollfit_fit::RollingSetup;
-use rollfit_fit::sanity;
 use rollfit_io::columns::MU;
 use rollfit_io::fit_dir::columns::{SIGMA, T, V};
 use rollfit_io::{csv_text, output, table};
 use rollfit_model::exact::ExactRolling;
 use rollfit_model::ladder::AutoSweep;
+use rollfit_model::plausibility;
 use rollfit_model::{ModelError, Shape, ViscoelasticModulus};
 use rollfit_report::plot::{
     self, Picture, forward_sweep::ForwardSweepFigure, forward_sweep::SweepCurve,
@@ -253,7 +252,7 @@ pub fn run(args: &Args) -> Result<()> {
     for line in map_lines {
         eprintln!("{line}");
     }
-    for line in sanity_warnings(&setup, &mu) {
+    for line in plausibility_warnings(&setup, &mu) {
         eprintln!("warning: {line}");
     }
     Ok(())
@@ -296,19 +295,14 @@ fn explain_table_error(
     )
 }
 
-/// The sanity checks of [`rollfit_fit::sanity`]: the scene's inputs, its
+/// The plausibility checks of [`rollfit_model::plausibility`]: the scene's inputs, its
 /// material at each temperature and the predicted μ, one message each
 /// (warnings only: the exit status stays 0). A message the same at every
 /// temperature is given once; others name their temperature.
-fn sanity_warnings(setup: &ForwardSetup, mu: &[Vec<f64>]) -> Vec<String> {
-    let rolling = |scene: &DynScene| RollingSetup {
-        geometry: *scene.geometry(),
-        substrate: *scene.substrate(),
-        contact: scene.contact(),
-    };
+fn plausibility_warnings(setup: &ForwardSetup, mu: &[Vec<f64>]) -> Vec<String> {
     let speeds = &setup.speeds;
     let mut lines: Vec<String> =
-        sanity::input_warnings(&rolling(&setup.blocks[0].scene), speeds, None)
+        plausibility::input_warnings(&setup.blocks[0].scene.rolling_setup(), speeds, None)
             .into_iter()
             .map(|w| w.message)
             .collect();
@@ -325,10 +319,10 @@ fn sanity_warnings(setup: &ForwardSetup, mu: &[Vec<f64>]) -> Vec<String> {
             let e1 = material
                 .relaxation_bound()
                 .unwrap_or_else(|| material.modulus(1e3 * material.structure_range().1).norm());
-            let rolling = rolling(scene);
+            let rolling = scene.rolling_setup();
             let modulus = |omega: f64| material.modulus(omega);
-            let mut w = sanity::material_warnings(&rolling, speeds, &modulus, e0, e1, false);
-            w.extend(sanity::predicted_friction_warnings(
+            let mut w = plausibility::material_warnings(&rolling, speeds, &modulus, e0, e1, false);
+            w.extend(plausibility::predicted_friction_warnings(
                 &rolling, speeds, mu, e0, false,
             ));
             let messages = w.into_iter().map(|w| w.message).collect();

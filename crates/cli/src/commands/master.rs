@@ -36,18 +36,18 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use rollfit_fit::causality::{self, CausalFit, ModulusSample};
 use rollfit_fit::master::pairwise::DETERMINED_SIGMA;
 use rollfit_fit::master::quality::{Floors, MasterQuality, Misfits};
 use rollfit_fit::master::{MasterSettings, ShiftFactors, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
-use rollfit_io::dma::{DmaFile, DmaPoint, TemperatureOrigin};
+use rollfit_io::dma::{DmaFile, TemperatureOrigin};
 use rollfit_io::dma_master::{self, DmaMaster};
 use rollfit_io::fit_dir::columns::{
     E_LOSS, E_STORAGE, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
 };
 use rollfit_io::{csv_text, material_file, output};
 use rollfit_model::ViscoelasticModulus;
-use rollfit_report::causality::{self, CausalFit};
 use serde::Serialize;
 
 use crate::commands::compare::{DmaFileFlags, DmaModulus, is_relaxation, poisson_source};
@@ -374,12 +374,12 @@ fn determined_floor(built: &DmaMaster) -> Option<Result<CausalFit>> {
 /// `keep` accepts.
 fn causal_floor_of(built: &DmaMaster, keep: impl Fn(f64) -> bool) -> Result<CausalFit> {
     let has_temperatures = built.data.points.iter().any(|p| p.temperature.is_some());
-    let shifted: Vec<DmaPoint> = built
+    let shifted: Vec<ModulusSample> = built
         .master
         .points
         .iter()
         .filter(|p| keep(p.temperature))
-        .map(|p| DmaPoint {
+        .map(|p| ModulusSample {
             omega: p.reduced_omega,
             storage: p.storage,
             loss: p.loss,

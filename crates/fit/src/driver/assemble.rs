@@ -1,7 +1,7 @@
 //! The result of a fit, put together once everything in it is known: the
 //! fit on its τ grid with the window the data determine ([`GridOutcome`]),
 //! then the parts only the whole fit knows ([`Whole`]) — the term rule, the
-//! shift cross-check, the sanity warnings, the condensing of dense data and
+//! shift cross-check, the plausibility warnings, the condensing of dense data and
 //! the totals.
 
 use rollfit_model::{Prony, ViscoelasticModulus};
@@ -17,8 +17,8 @@ use crate::report::{
     AnchorRecord, CrossCheckRow, FitReport, ScaleRecord, ShiftChoice, ShiftCrossCheck, ShiftRecord,
     TermsRecord, Window,
 };
-use crate::sanity;
 use crate::vertical::{LoadGroups, scene_under_load};
+use rollfit_model::plausibility;
 
 use super::optimum::Optimum;
 use super::profile::ScaleProfile;
@@ -105,8 +105,8 @@ pub(super) struct Whole<'x> {
     pub shift_choice: Option<ShiftChoice>,
     /// The shift cross-check of a temperature set, or why it was not made.
     pub cross_check: Option<Result<ShiftCrossCheck, String>>,
-    /// The sanity warnings on data and result.
-    pub sanity: Vec<sanity::Warning>,
+    /// The plausibility warnings on data and result.
+    pub plausibility: Vec<plausibility::Warning>,
     /// Dense data: how they were condensed, and the fitted μ at every row.
     pub condensed: Option<(&'x Condensed, Vec<f64>)>,
     /// Wall time of the whole fit, s.
@@ -123,7 +123,7 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         set_notes,
         shift_choice,
         cross_check,
-        sanity,
+        plausibility,
         condensed,
         wall_time_s,
     } = whole;
@@ -150,7 +150,7 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
         None => None,
     };
     let mut fit_quality = fit.fit_quality;
-    judge_assumptions(&mut fit_quality, &mut warnings, sanity);
+    judge_assumptions(&mut fit_quality, &mut warnings, plausibility);
     // A law the scene asked for and the fit does not have is said, never
     // silently replaced.
     let shift_choice = shift_choice.or_else(|| {
@@ -224,19 +224,19 @@ pub(super) fn assemble(whole: Whole<'_>) -> FitReport {
     }
 }
 
-/// The sanity warnings into `warnings`; those that say the fitted material
+/// The plausibility warnings into `warnings`; those that say the fitted material
 /// breaks one of the model's assumptions where the data determine it (a
 /// contact small against the body, small strains, a viscoelastic solid's
-/// modulus: [`sanity`]'s checks 1, 2 and 4) make the verdict "invalid": the
+/// modulus: [`plausibility`]'s checks 1, 2 and 4) make the verdict "invalid": the
 /// model has described the data with a material for which the model does
 /// not hold, so the fit describes nothing. Extrapolations beyond the window
 /// are warnings only.
 fn judge_assumptions(
     quality: &mut FitQuality,
     warnings: &mut Vec<String>,
-    sanity: Vec<sanity::Warning>,
+    checks: Vec<plausibility::Warning>,
 ) {
-    for w in sanity {
+    for w in checks {
         match w.assumption {
             Some(assumption) => {
                 let reason = format!(
@@ -341,24 +341,24 @@ fn reduced_speeds(data: &Measurements, fit: &Optimum) -> Vec<f64> {
     }
 }
 
-/// The sanity checks of [`crate::sanity`] on the data, their measured μ
+/// The plausibility checks of [`plausibility`] on the data, their measured μ
 /// `friction` (one per point of `data`: the data's own, or the measured μ
 /// of a defect correction's corrected data) and the fitted material, at the
 /// reduced speeds (v·a_T) for a temperature set, the material judged inside
 /// `window`, where the data determine it.
-pub(super) fn sanity_warnings(
+pub(super) fn plausibility_warnings(
     data: &Measurements,
     friction: &[f64],
     params: &ValidFitParams,
     fit: &Optimum,
     window: &Window,
-) -> Result<Vec<sanity::Warning>, FitError> {
+) -> Result<Vec<plausibility::Warning>, FitError> {
     let setup = &params.setup;
     let speeds = reduced_speeds(data, fit);
     let m = &fit.model;
     let prony = Prony::new(m.glassy_modulus, m.strengths.clone(), m.tau.clone())?;
-    let mut out = sanity::input_warnings(setup, data.speeds(), Some(friction));
-    out.extend(sanity::fitted_material_warnings(
+    let mut out = plausibility::input_warnings(setup, data.speeds(), Some(friction));
+    out.extend(plausibility::fitted_material_warnings(
         setup,
         &speeds,
         &|omega| prony.modulus(omega),

@@ -30,7 +30,7 @@ use crate::solvers::{SolverRun, Tolerance, default_budget, run};
 use crate::temperature_set::ShiftStart;
 
 use super::lambda::{
-    Refinement, criterion_minimum, first_lambda, lambda_path, path_walked, refine,
+    Refinement, bisect_discrepancy, criterion_minimum, first_lambda, lambda_path, path_walked,
 };
 use super::linearised::Linearisation;
 use super::optimum::{Chosen, Optimum, analyse};
@@ -65,10 +65,9 @@ const ABANDON_FACTOR: f64 = 3.0;
 const PREDICTOR_STEP: f64 = 1.0;
 
 /// Evaluations each start of the race at the path's first λ runs before the
-/// lowest V is taken (issue 34). Until then every start ran to convergence
-/// or n + 1 evaluations (10–23 each on the bundled rubber, 97 of a fit's 200
-/// evaluations for five starts) although they only pick where the path
-/// begins. Over 24 fits of the exploration study (tests/fit_cost.rs: broad
+/// lowest V is taken. Starts run to convergence would spend about half a
+/// fit's evaluations only to pick where the path begins (BENCHMARKS.md,
+/// "The choice of λ"). Over 24 fits of the exploration study (tests/fit_cost.rs: broad
 /// and narrow rubbers, ball and cylinder, 15 and 29–41 speeds, six seeds),
 /// the start leading after six evaluations was one that also ended lowest
 /// (or tied within 1e-7) in every fit where the starts differed: the narrow
@@ -396,7 +395,7 @@ impl<'a> GridSolver<'a> {
         }
         let (lambda, from, evidence_noise_variance) = match rule {
             LambdaRule::Discrepancy => {
-                let (t, _) = refine(rule, n, trials, self)?;
+                let (t, _) = bisect_discrepancy(n, trials, self)?;
                 (t.lambda, t.theta, None)
             }
             _ => {

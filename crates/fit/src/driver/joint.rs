@@ -22,7 +22,7 @@ use crate::params::{FrictionFactor, ShiftKind, ValidFitParams};
 use crate::report::{FitReport, RunRecord};
 use crate::shift::{distinct_temperatures, index_of};
 
-use super::assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
+use super::assemble::{GridOutcome, Whole, assemble, fitted_friction, plausibility_warnings};
 use super::terms::terms_record;
 use super::{fit_measured, fit_on_grid};
 
@@ -110,7 +110,7 @@ pub(super) fn fit_joint(
         parts,
     }
     .record(&outcome)?;
-    let sanity = sanity_warnings(
+    let plausibility = plausibility_warnings(
         &weighted,
         weighted.friction(),
         &joint,
@@ -139,7 +139,7 @@ pub(super) fn fit_joint(
         grid: outcome,
         terms,
         cross_check: None,
-        sanity,
+        plausibility,
         condensed,
         wall_time_s: 0.0,
     });

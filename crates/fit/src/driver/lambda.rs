@@ -1,23 +1,20 @@
 //! The choice of λ on one τ grid: the path, when to stop walking it, and
-//! the refinement of the rule's λ between its points (the rules themselves
-//! are described in [`crate::regularization`]).
+//! where the rule's λ lies between its points (the rules themselves are
+//! described in [`crate::regularization`]).
 //!
 //! - Discrepancy principle (σ measured): the walk down the path stops at
 //!   the first λ with χ² ≤ N whose residual signs pass the runs test
 //!   ([`meets_discrepancy`]); bisection in ln λ between it and the λ before
-//!   keeps the largest such λ. The runs condition is issue 32's: a fit at
-//!   χ² ≤ N can still cut through a feature of μ(v) (31 speeds of the
-//!   broad rubber, 1 % noise, seed 3: χ² = 29.9 at λ = 1000 with 10 runs
-//!   where 16.4 are expected, p = 0.0095; 16 runs at λ = 100), and the
-//!   smoothest fit the noise cannot tell from the data must pass both
-//!   tests it is judged by. Smoothing explains a pattern only while the
-//!   fit leaves more than the noise: the walk also stops once
-//!   χ² ≤ N − t, and a pattern still there is the model's (the λ is then
-//!   Morozov's alone, and the verdict says so). Over 40 seeds of that
-//!   case the runs condition changes that one fit (λ 1000 → 866, its tan δ
-//!   error 2.30 → 2.26 %), and none of 40 seeds of 41 speeds over 8
-//!   decades; the target N − t in place of N (also tried) took λ a factor
-//!   two down and the worst tan δ of the 40 from 6 % to 20 %.
+//!   keeps the largest such λ ([`bisect_discrepancy`]). The runs condition
+//!   is there because a fit at χ² ≤ N can still cut through a feature of
+//!   μ(v) with residuals in long runs, and the smoothest fit the noise
+//!   cannot tell from the data must pass both tests it is judged by.
+//!   Smoothing explains a pattern only while the fit leaves more than the
+//!   noise: the walk also stops once χ² ≤ N − t, and a pattern still
+//!   there is the model's (the λ is then Morozov's alone, and the verdict
+//!   says so). The target N − t in place of N smooths less and fits more
+//!   of the noise: the worst tan δ error of a 40-seed study grows
+//!   about threefold (figures in BENCHMARKS.md, "The choice of λ").
 //! - Marginal likelihood (σ unknown): the walk stops two decades past the
 //!   criterion's minimum, which is located between the path points by the
 //!   parabola through the best one and its neighbours (criterion against
@@ -25,38 +22,13 @@
 //!   estimate σ̂² = V̂/(N − m₀) the criterion profiles out at the same λ
 //!   ([`criterion_minimum`]).
 //!
-//! Until issue 32 the λ leaned to the smooth side: the smoothest λ within
-//! 6 of the best in −2 ln p (strong evidence against it on the scale of
-//! Kass and Raftery), and the noise was misfit/(N − t) at that λ. On 15
-//! speeds that λ was several times the minimum's, its residuals carried a
-//! smoothing bias about as large as the noise, and the noise estimate read
-//! the bias as noise. The lean had been put in for noise draws that happen
-//! to look smooth, where the minimum lies at a small λ and the fit follows
-//! the draw; the noise at the minimum is small there too, but so is the
-//! draw's own scatter about a smooth curve (seed 5 below: σ̂ = 1.0 % for
-//! 2.65 % drawn, and the draw's third differences in ln v give 0.9 %), and
-//! no λ recovers it. Measured over the four cases of tests/sparse.rs, 40
-//! seeds each (160 fits: 15 speeds over 5 decades, 3 % noise, one anchor;
-//! `study_sparse`), before → now:
-//!
-//! - noise estimate: median 3.25 % → 2.74 %, largest 5.5 % → 4.2 %;
-//! - tan δ over the determined window: median 3.5 % → 2.5 %, 90th
-//!   percentile 5.9 % → 5.9 %, above 8 % in 3 → 4 fits;
-//! - |E|: median 2.3 % → 1.5 %, above 8 % in 3 → 7 fits (all of the broad
-//!   rubber, where the minimum lies at λ = 0.004–0.06 and the fit follows
-//!   the noise at the window's ends);
-//! - 2σ coverage of tan δ: mean 0.95 → 0.93; the runs test at 1e-2 flags
-//!   none of the 160 either way.
-//!
-//! A lean of 2 ("not worth more than a bare mention") with the noise as
-//! now gave a median tan δ error of 3.1 % and 5 fits with |E| above 8 %;
-//! a lean of 6 with the noise as now, 3.8 % and 7 fits with tan δ above
-//! 8 % (the honest, narrower bands widen the determined window into the
-//! ends the over-smoothed fit gets wrong).
-//!
-//! # References
-//! - R.E. Kass, A.E. Raftery, "Bayes factors", J. Amer. Statist. Assoc.
-//!   90 (1995) 773–795.
+//! The λ of the marginal likelihood is its minimum, not the smoothest λ
+//! near it: a λ leaned to the smooth side leaves a smoothing bias in the
+//! residuals about as large as the noise on sparse data, and the noise
+//! estimate then reads that bias as noise. A noise draw that happens to
+//! look smooth puts the minimum at a small λ and the fit follows the
+//! draw; no λ recovers that draw's own scatter, so no lean is worth its
+//! bias (the comparison is in BENCHMARKS.md, "The choice of λ").
 
 use crate::error::FitError;
 use crate::params::{Lambda, ValidFitParams};
@@ -199,22 +171,6 @@ pub(super) trait Refinement {
     fn predict(&mut self, lambda: f64, base: &Trial) -> Result<Trial, FitError>;
 }
 
-/// Refines λ between path points: bisection for the discrepancy principle,
-/// golden-section search on the criterion otherwise.
-pub(super) fn refine(
-    rule: LambdaRule,
-    n: usize,
-    trials: Vec<(Trial, SolverRun)>,
-    fits: &mut impl Refinement,
-) -> Result<(Trial, SolverRun), FitError> {
-    match rule {
-        LambdaRule::Discrepancy => bisect_discrepancy(n, trials, fits),
-        LambdaRule::Gcv | LambdaRule::MarginalLikelihood | LambdaRule::Fixed => {
-            golden_section(rule, n, trials, fits)
-        }
-    }
-}
-
 /// Bisection in ln λ between the last path point that fails the
 /// discrepancy principle and the first that meets it; keeps the largest λ
 /// that meets it. When the walk ended without meeting it (at χ² ≤ N − t
@@ -227,12 +183,12 @@ pub(super) fn refine(
 /// from below, else from above, and the bisection runs again on the new
 /// fit's linearisation (closer to the crossing, so more accurate), at most
 /// [`CONFIRMATIONS`] fits in all, after which the largest λ that a fit met
-/// stands; a bisection that locates nothing above it ends the search. Until issue 34 each of the
-/// [`REFINEMENTS`] bisection steps was a fit of its own (20 of the bundled
-/// example's 200 evaluations); the linearisation at the path point a
-/// decade away predicts χ² within the bisection's own resolution
-/// (10^(1/32)) on the recovery and sparse studies, so one fit is the rule.
-fn bisect_discrepancy(
+/// stands; a bisection that locates nothing above it ends the search. A
+/// fit per bisection step would cost [`REFINEMENTS`] fits; the
+/// linearisation at the path point a decade away predicts χ² within the
+/// bisection's own resolution (10^(1/32)) on the recovery and sparse
+/// studies, so one confirming fit is the rule.
+pub(super) fn bisect_discrepancy(
     n: usize,
     mut trials: Vec<(Trial, SolverRun)>,
     fits: &mut impl Refinement,
@@ -287,50 +243,6 @@ fn bisect_discrepancy(
         }
     }
     Ok(meeting)
-}
-
-/// Golden-section search in ln λ over the path points next to the best
-/// one, on the criterion of `rule`.
-fn golden_section(
-    rule: LambdaRule,
-    n: usize,
-    mut trials: Vec<(Trial, SolverRun)>,
-    fits: &mut impl Refinement,
-) -> Result<(Trial, SolverRun), FitError> {
-    let score = |t: &(Trial, SolverRun)| t.0.criterion(rule, n);
-    let best = trials
-        .iter()
-        .enumerate()
-        .min_by(|a, b| score(a.1).total_cmp(&score(b.1)))
-        .map(|(i, _)| i)
-        .unwrap_or(0);
-    let lo = trials[best.saturating_sub(1)].0.lambda.ln();
-    let hi = trials[(best + 1).min(trials.len() - 1)].0.lambda.ln();
-    let mut incumbent = trials.swap_remove(best);
-    if lo == hi {
-        return Ok(incumbent);
-    }
-    let (mut a, mut b) = (lo.min(hi), lo.max(hi));
-    let golden = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..REFINEMENTS {
-        let c = b - golden * (b - a);
-        let d = a + golden * (b - a);
-        let from = incumbent.0.theta.clone();
-        let tc = fits.refine_at(c.exp(), &from)?;
-        let td = fits.refine_at(d.exp(), &from)?;
-        if score(&tc) < score(&td) {
-            b = d;
-            if score(&tc) < score(&incumbent) {
-                incumbent = tc;
-            }
-        } else {
-            a = c;
-            if score(&td) < score(&incumbent) {
-                incumbent = td;
-            }
-        }
-    }
-    Ok(incumbent)
 }
 
 #[cfg(test)]

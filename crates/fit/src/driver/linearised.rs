@@ -1,5 +1,5 @@
 //! The fit at another λ predicted from one fit's Gauss–Newton
-//! linearisation, without running the solver (issue 34).
+//! linearisation, without running the solver.
 //!
 //! At the optimum θ̂ of V_λ₀ the residuals are, to first order in Δ = θ − θ̂,
 //!

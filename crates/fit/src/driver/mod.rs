@@ -22,7 +22,7 @@
 //!
 //! With `physics = "exact"` the entry [`fit`] hands the whole of this to
 //! [`crate::exact_physics`], which runs it on corrected data (through
-//! `fit_measured`, so that the sanity checks of μ see the measured
+//! `fit_measured`, so that the plausibility checks of μ see the measured
 //! rows) until the correction stops changing.
 //!
 //! Where each step lives: the entry [`fit`] and the fits a temperature set
@@ -60,7 +60,7 @@ use crate::temperature_set::cross_check::cross_check;
 use crate::temperature_set::{ShiftStart, material_first, temperature_set, wlf_before_free};
 use crate::vertical;
 
-use assemble::{GridOutcome, Whole, assemble, fitted_friction, sanity_warnings};
+use assemble::{GridOutcome, Whole, assemble, fitted_friction, plausibility_warnings};
 use grid::solve_on_grid;
 use law::choose_law;
 use profile::profile_scale;
@@ -108,7 +108,7 @@ fn approximate_fit(rows: &Measurements, params: &ValidFitParams) -> Result<FitRe
 
 /// The fit of `rows` with the approximate physics. `measured`: the rows as
 /// measured when `rows` are a defect correction's corrected ones (μ_i/r_i,
-/// σ_i/r_i); the sanity checks of the measured μ then see them, condensed
+/// σ_i/r_i); the plausibility checks of the measured μ then see them, condensed
 /// like `rows`.
 pub(crate) fn fit_measured(
     rows: &Measurements,
@@ -160,7 +160,8 @@ pub(crate) fn fit_measured(
         None => None,
     };
     let friction = measured_bins.as_ref().unwrap_or(data).friction();
-    let sanity = sanity_warnings(data, friction, params, &outcome.fit, &outcome.window)?;
+    let plausibility =
+        plausibility_warnings(data, friction, params, &outcome.fit, &outcome.window)?;
     let condensed = match &condensed {
         Some(c) => {
             let mu_fit = fitted_friction(rows, params, &outcome.fit)?;
@@ -176,7 +177,7 @@ pub(crate) fn fit_measured(
         grid: outcome,
         terms,
         cross_check,
-        sanity,
+        plausibility,
         condensed,
         wall_time_s: clock.elapsed().as_secs_f64(),
     });
@@ -352,8 +353,9 @@ fn at_lambda_of(
     // One start, the other fit's optimum: that fit has already probed the
     // bump spectra and the seeded perturbations at this λ on this grid, and
     // the material they would restart (the shift stays at `start`) is the
-    // one it rejected them for. On the 7 × 21 set of issue 34 they cost
-    // 190 of the free stage's 195 evaluations and never won.
+    // one it rejected them for: they would cost nearly all of the free
+    // stage's evaluations and never win (BENCHMARKS.md, "Temperature
+    // sets").
     fixed.starts = 1;
     let mut outcome = fit_on_grid(data, &fixed, tau, Some(warm), Some(start))?;
     outcome.fit.lambda = LambdaRecord {

@@ -65,9 +65,9 @@ use crate::error::FitError;
 use crate::params::{Lambda, ModulusAnchor, TermRule, ValidFitParams};
 use crate::regularization::LambdaRule;
 use crate::report::{ModulusPoint, RunRecord, ScaleRecord};
-use crate::sanity::{MAX_CONTACT_RATIO, MIN_RUBBER_MODULUS};
 use crate::tau_grid::contact_size;
 use crate::temperature_set::ShiftStart;
+use rollfit_model::plausibility::{MAX_CONTACT_RATIO, MIN_RUBBER_MODULUS};
 
 use super::SCALE_FACTOR_LIMIT;
 use super::grid::solve_on_grid;

@@ -1,5 +1,5 @@
 //! One master curve from DMA isotherms and rolling friction together
-//! (issue 35).
+//!.
 //!
 //! A DMA sweep measures E*(ω) at a few temperatures over 0.1–100 Hz; rolling
 //! over 1e-6 … 1 m/s reaches reduced frequencies the isotherms reach only

@@ -2,7 +2,7 @@
 //! a series is fitted to them.
 //!
 //! A master curve from many long isotherms (60 isotherms of 3000
-//! frequencies, issue 36) holds far more points than its shape has
+//! frequencies) holds far more points than its shape has
 //! features: the series it is fitted with has [`super::TAU_PER_DECADE`]
 //! relaxation times per decade and cannot follow anything narrower than a
 //! third of a decade, while a fit's cost and memory grow with every point

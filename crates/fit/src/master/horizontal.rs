@@ -114,7 +114,7 @@ const ISOTHERM_BINS_PER_DECADE: f64 = 10.0;
 ///   0.90, 0.81, 0.79 and 98–99 % (10 to 60 points, not binned: 0.88–1.15
 ///   and 92–97 %).
 /// - cost: a pair's shift is a scan of the overlap per trial shift and a
-///   jackknife of refits; thousands of frequencies an isotherm (issue 36)
+///   jackknife of refits; thousands of frequencies an isotherm
 ///   made that minutes, bins make it independent of the count.
 ///
 /// The bin means carry the points' information about a shift of curves

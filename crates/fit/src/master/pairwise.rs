@@ -576,7 +576,7 @@ fn mismatch(
 /// the whole sweep), the delete-a-group jackknife (Kott 2001), whose
 /// variance has G − 1 degrees of freedom whatever the points: its cost
 /// stays G refits per side where delete-one's grows as n refits of n
-/// points each, n² (issue 36: 300 frequencies per isotherm took minutes).
+/// points each, n² (minutes at 300 frequencies per isotherm).
 fn jackknife_sigma(
     lower: &[Curve],
     upper: &[Curve],

@@ -8,7 +8,7 @@
 //!
 //! 1. *The data are not causal.* The Kramers–Kronig floor — the RMS misfit,
 //!    in decades, of the best non-negative Prony series on a dense τ grid
-//!    to the shifted points (`report::causality`, computed by the front
+//!    to the shifted points ([`crate::causality`], computed by the front
 //!    end and handed in as [`Misfits`]) — is what no linear
 //!    viscoelastic solid can get below. DMA scatter of 1–5 % gives a floor
 //!    of 0.004–0.021 decades, a global Kramers–Kronig violation of 50 % in

@@ -39,7 +39,7 @@ fn settings(t_ref: Option<f64>, law: ShiftLaw, vertical: bool) -> MasterSettings
     }
 }
 
-/// Issue 15's target: on synthetic isotherms with 1 % noise, log a_T
+/// The master curve's accuracy target: on synthetic isotherms with 1 % noise, log a_T
 /// within 0.05 decade (measured and applied), and the WLF constants within
 /// 3σ of the truth.
 #[test]
@@ -338,7 +338,7 @@ fn kinked_law(t: f64) -> f64 {
 /// `auto` law is within 0.1 decade
 /// of the truth at every isotherm of the transition, and the applied
 /// shifts' 2σ intervals cover the truth at ≥ 90 % of the determined
-/// isotherms over 10 seeds (issue 31).
+/// isotherms over 10 seeds.
 #[test]
 fn glassy_plateau_shifts_are_right_where_determined_and_auto_follows_the_truth() {
     let temps: Vec<f64> = (0..12).map(|k| -60.0 + 10.0 * k as f64).collect();
@@ -515,7 +515,7 @@ fn flat_isotherms_are_refused() {
 /// Calibration study of the pairwise σ: RMS of (error/σ) over 60 seeds
 /// for several isotherm densities (1 for honest errors) and the 2σ
 /// coverage; above 60 points an isotherm is compared by its bins of a
-/// tenth of a decade (`horizontal::curves`, issue 36).
+/// tenth of a decade (`horizontal::curves`).
 /// `cargo test --release -p rollfit-fit --lib pairwise_calibration -- --ignored --nocapture`
 #[test]
 #[ignore]

@@ -1,5 +1,5 @@
 //! The scale anchors of a fit reduced to a known |E| at one frequency,
-//! and the range of the moduli a fit's settings give (issue 36, item 4).
+//! and the range of the moduli a fit's settings give.
 
 use std::f64::consts::PI;
 
@@ -10,8 +10,8 @@ use crate::error::FitError;
 
 /// Accepted moduli of the fit's bound and anchors (`E1_max`, `E0`,
 /// `E_at.E`), Pa: 1 kPa, a decade below the softest rubber
-/// (`sanity::MIN_RUBBER_MODULUS`), to 1 TPa, diamond's Young's modulus and
-/// ten times the stiffest glassy polymer (`sanity::MAX_GLASSY_MODULUS`).
+/// (`rollfit_model::plausibility::MIN_RUBBER_MODULUS`), to 1 TPa, diamond's Young's modulus and
+/// ten times the stiffest glassy polymer (`rollfit_model::plausibility::MAX_GLASSY_MODULUS`).
 /// Outside, the fit's numbers leave the floating-point range before any
 /// check can name the key (`E1_max = 1e-300`: "effective_parameters =
 /// NaN").

@@ -1,4 +1,4 @@
-//! Issue 34's diagnosis (an ignored study, not a check): the singular
+//! A diagnosis of free shifts' cost (an ignored study, not a check): the singular
 //! values of the column-scaled Jacobian J D⁻¹ (D: column norms, as
 //! MINPACK's Levenberg–Marquardt scales) of a 7 × 21 temperature set's
 //! objective with free shifts, at the WLF fit's λ and optimum (where the

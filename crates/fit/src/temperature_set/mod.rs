@@ -24,7 +24,7 @@
 //! function (a [`Fit`]), so that this module does not depend on the driver
 //! that uses it.
 //!
-//! Conditioning (issue 34, the test-only study `conditioning.rs`): the
+//! Conditioning (the test-only study `conditioning.rs`): the
 //! column-scaled Jacobian J D⁻¹ of a joint fit with free shifts (D the
 //! column norms, as Levenberg–Marquardt scales) is as well conditioned as
 //! that of its material columns alone, ~1e2 at a λ the data choose and

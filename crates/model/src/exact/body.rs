@@ -91,7 +91,7 @@ pub trait ExactRolling: Send + Sync {
 }
 
 /// Where an exact solve ended, to start the next solve at the same speed
-/// for a nearby modulus from (issue 34):
+/// for a nearby modulus from:
 ///
 /// - the cylinder: the contact half-width, the root that its secant (graded
 ///   mesh) or Newton's method (Chebyshev) finds. Both iterate until the

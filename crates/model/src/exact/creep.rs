@@ -169,7 +169,8 @@ mod tests {
     use super::*;
 
     /// A term of strength 1e-20 E1 beside a real one gives the compliance
-    /// of the real one alone (before: a garbage residue for the tiny one).
+    /// of the real one alone, not a residue of the root search for the tiny
+    /// one.
     #[test]
     fn negligible_terms_are_harmless() {
         let clean = Prony::new(10.0, vec![9.0], vec![1.0]).unwrap();

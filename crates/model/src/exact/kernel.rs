@@ -32,7 +32,7 @@
 //! and N basis functions. Integrating each exponential at each point costs
 //! O(J N² K) for J retardation times and K ≈ 150 nodes per point, and a
 //! speed needs about 11 matrices (Newton's method on the edges): 15 to 30 s
-//! per speed for a 200-term Prony series at N = 128 (issue 14).
+//! per speed for a 200-term Prony series at N = 128.
 //! [`CollocationGrid::memory_matrix`] instead splits the exponentials by β
 //! (N fixed):
 //!
@@ -570,8 +570,8 @@ impl SeriesScratch {
 }
 
 /// The memory matrix one exponential and one point at a time, on panels
-/// graded at each exponential's scale over the whole of [t_k, 1] (the
-/// evaluation before issue 14, O(J N² Q)): the slow reference of the tests.
+/// graded at each exponential's scale over the whole of [t_k, 1]
+/// (O(J N² Q)): the slow reference of the tests.
 /// Above β = 1e9 those panels would be narrower than the resolution of t,
 /// and the inner integral is h_n(t_k) + h_n′(t_k)/β (error O(N⁴/β²)).
 /// (c_j, β_j) of the compliance terms of one memory band.
@@ -732,7 +732,7 @@ mod tests {
     /// The three methods of `memory_matrix` (Taylor series, stepping from
     /// the leading edge on shared and on graded nodes, derivative series)
     /// reproduce the per-term quadrature. The reference uses panels of 0.1
-    /// (at 0.5, as before issue 14, its error reached 1e-6 for n ≈ 128:
+    /// (at 0.5 its error reaches 1e-6 for n ≈ 128:
     /// 64 radians of cos((n+1)φ) on 24 nodes). Measured: ≤ 9.3e-13 of Σc,
     /// the largest at b/v = 30, where β reaches 3e6 and the reference's
     /// narrowest panels start to lose digits.

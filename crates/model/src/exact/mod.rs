@@ -678,7 +678,7 @@ mod tests {
     use super::*;
     use kernel::{CollocationGrid, memory_matrix_per_term};
 
-    /// A broad rubber (issue 14): 200 relaxation times log-spaced over
+    /// A broad rubber: 200 relaxation times log-spaced over
     /// 1e-12 … 1e8 s, E0 = 2 MPa, E1 = 2 GPa, the strengths a log-normal
     /// bump around 1e-5 s on a floor.
     fn rubber_200() -> Prony {
@@ -701,7 +701,7 @@ mod tests {
         (c + PI * b * b * b * alpha[1] / (4.0 * cylinder.load)) / cylinder.radius
     }
 
-    /// Issue 14: with 200 retardation times the grouped memory matrix gives
+    /// With 200 retardation times the grouped memory matrix gives
     /// the μ of the slow per-term quadrature (the reference of `kernel.rs`,
     /// whose cost made this series take 15 s per speed), on panels of 0.25
     /// (cos((n+1)φ) turns by at most 12 radians on one). N = 48 keeps the

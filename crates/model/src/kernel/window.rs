@@ -36,11 +36,6 @@ pub fn keep_oscillation(ln_x: f64) -> f64 {
     keep_oscillation_at(ln_x, WINDOW_CENTRE)
 }
 
-/// ln x below which k̃ = k to rounding.
-pub fn exact_below() -> f64 {
-    exact_below_at(WINDOW_CENTRE)
-}
-
 /// ln x above which k̃ = k_n to rounding.
 pub fn smooth_above() -> f64 {
     smooth_above_at(WINDOW_CENTRE)
@@ -51,7 +46,8 @@ pub fn keep_oscillation_at(ln_x: f64, centre: f64) -> f64 {
     0.5 * libm::erfc((ln_x - centre.ln()) / WINDOW_WIDTH)
 }
 
-/// [`exact_below`] of a window centred at `centre` (X0).
+/// ln x below which k̃ = k to rounding, for a window centred at `centre`
+/// (X0).
 pub fn exact_below_at(centre: f64) -> f64 {
     centre.ln() - SATURATION * WINDOW_WIDTH
 }

@@ -1,5 +1,5 @@
-//! The page's section on a joint fit of DMA and rolling data (issue 35,
-//! fit.json's `joint`): whether the two parts describe one material (the
+//! The page's section on a joint fit of DMA and rolling data
+//! (fit.json's `joint`): whether the two parts describe one material (the
 //! compatibility test, highlighted when they do not), the friction factor κ
 //! when fitted, each part's χ² fitted together and alone, the decades of
 //! reduced frequency where a part's mean residual exceeds

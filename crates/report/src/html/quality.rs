@@ -1,4 +1,4 @@
-//! What the top of report.html says about trusting the fit (issue 32):
+//! What the top of report.html says about trusting the fit:
 //! the goodness-of-fit verdict with its χ² and runs tests, the noise the
 //! tests assume and the reasons (fit.json `fit_quality`), and the modulus
 //! scale — the anchor, or for a fit without one how well the data alone

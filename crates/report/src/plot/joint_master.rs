@@ -1,4 +1,4 @@
-//! The joint fit's master curve (issue 35): the DMA isotherms of a joint
+//! The joint fit's master curve: the DMA isotherms of a joint
 //! fit of DMA and rolling data at their reduced frequencies ω a_T under the
 //! joint shift, coloured by isotherm temperature, with the joint Prony
 //! series on top, tan δ below and the shift factors at the right. It is the

@@ -1,4 +1,4 @@
-//! The residuals of a joint fit of DMA and rolling data (issue 35), each
+//! The residuals of a joint fit of DMA and rolling data, each
 //! part in units of its own σ, so that where one part pulls against the
 //! other shows as a run of points beyond ±2. Above, the DMA points'
 //! ln(E_fit/E_meas)/σ_DMA for E′ (filled circles) and E″ (open triangles)

@@ -2,7 +2,7 @@
 //!
 //! Loggers write thousands of frequencies per isotherm; marked one by one
 //! they only overdraw each other, and an SVG of them runs to hundreds of
-//! megabytes (issue 36). A picture marks at most [`MARKERS_PER_ISOTHERM`]
+//! megabytes. A picture marks at most [`MARKERS_PER_ISOTHERM`]
 //! of each isotherm, evenly spread through its points; the CSV files keep
 //! every point.
 

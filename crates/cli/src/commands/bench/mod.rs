@@ -1,4 +1,4 @@
-//! `rollfit bench [-o DIR]`: the speed–accuracy chart (issue 6).
+//! `rollfit bench [-o DIR]`: the speed–accuracy chart.
 //!
 //! Forward model: for the scene (default data/paper-fig2-cylinder.toml, the
 //! paper's standard linear solid E1/E0 = 10 under a cylinder), every rung of

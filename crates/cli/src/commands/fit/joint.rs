@@ -1,4 +1,4 @@
-//! The joint fit of `rollfit fit` and `rollfit batch` (issue 35): which
+//! The joint fit of `rollfit fit` and `rollfit batch`: which
 //! DMA file a job uses, reading it, and the summary's lines about the two
 //! parts.
 

@@ -1,4 +1,4 @@
-//! Progress of the exact solves of a forward sweep (issue 33). `exact`
+//! Progress of the exact solves of a forward sweep. `exact`
 //! solves every speed, so its bar counts speeds; `auto` decides inside the
 //! model which speeds need the exact contact, so its exact body is wrapped
 //! in [`Counted`], which counts the solves it is asked for and passes every

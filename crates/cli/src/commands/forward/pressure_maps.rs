@@ -1,4 +1,4 @@
-//! The pressure maps of `rollfit forward -o OUT.csv` (issue 17): where μ
+//! The pressure maps of `rollfit forward -o OUT.csv`: where μ
 //! comes from the exact rolling contact (`[contact] size = "exact"`, or
 //! `"auto"` at the speeds where it used the exact rung), the pressure under
 //! the body and the contact's outline at the sweep's speed of largest μ —

@@ -261,7 +261,7 @@ fn lagrange(nodes: &[f64], k: usize, xi: f64) -> f64 {
 /// M(X0, Y; ℓ) = ∫_0^∞ e^{−s} C(X0 + ℓ s, Y) ds for X0 at or beyond the
 /// grid's leading end (C of a square cell by its multipole form from 40
 /// cells on, [`far_potential`]: the tails were about 43 % of a fit's
-/// sphere solve with the corner form, issue 34), by 16-point Gauss–Legendre on panels that double
+/// sphere solve with the corner form), by 16-point Gauss–Legendre on panels that double
 /// from the scale on which C changes (ρ0/ℓ) up to width 4, to s = 46 (the
 /// log kernel grows only like ln s there, e^{−46} ln(ℓ s) is negligible).
 /// (`rule`: the 16-point rule on [0, 1], nodes and weights.)

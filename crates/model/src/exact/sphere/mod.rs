@@ -317,9 +317,9 @@ impl RollingSphere {
     ///
     /// Measured against the extrapolation of 144 and 216 cells (E1/E0 =
     /// 10 and 100, vτ/r0 = 0.01 … 100, 96 cells): the estimate is 0.3 …
-    /// 5 times the error (BENCHMARKS.md); the step μ₁₂ − μ₁ alone, the
-    /// estimate until issue 17, was up to 10 times pessimistic at
-    /// moderate speeds and 2 times optimistic at vτ/r0 = 1e-5.
+    /// 5 times the error (BENCHMARKS.md); the step μ₁₂ − μ₁ alone is no
+    /// estimate: it is up to 10 times pessimistic at moderate speeds and 2
+    /// times optimistic at vτ/r0 = 1e-5.
     pub fn solve(&self, v: f64) -> Result<SphereSolution, ModelError> {
         Ok(self.solve_from(v, None)?.0)
     }

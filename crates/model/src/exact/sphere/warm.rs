@@ -1,4 +1,4 @@
-//! Warm starts of the exact sphere (issue 34): a fit's defect correction
+//! Warm starts of the exact sphere: a fit's defect correction
 //! solves the same speeds again and again for a modulus that changes a
 //! little from one refit to the next (the correction r by 1e-3 … 1e-5), so
 //! each grid's active-set iteration is started from the contact set and

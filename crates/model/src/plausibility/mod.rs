@@ -1,4 +1,4 @@
-//! Sanity warnings: inputs and results that run without error but that the
+//! Plausibility warnings: inputs and results that run without error but that the
 //! theory does not cover, or that no laboratory would produce — most often a
 //! number in the wrong unit (a radius in mm, a modulus in MPa). Each warning
 //! explains the physics and names the scene key (or data column) to check.
@@ -112,13 +112,12 @@
 //! - M.L. Williams, R.F. Landel, J.D. Ferry, J. Am. Chem. Soc. 77, 3701
 //!   (1955): the WLF equation.
 
-use std::f64::consts::PI;
 use std::fmt;
 
 use num_complex::Complex64;
-use rollfit_model::{ContactSize, Shape};
 
-use crate::params::RollingSetup;
+use crate::contact::{Shape, ln_mean_pressure};
+use crate::scene::RollingSetup;
 
 /// Largest contact size (sphere radius, cylinder half-width) relative to the
 /// body's radius R that the theory is trusted at.
@@ -142,8 +141,8 @@ pub const MAX_SPHERE_LOAD: f64 = 1e4;
 /// Largest plausible load per length on a cylinder, N/m.
 pub const MAX_CYLINDER_LOAD: f64 = 1e6;
 
-/// One sanity warning.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+/// One plausibility warning.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Warning {
     /// The scene key (e.g. `geometry.radius`, `geometry.load`, `material`,
     /// `fit.E0`) or data column (`mu`) to check; `None` when no input is
@@ -154,7 +153,6 @@ pub struct Warning {
     /// The model's assumption a material breaks (checks 1, 2 and 4: "small
     /// contact", "small strain", [`SOLID_MODULUS`]); a fit whose material
     /// breaks one is judged "invalid", not merely warned about.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub assumption: Option<&'static str>,
 }
 
@@ -423,55 +421,21 @@ fn blame(setup: &RollingSetup, softest: &Softest, fitted: bool) -> (&'static str
     }
 }
 
-/// ln of the Hertz contact size (m) for Young's modulus `modulus` (Pa).
-fn ln_contact_size(setup: &RollingSetup, modulus: f64) -> f64 {
-    let g = setup.geometry;
-    let nu = setup.substrate.poisson;
-    let ln_e_eff = modulus.ln() - (1.0 - nu * nu).ln();
-    match g.shape {
-        Shape::Sphere => (0.75f64.ln() + g.load.ln() + g.radius.ln() - ln_e_eff) / 3.0,
-        Shape::Cylinder => ((4.0 / PI).ln() + g.load.ln() + g.radius.ln() - ln_e_eff) / 2.0,
-    }
-}
-
 /// ln of the mean Hertz pressure (Pa) for a contact of size exp(`ln_size`).
-fn ln_mean_pressure(setup: &RollingSetup, ln_size: f64) -> f64 {
+fn ln_pressure(setup: &RollingSetup, ln_size: f64) -> f64 {
     let g = setup.geometry;
-    match g.shape {
-        Shape::Sphere => g.load.ln() - PI.ln() - 2.0 * ln_size,
-        Shape::Cylinder => g.load.ln() - 2f64.ln() - ln_size,
-    }
+    ln_mean_pressure(g.shape, g.load, ln_size)
 }
 
-/// The contact at one speed: ln of its size and the modulus that set it.
-/// Dynamic: the fixed point r = r_Hertz(|E(v/r)|), approached from the
-/// static contact (the largest); a contraction since |E| grows at most
-/// like ω.
+/// The contact at one speed: ln of its size and the modulus that set it
+/// ([`RollingSetup::ln_contact_at`]).
 fn contact_at(
     setup: &RollingSetup,
     modulus: &dyn Fn(f64) -> Complex64,
     static_modulus: f64,
     speed: f64,
 ) -> (f64, f64) {
-    let mut e = static_modulus;
-    let mut ln_r = ln_contact_size(setup, e);
-    if setup.contact == ContactSize::Static {
-        return (ln_r, e);
-    }
-    for _ in 0..50 {
-        let omega = (speed.ln() - ln_r).exp();
-        let next = modulus(omega).norm();
-        if !(next.is_finite() && next > 0.0) {
-            break;
-        }
-        let ln_next = ln_contact_size(setup, next);
-        let settled = (ln_next - ln_r).abs() < 1e-6;
-        (e, ln_r) = (next, ln_next);
-        if settled {
-            break;
-        }
-    }
-    (ln_r, e)
+    setup.ln_contact_at(&|omega| modulus(omega).norm(), static_modulus, speed)
 }
 
 /// The worst speed of check 1 and how many speeds fail it.
@@ -593,7 +557,8 @@ fn sig(x: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rollfit_model::{
+    use crate::contact::ContactSize;
+    use crate::{
         Geometry, HavriliakNegami, Prony, StandardLinearSolid, Substrate, ViscoelasticModulus,
     };
 

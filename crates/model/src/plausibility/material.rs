@@ -3,14 +3,14 @@
 //! [`super`], "A fitted material is judged where the data determine it").
 
 use num_complex::Complex64;
-use rollfit_model::ContactSize;
 
 use super::{
     MAX_CONTACT_RATIO, MAX_GLASSY_MODULUS, MIN_RUBBER_MODULUS, Softest, Warning, blame, broken,
-    contact_at, implausible_load, implausible_radius, large_contact, ln_contact_size,
-    ln_mean_pressure, num, of_speeds, sig, size_name, usable, warning,
+    contact_at, implausible_load, implausible_radius, large_contact, ln_pressure, num, of_speeds,
+    sig, size_name, usable, warning,
 };
-use crate::params::RollingSetup;
+use crate::contact::ContactSize;
+use crate::scene::RollingSetup;
 
 /// Checks of a material given in the scene's `[material]` (or fitted, when
 /// `fitted`, and judged on the whole frequency axis; a fit's own material
@@ -199,7 +199,7 @@ fn large_strain(
     let (key, advice) = blame(setup, softest, m.fitted);
     let dynamic = m.window.is_some() && setup.contact == ContactSize::Dynamic;
     if !dynamic {
-        let ln_p = ln_mean_pressure(setup, ln_contact_size(setup, e0));
+        let ln_p = ln_pressure(setup, setup.ln_contact_size(e0));
         return (ln_p > e0.ln()).then(|| {
             broken(
                 "small strain",
@@ -221,9 +221,9 @@ fn large_strain(
     let mut worst: Option<(f64, f64, f64, f64)> = None;
     for &v in speeds.iter().filter(|v| v.is_finite() && **v > 0.0) {
         let (ln_r, e) = contact_at(setup, &at, e0, v);
-        let excess = ln_mean_pressure(setup, ln_r) - e.ln();
+        let excess = ln_pressure(setup, ln_r) - e.ln();
         if excess > 0.0 && worst.is_none_or(|w| excess > w.0) {
-            worst = Some((excess, v, ln_mean_pressure(setup, ln_r).exp(), e));
+            worst = Some((excess, v, ln_pressure(setup, ln_r).exp(), e));
         }
     }
     let (_, v, p, e) = worst?;
@@ -255,60 +255,67 @@ fn window_modulus(
     let mut out = Vec::new();
     let window = format!("ω = {} … {} rad/s", sig(lo), sig(hi));
     if low.0 < MIN_RUBBER_MODULUS {
-        let (key, advice) = implausible_radius(setup)
-            .or_else(|| implausible_load(setup))
-            .unwrap_or_else(|| {
-                (
-                    "fit.E0",
-                    "this number points at a unit slip: check geometry.radius (m) and \
-                     geometry.load (N for a sphere, N/m for a cylinder), and anchor the modulus \
-                     scale in [fit] (E0, E_at or contact_radius)"
-                        .to_string(),
-                )
-            });
-        out.push(broken(
-            SOLID_MODULUS,
-            warning(
-                key,
-                format!(
-                    "the fitted |E| = {} Pa at ω = {} rad/s, inside the window the data determine \
-                     ({window}), is below any viscoelastic solid's (the softest elastomers start \
-                     near {} Pa); {advice}",
-                    sig(low.0),
-                    sig(low.1),
-                    num(MIN_RUBBER_MODULUS)
-                ),
+        out.push(outside_any_solid(
+            setup,
+            (
+                "fit.E0",
+                "this number points at a unit slip: check geometry.radius (m) and geometry.load \
+                 (N for a sphere, N/m for a cylinder), and anchor the modulus scale in [fit] (E0, \
+                 E_at or contact_radius)",
+            ),
+            low,
+            &window,
+            format!(
+                "below any viscoelastic solid's (the softest elastomers start near {} Pa)",
+                num(MIN_RUBBER_MODULUS)
             ),
         ));
     }
     if high.0 > MAX_GLASSY_MODULUS {
-        let (key, advice) = implausible_radius(setup)
-            .or_else(|| implausible_load(setup))
-            .unwrap_or_else(|| {
-                (
-                    "fit.E1_max",
-                    "this number points at a unit slip: check geometry.radius (m) and \
-                     geometry.load, and anchor the modulus scale in [fit] (E0, E_at or \
-                     contact_radius)"
-                        .to_string(),
-                )
-            });
-        out.push(broken(
-            SOLID_MODULUS,
-            warning(
-                key,
-                format!(
-                    "the fitted |E| = {} Pa at ω = {} rad/s, inside the window the data determine \
-                     ({window}), is above any viscoelastic solid's (glassy polymers and filled \
-                     compounds reach 1e10 Pa; {} Pa is nearer the steel ball itself); {advice}",
-                    sig(high.0),
-                    sig(high.1),
-                    num(MAX_GLASSY_MODULUS)
-                ),
+        out.push(outside_any_solid(
+            setup,
+            (
+                "fit.E1_max",
+                "this number points at a unit slip: check geometry.radius (m) and geometry.load, \
+                 and anchor the modulus scale in [fit] (E0, E_at or contact_radius)",
+            ),
+            high,
+            &window,
+            format!(
+                "above any viscoelastic solid's (glassy polymers and filled compounds reach 1e10 \
+                 Pa; {} Pa is nearer the steel ball itself)",
+                num(MAX_GLASSY_MODULUS)
             ),
         ));
     }
     out
+}
+
+/// Check 4's warning for the fitted |E| = `at`.0 Pa at ω = `at`.1 rad/s
+/// inside `window`, `beyond` any solid's range; it names the radius or the
+/// load if either is implausible on its own, else `fallback` (key, advice).
+fn outside_any_solid(
+    setup: &RollingSetup,
+    fallback: (&'static str, &str),
+    at: (f64, f64),
+    window: &str,
+    beyond: String,
+) -> Warning {
+    let (key, advice) = implausible_radius(setup)
+        .or_else(|| implausible_load(setup))
+        .unwrap_or_else(|| (fallback.0, fallback.1.to_string()));
+    broken(
+        SOLID_MODULUS,
+        warning(
+            key,
+            format!(
+                "the fitted |E| = {} Pa at ω = {} rad/s, inside the window the data determine \
+                 ({window}), is {beyond}; {advice}",
+                sig(at.0),
+                sig(at.1),
+            ),
+        ),
+    )
 }
 
 /// E0 and E1 of a fit outside the plausible range but beyond its window:
