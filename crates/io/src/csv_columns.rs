@@ -39,15 +39,18 @@ pub fn header<R: std::io::Read>(
 ) -> Result<csv::StringRecord, IoError> {
     let header = reader
         .headers()
-        .map_err(|source| IoError::CsvHeader { source })?
+        .map_err(|source| err!("cannot read the header row").caused_by(source))?
         .clone();
     if header.is_empty() {
-        return Err(IoError::EmptyTable { expected });
+        return Err(err!(
+            "the table is empty: expected a header row ({expected}) and data rows"
+        ));
     }
     if let Some(name) = duplicate(&header) {
-        return Err(IoError::DuplicateColumn {
-            name: name.to_string(),
-        });
+        return Err(err!(
+            "the header names column `{name}` twice",
+            name = name.to_string()
+        ));
     }
     Ok(header)
 }
@@ -64,10 +67,12 @@ pub fn finite(
     text.parse::<f64>()
         .ok()
         .filter(|v| v.is_finite())
-        .ok_or_else(|| IoError::CellNotFinite {
-            line,
-            column: name.to_string(),
-            text: text.to_string(),
+        .ok_or_else(|| {
+            err!(
+                "line {line}: column `{column}`: {text:?} is not a finite number",
+                column = name.to_string(),
+                text = text.to_string()
+            )
         })
 }
 
@@ -168,19 +173,23 @@ pub(crate) fn dma_number(
     column: impl Fn() -> crate::error::ColumnRef,
     field: &str,
 ) -> Result<f64, IoError> {
-    let v: f64 = field.parse().map_err(|_| IoError::NotANumber {
-        path: path.to_path_buf(),
-        cell: Box::new(crate::error::CellRef::line(line)),
-        column: column(),
-        text: field.to_string(),
+    let v: f64 = field.parse().map_err(|_| {
+        err!(
+            "{}, {cell}: {column}: \"{text}\" is not a number",
+            path.display(),
+            cell = crate::error::CellRef::line(line),
+            column = column(),
+            text = field.to_string()
+        )
     })?;
     if !v.is_finite() {
-        return Err(IoError::NotFinite {
-            path: path.to_path_buf(),
-            cell: Box::new(crate::error::CellRef::line(line)),
-            column: column(),
-            text: field.to_string(),
-        });
+        return Err(err!(
+            "{}, {cell}: {column}: {text} is not a finite number",
+            path.display(),
+            cell = crate::error::CellRef::line(line),
+            column = column(),
+            text = field.to_string()
+        ));
     }
     Ok(v)
 }

@@ -41,6 +41,9 @@
 //! Nothing here prints; the command line decides what a user sees (a
 //! reader's notes reach it through a callback).
 
+// First: its `err!` serves every module below.
+#[macro_use]
+pub mod error;
 pub mod columns;
 pub mod csv_columns;
 pub mod csv_text;
@@ -48,7 +51,6 @@ pub mod data;
 pub mod dma;
 pub mod dma_joint;
 pub mod dma_master;
-pub mod error;
 pub mod fit_dir;
 pub mod input_file;
 pub mod manifest;
@@ -61,7 +63,9 @@ pub mod table;
 pub mod text_file;
 
 pub use data::DataTable;
-pub use error::{DataError, DmaMasterError, Fault, IoError, ManifestError, SceneError, TableError};
+pub use error::{
+    DataError, DmaMasterError, ErrorKind, IoError, ManifestError, SceneError, TableError,
+};
 pub use fit_dir::FitDir;
 pub use table::ModulusTable;
 

@@ -16,7 +16,7 @@ use rollfit_model::{Prony, ViscoelasticModulus};
 use serde::Serialize;
 
 use crate::dma_master::DmaMaster;
-use crate::error::{Fault, IoError};
+use crate::error::IoError;
 use crate::relaxation_master::RelaxationBuilt;
 
 #[derive(Serialize)]
@@ -213,10 +213,8 @@ fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
             shift,
         },
     };
-    let body = toml::to_string(&file).map_err(|source| Fault::TomlEncode {
-        file: "material.toml",
-        source,
-    })?;
+    let body = toml::to_string(&file)
+        .map_err(|source| err!("cannot format {file}", file = "material.toml").caused_by(source))?;
     let mut text = format!(
         "# Written by rollfit master from {} ({} {}, {} points).\n\
          # Young's modulus at T_ref = {t_ref} °C: a Prony series E*(ω) = E0 + Σ H_k iωτ_k/(1 + iωτ_k),\n\

@@ -152,10 +152,8 @@ pub fn expand(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, IoError> {
             files.push(input.clone());
             continue;
         }
-        let read = std::fs::read_dir(input).map_err(|source| IoError::Read {
-            path: input.clone(),
-            source,
-        })?;
+        let read = std::fs::read_dir(input)
+            .map_err(|source| err!("{}: {source}", input.display()).system(source))?;
         let mut found: Vec<PathBuf> = read
             .filter_map(Result::ok)
             .map(|entry| entry.path())
@@ -221,9 +219,7 @@ pub fn read_files(
             Some(so_far) => join(so_far, data),
         });
     }
-    let mut data = all.ok_or_else(|| IoError::NoDataPoints {
-        path: PathBuf::new(),
-    })?;
+    let mut data = all.ok_or_else(|| err!("{}: no data points", (PathBuf::new()).display()))?;
     if paths.len() > 1 {
         data.path = common_folder(paths);
     }

@@ -51,6 +51,7 @@ use super::point::ModulusKind;
 use super::time_isotherms::check_isotherms;
 use crate::columns::{D_CREEP, E_RELAX, G_RELAX, J_CREEP, TIME};
 use crate::csv_columns::LineIndex;
+use crate::error::field_count_tail;
 use crate::error::{ColumnRef, IoError, RelaxationError};
 
 /// Accepted times since the step of strain, s: the reciprocal of the
@@ -339,9 +340,8 @@ pub fn is_relaxation(text: &str) -> bool {
 /// Whether the file at `path` is a relaxation file; false where it cannot
 /// be read (the frequency form's reader then says why).
 pub fn is_relaxation_file(path: &Path) -> bool {
-    crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
-        path: path.to_path_buf(),
-        source,
+    crate::input_file::read_input(path, "DMA file", |source| {
+        err!("{}: {source}", path.display()).system(source)
     })
     .ok()
     .and_then(|bytes| super::decode::decode(path, &bytes).ok())
@@ -363,13 +363,14 @@ impl RelaxationData {
         poisson: f64,
         kind: Option<ModulusKind>,
     ) -> Result<RelaxationData, IoError> {
-        rollfit_model::check_poisson(poisson).map_err(|problem| IoError::DmaPoisson {
-            path: path.to_path_buf(),
-            problem,
+        rollfit_model::check_poisson(poisson).map_err(|problem| {
+            err!(
+                "{problem} (converting shear moduli of {} to Young's)",
+                path.display()
+            )
         })?;
-        let bytes = crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
-            path: path.to_path_buf(),
-            source,
+        let bytes = crate::input_file::read_input(path, "DMA file", |source| {
+            err!("{}: {source}", path.display()).system(source)
         })?;
         let text = super::decode::decode(path, &bytes)?;
         parse(path, &text, poisson, kind)
@@ -384,14 +385,16 @@ pub fn parse(
     poisson: f64,
     kind: Option<ModulusKind>,
 ) -> Result<RelaxationData, IoError> {
-    let (line, names, delimiter, start) = header_row(text).ok_or_else(|| IoError::NoHeader {
-        path: path.to_path_buf(),
-    })?;
+    let (line, names, delimiter, start) =
+        header_row(text).ok_or_else(|| err!("{}: empty: no header line", path.display()))?;
     let Some(header) = header(path, line, &names)? else {
-        return Err(IoError::NoFrequencyColumn {
-            path: path.to_path_buf(),
-            header: names,
-        });
+        return Err(err!(
+            "{}: no frequency column: need `omega` (rad/s) or `f` (Hz), optionally with a unit \
+         suffix such as omega_rad_s or f_Hz (the header has: {}); stress-relaxation data (`t` \
+         and `E_relax` or `G_relax`) are read by `rollfit master` and `rollfit compare`",
+            path.display(),
+            names.join(", ")
+        ));
     };
     let (quantity, kind) = match (header.quantity, kind) {
         (Quantity::Shear, _) => (TimeQuantity::Relaxation, ModulusKind::Shear),
@@ -416,10 +419,12 @@ pub fn parse(
     let index = LineIndex::new(text);
     let decimal_comma = crate::data::dialect::decimal_comma(delimiter);
     for record in reader.records() {
-        let record = record.map_err(|error| IoError::NotCsv {
-            path: path.to_path_buf(),
-            line: index.csv_line_after(start, error.position()),
-            error,
+        let record = record.map_err(|error| {
+            err!(
+                "{}, line {line}: not CSV: {error}",
+                path.display(),
+                line = index.csv_line_after(start, error.position())
+            )
         })?;
         let at = index.csv_line_after(start, record.position());
         if at <= line || Some(at) == units_line || record.iter().all(str::is_empty) {
@@ -435,9 +440,7 @@ pub fn parse(
         lines.push(at);
     }
     if points.is_empty() {
-        return Err(IoError::NoRows {
-            path: path.to_path_buf(),
-        });
+        return Err(err!("{}: no data rows below the header", path.display()));
     }
     check_isotherms(path, (quantity, &header.value.reference), &points, &lines)?;
     let notes = match (quantity, kind) {
@@ -540,14 +543,13 @@ fn row(
     (quantity, factor): (TimeQuantity, f64),
 ) -> Result<RelaxationPoint, IoError> {
     if record.len() != header.width {
-        return Err(IoError::FieldCount {
-            path: path.to_path_buf(),
-            line,
-            found: record.len(),
-            expected: header.width,
-            missing: Vec::new(),
-            cut: false,
-        });
+        return Err(err!(
+            "{}, line {line}: {found} fields, but the header has {expected} columns{}",
+            path.display(),
+            field_count_tail(&[], false),
+            expected = header.width,
+            found = record.len()
+        ));
     }
     let value = |c: &Column| -> Result<f64, IoError> {
         let v = c.number(path, line, &record[c.index], decimal_comma)?;

@@ -260,22 +260,20 @@ fn value(place: &Place, row: &Row, number: usize, c: &Column) -> Result<Option<f
             formula,
         }
         .into()),
-        Err(NotNumber::NotFinite(text)) => Err(IoError::NotFinite {
-            path,
-            cell: at,
-            column,
-            text,
-        }),
+        Err(NotNumber::NotFinite(text)) => Err(err!(
+            "{}, {cell}: {column}: {text} is not a finite number",
+            path.display(),
+            cell = at
+        )),
         Err(
             NotNumber::Other(text)
             | NotNumber::AmbiguousComma(text)
             | NotNumber::Thousands(text)
             | NotNumber::Text(text),
-        ) => Err(IoError::NotANumber {
-            path,
-            cell: at,
-            column,
-            text,
-        }),
+        ) => Err(err!(
+            "{}, {cell}: {column}: \"{text}\" is not a number",
+            path.display(),
+            cell = at
+        )),
     }
 }

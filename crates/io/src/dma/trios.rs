@@ -44,7 +44,7 @@ use std::path::Path;
 
 use super::form::{FieldNames, FormRead, RawPoint};
 use super::point::{DmaOptions, ModulusKind};
-use crate::error::{CellRef, ColumnRef, IoError, SkippedStep, StepRef, TriosError, UnknownUnit};
+use crate::error::{CellRef, ColumnRef, IoError, SkippedStep, StepRef, TriosError};
 
 /// Units of a quantity: (name in the file, factor, offset) to SI.
 type Units = [(&'static str, f64, f64)];
@@ -297,16 +297,17 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
                 factor: t.1,
                 offset: t.2,
             }),
-            None => Err(TriosError::UnknownUnit(Box::new(UnknownUnit {
-                path: path.to_path_buf(),
-                line: units.0,
-                step: step.label(),
-                quantity,
-                variable: name,
-                number: i + 1,
-                unit: unit.to_string(),
-                known: table.iter().map(|t| t.0).collect(),
-            }))),
+            None => Err(TriosError::UnknownUnit(Box::new(err!(
+                "{}, line {line}: {step}: {quantity} variable \"{variable}\" (column {number}) has unit \
+     \"{unit}\"; known units: {}",
+                path.display(),
+                table.iter().map(|t| t.0).collect::<Vec<_>>().join(", "),
+                line = units.0,
+                number = i + 1,
+                step = step.label(),
+                unit = unit.to_string(),
+                variable = name
+            )))),
         }
     };
     let frequency_units = if angular {
@@ -348,19 +349,23 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
 /// The value of field `f` in the `Data point` row on line `line`, in SI.
 fn cell(path: &Path, line: usize, row: &[&str], f: &Field) -> Result<f64, IoError> {
     let text = row.get(f.index).map_or("", |s| s.trim());
-    let v: f64 = text.parse().map_err(|_| IoError::NotANumber {
-        path: path.to_path_buf(),
-        cell: Box::new(CellRef::line(line)),
-        column: f.reference(),
-        text: text.to_string(),
+    let v: f64 = text.parse().map_err(|_| {
+        err!(
+            "{}, {cell}: {column}: \"{text}\" is not a number",
+            path.display(),
+            cell = CellRef::line(line),
+            column = f.reference(),
+            text = text.to_string()
+        )
     })?;
     if !v.is_finite() {
-        return Err(IoError::NotFinite {
-            path: path.to_path_buf(),
-            cell: Box::new(CellRef::line(line)),
-            column: f.reference(),
-            text: text.to_string(),
-        });
+        return Err(err!(
+            "{}, {cell}: {column}: {text} is not a finite number",
+            path.display(),
+            cell = CellRef::line(line),
+            column = f.reference(),
+            text = text.to_string()
+        ));
     }
     Ok(v * f.factor + f.offset)
 }

@@ -391,7 +391,7 @@ pub enum DataError {
 
 impl From<DataError> for super::IoError {
     fn from(e: DataError) -> Self {
-        super::IoError::Data(Box::new(e))
+        super::IoError::transparent(super::ErrorKind::Content, e)
     }
 }
 

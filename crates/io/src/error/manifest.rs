@@ -164,7 +164,7 @@ pub enum ManifestError {
 
 impl From<ManifestError> for IoError {
     fn from(e: ManifestError) -> Self {
-        IoError::Manifest(Box::new(e))
+        IoError::transparent(super::ErrorKind::Content, e)
     }
 }
 

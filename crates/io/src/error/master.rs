@@ -146,7 +146,7 @@ pub enum DmaMasterError {
 
 impl From<DmaMasterError> for IoError {
     fn from(e: DmaMasterError) -> Self {
-        IoError::Master(Box::new(e))
+        IoError::transparent(super::ErrorKind::Content, e)
     }
 }
 

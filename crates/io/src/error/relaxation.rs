@@ -162,6 +162,6 @@ pub enum RelaxationError {
 
 impl From<RelaxationError> for super::IoError {
     fn from(e: RelaxationError) -> Self {
-        super::IoError::Relaxation(Box::new(e))
+        super::IoError::transparent(super::ErrorKind::Content, e)
     }
 }

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use rollfit_model::ModelError;
 use thiserror::Error;
 
-use super::{Fault, IoError};
+use super::{ErrorKind, IoError};
 
 /// Why a scene file cannot be read or turned into a scene.
 #[derive(Debug, Error)]
@@ -44,9 +44,6 @@ pub enum SceneError {
     /// cannot be read: its reader's error, with its sources.
     #[error(transparent)]
     File(Box<IoError>),
-    /// Not the user's doing.
-    #[error(transparent)]
-    Internal(Fault),
 
     // ------------------------------------------------------------ syntax
     /// TOML syntax, an unknown key, a value of the wrong type or a fit
@@ -393,23 +390,17 @@ impl From<SceneError> for IoError {
     fn from(e: SceneError) -> Self {
         match e {
             SceneError::File(inner) => *inner,
-            other => IoError::Scene(Box::new(other)),
+            other => IoError::transparent(ErrorKind::Content, other),
         }
     }
 }
 
 impl From<IoError> for SceneError {
     fn from(e: IoError) -> Self {
-        match e {
-            IoError::Scene(inner) => *inner,
-            other => SceneError::File(Box::new(other)),
+        match e.into_transparent::<SceneError>() {
+            Ok(inner) => inner,
+            Err(other) => SceneError::File(Box::new(other)),
         }
-    }
-}
-
-impl From<Fault> for SceneError {
-    fn from(e: Fault) -> Self {
-        SceneError::Internal(e)
     }
 }
 

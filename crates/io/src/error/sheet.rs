@@ -63,7 +63,7 @@ pub enum DmaSheetError {
 
 impl From<DmaSheetError> for super::IoError {
     fn from(e: DmaSheetError) -> Self {
-        super::IoError::DmaSheet(Box::new(e))
+        super::IoError::transparent(super::ErrorKind::Content, e)
     }
 }
 

@@ -195,7 +195,7 @@ pub enum TableError {
 
 impl From<TableError> for IoError {
     fn from(e: TableError) -> Self {
-        IoError::Table(Box::new(e))
+        IoError::transparent(super::ErrorKind::Content, e)
     }
 }
 

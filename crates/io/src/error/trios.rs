@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-use super::boxed::UnknownUnit;
+use super::IoError;
 use super::parts::{SkippedStep, StepRef, count_mismatch};
 
 /// Why a TRIOS export cannot be read.
@@ -70,7 +70,7 @@ pub enum TriosError {
     },
     /// A TRIOS variable in a unit rollfit does not know.
     #[error(transparent)]
-    UnknownUnit(Box<UnknownUnit>),
+    UnknownUnit(Box<IoError>),
     /// A TRIOS file without any `Data point` row.
     #[error("{}: TRIOS export without data points", path.display())]
     TriosWithoutPoints { path: PathBuf },
@@ -102,6 +102,6 @@ pub enum TriosError {
 
 impl From<TriosError> for super::IoError {
     fn from(e: TriosError) -> Self {
-        super::IoError::Trios(Box::new(e))
+        super::IoError::transparent(super::ErrorKind::Content, e)
     }
 }

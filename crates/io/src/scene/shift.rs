@@ -9,7 +9,7 @@ use serde::Deserialize;
 use super::values::{Real, value_of};
 use super::vertical::{VerticalLawName, VerticalPoint};
 use crate::dma_master::DmaMaster;
-use crate::error::{Fault, SceneError};
+use crate::error::SceneError;
 
 /// Shift model names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -117,19 +117,21 @@ impl ShiftRule {
         let model = |error| SceneError::MasterShift { error };
         Ok(Some(match shift.law {
             ShiftLaw::Wlf => {
-                let w = shift.wlf.ok_or(Fault::LawMissing { law: "WLF" })?;
+                let w = shift
+                    .wlf
+                    .ok_or(err!("{law} fit missing", law = "WLF").internal())?;
                 ShiftRule::Wlf(Wlf::new(t_ref, w.c1, w.c2).map_err(model)?)
             }
             ShiftLaw::Arrhenius => {
                 let a = shift
                     .arrhenius
-                    .ok_or(Fault::LawMissing { law: "Arrhenius" })?;
+                    .ok_or(err!("{law} fit missing", law = "Arrhenius").internal())?;
                 ShiftRule::Arrhenius(Arrhenius::new(t_ref, a.activation_energy).map_err(model)?)
             }
             ShiftLaw::WlfArrhenius => {
-                let w = shift.wlf_arrhenius.ok_or(Fault::LawMissing {
-                    law: "WLF–Arrhenius",
-                })?;
+                let w = shift
+                    .wlf_arrhenius
+                    .ok_or(err!("{law} fit missing", law = "WLF–Arrhenius").internal())?;
                 ShiftRule::WlfArrhenius(
                     WlfArrhenius::new(t_ref, w.c1, w.c2, w.t_junction, w.activation_energy)
                         .map_err(model)?,
