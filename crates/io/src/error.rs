@@ -24,11 +24,8 @@ pub(crate) mod master;
 pub mod parts;
 pub(crate) mod relaxation;
 pub(crate) mod scene;
-mod sheet;
-pub(crate) mod table;
-mod trios;
 
-pub use data::{CellRef, ColumnName, DataError, RowRef, RowsRef, column_letter};
+pub use data::{CellRef, ColumnName, RowRef, RowsRef, column_letter};
 pub use manifest::{EntryProblem, EntryRef, ManifestError, TomlPlace};
 pub use master::{DmaMasterError, TurnPoint};
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
@@ -37,9 +34,6 @@ pub(crate) use parts::{
 };
 pub use relaxation::RelaxationError;
 pub use scene::SceneError;
-pub use sheet::DmaSheetError;
-pub use table::{TableError, TableIsotherm};
-pub use trios::TriosError;
 
 /// What kind of failure an [`IoError`] is: the distinctions a caller acts
 /// on (the Python module raises `OSError` for a system failure and

@@ -63,9 +63,7 @@ pub mod table;
 pub mod text_file;
 
 pub use data::DataTable;
-pub use error::{
-    DataError, DmaMasterError, ErrorKind, IoError, ManifestError, SceneError, TableError,
-};
+pub use error::{DmaMasterError, ErrorKind, IoError, ManifestError, SceneError};
 pub use fit_dir::FitDir;
 pub use table::ModulusTable;
 

@@ -64,7 +64,7 @@ use std::path::Path;
 
 use rollfit_fit::Measurements;
 
-use crate::error::{DataError, IoError};
+use crate::error::IoError;
 
 pub use quantity::Quantity;
 
@@ -100,7 +100,7 @@ impl DataTable {
             self.sigma.clone(),
             self.temperature.clone(),
         )
-        .map_err(|e| DataError::Measurements(e).into())
+        .map_err(|e| crate::error::IoError::transparent(crate::error::ErrorKind::Content, e).into())
     }
 
     /// The distinct temperatures of a `T` column, in order of appearance.
@@ -126,27 +126,23 @@ pub fn read(path: &Path) -> Result<DataTable, IoError> {
 /// Errors name the file.
 pub fn read_sheet(path: &Path, sheet: Option<&str>) -> Result<DataTable, IoError> {
     let bytes = crate::input_file::read_input(path, "data file", |source| {
-        DataError::Open {
-            path: path.to_path_buf(),
-            source,
-        }
-        .into()
+        err!("cannot open data file {}", path.display())
+            .system(source)
+            .into()
     })?;
-    let in_file = |cause: DataError| -> IoError {
-        DataError::InFile {
-            path: path.to_path_buf(),
-            source: Box::new(cause),
-        }
-        .into()
+    let in_file = |cause: IoError| -> IoError {
+        err!("data file {}", path.display()).caused_by(cause).into()
     };
     if workbook::is_workbook(path, &bytes) {
         return workbook::parse(path, bytes, sheet).map_err(in_file);
     }
     if let Some(sheet) = sheet {
-        return Err(DataError::SheetOfText {
-            path: path.to_path_buf(),
-            sheet: sheet.to_string(),
-        }
+        return Err(err!(
+            "data file {}: a sheet ({sheet:?}) was given, but the file is text, not a workbook \
+         (.xlsx, .xlsm, .xlsb, .xls, .ods)",
+            path.display(),
+            sheet = sheet.to_string()
+        )
         .into());
     }
     text::parse_bytes(bytes).map_err(in_file)

@@ -6,9 +6,9 @@ use super::headers;
 use super::text::parse_bytes;
 use super::*;
 use crate::chain;
-use crate::error::DataError;
+use crate::error::IoError;
 
-fn parse_str(text: &str) -> Result<DataTable, DataError> {
+fn parse_str(text: &str) -> Result<DataTable, IoError> {
     parse_bytes(text.as_bytes().to_vec())
 }
 

@@ -54,7 +54,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::error::{DmaSheetError, IoError};
+use crate::error::IoError;
 
 mod blocks;
 mod checks;
@@ -299,10 +299,12 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
         let (read, name, notes) = sheet::parse(path, bytes, sheet, told(options))?;
         (vec![read], "workbook", Some(name), notes)
     } else if let Some(sheet) = sheet {
-        return Err(DmaSheetError::SheetOfText {
-            path: path.to_path_buf(),
-            sheet: sheet.to_string(),
-        }
+        return Err(err!(
+            "{}: a sheet ({sheet:?}) was given, but the DMA file is text, not a workbook (.xlsx, \
+         .xlsm, .xlsb, .xls, .ods)",
+            path.display(),
+            sheet = sheet.to_string()
+        )
         .into());
     } else {
         let (text, decoded) = decode::decode_noted(path, &bytes)?;

@@ -44,7 +44,8 @@ use std::path::Path;
 
 use super::form::{FieldNames, FormRead, RawPoint};
 use super::point::{DmaOptions, ModulusKind};
-use crate::error::{CellRef, ColumnRef, IoError, SkippedStep, StepRef, TriosError};
+use crate::error::parts::count_mismatch;
+use crate::error::{CellRef, ColumnRef, IoError, SkippedStep, StepRef};
 
 /// Units of a quantity: (name in the file, factor, offset) to SI.
 type Units = [(&'static str, f64, f64)];
@@ -151,9 +152,10 @@ pub(crate) fn parse(path: &Path, text: &str, options: &DmaOptions) -> Result<For
     let Some(names) = names else {
         let path = path.to_path_buf();
         return Err(if skipped.is_empty() {
-            TriosError::TriosWithoutPoints { path }
+            err!("{}: TRIOS export without data points", path.display())
         } else {
-            TriosError::NoUsableStep { path, skipped }
+            err!("{}: no step has the variables needed (Angular frequency or Frequency, Storage modulus, \
+         Loss modulus): {}", path.display(), skipped.iter().map(ToString::to_string).collect::<Vec<_>>().join("; "))
         }
         .into());
     };
@@ -210,11 +212,13 @@ fn scan<'a>(path: &Path, text: &'a str) -> Result<Scan<'a>, IoError> {
             "Data point" => step.rows.push((line, fields)),
             "Number of points" => {
                 let value = fields.get(1).map_or("", |s| s.trim());
-                let count = value.parse().map_err(|_| TriosError::StepCountNotANumber {
-                    path: path.to_path_buf(),
-                    line,
-                    step: step.label(),
-                    text: value.to_string(),
+                let count = value.parse().map_err(|_| {
+                    err!(
+                        "{}, line {line}: {step}: Number of points \"{text}\" is not a count",
+                        path.display(),
+                        step = step.label(),
+                        text = value.to_string()
+                    )
                 })?;
                 step.declared = Some((line, count));
             }
@@ -237,15 +241,12 @@ fn check_whole(path: &Path, text: &str, scan: &Scan) -> Result<(), IoError> {
                 (Some((first, _)), Some((last, _))) => Some((*first, *last)),
                 _ => None,
             };
-            return Err(TriosError::StepCountMismatch {
-                path: path.to_path_buf(),
-                line,
-                step: step.label(),
-                declared,
-                found,
-                rows,
-                last_line: scan.last_line,
-            }
+            return Err(err!(
+                "{}, line {line}: {step}: Number of points says {declared}, but {}",
+                path.display(),
+                count_mismatch(declared, found, rows, scan.last_line),
+                step = step.label()
+            )
             .into());
         }
     }
@@ -253,11 +254,9 @@ fn check_whole(path: &Path, text: &str, scan: &Scan) -> Result<(), IoError> {
         !text.ends_with(['\n', '\r']) && text.lines().last().is_some_and(|l| !l.trim().is_empty());
     if scan.in_step && cut {
         let step = scan.steps.last().expect("in a step");
-        return Err(TriosError::CutInStep {
-            path: path.to_path_buf(),
-            line: scan.last_line,
-            step: step.label(),
-        }
+        return Err(err!("{}, line {line}: the file ends inside {step} without a line break after this line: the \
+         export looks cut off in the middle of it (a row or a number may be incomplete); if the \
+         file is complete, end it with a line break", path.display(), line = scan.last_line, step = step.label())
         .into());
     }
     Ok(())
@@ -270,11 +269,12 @@ type StepRead = Result<(Vec<RawPoint>, FieldNames), SkippedStep>;
 /// The points of a step with data (see [`StepRead`]).
 fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
     let (Some(vars), Some(units)) = (&step.variables, &step.units) else {
-        return Err(TriosError::StepWithoutVariables {
-            path: path.to_path_buf(),
-            line: step.line,
-            step: step.label(),
-        }
+        return Err(err!(
+            "{}, line {line}: {step} has data points but no Variables and Units lines",
+            path.display(),
+            line = step.line,
+            step = step.label()
+        )
         .into());
     };
     let omega = step.variable(&["Angular frequency"]).map(|i| (i, true));
@@ -297,7 +297,7 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
                 factor: t.1,
                 offset: t.2,
             }),
-            None => Err(TriosError::UnknownUnit(Box::new(err!(
+            None => Err(err!(
                 "{}, line {line}: {step}: {quantity} variable \"{variable}\" (column {number}) has unit \
      \"{unit}\"; known units: {}",
                 path.display(),
@@ -307,7 +307,7 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
                 step = step.label(),
                 unit = unit.to_string(),
                 variable = name
-            )))),
+            )),
         }
     };
     let frequency_units = if angular {
@@ -393,10 +393,8 @@ fn decide_kind(
     }
     let instrument_note = instrument.map_or(String::new(), |i| format!("; instrument type {i}"));
     let Some((kind, why)) = kind_of(steps, instrument) else {
-        return Err(TriosError::ModulusKindUnknown {
-            path: path.to_path_buf(),
-            instrument: instrument.map(str::to_string),
-        }
+        return Err({ let path = &path.to_path_buf(); let instrument = &instrument.map(str::to_string); err!("{}: cannot tell whether Storage and Loss modulus are shear (G) or tensile (E): no torque \
+         or Oscillation force variable{}; give --dma-modulus shear or --dma-modulus young", path.display(), instrument.as_ref().map_or(String::new(), |i| format!("; instrument type {i}"))) }
         .into());
     };
     warnings.push(format!(

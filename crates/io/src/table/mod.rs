@@ -44,7 +44,7 @@ use std::path::Path;
 
 use crate::columns::{F, G_LOSS, G_STORAGE, OMEGA_MEASURED};
 use crate::dma::ModulusKind;
-use crate::error::{IoError, TableError};
+use crate::error::IoError;
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA, T};
 
 pub use contact_map::explain_contact_map;
@@ -101,11 +101,9 @@ fn read_form(
     sheet: Option<&str>,
 ) -> Result<ModulusTable, IoError> {
     let bytes = crate::input_file::read_input(path, "modulus table", |source| {
-        TableError::Read {
-            path: path.to_path_buf(),
-            source,
-        }
-        .into()
+        err!("cannot read modulus table {}", path.display())
+            .system(source)
+            .into()
     })?;
     if sheet.is_some() || crate::data::workbook::is_workbook(path, &bytes) {
         return dma_form::read(path, poisson, kind, sheet, false);
@@ -116,13 +114,8 @@ fn read_form(
     if let Some(text) = text
         && is_plain(text)
     {
-        return parse(text).map_err(|e| {
-            TableError::Plain {
-                path: path.to_path_buf(),
-                source: Box::new(e),
-            }
-            .into()
-        });
+        return parse(text)
+            .map_err(|e| err!("modulus table {}", path.display()).caused_by(e).into());
     }
     // master.csv of `rollfit master`: every DMA point moved to the
     // reference, the isotherm of each in `T`, scattered where isotherms
