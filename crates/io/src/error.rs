@@ -22,18 +22,15 @@ pub(crate) mod data;
 pub(crate) mod manifest;
 pub(crate) mod master;
 pub mod parts;
-pub(crate) mod relaxation;
 pub(crate) mod scene;
 
 pub use data::{CellRef, ColumnName, RowRef, RowsRef, column_letter};
-pub use manifest::{EntryProblem, EntryRef, ManifestError, TomlPlace};
-pub use master::{DmaMasterError, TurnPoint};
+pub use manifest::{EntryProblem, EntryRef, TomlPlace};
+pub use master::TurnPoint;
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
 pub(crate) use parts::{
     field_count_tail, files_list, found_byte, holders_note, null_expected, place,
 };
-pub use relaxation::RelaxationError;
-pub use scene::SceneError;
 
 /// What kind of failure an [`IoError`] is: the distinctions a caller acts
 /// on (the Python module raises `OSError` for a system failure and

@@ -63,7 +63,7 @@ pub mod table;
 pub mod text_file;
 
 pub use data::DataTable;
-pub use error::{DmaMasterError, ErrorKind, IoError, ManifestError, SceneError};
+pub use error::{ErrorKind, IoError};
 pub use fit_dir::FitDir;
 pub use table::ModulusTable;
 

@@ -43,7 +43,8 @@ use serde::Deserialize;
 use serde::de::{Deserializer, MapAccess, Visitor};
 use toml::Spanned;
 
-use crate::error::{EntryProblem, EntryRef, IoError, ManifestError, TomlPlace};
+use crate::error::manifest::problem_list;
+use crate::error::{EntryProblem, EntryRef, IoError, TomlPlace};
 use crate::scene::fit_settings::{Key, TableSettings, join};
 
 /// The settings a manifest takes: those of the `fit` flags.
@@ -113,13 +114,7 @@ impl Entry {
 pub fn load(path: &Path) -> Result<Manifest, IoError> {
     let text = crate::text_file::read_utf8(path, "manifest")?;
     let base = path.parent().unwrap_or(Path::new(""));
-    check(&text, base).map_err(|e| {
-        ManifestError::InFile {
-            path: path.to_path_buf(),
-            source: Box::new(e),
-        }
-        .into()
-    })
+    check(&text, base).map_err(|e| err!("manifest {}", path.display()).caused_by(e).into())
 }
 
 /// Parses and checks manifest text; `base` is the folder relative paths
@@ -129,14 +124,18 @@ pub fn parse(text: &str, base: &Path) -> Result<Manifest, IoError> {
 }
 
 /// [`parse`], with the manifest's own error.
-fn check(text: &str, base: &Path) -> Result<Manifest, ManifestError> {
-    let raw: RawManifest = toml::from_str(text).map_err(|error| ManifestError::Toml {
-        place: error.span().and_then(|span| locate_entry(text, span.start)),
-        error: Box::new(error),
+fn check(text: &str, base: &Path) -> Result<Manifest, IoError> {
+    let raw: RawManifest = toml::from_str(text).map_err(|error| {
+        let place = error.span().and_then(|span| locate_entry(text, span.start));
+        let place = place.map_or(String::new(), |p| format!("{p}: "));
+        err!("{place}{}", error.to_string().trim_end())
     })?;
     let (defaults, default_dma) = raw.defaults.map(|d| (d.0, d.1)).unwrap_or_default();
     if raw.entry.is_empty() {
-        return Err(ManifestError::NoEntries);
+        return Err(err!(
+            "no entries: list each fit as an [[entry]] with a name, a scene and a data file (see the \
+         docs/user-guide.md, \"Batches\")"
+        ));
     }
     let entries = check_entries(text, base, raw.entry, default_dma.as_ref())?;
     Ok(Manifest { defaults, entries })
@@ -148,7 +147,7 @@ fn check_entries(
     base: &Path,
     raw_entries: Vec<Spanned<RawEntry>>,
     default_dma: Option<&Spanned<String>>,
-) -> Result<Vec<Entry>, ManifestError> {
+) -> Result<Vec<Entry>, IoError> {
     let total = raw_entries.len();
     let mut problems = Vec::new();
     let mut entries = Vec::new();
@@ -240,7 +239,7 @@ fn check_entries(
         }
     }
     if !problems.is_empty() {
-        return Err(ManifestError::Entries { problems });
+        return Err(err!("{}", problem_list(&problems)));
     }
     Ok(entries)
 }

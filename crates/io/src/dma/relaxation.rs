@@ -52,7 +52,7 @@ use super::time_isotherms::check_isotherms;
 use crate::columns::{D_CREEP, E_RELAX, G_RELAX, J_CREEP, TIME};
 use crate::csv_columns::LineIndex;
 use crate::error::field_count_tail;
-use crate::error::{ColumnRef, IoError, RelaxationError};
+use crate::error::{ColumnRef, IoError};
 
 /// Accepted times since the step of strain, s: the reciprocal of the
 /// frequency form's accepted ω (1e-30 … 1e30 rad/s).
@@ -212,7 +212,7 @@ struct Header {
 
 /// The header's relaxation columns; None when it is not a relaxation
 /// header (no time column, or a frequency column).
-fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, RelaxationError> {
+fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, IoError> {
     if names.iter().any(|n| is_frequency(n)) {
         return Ok(None);
     }
@@ -230,15 +230,15 @@ fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, 
             ));
         }
     }
-    let one = |which: &[Quantity], what: &'static str| -> Result<Option<Column>, RelaxationError> {
+    let one = |which: &[Quantity], what: &'static str| -> Result<Option<Column>, IoError> {
         let mut of = found.iter().filter(|(q, _)| which.contains(q));
         match (of.next(), of.next()) {
-            (Some(a), Some(b)) => Err(RelaxationError::TwoColumns {
-                path: path.to_path_buf(),
-                line,
-                quantity: what,
-                columns: Box::new((a.1.reference.clone(), b.1.reference.clone())),
-            }),
+            (Some(a), Some(b)) => Err(err!(
+                "{}, line {line}: two {what} columns, {} and {}: keep one",
+                path.display(),
+                a.1.reference,
+                b.1.reference
+            )),
             (a, _) => Ok(a.map(|c| c.1.clone())),
         }
     };
@@ -252,19 +252,25 @@ fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, 
     let value = match (modulus, compliance) {
         (Some(a), Some(b)) => {
             let (a, b) = if a.index < b.index { (a, b) } else { (b, a) };
-            return Err(RelaxationError::TwoColumns {
-                path: path.to_path_buf(),
-                line,
-                quantity: "relaxation modulus or creep compliance",
-                columns: Box::new((a.reference, b.reference)),
-            });
+            return Err(err!(
+                "{}, line {line}: two {quantity} columns, {} and {}: keep one",
+                path.display(),
+                a.reference,
+                b.reference,
+                quantity = "relaxation modulus or creep compliance"
+            ));
         }
         (Some(value), None) | (None, Some(value)) => value,
         (None, None) => {
-            return Err(RelaxationError::NoModulusColumn {
-                path: path.to_path_buf(),
-                header: names.to_vec(),
-            });
+            return Err(err!(
+                "{}: a time column but no relaxation modulus: need E_relax (Young's) or G_relax \
+         (shear), also spelled E(t), E_t, E, G(t), G_t, G, in Pa or with a unit such as \
+         E_relax_MPa or \"E(t) (MPa)\"; or a creep compliance, J(t) or \"Creep Compliance\" \
+         (shear), D(t) or \"Tensile Creep Compliance\" (tensile), in 1/Pa or with a unit \
+         such as \"J (1/MPa)\" (the header has: {})",
+                path.display(),
+                names.to_vec().join(", ")
+            ));
         }
     };
     let quantity = found
@@ -557,45 +563,39 @@ fn row(
     };
     let time = value(&header.time)?;
     if time <= 0.0 {
-        return Err(RelaxationError::TimeNotPositive {
-            path: path.to_path_buf(),
-            line,
-            column: header.time.reference.clone(),
-            value: time,
-        }
+        return Err(err!(
+            "{}, line {line}: {column}: t = {value} s: times are counted from the step of strain \
+         and must be positive",
+            path.display(),
+            column = header.time.reference.clone(),
+            value = time
+        )
         .into());
     }
     // The frequency form's ω range turned into times: far outside any
     // relaxation test, and beyond what the τ grid of the series spans
     // (a time of 1e300 s asks for hundreds of decades of terms).
     if !(TIME_RANGE.0..=TIME_RANGE.1).contains(&time) {
-        return Err(RelaxationError::TimeOutOfRange {
-            path: path.to_path_buf(),
-            line,
-            column: header.time.reference.clone(),
-            value: time,
-        }
+        return Err(err!(
+            "{}, line {line}: {column}: t = {value:e} s is outside 1e-30 … 1e30 s, beyond any \
+         relaxation measurement (is the time in s, or is the column a time at all?)",
+            path.display(),
+            column = header.time.reference.clone(),
+            value = time
+        )
         .into());
     }
     let measured = value(&header.value)? * factor;
     let column = || header.value.reference.clone();
     match quantity {
         TimeQuantity::Relaxation if !(measured > 0.0 && measured <= 1e13) => {
-            return Err(RelaxationError::ModulusOutOfRange {
-                path: path.to_path_buf(),
-                line,
-                column: column(),
-                value: measured,
-            }
+            return Err(err!("{}, line {line}: {column}: E(t) = {value} Pa is not a modulus (it must be positive and \
+         below 1e13 Pa)", path.display(), column = column(), value = measured)
             .into());
         }
         TimeQuantity::Creep if !(measured > 0.0 && measured <= 1.0) => {
-            return Err(RelaxationError::ComplianceOutOfRange {
-                path: path.to_path_buf(),
-                line,
-                column: column(),
-                value: measured,
-            }
+            return Err(err!("{}, line {line}: {column}: D(t) = {value} 1/Pa (tensile) is not a creep compliance (it \
+         must be positive and below 1 1/Pa)", path.display(), column = column(), value = measured)
             .into());
         }
         _ => {}
@@ -604,11 +604,11 @@ fn row(
     if let Some(t) = temperature
         && !(t > -273.15 && t <= 1000.0)
     {
-        return Err(RelaxationError::TemperatureOutOfRange {
-            path: path.to_path_buf(),
-            line,
-            value: t,
-        }
+        return Err(err!(
+            "{}, line {line}: temperature {value} °C is out of range",
+            path.display(),
+            value = t
+        )
         .into());
     }
     Ok(RelaxationPoint {

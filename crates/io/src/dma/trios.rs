@@ -393,9 +393,12 @@ fn decide_kind(
     }
     let instrument_note = instrument.map_or(String::new(), |i| format!("; instrument type {i}"));
     let Some((kind, why)) = kind_of(steps, instrument) else {
-        return Err({ let path = &path.to_path_buf(); let instrument = &instrument.map(str::to_string); err!("{}: cannot tell whether Storage and Loss modulus are shear (G) or tensile (E): no torque \
-         or Oscillation force variable{}; give --dma-modulus shear or --dma-modulus young", path.display(), instrument.as_ref().map_or(String::new(), |i| format!("; instrument type {i}"))) }
-        .into());
+        return Err(err!(
+            "{}: cannot tell whether Storage and Loss modulus are shear (G) or tensile (E): no \
+             torque or Oscillation force variable{instrument_note}; give --dma-modulus shear or \
+             --dma-modulus young",
+            path.display()
+        ));
     };
     warnings.push(format!(
         "{file}: Storage and Loss modulus read as {} moduli ({why}{instrument_note}); give --dma-modulus {} if they are not",

@@ -8,10 +8,6 @@
 use std::fmt;
 use std::path::PathBuf;
 
-use thiserror::Error;
-
-use super::IoError;
-
 /// An `[[entry]]` as messages name it: `entry "NAME" (K of N, line L)`,
 /// `entry K of N (line L)` without a name.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -130,46 +126,8 @@ impl fmt::Display for EntryProblem {
     }
 }
 
-/// Why a batch manifest cannot be read.
-#[derive(Debug, Error)]
-pub enum ManifestError {
-    /// What is wrong inside the manifest (the source).
-    #[error("manifest {}", path.display())]
-    InFile {
-        path: PathBuf,
-        source: Box<ManifestError>,
-    },
-    /// TOML syntax, an unknown key, a value of the wrong type or a setting
-    /// refused as it was read: toml's message (line, column and the line),
-    /// after the entry or table it lies in.
-    #[error(
-        "{}{}",
-        place.as_ref().map_or(String::new(), |p| format!("{p}: ")),
-        error.to_string().trim_end()
-    )]
-    Toml {
-        place: Option<TomlPlace>,
-        error: Box<toml::de::Error>,
-    },
-    /// No `[[entry]]`.
-    #[error(
-        "no entries: list each fit as an [[entry]] with a name, a scene and a data file (see the \
-         docs/user-guide.md, \"Batches\")"
-    )]
-    NoEntries,
-    /// What is wrong with the entries, one line each.
-    #[error("{}", list(problems))]
-    Entries { problems: Vec<EntryProblem> },
-}
-
-impl From<ManifestError> for IoError {
-    fn from(e: ManifestError) -> Self {
-        IoError::transparent(super::ErrorKind::Content, e)
-    }
-}
-
 /// One problem a line.
-fn list(problems: &[EntryProblem]) -> String {
+pub(crate) fn problem_list(problems: &[EntryProblem]) -> String {
     let lines: Vec<String> = problems.iter().map(EntryProblem::to_string).collect();
     lines.join("\n")
 }
