@@ -47,10 +47,7 @@ pub fn header<R: std::io::Read>(
         ));
     }
     if let Some(name) = duplicate(&header) {
-        return Err(err!(
-            "the header names column `{name}` twice",
-            name = name.to_string()
-        ));
+        return Err(err!("the header names column `{name}` twice", name = name));
     }
     Ok(header)
 }
@@ -70,8 +67,8 @@ pub fn finite(
         .ok_or_else(|| {
             err!(
                 "line {line}: column `{column}`: {text:?} is not a finite number",
-                column = name.to_string(),
-                text = text.to_string()
+                column = name,
+                text = text
             )
         })
 }
@@ -100,9 +97,8 @@ pub fn csv_line(text: &str, position: Option<&csv::Position>) -> usize {
 
 /// Where the lines of a text start, for the line of any byte by binary
 /// search. Counting the line breaks before each record from the start of
-/// the file made every CSV reader quadratic in the file's size (issue 36:
-/// 81 s for a 3.5 MB DMA file); the index costs one pass and O(log n) per
-/// record.
+/// the file would make every CSV reader quadratic in the file's size; the
+/// index costs one pass and O(log n) per record.
 pub struct LineIndex<'t> {
     text: &'t str,
     /// Byte offsets of the '\n' characters, ascending.
@@ -179,7 +175,7 @@ pub(crate) fn dma_number(
             path.display(),
             cell = crate::error::CellRef::line(line),
             column = column(),
-            text = field.to_string()
+            text = field
         )
     })?;
     if !v.is_finite() {
@@ -188,7 +184,7 @@ pub(crate) fn dma_number(
             path.display(),
             cell = crate::error::CellRef::line(line),
             column = column(),
-            text = field.to_string()
+            text = field
         ));
     }
     Ok(v)
@@ -200,7 +196,7 @@ mod tests {
 
     /// The line of a record the slow, obvious way: skip the breaks and
     /// comment lines after its position, then count the line breaks from
-    /// the start of the text (the reader's rule before issue 36).
+    /// the start of the text: the oracle the index is checked against.
     fn counted(text: &str, byte: usize) -> usize {
         let bytes = text.as_bytes();
         let mut i = byte.min(bytes.len());

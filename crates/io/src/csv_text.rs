@@ -44,15 +44,16 @@ pub fn csv_text_bytes(
          written)",
                 column = header.get(k).copied().unwrap_or("?").to_string(),
                 row = i + 1,
-                value = row[k].clone()
+                value = row[k]
             ));
         }
         writer.write_record(row)?;
     }
-    writer
-        .into_inner()
-        .map_err(|e| err!("cannot finish the CSV text").caused_by(e.into_error()))
-        .map_err(IoError::from)
+    writer.into_inner().map_err(|e| {
+        err!("cannot finish the CSV text")
+            .caused_by(e.into_error())
+            .internal()
+    })
 }
 
 #[cfg(test)]

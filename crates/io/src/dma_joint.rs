@@ -1,4 +1,4 @@
-//! The DMA file of a joint fit (issue 35; `dma = FILE` in a scene's
+//! The DMA file of a joint fit (`dma = FILE` in a scene's
 //! `[fit]` or a batch manifest, `rollfit fit --dma FILE...|FOLDER`, the Python
 //! module's `dma=` keyword): read and grouped into isotherms by
 //! [`crate::dma_master::read_isotherms`], as `rollfit master` reads a DMA

@@ -13,14 +13,15 @@
 //! give the same series. Nothing is written here: `rollfit master` writes
 //! the folder, [`crate::material_file`] its material.toml.
 
+use std::fmt;
+
 use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
 
 pub use crate::dma::files::DmaInput;
 use crate::dma::{DmaData, ISOTHERM_GAP, ISOTHERM_SPAN, range};
-use crate::error::master::turn_list;
-use crate::error::{IoError, TurnPoint};
+use crate::error::IoError;
 
 /// A master curve built from a DMA file.
 pub struct DmaMaster {
@@ -40,8 +41,7 @@ pub struct DmaMaster {
 
 /// Reads `input` and builds its master curve ([`read_isotherms`], then
 /// the master-curve fit). `poisson` converts shear moduli (E = 2(1+ν)G).
-/// Errors ([`DmaMasterError`]) name the file and, where one point is at
-/// fault, its line.
+/// Errors name the file and, where one point is at fault, its line.
 pub fn build(
     input: &DmaInput,
     poisson: f64,
@@ -108,7 +108,7 @@ pub struct DmaIsotherms {
 /// whose frequencies do not run one way: what `rollfit master`, a scene's
 /// `model = "dma"` and a joint fit's `dma` share. `poisson` converts shear
 /// moduli (E = 2(1+ν)G). A file without temperatures is one isotherm at
-/// `untimed` (None: refused, [`DmaMasterError::NoTemperature`]). Errors
+/// `untimed` (None: refused). Errors
 /// name the file and, where one point is at fault, its line.
 pub fn read_isotherms(
     input: &DmaInput,
@@ -141,18 +141,25 @@ pub fn read_isotherms(
             path.display(),
             missing = data.points.len() - with_t,
             total = data.points.len()
-        )
-        .into());
+        ));
     } else {
         let grouping = data.grouping();
         if let Some(ramp) = grouping.ramp {
-            return Err(err!("DMA file {}: this looks like a temperature ramp, not isotherms: {count} points from \
+            return Err(err!(
+                "DMA file {}: this looks like a temperature ramp, not isotherms: {count} points from \
          {low:.2} to {high:.2} °C with no gap over {gap} K between neighbouring temperatures \
          (the widest is {widest_gap:.2} K), where an isotherm spans at most {span} K. A \
          temperature sweep at fixed frequency is not a set of isotherms: rollfit master needs \
          frequency sweeps at several fixed temperatures (a column `Step`, `Set` or `Segment` \
-         says which points form one)", path.display(), count = ramp.count, gap = ISOTHERM_GAP, high = ramp.high, low = ramp.low, span = ISOTHERM_SPAN, widest_gap = ramp.widest_gap)
-            .into());
+         says which points form one)",
+                path.display(),
+                count = ramp.count,
+                gap = ISOTHERM_GAP,
+                high = ramp.high,
+                low = ramp.low,
+                span = ISOTHERM_SPAN,
+                widest_gap = ramp.widest_gap
+            ));
         }
         grouping
             .isotherms
@@ -278,4 +285,32 @@ fn check_monotone(data: &DmaData, temperature: f64, indices: &[usize]) -> Result
          repeated points",
         turn_list(&turn)
     ))
+}
+
+/// A point of an isotherm where its sweep turns, as a message names it:
+/// `line 13: ω = 5.2e0 rad/s`, or `point 7: …` where the file has no line
+/// for it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct TurnPoint {
+    /// The point's file line, if known.
+    line: Option<usize>,
+    /// Its index among the file's points, from 0.
+    index: usize,
+    /// Its frequency, rad/s.
+    omega: f64,
+}
+
+impl fmt::Display for TurnPoint {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(l) => write!(f, "line {l}: ω = {:e} rad/s", self.omega),
+            None => write!(f, "point {}: ω = {:e} rad/s", self.index + 1, self.omega),
+        }
+    }
+}
+
+/// `line 12: ω = …, line 13: ω = …`.
+fn turn_list(turn: &[TurnPoint]) -> String {
+    let listed: Vec<String> = turn.iter().map(TurnPoint::to_string).collect();
+    listed.join(", ")
 }

@@ -12,21 +12,20 @@
 //! messages are the contract (docs/ARCHITECTURE.md, "Contract",
 //! "Commands"), checked character by character by the message corpus
 //! (tests/data/messages/). A message is written where its cause is found,
-//! with [`err!`] (`err!("{}, line {line}: …", path.display())`); the
-//! pieces several messages share (how a cell, a column, a TRIOS step, a
-//! byte are named) are in [`parts`].
+//! with `err!` (`err!("{}, line {line}: …", path.display())`), the cause
+//! added with [`IoError::caused_by`] or [`IoError::system`]. The pieces
+//! several messages share are here: how a byte, a column, a TRIOS step and
+//! a place in a file are named ([`parts`]), a place and a column of
+//! measured data ([`data`]), an entry of a manifest ([`manifest`]).
 
 use std::path::PathBuf;
 
 pub(crate) mod data;
 pub(crate) mod manifest;
-pub(crate) mod master;
 pub mod parts;
-pub(crate) mod scene;
 
 pub use data::{CellRef, ColumnName, RowRef, RowsRef, column_letter};
 pub use manifest::{EntryProblem, EntryRef, TomlPlace};
-pub use master::TurnPoint;
 pub use parts::{ColumnRef, Contradiction, InvalidText, SkippedStep, StepRef};
 pub(crate) use parts::{
     field_count_tail, files_list, found_byte, holders_note, null_expected, place,
@@ -117,7 +116,8 @@ impl IoError {
         self
     }
 
-    /// The file blamed.
+    /// The file blamed as a whole: one that cannot be read, or the scene,
+    /// data, manifest or table file a cause found inside it is put behind.
     pub fn in_file(mut self, path: impl Into<PathBuf>) -> IoError {
         self.file = Some(path.into());
         self
@@ -128,7 +128,9 @@ impl IoError {
         self.kind
     }
 
-    /// The file blamed, where one is (the message names it too).
+    /// The file blamed, where a reader names one as a whole
+    /// ([`IoError::in_file`]); the message names it too, with the line,
+    /// cell or key at fault.
     pub fn file(&self) -> Option<&std::path::Path> {
         self.file.as_deref()
     }

@@ -33,11 +33,9 @@
 //!   the lock of a folder.
 //!
 //! Every function returns [`IoError`], whose messages name the file and,
-//! where there is one, the line, column or key at fault (measured data,
-//! modulus tables, scene files, manifests and master curves through
-//! [`DataError`], [`TableError`], [`SceneError`], [`ManifestError`] and
-//! [`DmaMasterError`], whose causes inside a file are the source of a
-//! variant naming the file: `{:#}` prints both, as the command line does).
+//! where there is one, the line, column or key at fault (a cause found
+//! inside a file is the source of an error naming the file: `{:#}` prints
+//! both, as the command line does).
 //! Nothing here prints; the command line decides what a user sees (a
 //! reader's notes reach it through a callback).
 

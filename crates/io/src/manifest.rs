@@ -28,9 +28,9 @@
 //! bad setting values (syntax and range, [`FitSettings::check`]) while
 //! deserializing (toml then points at the line),
 //! then what serde cannot see — missing keys, names, duplicates, files that
-//! do not exist. Every message ([`ManifestError`]) names the entry (by
-//! name, else by its position) and its line; [`load`] adds the manifest's
-//! path ([`ManifestError::InFile`]). Only the
+//! do not exist. Every message names the entry (by name, else by its
+//! position) and its line; [`load`] puts the manifest's path before it.
+//! Only the
 //! contents of the scene and data files are left to the fits themselves: a
 //! broken scene fails its own entry, not the batch.
 
@@ -114,7 +114,11 @@ impl Entry {
 pub fn load(path: &Path) -> Result<Manifest, IoError> {
     let text = crate::text_file::read_utf8(path, "manifest")?;
     let base = path.parent().unwrap_or(Path::new(""));
-    check(&text, base).map_err(|e| err!("manifest {}", path.display()).caused_by(e).into())
+    check(&text, base).map_err(|e| {
+        err!("manifest {}", path.display())
+            .in_file(path)
+            .caused_by(e)
+    })
 }
 
 /// Parses and checks manifest text; `base` is the folder relative paths

@@ -213,8 +213,11 @@ fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
             shift,
         },
     };
-    let body = toml::to_string(&file)
-        .map_err(|source| err!("cannot format {file}", file = "material.toml").caused_by(source))?;
+    let body = toml::to_string(&file).map_err(|source| {
+        err!("cannot format material.toml")
+            .caused_by(source)
+            .internal()
+    })?;
     let mut text = format!(
         "# Written by rollfit master from {} ({} {}, {} points).\n\
          # Young's modulus at T_ref = {t_ref} °C: a Prony series E*(ω) = E0 + Σ H_k iωτ_k/(1 + iωτ_k),\n\

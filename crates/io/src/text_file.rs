@@ -20,7 +20,9 @@ use crate::input_file::read_input;
 /// byte offset in the file and the byte itself.
 pub fn read_utf8(path: &Path, kind: &'static str) -> Result<String, IoError> {
     let bytes = read_input(path, kind, |source| {
-        err!("cannot read {kind} {}", path.display()).system(source)
+        err!("cannot read {kind} {}", path.display())
+            .in_file(path)
+            .system(source)
     })?;
     String::from_utf8(bytes).map_err(|e| {
         let bytes = e.as_bytes();

@@ -91,7 +91,7 @@ pub(super) fn columns(
                 quantity.what(),
                 column_of(&source.row(row.number), other.index),
                 column_of(&source.row(row.number), index),
-                first = other.raw.clone(),
+                first = other.raw,
                 row = source.row(row.number),
                 second = raw
             ));
@@ -154,7 +154,7 @@ fn units_row(
                 speed.0.quantity.what(),
                 speed.0.quantity.units(),
                 cell = source.cell(row.number, speed.0.index),
-                header = speed.0.raw.clone(),
+                header = speed.0.raw,
                 unit = text(speed.0.index)
             ))
         });
@@ -169,7 +169,7 @@ fn units_row(
                 column.quantity.what(),
                 column.quantity.units(),
                 cell = source.cell(row.number, column.index),
-                header = column.raw.clone(),
+                header = column.raw,
                 unit = written
             )));
         };

@@ -45,7 +45,7 @@
 //! greater than zero (the default weights are relative, 1/μ²), and each
 //! within the ranges of `rollfit_fit::data`. Repeated speeds and unsorted
 //! rows are normal in real data and kept as they are, in file order
-//! (`rows.rs`). Errors ([`DataError`]) name the file, the line (for a
+//! (`rows.rs`). Errors name the file, the line (for a
 //! workbook the sheet and the cell) and the column, and when a column is
 //! missing list the columns found.
 
@@ -92,7 +92,7 @@ pub struct DataTable {
 
 impl DataTable {
     /// The validated measurements of the fit library; its refusal is
-    /// [`DataError::Measurements`] (the caller names the file).
+    /// the fit library's own message (the caller names the file).
     pub fn measurements(&self) -> Result<Measurements, IoError> {
         Measurements::new(
             self.speeds.clone(),
@@ -126,12 +126,12 @@ pub fn read(path: &Path) -> Result<DataTable, IoError> {
 /// Errors name the file.
 pub fn read_sheet(path: &Path, sheet: Option<&str>) -> Result<DataTable, IoError> {
     let bytes = crate::input_file::read_input(path, "data file", |source| {
-        err!("cannot open data file {}", path.display())
-            .system(source)
-            .into()
+        err!("cannot open data file {}", path.display()).system(source)
     })?;
     let in_file = |cause: IoError| -> IoError {
-        err!("data file {}", path.display()).caused_by(cause).into()
+        err!("data file {}", path.display())
+            .in_file(path)
+            .caused_by(cause)
     };
     if workbook::is_workbook(path, &bytes) {
         return workbook::parse(path, bytes, sheet).map_err(in_file);
@@ -141,9 +141,8 @@ pub fn read_sheet(path: &Path, sheet: Option<&str>) -> Result<DataTable, IoError
             "data file {}: a sheet ({sheet:?}) was given, but the file is text, not a workbook \
          (.xlsx, .xlsm, .xlsb, .xls, .ods)",
             path.display(),
-            sheet = sheet.to_string()
-        )
-        .into());
+            sheet = sheet
+        ));
     }
     text::parse_bytes(bytes).map_err(in_file)
 }

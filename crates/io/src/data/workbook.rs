@@ -74,12 +74,8 @@ impl Book {
     /// The rows of the sheet `name`, numbered as the spreadsheet shows
     /// them, `#` comment rows and rows without a cell left out.
     pub fn rows(&mut self, name: &str) -> Result<Vec<Row>, IoError> {
-        let unreadable = |error: calamine::Error| {
-            err!(
-                "sheet {sheet:?}: cannot read it: {error}",
-                sheet = name.to_string()
-            )
-        };
+        let unreadable =
+            |error: calamine::Error| err!("sheet {sheet:?}: cannot read it: {error}", sheet = name);
         let cells = match &mut self.sheets {
             calamine::Sheets::Xlsx(book) => xlsx_cells(book, name).map_err(unreadable)?,
             calamine::Sheets::Xlsb(book) => xlsb_cells(book, name).map_err(unreadable)?,
@@ -275,7 +271,7 @@ fn choose_sheet(
             err!(
                 "no sheet {wanted:?}: the workbook has {}",
                 quoted_list(&names.to_vec()),
-                wanted = wanted.to_string()
+                wanted = wanted
             )
         })
 }

@@ -98,7 +98,7 @@ fn check_point(
         return Err(err!(
             "{}, {row}: {column}: frequency {value} is not positive",
             path().display(),
-            column = names.omega.clone(),
+            column = names.omega,
             row = row(),
             value = p.omega
         ));
@@ -107,7 +107,7 @@ fn check_point(
         return Err(err!(
             "{}, {row}: {column}: storage modulus {value} is not positive",
             path().display(),
-            column = names.storage.clone(),
+            column = names.storage,
             row = row(),
             value = p.storage
         ));
@@ -119,7 +119,7 @@ fn check_point(
             "{}, {row}: {column}: frequency {value:e} rad/s is outside 1e-30 … 1e30 rad/s, \
          beyond any master curve",
             path().display(),
-            column = names.omega.clone(),
+            column = names.omega,
             row = row(),
             value = p.omega
         ));
@@ -130,7 +130,7 @@ fn check_point(
                 "{}, {row}: {column}: modulus {value:e} is above 1e13 Pa, stiffer than any solid \
          (diamond: about 1.2e12 Pa); is the column in Pa?",
                 path().display(),
-                column = column.clone(),
+                column = column,
                 row = row()
             ));
         }
@@ -140,7 +140,7 @@ fn check_point(
             "{}, {row}: {column}: storage modulus {value:e} is below 1e-3 Pa, softer than any \
          solid; is the column in Pa?",
             path().display(),
-            column = names.storage.clone(),
+            column = names.storage,
             row = row(),
             value = p.storage
         ));

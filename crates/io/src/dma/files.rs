@@ -164,8 +164,7 @@ pub fn expand(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, IoError> {
                 "DMA folder {}: no data file in it (read: {})",
                 input.display(),
                 crate::dma::files::DATA_EXTENSIONS.join(", ")
-            )
-            .into());
+            ));
         }
         found.sort();
         files.extend(found);
@@ -205,8 +204,7 @@ pub fn read_files(
          the files",
             files = paths.len(),
             given = given.len()
-        )
-        .into());
+        ));
     }
     let mut all: Option<DmaData> = None;
     for (k, path) in paths.iter().enumerate() {
@@ -221,8 +219,7 @@ pub fn read_files(
          states one (`Temperature: 20 °C`) and its name carries none (`…_20C.csv`); give \
          --temperatures T1,T2,… in the order of the files",
                 path.display()
-            )
-            .into());
+            ));
         }
         all = Some(match all {
             None => data,

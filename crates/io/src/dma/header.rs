@@ -237,10 +237,10 @@ pub(super) fn columns(
             err!(
                 "{}, {cell}: column {column:?}: unit {unit:?} not known for {quantity}; known: {known}",
                 place.path.display(),
-                column = name.clone(),
+                column = name,
                 known = quantity.known(),
                 quantity = quantity.unit_kind(),
-                unit = unit.to_string()
+                unit = unit
             )
         };
         let (factor, offset) = match (unit, from_row) {
@@ -340,10 +340,10 @@ fn assemble(
                 } else {
                     ""
                 },
-                first = a.reference.clone(),
+                first = a.reference,
                 line = place.row(row),
                 quantity = label,
-                second = b.reference.clone()
+                second = b.reference
             )),
             _ => Ok(all.first().map(|c| (*c).clone())),
         }

@@ -303,9 +303,8 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
             "{}: a sheet ({sheet:?}) was given, but the DMA file is text, not a workbook (.xlsx, \
          .xlsm, .xlsb, .xls, .ods)",
             path.display(),
-            sheet = sheet.to_string()
-        )
-        .into());
+            sheet = sheet
+        ));
     } else {
         let (text, decoded) = decode::decode_noted(path, &bytes)?;
         if trios::is_lims(&text) {

@@ -567,10 +567,9 @@ fn row(
             "{}, line {line}: {column}: t = {value} s: times are counted from the step of strain \
          and must be positive",
             path.display(),
-            column = header.time.reference.clone(),
+            column = header.time.reference,
             value = time
-        )
-        .into());
+        ));
     }
     // The frequency form's ω range turned into times: far outside any
     // relaxation test, and beyond what the τ grid of the series spans
@@ -580,23 +579,30 @@ fn row(
             "{}, line {line}: {column}: t = {value:e} s is outside 1e-30 … 1e30 s, beyond any \
          relaxation measurement (is the time in s, or is the column a time at all?)",
             path.display(),
-            column = header.time.reference.clone(),
+            column = header.time.reference,
             value = time
-        )
-        .into());
+        ));
     }
     let measured = value(&header.value)? * factor;
     let column = || header.value.reference.clone();
     match quantity {
         TimeQuantity::Relaxation if !(measured > 0.0 && measured <= 1e13) => {
-            return Err(err!("{}, line {line}: {column}: E(t) = {value} Pa is not a modulus (it must be positive and \
-         below 1e13 Pa)", path.display(), column = column(), value = measured)
-            .into());
+            return Err(err!(
+                "{}, line {line}: {column}: E(t) = {value} Pa is not a modulus (it must be positive and \
+         below 1e13 Pa)",
+                path.display(),
+                column = column(),
+                value = measured
+            ));
         }
         TimeQuantity::Creep if !(measured > 0.0 && measured <= 1.0) => {
-            return Err(err!("{}, line {line}: {column}: D(t) = {value} 1/Pa (tensile) is not a creep compliance (it \
-         must be positive and below 1 1/Pa)", path.display(), column = column(), value = measured)
-            .into());
+            return Err(err!(
+                "{}, line {line}: {column}: D(t) = {value} 1/Pa (tensile) is not a creep compliance (it \
+         must be positive and below 1 1/Pa)",
+                path.display(),
+                column = column(),
+                value = measured
+            ));
         }
         _ => {}
     }
@@ -608,8 +614,7 @@ fn row(
             "{}, line {line}: temperature {value} °C is out of range",
             path.display(),
             value = t
-        )
-        .into());
+        ));
     }
     Ok(RelaxationPoint {
         time,

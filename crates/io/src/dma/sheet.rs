@@ -164,9 +164,8 @@ fn no_columns(path: &Path, sheet: &str, book: &mut Book) -> IoError {
          each with its unit in the name or in a units row below; {}",
         path.display(),
         sheets_found(&found),
-        sheet = sheet.to_string()
+        sheet = sheet
     )
-    .into()
 }
 
 /// The points of `rows`, the rows below the header (and units row).
@@ -256,8 +255,7 @@ fn value(place: &Place, row: &Row, number: usize, c: &Column) -> Result<Option<f
          for; open it in Excel or LibreOffice and save, so its value is stored",
             path.display(),
             cell = at
-        )
-        .into()),
+        )),
         Err(NotNumber::NotFinite(text)) => Err(err!(
             "{}, {cell}: {column}: {text} is not a finite number",
             path.display(),

@@ -65,10 +65,10 @@ pub(super) fn check_isotherms(
          increase from the step of {}, and a repeated run is another isotherm",
                 path.display(),
                 quantity.name(),
-                ((lines[a], lines[b])).0,
-                ((points[a].time, points[b].time)).0,
-                ((lines[a], lines[b])).1,
-                ((points[a].time, points[b].time)).1,
+                lines[a],
+                points[a].time,
+                lines[b],
+                points[b].time,
                 quantity.name(),
                 if quantity == TimeQuantity::Creep {
                     "stress"
@@ -105,12 +105,11 @@ fn check_rising(
          a creep compliance never decreases with time (it rises from the step of stress), so \
          this column is not a creep compliance (a modulus or a stress?)",
                     path.display(),
-                    ((lines[h], lines[i])).0,
-                    ((points[h].value, value)).0,
-                    ((lines[h], lines[i])).1,
-                    ((points[h].value, value)).1,
-                    100.0 * (1.0 - ((points[h].value, value)).1 / ((points[h].value, value)).0),
-                    column = column.clone()
+                    lines[h],
+                    points[h].value,
+                    lines[i],
+                    value,
+                    100.0 * (1.0 - value / points[h].value),
                 ));
             }
             Some(h) if value <= points[h].value => {}

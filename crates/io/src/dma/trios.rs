@@ -217,7 +217,7 @@ fn scan<'a>(path: &Path, text: &'a str) -> Result<Scan<'a>, IoError> {
                         "{}, line {line}: {step}: Number of points \"{text}\" is not a count",
                         path.display(),
                         step = step.label(),
-                        text = value.to_string()
+                        text = value
                     )
                 })?;
                 step.declared = Some((line, count));
@@ -246,18 +246,21 @@ fn check_whole(path: &Path, text: &str, scan: &Scan) -> Result<(), IoError> {
                 path.display(),
                 count_mismatch(declared, found, rows, scan.last_line),
                 step = step.label()
-            )
-            .into());
+            ));
         }
     }
     let cut =
         !text.ends_with(['\n', '\r']) && text.lines().last().is_some_and(|l| !l.trim().is_empty());
     if scan.in_step && cut {
         let step = scan.steps.last().expect("in a step");
-        return Err(err!("{}, line {line}: the file ends inside {step} without a line break after this line: the \
+        return Err(err!(
+            "{}, line {line}: the file ends inside {step} without a line break after this line: the \
          export looks cut off in the middle of it (a row or a number may be incomplete); if the \
-         file is complete, end it with a line break", path.display(), line = scan.last_line, step = step.label())
-        .into());
+         file is complete, end it with a line break",
+            path.display(),
+            line = scan.last_line,
+            step = step.label()
+        ));
     }
     Ok(())
 }
@@ -274,8 +277,7 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
             path.display(),
             line = step.line,
             step = step.label()
-        )
-        .into());
+        ));
     };
     let omega = step.variable(&["Angular frequency"]).map(|i| (i, true));
     let omega = omega.or_else(|| step.variable(&["Frequency"]).map(|i| (i, false)));
@@ -305,7 +307,7 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
                 line = units.0,
                 number = i + 1,
                 step = step.label(),
-                unit = unit.to_string(),
+                unit = unit,
                 variable = name
             )),
         }
@@ -355,7 +357,7 @@ fn cell(path: &Path, line: usize, row: &[&str], f: &Field) -> Result<f64, IoErro
             path.display(),
             cell = CellRef::line(line),
             column = f.reference(),
-            text = text.to_string()
+            text = text
         )
     })?;
     if !v.is_finite() {
@@ -364,7 +366,7 @@ fn cell(path: &Path, line: usize, row: &[&str], f: &Field) -> Result<f64, IoErro
             path.display(),
             cell = CellRef::line(line),
             column = f.reference(),
-            text = text.to_string()
+            text = text
         ));
     }
     Ok(v * f.factor + f.offset)

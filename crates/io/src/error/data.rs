@@ -1,11 +1,7 @@
-//! The errors of a measured-data file ([`DataError`], reached as
-//! [`super::IoError::Data`]): one variant per cause, with the place as
-//! data — a text file's line or a workbook's sheet, row and cell
-//! ([`RowRef`], [`CellRef`]) — and the column as its header names it
-//! ([`ColumnName`]). The causes inside a file do not name the file:
-//! [`DataError::InFile`] does, and `{:#}` prints it first, as
-//! `data file PATH: line 7: column `v`: "abc" is not a number`
-//! (docs/ARCHITECTURE.md, "Contract", "Measured data").
+//! How the messages of the measured-data and DMA readers name a place
+//! and a column: a text file's line or a workbook's sheet, row and cell
+//! ([`RowRef`], [`CellRef`], [`RowsRef`]), a column as its header names it
+//! ([`ColumnName`]), and the lists and reasons those messages share.
 
 use std::fmt;
 

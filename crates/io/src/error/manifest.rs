@@ -1,9 +1,6 @@
-//! The errors of a batch manifest ([`ManifestError`], reached as
-//! [`super::IoError::Manifest`]; read by [`crate::manifest`],
-//! docs/ARCHITECTURE.md, "Contract", "Commands"). Every cause names the
-//! entry ([`EntryRef`]) and, where one is at fault, the line; the manifest
-//! itself is named by [`ManifestError::InFile`], printed before its
-//! source by `{:#}`.
+//! How a batch manifest's messages name an entry ([`EntryRef`]), where a
+//! TOML error lies ([`TomlPlace`]) and what is wrong with an entry
+//! ([`EntryProblem`]).
 
 use std::fmt;
 use std::path::PathBuf;

@@ -45,7 +45,7 @@ pub(super) fn json_error(path: &Path, text: &str, e: &serde_json::Error) -> IoEr
             "{}, line {line}: column {column}: not a rollfit fit.json: `{key}`: {message}: a number \
          must be finite (JSON has no NaN or infinity)",
             path.display(),
-            message = message.to_string()
+            message = message
         ),
         (_, key) => {
             let path = &path;

@@ -135,8 +135,7 @@ impl<'a> MuCsv<'a> {
                     "the fit returned {fitted} fitted values for {points} data points",
                     fitted = fitted.len()
                 )
-                .internal()
-                .into());
+                .internal());
             }
         }
         let header = self.header();
@@ -147,7 +146,7 @@ impl<'a> MuCsv<'a> {
                 return Err(err!(
                     "the output's row {row} has {column} = {value}: not a finite number (refused rather than \
          written)",
-                    column = header[k].to_string(),
+                    column = header[k],
                     row = i + 1,
                     value = number(row[k])
                 ));

@@ -196,7 +196,7 @@ impl Table {
                     path.display(),
                     cell = CellRef::line(line),
                     column = ColumnRef::named(name),
-                    text = field.to_string()
+                    text = field
                 )
             })?;
             if !value.is_finite() {
@@ -205,7 +205,7 @@ impl Table {
                     path.display(),
                     cell = CellRef::line(line),
                     column = ColumnRef::named(name),
-                    text = field.to_string()
+                    text = field
                 ));
             }
             values.push(value);

@@ -293,7 +293,7 @@ impl FitSummary {
                     "{}: shift.model = \"{model}\": unknown shift model; allowed: \"wlf\", \"arrhenius\", \
          \"free\"",
                     place(&path, line),
-                    model = other.to_string()
+                    model = other
                 ))
             }
         }

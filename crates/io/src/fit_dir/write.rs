@@ -114,7 +114,9 @@ fn fit_json(report: &FitReport, input: &FitInput) -> Result<Vec<u8>, IoError> {
         rollfit_version: input.rollfit_version,
     };
     let mut bytes = serde_json::to_vec_pretty(&value).map_err(|source| {
-        err!("cannot encode the {what}", what = "fit report").caused_by(source)
+        err!("cannot encode the fit report")
+            .caused_by(source)
+            .internal()
     })?;
     bytes.push(b'\n');
     Ok(bytes)

@@ -69,7 +69,7 @@ fn check_occupant<'a>(
                 "output {} holds {name}, which rollfit did not write there; `{ours}` would overwrite \
          it: move it away or give another folder",
                 dir.display(),
-                name = name.to_string(),
+                name = name,
                 ours = writer.command()
             )));
         }

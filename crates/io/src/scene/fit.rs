@@ -17,12 +17,12 @@ use serde::de::{Deserializer, MapAccess, Visitor};
 
 use super::fit_settings::{Key, TableSettings};
 use super::material::MaterialSection;
+use super::messages::section_of;
 use super::setup::ContactName;
 use super::shift::ShiftKind;
 use super::values::{Real, require_positive};
 use super::{InSection, SceneFile};
 use crate::error::IoError;
-use crate::error::scene::section_of;
 
 /// The keys of `[fit]`: the scale anchors, then the fit settings
 /// ([`rollfit_fit::settings::SETTING_KEYS`], in the order messages have

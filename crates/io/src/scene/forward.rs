@@ -12,13 +12,13 @@ use rollfit_model::exact::{ExactRolling, ExactSettings, RollingCylinder, Rolling
 use rollfit_model::{Prony, Scene, Shifted, ViscoelasticModulus};
 
 use super::material::MaterialSection;
+use super::messages::section_of;
 use super::setup::{ContactName, DEFAULT_ACCURACY, ShapeName};
 use super::sweep::temperature_without_shift;
 use super::values::Real;
 use super::vertical;
 use super::{DynScene, InSection, SceneFile};
 use crate::error::IoError;
-use crate::error::scene::section_of;
 
 /// How `rollfit forward` computes μ for a block.
 pub enum ForwardRung {

@@ -2,7 +2,7 @@
 //! per model, and what the fit and the exact solution take from it
 //! (docs/ARCHITECTURE.md, "Contract", "Scene file"). A `table` is read by
 //! [`crate::table`], a `dma` file made a master curve by
-//! [`crate::dma_master`]; what they say is a [`SceneError::File`].
+//! [`crate::dma_master`]; what they say is passed on as it is.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -16,13 +16,13 @@ use rollfit_model::{
 use serde::Deserialize;
 
 use super::InSection;
+use super::messages::quoted_or;
 use super::setup::DEFAULT_POISSON;
 use super::shift::{ShiftRule, ShiftSection};
 use super::values::{Real, RealOrList, reals};
 use super::vertical;
 use crate::dma_master::{self, DmaMaster};
 use crate::error::IoError;
-use crate::error::scene::quoted_or;
 use crate::table;
 
 /// Material model names as written in the file.

@@ -1,8 +1,9 @@
 //! The scene file (TOML; docs/ARCHITECTURE.md, "Contract", "Scene file"),
 //! read by `rollfit forward`, `fit`, `batch` and `bench`: its schema and
-//! its conversion into validated model objects. Errors are
-//! [`SceneError`]s, reached as [`IoError::Scene`]; the files a material
-//! refers to are read by [`crate::table`] and [`crate::dma_master`].
+//! its conversion into validated model objects. An error names the file
+//! ([`in_file`]) and the section ([`InSection`]) before its cause; the
+//! files a material refers to are read by [`crate::table`] and
+//! [`crate::dma_master`].
 //!
 //! Parsing happens in two steps. serde turns the text into the plain
 //! structs of the sections; type errors, unknown keys, non-finite numbers
@@ -35,6 +36,7 @@ mod fit;
 pub(crate) mod fit_settings;
 mod forward;
 mod material;
+mod messages;
 mod setup;
 mod shift;
 mod sweep;
@@ -92,12 +94,14 @@ pub fn parse(text: &str) -> Result<SceneFile, IoError> {
     Ok(parse_text(text)?)
 }
 
-/// `error` behind the scene file's name ([`SceneError::InFile`]).
+/// `error` behind the scene file's name: `scene file PATH: …`.
 pub fn in_file(path: &Path, error: impl Into<IoError>) -> IoError {
-    err!("scene file {}", path.display()).caused_by(error.into())
+    err!("scene file {}", path.display())
+        .in_file(path)
+        .caused_by(error.into())
 }
 
-/// `error` behind the section it was found in ([`SceneError::InSection`]).
+/// `error` behind the section it was found in: `[sweep]: …`.
 pub(crate) trait InSection<T> {
     /// The error behind `section` (with its brackets, `"[sweep]"`).
     fn section(self, section: &'static str) -> Result<T, IoError>;

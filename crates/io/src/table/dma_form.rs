@@ -37,8 +37,7 @@ pub(super) fn read(
             "modulus table {}: holds shear moduli G′, G″; converting them to Young's moduli \
          (E = 2(1+ν)G) needs [substrate] poisson in [0, 0.5], not {poisson}",
             path.display()
-        )
-        .into());
+        ));
     }
     let isotherms = isotherms(&data.points);
     if isotherms.len() > 1 {
@@ -97,8 +96,8 @@ fn sorted(path: &Path, data: &DmaData) -> Result<Vec<usize>, IoError> {
                 "modulus table {}, lines {} and {}: the same frequency ω = {omega} rad/s twice; a master \
          curve has one modulus per frequency: remove or average the repeated rows",
                 path.display(),
-                ((first.min(second), first.max(second))).0,
-                ((first.min(second), first.max(second))).1,
+                first.min(second),
+                first.max(second),
                 omega = a.omega
             ));
         }

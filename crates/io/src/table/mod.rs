@@ -29,7 +29,7 @@
 //!   [`ModulusTable::notes`] with its line.
 //!
 //! The model checks the same things again; checking here as well is what
-//! lets an error ([`crate::error::TableError`]) name the line of the file.
+//! lets an error name the line of the file.
 //! [`explain_contact_map`] turns the model's contact-map error into the
 //! table lines that cause it. Column names come from
 //! [`crate::fit_dir::columns`] and [`crate::columns`], where their writers
@@ -101,9 +101,7 @@ fn read_form(
     sheet: Option<&str>,
 ) -> Result<ModulusTable, IoError> {
     let bytes = crate::input_file::read_input(path, "modulus table", |source| {
-        err!("cannot read modulus table {}", path.display())
-            .system(source)
-            .into()
+        err!("cannot read modulus table {}", path.display()).system(source)
     })?;
     if sheet.is_some() || crate::data::workbook::is_workbook(path, &bytes) {
         return dma_form::read(path, poisson, kind, sheet, false);
@@ -114,8 +112,11 @@ fn read_form(
     if let Some(text) = text
         && is_plain(text)
     {
-        return parse(text)
-            .map_err(|e| err!("modulus table {}", path.display()).caused_by(e).into());
+        return parse(text).map_err(|e| {
+            err!("modulus table {}", path.display())
+                .in_file(path)
+                .caused_by(e)
+        });
     }
     // master.csv of `rollfit master`: every DMA point moved to the
     // reference, the isotherm of each in `T`, scattered where isotherms

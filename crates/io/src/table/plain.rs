@@ -5,8 +5,7 @@
 //! Each number must be finite and positive, a modulus at most 1e13 Pa, ω
 //! within 1e-30 … 1e30 rad/s, the rows in strictly increasing frequency,
 //! and there must be two at least. Errors name the line and column but not
-//! the file: [`super::read`] wraps them in
-//! [`crate::error::TableError::Plain`], which does.
+//! the file: [`super::read`] puts them behind `modulus table PATH`.
 
 use std::f64::consts::PI;
 
@@ -62,16 +61,23 @@ pub fn parse(text: &str) -> Result<ModulusTable, IoError> {
             Frequency::Hertz => 2.0 * PI * values[0],
         };
         if !(OMEGA_RANGE.0..=OMEGA_RANGE.1).contains(&omega) {
-            return Err(err!("line {line}: frequency {column} = {value:e}: outside 1e-30 … 1e30 rad/s, beyond any \
-         master curve", column = names[0].clone(), value = values[0])
-            .into());
+            return Err(err!(
+                "line {line}: frequency {column} = {value:e}: outside 1e-30 … 1e30 rad/s, beyond any \
+         master curve",
+                column = names[0].clone(),
+                value = values[0]
+            ));
         }
         if let Some(&last) = table.omega.last()
             && omega <= last
         {
-            return Err(err!("line {line}: frequency {column} = {value} does not exceed the one on line {previous}: \
-         rows must be in strictly increasing frequency", column = names[0].clone(), previous = previous_line, value = values[0])
-            .into());
+            return Err(err!(
+                "line {line}: frequency {column} = {value} does not exceed the one on line {previous}: \
+         rows must be in strictly increasing frequency",
+                column = names[0].clone(),
+                previous = previous_line,
+                value = values[0]
+            ));
         }
         table.omega.push(omega);
         table.storage.push(values[1]);
@@ -83,8 +89,7 @@ pub fn parse(text: &str) -> Result<ModulusTable, IoError> {
         return Err(err!(
             "the table has {rows} data row(s): at least two frequencies are needed to interpolate",
             rows = table.omega.len()
-        )
-        .into());
+        ));
     }
     Ok(table)
 }
@@ -141,10 +146,9 @@ fn row(
             return Err(err!(
                 "line {line}: column `{column}` = {value}: must be greater than zero (the table is \
          interpolated in log-log)",
-                column = name.clone(),
+                column = name,
                 value = *value
-            )
-            .into());
+            ));
         }
     }
     for (value, name) in values.iter().zip(names).skip(1) {
@@ -152,10 +156,9 @@ fn row(
             return Err(err!(
                 "line {line}: column `{column}` = {value:e}: above 1e13 Pa, stiffer than any solid \
          (diamond: about 1.2e12 Pa); is the column in Pa?",
-                column = name.clone(),
+                column = name,
                 value = *value
-            )
-            .into());
+            ));
         }
     }
     Ok(values)
