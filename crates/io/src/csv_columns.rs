@@ -47,7 +47,7 @@ pub fn header<R: std::io::Read>(
         ));
     }
     if let Some(name) = duplicate(&header) {
-        return Err(err!("the header names column `{name}` twice", name = name));
+        return Err(err!("the header names column `{name}` twice"));
     }
     Ok(header)
 }
@@ -68,7 +68,6 @@ pub fn finite(
             err!(
                 "line {line}: column `{column}`: {text:?} is not a finite number",
                 column = name,
-                text = text
             )
         })
 }

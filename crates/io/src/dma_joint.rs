@@ -92,5 +92,4 @@ fn refused(
         .caused_by(source),
         None => err!("DMA file {}", path.display()).caused_by(source),
     }
-    .into()
 }

@@ -153,12 +153,12 @@ pub fn read_input(
             let stdin = std::io::stdin();
             let metadata = standard_input_metadata().map_err(&unreadable)?;
             match FileType::of(metadata.file_type()) {
-                None if metadata.len() > limit => Err(too_large(Some(metadata.len())).into()),
+                None if metadata.len() > limit => Err(too_large(Some(metadata.len()))),
                 None | Some(FileType::Fifo) if !stdin.is_terminal() => {
                     read_bounded(stdin.lock(), limit, &too_large, &unreadable, 0)
                 }
                 // A terminal would wait for typing; a device may never end.
-                _ => Err(not_regular(FileType::Terminal).into()),
+                _ => Err(not_regular(FileType::Terminal)),
             }
         });
     }
@@ -175,10 +175,10 @@ pub fn read_input(
                 read_bounded(file, limit, &too_large, &unreadable, 0)
             });
         }
-        Some(found) => return Err(not_regular(found).into()),
+        Some(found) => return Err(not_regular(found)),
     }
     if metadata.len() > limit {
-        return Err(too_large(Some(metadata.len())).into());
+        return Err(too_large(Some(metadata.len())));
     }
     let file = std::fs::File::open(path).map_err(&unreadable)?;
     // The stated size reserves the memory once; a wrong one costs only
@@ -203,7 +203,7 @@ fn read_bounded(
         .read_to_end(&mut bytes)
         .map_err(unreadable)?;
     if bytes.len() as u64 > limit {
-        return Err(too_large(None).into());
+        return Err(too_large(None));
     }
     Ok(bytes)
 }

@@ -124,7 +124,7 @@ pub fn load(path: &Path) -> Result<Manifest, IoError> {
 /// Parses and checks manifest text; `base` is the folder relative paths
 /// start from.
 pub fn parse(text: &str, base: &Path) -> Result<Manifest, IoError> {
-    Ok(check(text, base)?)
+    check(text, base)
 }
 
 /// [`parse`], with the manifest's own error.

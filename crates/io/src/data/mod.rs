@@ -64,7 +64,7 @@ use std::path::Path;
 
 use rollfit_fit::Measurements;
 
-use crate::error::IoError;
+use crate::error::{ErrorKind, IoError};
 
 pub use quantity::Quantity;
 
@@ -100,7 +100,7 @@ impl DataTable {
             self.sigma.clone(),
             self.temperature.clone(),
         )
-        .map_err(|e| crate::error::IoError::transparent(crate::error::ErrorKind::Content, e).into())
+        .map_err(|e| IoError::transparent(ErrorKind::Content, e))
     }
 
     /// The distinct temperatures of a `T` column, in order of appearance.
@@ -141,7 +141,6 @@ pub fn read_sheet(path: &Path, sheet: Option<&str>) -> Result<DataTable, IoError
             "data file {}: a sheet ({sheet:?}) was given, but the file is text, not a workbook \
          (.xlsx, .xlsm, .xlsb, .xls, .ods)",
             path.display(),
-            sheet = sheet
         ));
     }
     text::parse_bytes(bytes).map_err(in_file)

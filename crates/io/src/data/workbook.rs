@@ -270,8 +270,7 @@ fn choose_sheet(
         .ok_or_else(|| {
             err!(
                 "no sheet {wanted:?}: the workbook has {}",
-                quoted_list(&names.to_vec()),
-                wanted = wanted
+                quoted_list(names),
             )
         })
 }

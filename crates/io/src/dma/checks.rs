@@ -130,7 +130,6 @@ fn check_point(
                 "{}, {row}: {column}: modulus {value:e} is above 1e13 Pa, stiffer than any solid \
          (diamond: about 1.2e12 Pa); is the column in Pa?",
                 path().display(),
-                column = column,
                 row = row()
             ));
         }

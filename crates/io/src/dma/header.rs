@@ -240,7 +240,6 @@ pub(super) fn columns(
                 column = name,
                 known = quantity.known(),
                 quantity = quantity.unit_kind(),
-                unit = unit
             )
         };
         let (factor, offset) = match (unit, from_row) {

@@ -303,7 +303,6 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
             "{}: a sheet ({sheet:?}) was given, but the DMA file is text, not a workbook (.xlsx, \
          .xlsm, .xlsb, .xls, .ods)",
             path.display(),
-            sheet = sheet
         ));
     } else {
         let (text, decoded) = decode::decode_noted(path, &bytes)?;

@@ -39,8 +39,7 @@ pub(super) fn parse(
     wanted: Option<&str>,
     told: header::Told,
 ) -> Result<(FormRead, String, Vec<String>), IoError> {
-    let workbook =
-        |error: IoError| -> IoError { err!("{}: {error}", path.display(), error = error).into() };
+    let workbook = |error: IoError| -> IoError { err!("{}: {error}", path.display()) };
     let mut notes = Vec::new();
     if !has_workbook_extension(path) {
         notes.push("the file is a workbook (by its content), read as one".to_string());
@@ -164,7 +163,6 @@ fn no_columns(path: &Path, sheet: &str, book: &mut Book) -> IoError {
          each with its unit in the name or in a units row below; {}",
         path.display(),
         sheets_found(&found),
-        sheet = sheet
     )
 }
 

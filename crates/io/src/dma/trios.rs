@@ -154,10 +154,17 @@ pub(crate) fn parse(path: &Path, text: &str, options: &DmaOptions) -> Result<For
         return Err(if skipped.is_empty() {
             err!("{}: TRIOS export without data points", path.display())
         } else {
-            err!("{}: no step has the variables needed (Angular frequency or Frequency, Storage modulus, \
-         Loss modulus): {}", path.display(), skipped.iter().map(ToString::to_string).collect::<Vec<_>>().join("; "))
-        }
-        .into());
+            err!(
+                "{}: no step has the variables needed (Angular frequency or Frequency, Storage modulus, \
+         Loss modulus): {}",
+                path.display(),
+                skipped
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            )
+        });
     };
     for s in skipped {
         warnings.push(format!(
@@ -307,7 +314,6 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
                 line = units.0,
                 number = i + 1,
                 step = step.label(),
-                unit = unit,
                 variable = name
             )),
         }
@@ -357,7 +363,6 @@ fn cell(path: &Path, line: usize, row: &[&str], f: &Field) -> Result<f64, IoErro
             path.display(),
             cell = CellRef::line(line),
             column = f.reference(),
-            text = text
         )
     })?;
     if !v.is_finite() {
@@ -366,7 +371,6 @@ fn cell(path: &Path, line: usize, row: &[&str], f: &Field) -> Result<f64, IoErro
             path.display(),
             cell = CellRef::line(line),
             column = f.reference(),
-            text = text
         ));
     }
     Ok(v * f.factor + f.offset)

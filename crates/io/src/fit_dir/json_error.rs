@@ -39,13 +39,12 @@ pub(super) fn json_error(path: &Path, text: &str, e: &serde_json::Error) -> IoEr
         (Some(expected), Some(key)) => err!(
             "{}, line {line}: column {column}: not a rollfit fit.json: `{key}` is null where {}",
             path.display(),
-            null_expected(&expected.to_string())
+            null_expected(expected)
         ),
         (None, Some(key)) if non_finite => err!(
             "{}, line {line}: column {column}: not a rollfit fit.json: `{key}`: {message}: a number \
          must be finite (JSON has no NaN or infinity)",
             path.display(),
-            message = message
         ),
         (_, key) => {
             let path = &path;

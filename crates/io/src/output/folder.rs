@@ -45,33 +45,32 @@ fn check_occupant<'a>(
         ));
     }
     if writer != Writer::Batch && holds_working_folder(dir) {
-        return Err(IoError::from(err!(
+        return Err(err!(
             "output {} is the current folder (or holds it), which cannot be replaced while in use; \
          give a folder inside it, such as -o results",
             dir.display()
-        )));
+        ));
     }
     let occupant = Occupant::of(dir);
     if let Some(found) = occupant.as_ref().filter(|o| o.writer != writer && !force) {
-        return Err(IoError::from(err!(
+        return Err(err!(
             "output {} holds the results of `{found}` ({}); `{ours}` does not replace them: give \
          another folder, or --force to replace them (files rollfit did not write there stay)",
             dir.display(),
             files_list(&found.files.clone()),
             found = found.writer.command(),
             ours = writer.command()
-        )));
+        ));
     }
     let owned = |name: &str| occupant.as_ref().is_some_and(|o| o.owns(name));
     for name in names {
         if dir.join(name).exists() && !owned(name) && !only_leftovers(&dir.join(name)) {
-            return Err(IoError::from(err!(
+            return Err(err!(
                 "output {} holds {name}, which rollfit did not write there; `{ours}` would overwrite \
          it: move it away or give another folder",
                 dir.display(),
-                name = name,
                 ours = writer.command()
-            )));
+            ));
         }
     }
     if writer != Writer::Batch
@@ -80,11 +79,11 @@ fn check_occupant<'a>(
         for entry in entries.flatten() {
             let name = entry.file_name().to_string_lossy().into_owned();
             if entry.path().is_dir() && temporary_pid(&name).is_none() && !owned(&name) {
-                return Err(IoError::from(err!(
+                return Err(err!(
                     "output {} holds the folder {name}, which rollfit did not write; give an empty folder or \
          a previous fit's",
                     dir.display()
-                )));
+                ));
             }
         }
     }
@@ -222,11 +221,11 @@ pub fn check_free_file(path: &Path) -> Result<(), IoError> {
         return Ok(());
     };
     match Occupant::of(&parent_of(path)) {
-        Some(o) if o.owns(&name) || name == RECORD_FILE => Err(IoError::from(err!(
+        Some(o) if o.owns(&name) || name == RECORD_FILE => Err(err!(
             "{} is a file `{found}` wrote (its folder's record says so); give another output file",
             path.display(),
             found = o.writer.command()
-        ))),
+        )),
         _ => Ok(()),
     }
 }

@@ -162,7 +162,7 @@ impl FitSection {
     /// The fit parameters the section asks for: its anchor and settings
     /// over the defaults of [`FitParams`].
     pub fn params(&self) -> Result<FitParams, IoError> {
-        Ok(self.fit_params()?)
+        self.fit_params()
     }
 
     /// [`Self::params`], with the scene's own error.
@@ -211,7 +211,7 @@ impl SceneFile {
     /// used. The fit checks the whole against the set-up with
     /// [`FitParams::check`].
     pub fn fit_setup(&self) -> Result<(RollingSetup, FitParams), IoError> {
-        Ok(self.inverse_setup()?)
+        self.inverse_setup()
     }
 
     /// [`Self::fit_setup`], with the scene's own error.

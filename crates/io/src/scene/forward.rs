@@ -78,7 +78,7 @@ impl SceneFile {
         scene_path: &Path,
         note: &dyn Fn(&str),
     ) -> Result<ForwardSetup, IoError> {
-        Ok(self.forward_blocks(scene_path, note)?)
+        self.forward_blocks(scene_path, note)
     }
 
     /// [`Self::forward_setup`], with the scene's own error.
@@ -238,11 +238,13 @@ impl SceneFile {
     ) -> Result<Prony, IoError> {
         // The callers build the exact cylinder from it.
         if self.geometry.shape != ShapeName::Cylinder {
-            return Err(err!("[contact]: this needs shape = \"cylinder\": the reference is the plane-strain exact \
-         rolling cylinder").into());
+            return Err(err!(
+                "[contact]: this needs shape = \"cylinder\": the reference is the plane-strain exact \
+         rolling cylinder"
+            ));
         }
         let factors = log10_a_t.map(|a| (a, 0.0));
-        Ok(self.exact_material_for(material, base_dir, factors, true, note)?)
+        self.exact_material_for(material, base_dir, factors, true, note)
     }
 
     /// As [`Self::exact_material`], shifted by `factors` = (log10 a_T,
@@ -284,7 +286,7 @@ impl SceneFile {
         prony: &Prony,
         settings: ExactSettings,
     ) -> Result<RollingCylinder, IoError> {
-        Ok(self.exact_with(prony, settings)?)
+        self.exact_with(prony, settings)
     }
 
     /// [`Self::exact_cylinder_with`], with the scene's own error.

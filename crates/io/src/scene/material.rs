@@ -305,7 +305,7 @@ impl MaterialSection {
         base_dir: &Path,
         note: &dyn Fn(&str),
     ) -> Result<Box<dyn ViscoelasticModulus>, IoError> {
-        Ok(self.make_modulus(base_dir, note)?)
+        self.make_modulus(base_dir, note)
     }
 
     /// [`Self::build`], with the scene's own error.
@@ -378,9 +378,13 @@ impl MaterialSection {
     /// path.
     pub fn read_table(&self, base_dir: &Path) -> Result<(PathBuf, table::ModulusTable), IoError> {
         let file = match &self.file {
-            None => return Err(err!("model \"{model}\" needs `file`", model = "table").into()),
+            None => return Err(err!("model \"{model}\" needs `file`", model = "table")),
             Some(Files::One(file)) => file,
-            Some(Files::Many(_)) => return Err(err!("model \"table\" reads one file: `file` is a list (several DMA files are model \"dma\")").into()),
+            Some(Files::Many(_)) => {
+                return Err(err!(
+                    "model \"table\" reads one file: `file` is a list (several DMA files are model \"dma\")"
+                ));
+            }
         };
         let path = base_dir.join(file);
         let table = table::read_sheet(
@@ -457,7 +461,7 @@ impl MaterialSection {
     /// An "sls" (one term), "prony" or "dma" material as a Prony series;
     /// None for other models (the Python module's μ with its Jacobian).
     pub fn as_prony(&self, base_dir: &Path, note: &dyn Fn(&str)) -> Result<Option<Prony>, IoError> {
-        Ok(self.prony(base_dir, note)?)
+        self.prony(base_dir, note)
     }
 
     /// [`Self::as_prony`], with the scene's own error.

@@ -85,13 +85,13 @@ pub struct SceneFile {
 /// Reads, parses and validates a scene file; every error names `path`.
 pub fn load(path: &Path) -> Result<SceneFile, IoError> {
     let text = crate::text_file::read_utf8(path, "scene file")?;
-    parse_text(&text).map_err(|e| in_file(path, e).into())
+    parse_text(&text).map_err(|e| in_file(path, e))
 }
 
 /// Parses and validates scene-file text (the sections' internal consistency;
 /// the model checks physical ranges when the scene is built).
 pub fn parse(text: &str) -> Result<SceneFile, IoError> {
-    Ok(parse_text(text)?)
+    parse_text(text)
 }
 
 /// `error` behind the scene file's name: `scene file PATH: …`.

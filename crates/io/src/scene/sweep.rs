@@ -194,7 +194,7 @@ impl SweepSection {
     /// The speeds (m/s), strictly increasing: log-spaced from the range or
     /// the explicit list.
     pub fn speeds(&self) -> Result<Vec<f64>, IoError> {
-        Ok(self.check_speeds()?)
+        self.check_speeds()
     }
 
     /// [`Self::speeds`], with the scene's own error.

@@ -38,7 +38,7 @@ pub(super) fn check(path: &Path, table: &ModulusTable) -> Result<(), IoError> {
          no measurement scatter; check that the columns are E_storage and E_loss, the \
          frequencies in the unit the header names, and the rows one material at one temperature",
                 path.display(),
-                100.0 * (1.0 - &storage / &(table.storage[peak])),
+                100.0 * (1.0 - storage / table.storage[peak]),
                 line = line(row),
                 omega = table.omega[row],
                 peak_line = line(peak),
