@@ -31,8 +31,14 @@
 //! (default 14); a failure prints the case's seed and kind, and
 //! `FUZZ_KEEP=1` keeps the cases' folders under the system's temporary
 //! folder for a look.
+//!
+//! At the default seed and case count, every case's exit code and standard
+//! error are compared with the message corpus
+//! tests/data/messages/fuzz.tsv (`ROLLFIT_MESSAGE_CORPUS=write` records
+//! it anew): what a user reads changes only where a change means it to.
 
 mod common;
+mod messages;
 #[path = "../crates/io/tests/support/workbook.rs"]
 mod workbook;
 
@@ -557,9 +563,9 @@ fn workbook_rows(csv: &Path) -> Vec<Vec<workbook::X<'static>>> {
     rows
 }
 
-/// One case: mutate, run, check; the problems found, the kind and the exit
-/// code.
-fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>) {
+/// One case: mutate, run, check; the problems found, the kind and how it
+/// ended.
+fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, messages::Outcome) {
     let kind = kind_of(index);
     let mut rng =
         ChaCha8Rng::seed_from_u64(seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
@@ -881,10 +887,19 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
             }
         }
     }
+    let fit_folder = matches!(kind, Kind::FitFolderReport | Kind::FitFolderCompare);
+    let outcome = match result.timed_out {
+        true => messages::Outcome::TimedOut,
+        false if fit_folder => messages::Outcome::Varies { code: result.code },
+        false => messages::Outcome::Ended {
+            code: result.code,
+            stderr: messages::normalised(&result.stderr, root, &dir),
+        },
+    };
     if std::env::var_os("FUZZ_KEEP").is_none() && problems.is_empty() {
         let _ = fs::remove_dir_all(&dir);
     }
-    (problems, kind, result.code)
+    (problems, kind, outcome)
 }
 
 /// Issue 14's fuzzing target: at least 2 000 structured cases, none of
@@ -892,14 +907,16 @@ fn case(root: &Path, index: usize, seed: u64) -> (Vec<String>, Kind, Option<i32>
 /// failure, or fails without naming a file.
 #[test]
 fn mutated_inputs_keep_every_promise() {
+    const DEFAULT_CASES: usize = 2100;
+    const DEFAULT_SEED: u64 = 14;
     let cases: usize = std::env::var("FUZZ_CASES")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(2100);
+        .unwrap_or(DEFAULT_CASES);
     let seed: u64 = std::env::var("FUZZ_SEED")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(14);
+        .unwrap_or(DEFAULT_SEED);
     let temp = TempDir::new("fuzz");
     let root = temp.path().to_path_buf();
     if std::env::var_os("FUZZ_KEEP").is_some() {
@@ -910,6 +927,7 @@ fn mutated_inputs_keep_every_promise() {
     let next = AtomicUsize::new(0);
     let problems = Mutex::new(Vec::new());
     let exits = Mutex::new(BTreeMap::<(String, Option<i32>), usize>::new());
+    let outcomes = Mutex::new(BTreeMap::new());
     let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
     std::thread::scope(|scope| {
         for _ in 0..threads {
@@ -919,8 +937,14 @@ fn mutated_inputs_keep_every_promise() {
                     if i >= cases {
                         break;
                     }
-                    let (found, kind, code) = case(&root, i, seed);
+                    let (found, kind, outcome) = case(&root, i, seed);
                     problems.lock().unwrap().extend(found);
+                    let code = match &outcome {
+                        messages::Outcome::Ended { code, .. } => *code,
+                        messages::Outcome::Varies { code } => *code,
+                        messages::Outcome::TimedOut => None,
+                    };
+                    outcomes.lock().unwrap().insert(i, outcome);
                     *exits
                         .lock()
                         .unwrap()
@@ -934,7 +958,15 @@ fn mutated_inputs_keep_every_promise() {
     for ((kind, code), count) in exits.into_inner().unwrap() {
         eprintln!("{kind}: exit {code:?} × {count}");
     }
-    let problems = problems.into_inner().unwrap();
+    let mut problems = problems.into_inner().unwrap();
+    if cases == DEFAULT_CASES && seed == DEFAULT_SEED {
+        let corpus =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/messages/fuzz.tsv");
+        let outcomes = outcomes.into_inner().unwrap();
+        for difference in messages::check(&corpus, &outcomes) {
+            problems.push(format!("a message changed: {difference}"));
+        }
+    }
     assert!(
         problems.is_empty(),
         "{} of {cases} cases (seed {seed}) broke a promise:\n{}",

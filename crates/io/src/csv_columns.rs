@@ -39,15 +39,15 @@ pub fn header<R: std::io::Read>(
 ) -> Result<csv::StringRecord, IoError> {
     let header = reader
         .headers()
-        .map_err(|source| IoError::CsvHeader { source })?
+        .map_err(|source| err!("cannot read the header row").caused_by(source))?
         .clone();
     if header.is_empty() {
-        return Err(IoError::EmptyTable { expected });
+        return Err(err!(
+            "the table is empty: expected a header row ({expected}) and data rows"
+        ));
     }
     if let Some(name) = duplicate(&header) {
-        return Err(IoError::DuplicateColumn {
-            name: name.to_string(),
-        });
+        return Err(err!("the header names column `{name}` twice"));
     }
     Ok(header)
 }
@@ -64,10 +64,11 @@ pub fn finite(
     text.parse::<f64>()
         .ok()
         .filter(|v| v.is_finite())
-        .ok_or_else(|| IoError::CellNotFinite {
-            line,
-            column: name.to_string(),
-            text: text.to_string(),
+        .ok_or_else(|| {
+            err!(
+                "line {line}: column `{column}`: {text:?} is not a finite number",
+                column = name,
+            )
         })
 }
 
@@ -95,9 +96,8 @@ pub fn csv_line(text: &str, position: Option<&csv::Position>) -> usize {
 
 /// Where the lines of a text start, for the line of any byte by binary
 /// search. Counting the line breaks before each record from the start of
-/// the file made every CSV reader quadratic in the file's size (issue 36:
-/// 81 s for a 3.5 MB DMA file); the index costs one pass and O(log n) per
-/// record.
+/// the file would make every CSV reader quadratic in the file's size; the
+/// index costs one pass and O(log n) per record.
 pub struct LineIndex<'t> {
     text: &'t str,
     /// Byte offsets of the '\n' characters, ascending.
@@ -168,19 +168,23 @@ pub(crate) fn dma_number(
     column: impl Fn() -> crate::error::ColumnRef,
     field: &str,
 ) -> Result<f64, IoError> {
-    let v: f64 = field.parse().map_err(|_| IoError::NotANumber {
-        path: path.to_path_buf(),
-        cell: Box::new(crate::error::CellRef::line(line)),
-        column: column(),
-        text: field.to_string(),
+    let v: f64 = field.parse().map_err(|_| {
+        err!(
+            "{}, {cell}: {column}: \"{text}\" is not a number",
+            path.display(),
+            cell = crate::error::CellRef::line(line),
+            column = column(),
+            text = field
+        )
     })?;
     if !v.is_finite() {
-        return Err(IoError::NotFinite {
-            path: path.to_path_buf(),
-            cell: Box::new(crate::error::CellRef::line(line)),
-            column: column(),
-            text: field.to_string(),
-        });
+        return Err(err!(
+            "{}, {cell}: {column}: {text} is not a finite number",
+            path.display(),
+            cell = crate::error::CellRef::line(line),
+            column = column(),
+            text = field
+        ));
     }
     Ok(v)
 }
@@ -191,7 +195,7 @@ mod tests {
 
     /// The line of a record the slow, obvious way: skip the breaks and
     /// comment lines after its position, then count the line breaks from
-    /// the start of the text (the reader's rule before issue 36).
+    /// the start of the text: the oracle the index is checked against.
     fn counted(text: &str, byte: usize) -> usize {
         let bytes = text.as_bytes();
         let mut i = byte.min(bytes.len());

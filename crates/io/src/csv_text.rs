@@ -2,7 +2,7 @@
 //! numbers with the shortest digits that round-trip, a header row, and no
 //! cell that is not a finite number.
 
-use crate::error::{Fault, IoError};
+use crate::error::IoError;
 
 /// Formats a number so that parsing it back gives the same f64: `{:e}`
 /// prints the shortest digits that round-trip, and the exponent form keeps
@@ -32,27 +32,28 @@ pub fn csv_text_bytes(
     rows: impl IntoIterator<Item = Vec<String>>,
 ) -> Result<Vec<u8>, IoError> {
     let mut writer = csv::Writer::from_writer(Vec::new());
-    writer.write_record(header).map_err(Fault::CsvEncode)?;
+    writer.write_record(header)?;
     for (i, row) in rows.into_iter().enumerate() {
         // [`number`] writes NaN and ±∞ so; no reader could use them.
         if let Some(k) = row
             .iter()
             .position(|cell| matches!(cell.as_str(), "NaN" | "inf" | "-inf"))
         {
-            return Err(IoError::NonFiniteCell {
-                row: i + 1,
-                column: header.get(k).copied().unwrap_or("?").to_string(),
-                value: row[k].clone(),
-            });
+            return Err(err!(
+                "the output's row {row} has {column} = {value}: not a finite number (refused rather than \
+         written)",
+                column = header.get(k).copied().unwrap_or("?").to_string(),
+                row = i + 1,
+                value = row[k]
+            ));
         }
-        writer.write_record(row).map_err(Fault::CsvEncode)?;
+        writer.write_record(row)?;
     }
-    writer
-        .into_inner()
-        .map_err(|e| Fault::CsvFinish {
-            source: e.into_error(),
-        })
-        .map_err(IoError::from)
+    writer.into_inner().map_err(|e| {
+        err!("cannot finish the CSV text")
+            .caused_by(e.into_error())
+            .internal()
+    })
 }
 
 #[cfg(test)]

@@ -1,4 +1,4 @@
-//! The DMA file of a joint fit (issue 35; `dma = FILE` in a scene's
+//! The DMA file of a joint fit (`dma = FILE` in a scene's
 //! `[fit]` or a batch manifest, `rollfit fit --dma FILE...|FOLDER`, the Python
 //! module's `dma=` keyword): read and grouped into isotherms by
 //! [`crate::dma_master::read_isotherms`], as `rollfit master` reads a DMA
@@ -12,7 +12,7 @@ use rollfit_fit::master::Isotherm;
 use rollfit_fit::{DmaRows, FitError};
 
 use crate::dma_master::{DmaInput, DmaIsotherms, read_isotherms};
-use crate::error::{DmaMasterError, IoError, RowRef};
+use crate::error::{IoError, RowRef};
 
 /// The DMA isotherms of a joint fit and what reading the file said.
 #[derive(Debug, Clone)]
@@ -64,7 +64,7 @@ fn refused(
     isotherm: Option<(&Isotherm, &Vec<usize>)>,
     error: FitError,
 ) -> IoError {
-    let source = Box::new(DmaMasterError::Fit { error });
+    let source = Box::new(err!("{error}"));
     let outside = |x: f64, (lo, hi): (f64, f64)| !(x.is_finite() && x >= lo && x <= hi);
     let point = isotherm.and_then(|(iso, indices)| {
         let k = (0..iso.omega.len())
@@ -81,15 +81,15 @@ fn refused(
     let path = path.to_path_buf();
     let line = point.and_then(|i| read.data.lines.get(i).copied());
     match line {
-        Some(number) => DmaMasterError::AtPoint {
-            path,
-            row: RowRef {
+        Some(number) => err!(
+            "DMA file {}, {row}",
+            path.display(),
+            row = RowRef {
                 sheet: read.data.sheet.clone(),
                 number: number as u64,
-            },
-            source,
-        },
-        None => DmaMasterError::InFile { path, source },
+            }
+        )
+        .caused_by(source),
+        None => err!("DMA file {}", path.display()).caused_by(source),
     }
-    .into()
 }

@@ -13,13 +13,15 @@
 //! give the same series. Nothing is written here: `rollfit master` writes
 //! the folder, [`crate::material_file`] its material.toml.
 
+use std::fmt;
+
 use rollfit_fit::master::{
     Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
 };
 
 pub use crate::dma::files::DmaInput;
 use crate::dma::{DmaData, ISOTHERM_GAP, ISOTHERM_SPAN, range};
-use crate::error::{DmaMasterError, IoError, TurnPoint};
+use crate::error::IoError;
 
 /// A master curve built from a DMA file.
 pub struct DmaMaster {
@@ -39,8 +41,7 @@ pub struct DmaMaster {
 
 /// Reads `input` and builds its master curve ([`read_isotherms`], then
 /// the master-curve fit). `poisson` converts shear moduli (E = 2(1+ν)G).
-/// Errors ([`DmaMasterError`]) name the file and, where one point is at
-/// fault, its line.
+/// Errors name the file and, where one point is at fault, its line.
 pub fn build(
     input: &DmaInput,
     poisson: f64,
@@ -72,18 +73,13 @@ pub fn build_told(
         true => indices.iter().map(|i| range(&data.points, i)).collect(),
         false => Vec::new(),
     };
-    let in_file = |source: DmaMasterError| DmaMasterError::InFile {
-        path: path.to_path_buf(),
-        source: Box::new(source),
-    };
+    let in_file = |source: IoError| err!("DMA file {}", path.display()).caused_by(source);
     let valid = settings
         .check(&isotherms)
-        .map_err(|error| in_file(DmaMasterError::Fit { error }))?;
-    let master =
-        build_master_curve(&isotherms, &valid).map_err(|error| DmaMasterError::MasterCurve {
-            path: path.to_path_buf(),
-            source: Box::new(DmaMasterError::Fit { error }),
-        })?;
+        .map_err(|error| in_file(err!("{error}")))?;
+    let master = build_master_curve(&isotherms, &valid).map_err(|error| {
+        err!("DMA file {}: master curve", path.display()).caused_by(err!("{error}"))
+    })?;
     Ok(DmaMaster {
         data,
         settings: valid.resolved(&master.shift),
@@ -112,7 +108,7 @@ pub struct DmaIsotherms {
 /// whose frequencies do not run one way: what `rollfit master`, a scene's
 /// `model = "dma"` and a joint fit's `dma` share. `poisson` converts shear
 /// moduli (E = 2(1+ν)G). A file without temperatures is one isotherm at
-/// `untimed` (None: refused, [`DmaMasterError::NoTemperature`]). Errors
+/// `untimed` (None: refused). Errors
 /// name the file and, where one point is at fault, its line.
 pub fn read_isotherms(
     input: &DmaInput,
@@ -121,7 +117,7 @@ pub fn read_isotherms(
 ) -> Result<DmaIsotherms, IoError> {
     let mut data = input
         .read(poisson, None)
-        .map_err(|e| DmaMasterError::Read { error: Box::new(e) })?;
+        .map_err(|e| err!("{error}", error = e))?;
     let path = data.path.clone();
     let path = path.as_path();
     let with_t = data
@@ -130,30 +126,40 @@ pub fn read_isotherms(
         .filter(|p| p.temperature.is_some())
         .count();
     let groups: Vec<(f64, Vec<usize>)> = if with_t == 0 {
-        let t = untimed.ok_or_else(|| DmaMasterError::NoTemperature {
-            path: path.to_path_buf(),
+        let t = untimed.ok_or_else(|| {
+            err!(
+                "DMA file {}: no point has a temperature: a joint fit places each DMA point at its \
+         temperature; add a T column, or give `T_ref` (the temperature of this one curve)",
+                path.display()
+            )
         })?;
         vec![(t, (0..data.points.len()).collect())]
     } else if with_t < data.points.len() {
-        return Err(DmaMasterError::TemperatureMissing {
-            path: path.to_path_buf(),
-            missing: data.points.len() - with_t,
-            total: data.points.len(),
-        }
-        .into());
+        return Err(err!(
+            "DMA file {}: {missing} of {total} points have no temperature: cannot tell which \
+         isotherm they belong to",
+            path.display(),
+            missing = data.points.len() - with_t,
+            total = data.points.len()
+        ));
     } else {
         let grouping = data.grouping();
         if let Some(ramp) = grouping.ramp {
-            return Err(DmaMasterError::Ramp {
-                path: path.to_path_buf(),
-                count: ramp.count,
-                low: ramp.low,
-                high: ramp.high,
-                widest_gap: ramp.widest_gap,
-                gap: ISOTHERM_GAP,
-                span: ISOTHERM_SPAN,
-            }
-            .into());
+            return Err(err!(
+                "DMA file {}: this looks like a temperature ramp, not isotherms: {count} points from \
+         {low:.2} to {high:.2} °C with no gap over {gap} K between neighbouring temperatures \
+         (the widest is {widest_gap:.2} K), where an isotherm spans at most {span} K. A \
+         temperature sweep at fixed frequency is not a set of isotherms: rollfit master needs \
+         frequency sweeps at several fixed temperatures (a column `Step`, `Set` or `Segment` \
+         says which points form one)",
+                path.display(),
+                count = ramp.count,
+                gap = ISOTHERM_GAP,
+                high = ramp.high,
+                low = ramp.low,
+                span = ISOTHERM_SPAN,
+                widest_gap = ramp.widest_gap
+            ));
         }
         grouping
             .isotherms
@@ -177,9 +183,12 @@ pub fn read_isotherms(
         }
         let (isotherm, firsts, note) = average_repeats(&data, temperature, &indices);
         data.notes.extend(note);
-        check_monotone(&data, temperature, &firsts).map_err(|source| DmaMasterError::InFile {
-            path: data.file_of(firsts[0]).to_path_buf(),
-            source: Box::new(source),
+        check_monotone(&data, temperature, &firsts).map_err(|source| {
+            err!(
+                "DMA file {}",
+                (data.file_of(firsts[0]).to_path_buf()).display()
+            )
+            .caused_by(source)
         })?;
         sets.push(isotherm);
         kept.push(firsts);
@@ -256,11 +265,7 @@ fn runs_repeated(data: &DmaData, indices: &[usize]) -> usize {
 
 /// Refuses an isotherm whose frequencies neither rise nor fall
 /// throughout, naming the lines where the sweep turns.
-fn check_monotone(
-    data: &DmaData,
-    temperature: f64,
-    indices: &[usize],
-) -> Result<(), DmaMasterError> {
+fn check_monotone(data: &DmaData, temperature: f64, indices: &[usize]) -> Result<(), IoError> {
     let omega: Vec<f64> = indices.iter().map(|&i| data.points[i].omega).collect();
     let Some(k) = sweep_turn(&omega) else {
         return Ok(());
@@ -274,5 +279,38 @@ fn check_monotone(
         .filter(|&j| j <= k || omega[k] != omega[k - 1])
         .map(at)
         .collect();
-    Err(DmaMasterError::NotMonotone { temperature, turn })
+    Err(err!(
+        "the isotherm at {temperature:.2} °C has frequencies that are not monotone ({}): a sweep \
+         runs up or down once; split a repeated sweep into its own temperature or remove the \
+         repeated points",
+        turn_list(&turn)
+    ))
+}
+
+/// A point of an isotherm where its sweep turns, as a message names it:
+/// `line 13: ω = 5.2e0 rad/s`, or `point 7: …` where the file has no line
+/// for it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct TurnPoint {
+    /// The point's file line, if known.
+    line: Option<usize>,
+    /// Its index among the file's points, from 0.
+    index: usize,
+    /// Its frequency, rad/s.
+    omega: f64,
+}
+
+impl fmt::Display for TurnPoint {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(l) => write!(f, "line {l}: ω = {:e} rad/s", self.omega),
+            None => write!(f, "point {}: ω = {:e} rad/s", self.index + 1, self.omega),
+        }
+    }
+}
+
+/// `line 12: ω = …, line 13: ω = …`.
+fn turn_list(turn: &[TurnPoint]) -> String {
+    let listed: Vec<String> = turn.iter().map(TurnPoint::to_string).collect();
+    listed.join(", ")
 }

@@ -25,7 +25,7 @@ use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use crate::error::{InputError, IoError};
+use crate::error::IoError;
 
 /// The environment variable that sets the size limit of an input file.
 pub const LIMIT_VARIABLE: &str = "ROLLFIT_MAX_INPUT_BYTES";
@@ -118,33 +118,47 @@ pub fn read_input(
     kind: &'static str,
     unreadable: impl Fn(std::io::Error) -> IoError,
 ) -> Result<Vec<u8>, IoError> {
-    let limit = limit().map_err(|value| InputError::BadLimit {
-        kind,
-        path: path.to_path_buf(),
-        value,
+    let limit = limit().map_err(|value| {
+        err!(
+            "cannot read {kind} {}: {LIMIT_VARIABLE} = {value:?} is not a size: give bytes \
+         (1000000) or a number with K, M, G or T (500M, 2G; powers of 1024), at least 1",
+            path.display()
+        )
     })?;
-    let too_large = |size| InputError::TooLarge {
-        kind,
-        path: path.to_path_buf(),
-        size,
-        limit,
+    let too_large = |size| {
+        let kind = &kind;
+        let path = &path.to_path_buf();
+        let size = &size;
+        let limit = &limit;
+        err!(
+            "{kind} {} {}; set {LIMIT_VARIABLE} to raise it (e.g. {LIMIT_VARIABLE}=4G)",
+            path.display(),
+            match size {
+                Some(size) => format!(
+                    "is {}, more than the limit of {} on an input file",
+                    size_text(*size),
+                    size_text(*limit)
+                ),
+                None => format!(
+                    "holds more than the limit of {} on an input file (more than its stated size: it \
+                 grew while read, or is no ordinary file)",
+                    size_text(*limit)
+                ),
+            }
+        )
     };
-    let not_regular = |found| InputError::NotRegular {
-        kind,
-        path: path.to_path_buf(),
-        found,
-    };
+    let not_regular = |found: FileType| err!("{kind} {} {}", path.display(), found.refusal());
     if path.as_os_str() == STANDARD_INPUT {
         return streamed(path, || {
             let stdin = std::io::stdin();
             let metadata = standard_input_metadata().map_err(&unreadable)?;
             match FileType::of(metadata.file_type()) {
-                None if metadata.len() > limit => Err(too_large(Some(metadata.len())).into()),
+                None if metadata.len() > limit => Err(too_large(Some(metadata.len()))),
                 None | Some(FileType::Fifo) if !stdin.is_terminal() => {
                     read_bounded(stdin.lock(), limit, &too_large, &unreadable, 0)
                 }
                 // A terminal would wait for typing; a device may never end.
-                _ => Err(not_regular(FileType::Terminal).into()),
+                _ => Err(not_regular(FileType::Terminal)),
             }
         });
     }
@@ -161,10 +175,10 @@ pub fn read_input(
                 read_bounded(file, limit, &too_large, &unreadable, 0)
             });
         }
-        Some(found) => return Err(not_regular(found).into()),
+        Some(found) => return Err(not_regular(found)),
     }
     if metadata.len() > limit {
-        return Err(too_large(Some(metadata.len())).into());
+        return Err(too_large(Some(metadata.len())));
     }
     let file = std::fs::File::open(path).map_err(&unreadable)?;
     // The stated size reserves the memory once; a wrong one costs only
@@ -179,7 +193,7 @@ pub fn read_input(
 fn read_bounded(
     source: impl Read,
     limit: u64,
-    too_large: &dyn Fn(Option<u64>) -> InputError,
+    too_large: &dyn Fn(Option<u64>) -> IoError,
     unreadable: &dyn Fn(std::io::Error) -> IoError,
     capacity: usize,
 ) -> Result<Vec<u8>, IoError> {
@@ -189,7 +203,7 @@ fn read_bounded(
         .read_to_end(&mut bytes)
         .map_err(unreadable)?;
     if bytes.len() as u64 > limit {
-        return Err(too_large(None).into());
+        return Err(too_large(None));
     }
     Ok(bytes)
 }

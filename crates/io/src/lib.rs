@@ -33,14 +33,15 @@
 //!   the lock of a folder.
 //!
 //! Every function returns [`IoError`], whose messages name the file and,
-//! where there is one, the line, column or key at fault (measured data,
-//! modulus tables, scene files, manifests and master curves through
-//! [`DataError`], [`TableError`], [`SceneError`], [`ManifestError`] and
-//! [`DmaMasterError`], whose causes inside a file are the source of a
-//! variant naming the file: `{:#}` prints both, as the command line does).
+//! where there is one, the line, column or key at fault (a cause found
+//! inside a file is the source of an error naming the file: `{:#}` prints
+//! both, as the command line does).
 //! Nothing here prints; the command line decides what a user sees (a
 //! reader's notes reach it through a callback).
 
+// First: its `err!` serves every module below.
+#[macro_use]
+pub mod error;
 pub mod columns;
 pub mod csv_columns;
 pub mod csv_text;
@@ -48,7 +49,6 @@ pub mod data;
 pub mod dma;
 pub mod dma_joint;
 pub mod dma_master;
-pub mod error;
 pub mod fit_dir;
 pub mod input_file;
 pub mod manifest;
@@ -61,7 +61,7 @@ pub mod table;
 pub mod text_file;
 
 pub use data::DataTable;
-pub use error::{DataError, DmaMasterError, Fault, IoError, ManifestError, SceneError, TableError};
+pub use error::{ErrorKind, IoError};
 pub use fit_dir::FitDir;
 pub use table::ModulusTable;
 

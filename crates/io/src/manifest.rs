@@ -28,9 +28,9 @@
 //! bad setting values (syntax and range, [`FitSettings::check`]) while
 //! deserializing (toml then points at the line),
 //! then what serde cannot see — missing keys, names, duplicates, files that
-//! do not exist. Every message ([`ManifestError`]) names the entry (by
-//! name, else by its position) and its line; [`load`] adds the manifest's
-//! path ([`ManifestError::InFile`]). Only the
+//! do not exist. Every message names the entry (by name, else by its
+//! position) and its line; [`load`] puts the manifest's path before it.
+//! Only the
 //! contents of the scene and data files are left to the fits themselves: a
 //! broken scene fails its own entry, not the batch.
 
@@ -43,7 +43,8 @@ use serde::Deserialize;
 use serde::de::{Deserializer, MapAccess, Visitor};
 use toml::Spanned;
 
-use crate::error::{EntryProblem, EntryRef, IoError, ManifestError, TomlPlace};
+use crate::error::manifest::problem_list;
+use crate::error::{EntryProblem, EntryRef, IoError, TomlPlace};
 use crate::scene::fit_settings::{Key, TableSettings, join};
 
 /// The settings a manifest takes: those of the `fit` flags.
@@ -114,29 +115,31 @@ pub fn load(path: &Path) -> Result<Manifest, IoError> {
     let text = crate::text_file::read_utf8(path, "manifest")?;
     let base = path.parent().unwrap_or(Path::new(""));
     check(&text, base).map_err(|e| {
-        ManifestError::InFile {
-            path: path.to_path_buf(),
-            source: Box::new(e),
-        }
-        .into()
+        err!("manifest {}", path.display())
+            .in_file(path)
+            .caused_by(e)
     })
 }
 
 /// Parses and checks manifest text; `base` is the folder relative paths
 /// start from.
 pub fn parse(text: &str, base: &Path) -> Result<Manifest, IoError> {
-    Ok(check(text, base)?)
+    check(text, base)
 }
 
 /// [`parse`], with the manifest's own error.
-fn check(text: &str, base: &Path) -> Result<Manifest, ManifestError> {
-    let raw: RawManifest = toml::from_str(text).map_err(|error| ManifestError::Toml {
-        place: error.span().and_then(|span| locate_entry(text, span.start)),
-        error: Box::new(error),
+fn check(text: &str, base: &Path) -> Result<Manifest, IoError> {
+    let raw: RawManifest = toml::from_str(text).map_err(|error| {
+        let place = error.span().and_then(|span| locate_entry(text, span.start));
+        let place = place.map_or(String::new(), |p| format!("{p}: "));
+        err!("{place}{}", error.to_string().trim_end())
     })?;
     let (defaults, default_dma) = raw.defaults.map(|d| (d.0, d.1)).unwrap_or_default();
     if raw.entry.is_empty() {
-        return Err(ManifestError::NoEntries);
+        return Err(err!(
+            "no entries: list each fit as an [[entry]] with a name, a scene and a data file (see the \
+         docs/user-guide.md, \"Batches\")"
+        ));
     }
     let entries = check_entries(text, base, raw.entry, default_dma.as_ref())?;
     Ok(Manifest { defaults, entries })
@@ -148,7 +151,7 @@ fn check_entries(
     base: &Path,
     raw_entries: Vec<Spanned<RawEntry>>,
     default_dma: Option<&Spanned<String>>,
-) -> Result<Vec<Entry>, ManifestError> {
+) -> Result<Vec<Entry>, IoError> {
     let total = raw_entries.len();
     let mut problems = Vec::new();
     let mut entries = Vec::new();
@@ -240,7 +243,7 @@ fn check_entries(
         }
     }
     if !problems.is_empty() {
-        return Err(ManifestError::Entries { problems });
+        return Err(err!("{}", problem_list(&problems)));
     }
     Ok(entries)
 }

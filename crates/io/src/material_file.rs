@@ -16,7 +16,7 @@ use rollfit_model::{Prony, ViscoelasticModulus};
 use serde::Serialize;
 
 use crate::dma_master::DmaMaster;
-use crate::error::{Fault, IoError};
+use crate::error::IoError;
 use crate::relaxation_master::RelaxationBuilt;
 
 #[derive(Serialize)]
@@ -213,9 +213,10 @@ fn encode_source(source: &Source<'_>) -> Result<Vec<u8>, IoError> {
             shift,
         },
     };
-    let body = toml::to_string(&file).map_err(|source| Fault::TomlEncode {
-        file: "material.toml",
-        source,
+    let body = toml::to_string(&file).map_err(|source| {
+        err!("cannot format material.toml")
+            .caused_by(source)
+            .internal()
     })?;
     let mut text = format!(
         "# Written by rollfit master from {} ({} {}, {} points).\n\

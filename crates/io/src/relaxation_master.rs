@@ -13,7 +13,7 @@ use rollfit_fit::master::{DEFAULT_T_REF, MasterSettings, ValidMasterSettings};
 
 use crate::dma::ModulusKind;
 use crate::dma::relaxation::{RelaxationData, groups};
-use crate::error::{DmaMasterError, IoError};
+use crate::error::IoError;
 
 /// A master curve built from a relaxation file.
 pub struct RelaxationBuilt {
@@ -69,18 +69,12 @@ pub fn build(
         }
         isotherms.push(isotherm);
     }
-    let in_file = |source: DmaMasterError| DmaMasterError::InFile {
-        path: path.to_path_buf(),
-        source: Box::new(source),
-    };
+    let in_file = |source: IoError| err!("DMA file {}", path.display()).caused_by(source);
     let valid = settings
         .check_time(&isotherms, data.quantity)
-        .map_err(|error| in_file(DmaMasterError::Fit { error }))?;
+        .map_err(|error| in_file(err!("{error}")))?;
     let master = build_time_master(&isotherms, data.quantity, &valid).map_err(|error| {
-        DmaMasterError::MasterCurve {
-            path: path.to_path_buf(),
-            source: Box::new(DmaMasterError::Fit { error }),
-        }
+        err!("DMA file {}: master curve", path.display()).caused_by(err!("{error}"))
     })?;
     Ok(RelaxationBuilt {
         data,

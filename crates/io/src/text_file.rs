@@ -11,6 +11,7 @@
 
 use std::path::Path;
 
+use crate::error::found_byte;
 use crate::error::{InvalidText, IoError};
 use crate::input_file::read_input;
 
@@ -18,32 +19,29 @@ use crate::input_file::read_input;
 /// error names the file and, for bytes that are not UTF-8, the line, the
 /// byte offset in the file and the byte itself.
 pub fn read_utf8(path: &Path, kind: &'static str) -> Result<String, IoError> {
-    let bytes = read_input(path, kind, |source| IoError::ReadText {
-        kind,
-        path: path.to_path_buf(),
-        source,
+    let bytes = read_input(path, kind, |source| {
+        err!("cannot read {kind} {}", path.display())
+            .in_file(path)
+            .system(source)
     })?;
     String::from_utf8(bytes).map_err(|e| {
         let bytes = e.as_bytes();
         let offset = e.utf8_error().valid_up_to();
         let (line, byte_in_line) = line_and_column(bytes, offset);
-        IoError::TextNotUtf8 {
-            kind,
-            path: path.to_path_buf(),
-            line,
-            offset,
-            byte: bytes[offset],
-            byte_in_line,
-        }
+        err!(
+            "{kind} {}, line {line}: not UTF-8: byte 0x{byte:02X} at byte offset {offset} (byte \
+         {byte_in_line} of the line); save the file as UTF-8 text",
+            path.display(),
+            byte = bytes[offset]
+        )
     })
 }
 
 /// The text of a file that must be UTF-8 (what rollfit writes), or an
 /// error naming the line and byte offset of the first invalid byte.
 pub(crate) fn read_utf8_file(path: &Path) -> Result<String, IoError> {
-    let bytes = read_input(path, "result file", |source| IoError::Read {
-        path: path.to_path_buf(),
-        source,
+    let bytes = read_input(path, "result file", |source| {
+        err!("{}: {source}", path.display()).system(source)
     })?;
     String::from_utf8(bytes).map_err(|e| {
         let offset = e.utf8_error().valid_up_to();
@@ -65,14 +63,11 @@ pub(crate) fn invalid_text(
     problem: InvalidText,
 ) -> IoError {
     let (line, byte_in_line) = line_and_column(bytes, offset);
-    IoError::InvalidText {
-        path: path.to_path_buf(),
-        line,
-        problem,
-        found: bytes.get(offset).copied(),
-        offset,
-        byte_in_line,
-    }
+    err!(
+        "{}, line {line}: {problem}: {} at byte offset {offset} (byte {byte_in_line} of the line)",
+        path.display(),
+        found_byte(bytes.get(offset).copied())
+    )
 }
 
 /// The line (from 1) of byte `offset` and its place in the line (from 1).

@@ -38,28 +38,15 @@ pub fn value_error_text(text: impl Into<String>) -> PyErr {
     PyValueError::new_err(text.into())
 }
 
-/// An I/O error of rollfit_io: a file that cannot be read or written is
-/// `OSError`, a file whose content is wrong `ValueError`; both with the
-/// CLI's text.
+/// An I/O error of rollfit_io: a file that cannot be read or written (an
+/// error of kind [`rollfit_io::ErrorKind::System`]) is `OSError`, a file
+/// whose content is wrong `ValueError`; both with the CLI's text.
 pub fn io_error(error: &rollfit_io::IoError) -> PyErr {
     let text = rollfit_io::chain(error);
-    if is_os_failure(error) {
-        PyOSError::new_err(text)
-    } else {
-        PyValueError::new_err(text)
+    match error.kind() {
+        rollfit_io::ErrorKind::System => PyOSError::new_err(text),
+        _ => PyValueError::new_err(text),
     }
-}
-
-/// Whether the error's chain holds an operating-system failure.
-fn is_os_failure(error: &(dyn std::error::Error + 'static)) -> bool {
-    let mut source: Option<&(dyn std::error::Error + 'static)> = Some(error);
-    while let Some(e) = source {
-        if e.is::<std::io::Error>() {
-            return true;
-        }
-        source = e.source();
-    }
-    false
 }
 
 /// The values of a 1-D array argument, copied (the array may change while

@@ -7,7 +7,7 @@
 //! thousands separator).
 
 use super::source::Source;
-use crate::error::{CellRef, ColumnName, DataError};
+use crate::error::{CellRef, ColumnName, IoError};
 
 /// One cell of a row.
 #[derive(Debug, Clone, PartialEq)]
@@ -199,22 +199,21 @@ pub(super) fn number(
     source: &Source,
     decimal_commas: &mut bool,
     at: &dyn Fn() -> (CellRef, ColumnName),
-) -> Result<Option<Number>, DataError> {
+) -> Result<Option<Number>, IoError> {
     let number = parse_number(cell, source.decimal_comma()).map_err(|problem| {
         let (cell, column) = at();
         match problem {
-            NotNumber::Other(what) => DataError::NonNumericValue { cell, column, what },
+            NotNumber::Other(what) => err!("{cell}: column {column}: {what} is not a number"),
             NotNumber::AmbiguousComma(text) => {
-                DataError::AmbiguousDecimalComma { cell, column, text }
+                err!("{cell}: column {column}: {text:?}: a decimal comma in a comma-delimited file is \
+         ambiguous; export with ';' as the delimiter, or with decimal points")
             }
-            NotNumber::Thousands(text) => DataError::ThousandsSeparator { cell, column, text },
-            NotNumber::Text(text) => DataError::NotANumber { cell, column, text },
-            NotNumber::NotFinite(text) => DataError::NotFinite { cell, column, text },
-            NotNumber::Formula(formula) => DataError::FormulaWithoutValue {
-                cell,
-                column,
-                formula,
-            },
+            NotNumber::Thousands(text) => err!("{cell}: column {column}: {text:?} is not a number (thousands separators are not \
+         understood)"),
+            NotNumber::Text(text) => err!("{cell}: column {column}: {text:?} is not a number"),
+            NotNumber::NotFinite(text) => err!("{cell}: column {column}: {text:?} is not a finite number"),
+            NotNumber::Formula(formula) => err!("{cell}: column {column}: the cell holds a formula (={formula}) the file saved no result \
+         for; open it in Excel or LibreOffice and save, so its value is stored"),
         }
     })?;
     if number.as_ref().is_some_and(|n| n.comma) {

@@ -11,7 +11,8 @@ use super::headers::{self, Header};
 use super::quantity::Quantity;
 use super::source::Source;
 use super::units::{Conversion, Unit, speed_unit};
-use crate::error::{ColumnName, DataError};
+use crate::error::data::column_of;
+use crate::error::{ColumnName, IoError};
 
 /// What each cell of `row` names as a header.
 pub(super) fn classify(row: &Row) -> Vec<Header> {
@@ -66,7 +67,7 @@ pub(super) type RowUnits = Vec<Option<Unit>>;
 pub(super) fn columns(
     source: &Source,
     rows: &[Row],
-) -> Result<(NamedColumns, Option<RowUnits>), DataError> {
+) -> Result<(NamedColumns, Option<RowUnits>), IoError> {
     let row = &rows[0];
     let mut columns: NamedColumns = Vec::new();
     for (index, (cell, header)) in row.cells.iter().zip(classify(row)).enumerate() {
@@ -74,24 +75,26 @@ pub(super) fn columns(
         let (quantity, unit) = match header {
             Header::Other => continue,
             Header::BadUnit { quantity, unit } => {
-                return Err(DataError::UnknownUnit {
-                    row: source.row(row.number),
-                    header: raw,
-                    quantity,
-                    unit,
-                });
+                return Err(err!(
+                    "{row} (header): column {header:?}: unknown {} unit {unit:?}; units understood: {}",
+                    quantity.what(),
+                    quantity.units(),
+                    header = raw,
+                    row = source.row(row.number)
+                ));
             }
             Header::Column { quantity, unit } => (quantity, unit),
         };
         if let Some((other, _)) = columns.iter().find(|(c, _)| c.quantity == quantity) {
-            return Err(DataError::TwoColumns {
-                row: source.row(row.number),
-                quantity,
-                first: other.raw.clone(),
-                first_index: other.index,
-                second: raw,
-                second_index: index,
-            });
+            return Err(err!(
+                "{row} (header): two {} columns, {first:?} ({}) and {second:?} ({}): keep one",
+                quantity.what(),
+                column_of(&source.row(row.number), other.index),
+                column_of(&source.row(row.number), index),
+                first = other.raw,
+                row = source.row(row.number),
+                second = raw
+            ));
         }
         columns.push((
             Column {
@@ -118,7 +121,7 @@ fn units_row(
     source: &Source,
     row: &Row,
     columns: &NamedColumns,
-) -> Option<Result<RowUnits, DataError>> {
+) -> Option<Result<RowUnits, IoError>> {
     let number = |c: &Cell| match c {
         Cell::Number(_) => true,
         Cell::Text(t) => t.replace(',', ".").parse::<f64>().is_ok(),
@@ -145,24 +148,30 @@ fn units_row(
             _ => false,
         };
         return bracketed.then(|| {
-            Err(DataError::UnknownUnitInUnitsRow {
-                cell: source.cell(row.number, speed.0.index),
-                header: speed.0.raw.clone(),
-                quantity: speed.0.quantity,
-                unit: text(speed.0.index),
-            })
+            Err(err!(
+                "{cell}: column {header:?}: unknown {} unit {unit:?} in the units row; units \
+         understood: {}",
+                speed.0.quantity.what(),
+                speed.0.quantity.units(),
+                cell = source.cell(row.number, speed.0.index),
+                header = speed.0.raw,
+                unit = text(speed.0.index)
+            ))
         });
     }
     let mut units = Vec::new();
     for (column, named) in columns {
         let written = text(column.index);
         let Ok(unit) = headers::unit_cell(column.quantity, &written) else {
-            return Some(Err(DataError::UnknownUnitInUnitsRow {
-                cell: source.cell(row.number, column.index),
-                header: column.raw.clone(),
-                quantity: column.quantity,
-                unit: written,
-            }));
+            return Some(Err(err!(
+                "{cell}: column {header:?}: unknown {} unit {unit:?} in the units row; units \
+         understood: {}",
+                column.quantity.what(),
+                column.quantity.units(),
+                cell = source.cell(row.number, column.index),
+                header = column.raw,
+                unit = written
+            )));
         };
         units.push(if named.is_some() { None } else { unit });
     }

@@ -45,7 +45,7 @@
 //! greater than zero (the default weights are relative, 1/μ²), and each
 //! within the ranges of `rollfit_fit::data`. Repeated speeds and unsorted
 //! rows are normal in real data and kept as they are, in file order
-//! (`rows.rs`). Errors ([`DataError`]) name the file, the line (for a
+//! (`rows.rs`). Errors name the file, the line (for a
 //! workbook the sheet and the cell) and the column, and when a column is
 //! missing list the columns found.
 
@@ -64,7 +64,7 @@ use std::path::Path;
 
 use rollfit_fit::Measurements;
 
-use crate::error::{DataError, IoError};
+use crate::error::{ErrorKind, IoError};
 
 pub use quantity::Quantity;
 
@@ -92,7 +92,7 @@ pub struct DataTable {
 
 impl DataTable {
     /// The validated measurements of the fit library; its refusal is
-    /// [`DataError::Measurements`] (the caller names the file).
+    /// the fit library's own message (the caller names the file).
     pub fn measurements(&self) -> Result<Measurements, IoError> {
         Measurements::new(
             self.speeds.clone(),
@@ -100,7 +100,7 @@ impl DataTable {
             self.sigma.clone(),
             self.temperature.clone(),
         )
-        .map_err(|e| DataError::Measurements(e).into())
+        .map_err(|e| IoError::transparent(ErrorKind::Content, e))
     }
 
     /// The distinct temperatures of a `T` column, in order of appearance.
@@ -126,28 +126,22 @@ pub fn read(path: &Path) -> Result<DataTable, IoError> {
 /// Errors name the file.
 pub fn read_sheet(path: &Path, sheet: Option<&str>) -> Result<DataTable, IoError> {
     let bytes = crate::input_file::read_input(path, "data file", |source| {
-        DataError::Open {
-            path: path.to_path_buf(),
-            source,
-        }
-        .into()
+        err!("cannot open data file {}", path.display()).system(source)
     })?;
-    let in_file = |cause: DataError| -> IoError {
-        DataError::InFile {
-            path: path.to_path_buf(),
-            source: Box::new(cause),
-        }
-        .into()
+    let in_file = |cause: IoError| -> IoError {
+        err!("data file {}", path.display())
+            .in_file(path)
+            .caused_by(cause)
     };
     if workbook::is_workbook(path, &bytes) {
         return workbook::parse(path, bytes, sheet).map_err(in_file);
     }
     if let Some(sheet) = sheet {
-        return Err(DataError::SheetOfText {
-            path: path.to_path_buf(),
-            sheet: sheet.to_string(),
-        }
-        .into());
+        return Err(err!(
+            "data file {}: a sheet ({sheet:?}) was given, but the file is text, not a workbook \
+         (.xlsx, .xlsm, .xlsb, .xls, .ods)",
+            path.display(),
+        ));
     }
     text::parse_bytes(bytes).map_err(in_file)
 }

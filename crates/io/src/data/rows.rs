@@ -15,8 +15,12 @@ use super::header_row::{self, Column, NamedColumns, classify};
 use super::quantity::Quantity;
 use super::source::Source;
 use super::units::Conversion;
-use crate::error::DataError;
+use crate::error::IoError;
+use crate::error::data::missing_columns;
+use crate::error::data::quoted_list;
+use crate::error::data::why_positive;
 use crate::error::data::{delimiter_name, key_list};
+use rollfit_fit::data::SIGMA_REQUIREMENT;
 
 /// The table of `rows` with its header at position `header` (None: no
 /// header found, an error about the first row); `notes` so far (the
@@ -31,20 +35,23 @@ pub(super) fn table(
     rows: impl IntoIterator<Item = Row>,
     header: Option<usize>,
     mut notes: Vec<String>,
-) -> Result<DataTable, DataError> {
+) -> Result<DataTable, IoError> {
     let mut rows = rows.into_iter();
     let Some(header) = header else {
-        let first = rows.find(|r| !r.is_blank()).ok_or(DataError::Empty)?;
+        let first = rows.find(|r| !r.is_blank()).ok_or(err!(
+            "the file is empty: expected a header row (v, mu, optionally sigma and T) and data rows"
+        ))?;
         return Err(no_header(source, &first));
     };
     // The header, the rows above it and the one below.
     let head: Vec<Row> = rows.by_ref().take(header + 2).collect();
-    let first = head
-        .iter()
-        .position(|r| !r.is_blank())
-        .ok_or(DataError::Empty)?;
+    let first = head.iter().position(|r| !r.is_blank()).ok_or(err!(
+        "the file is empty: expected a header row (v, mu, optionally sigma and T) and data rows"
+    ))?;
     let Some(header_row) = head.get(header) else {
-        return Err(DataError::Empty);
+        return Err(err!(
+            "the file is empty: expected a header row (v, mu, optionally sigma and T) and data rows"
+        ));
     };
     if header > first {
         let titles = head[first..header].iter().filter(|r| !r.is_blank()).count();
@@ -115,17 +122,21 @@ fn speed_in_mm_hint(raw: &str, speeds: &[f64]) -> Option<String> {
 
 /// The error of a file without a header: what `row`, its first row, does
 /// not name.
-fn no_header(source: &Source, row: &Row) -> DataError {
+fn no_header(source: &Source, row: &Row) -> IoError {
     let names = classify(row);
-    DataError::NoHeader {
-        row: source.row(row.number),
-        missing: [Quantity::Speed, Quantity::Friction]
-            .into_iter()
-            .filter(|q| !names.iter().any(|h| h.quantity() == Some(*q)))
-            .collect(),
-        found: row.names(),
-        delimiter: source.delimiter(),
-    }
+    let missing: Vec<Quantity> = [Quantity::Speed, Quantity::Friction]
+        .into_iter()
+        .filter(|q| !names.iter().any(|h| h.quantity() == Some(*q)))
+        .collect();
+    let delimiter = source.delimiter().map_or(String::new(), |d| {
+        format!(" (delimiter {})", delimiter_name(d))
+    });
+    err!(
+        "{} (header): {}; found {}{delimiter}",
+        source.row(row.number),
+        missing_columns(&missing),
+        quoted_list(&row.names())
+    )
 }
 
 /// The columns with their conversions, and a note for each column whose
@@ -206,7 +217,7 @@ fn read_rows(
     rows: impl Iterator<Item = Row>,
     header_row: &Row,
     columns: &[Column],
-) -> Result<Read, DataError> {
+) -> Result<Read, IoError> {
     let mut read = Read {
         values: Default::default(),
         lines: Vec::new(),
@@ -243,26 +254,32 @@ fn check_width(
     row: &Row,
     header_row: &Row,
     columns: &[Column],
-) -> Result<(), DataError> {
+) -> Result<(), IoError> {
     let width = header_row.cells.len();
     let extra = row.cells.get(width..).unwrap_or_default();
     if extra.iter().any(|c| !c.is_empty()) {
-        return Err(DataError::ExtraFields {
-            row: source.row(row.number),
-            fields: row.cells.len() - row.trailing_empty(),
-            header_row: source.row(header_row.number),
-            width,
-            comma_delimited: !source.decimal_comma(),
-        });
+        return Err(err!(
+            "{row}: malformed row: {fields} fields, the header ({header_row}) has {width}{}",
+            if !source.decimal_comma() {
+                "; if the numbers have decimal commas (0,0123), a comma-delimited file is \
+             ambiguous: export with ';' as the delimiter, or with decimal points"
+            } else {
+                ""
+            },
+            fields = row.cells.len() - row.trailing_empty(),
+            header_row = source.row(header_row.number),
+            row = source.row(row.number)
+        ));
     }
     let needed = columns.iter().map(|c| c.index + 1).max().unwrap_or(0);
     if row.cells.len() < needed {
-        return Err(DataError::MissingFields {
-            row: source.row(row.number),
-            fields: row.cells.len(),
-            header_row: source.row(header_row.number),
-            width,
-        });
+        return Err(err!(
+            "{row}: malformed row: {fields} field{}, the header ({header_row}) has {width}",
+            if row.cells.len() == 1 { "" } else { "s" },
+            fields = row.cells.len(),
+            header_row = source.row(header_row.number),
+            row = source.row(row.number)
+        ));
     }
     Ok(())
 }
@@ -275,7 +292,7 @@ fn read_row(
     row: &Row,
     columns: &[Column],
     read: &mut Read,
-) -> Result<[Option<f64>; 4], DataError> {
+) -> Result<[Option<f64>; 4], IoError> {
     let mut values = [None; 4];
     for column in columns {
         let at = || (source.cell(row.number, column.index), column.name());
@@ -293,15 +310,17 @@ fn read_row(
         let value = column.conversion.apply(number.value, &number.decimal);
         if let Some(requirement) = column_requirement(column.quantity.key(), value) {
             let (cell, column_name) = at();
-            return Err(DataError::OutOfRange {
-                cell,
-                column: column_name,
-                text: number.shown,
-                value,
-                // A range bound on a converted value: show what it became.
-                converted: !column.conversion.is_identity() && value > 0.0,
-                requirement,
-            });
+            return Err(err!(
+                "{cell}: column {column} = {text}{}: {requirement}{}",
+                if !column.conversion.is_identity() && value > 0.0 {
+                    format!(" ({value:e} {} in SI)", column_name.quantity.key())
+                } else {
+                    String::new()
+                },
+                why_positive(column_name.quantity, value),
+                column = column_name,
+                text = number.shown
+            ));
         }
         values[column.quantity.index()] = Some(value);
     }
@@ -314,7 +333,7 @@ fn check_sigma(
     row: &Row,
     columns: &[Column],
     values: &[Option<f64>; 4],
-) -> Result<(), DataError> {
+) -> Result<(), IoError> {
     if let (Some(sigma), Some(mu)) = (
         values[Quantity::Sigma.index()],
         values[Quantity::Friction.index()],
@@ -324,11 +343,11 @@ fn check_sigma(
             .iter()
             .find(|c| c.quantity == Quantity::Sigma)
             .expect("a sigma value comes from a sigma column");
-        return Err(DataError::SigmaTooSmall {
-            cell: source.cell(row.number, column.index),
-            column: column.name(),
-            sigma,
-        });
+        return Err(err!(
+            "{cell}: column {column} = {sigma:e}: {SIGMA_REQUIREMENT}",
+            cell = source.cell(row.number, column.index),
+            column = column.name()
+        ));
     }
     Ok(())
 }
@@ -339,7 +358,7 @@ fn finish(
     columns: &[Column],
     read: Read,
     notes: Vec<String>,
-) -> Result<DataTable, DataError> {
+) -> Result<DataTable, IoError> {
     let mut warnings = Vec::new();
     if !read.skipped.is_empty() {
         let quantities: Vec<Quantity> = Quantity::ALL
@@ -357,14 +376,17 @@ fn finish(
                 .map_or(String::new(), |e| format!("; the first error: {e}"))
         ));
         if read.lines.is_empty() {
-            return Err(DataError::AllRowsSkipped {
-                quantities,
-                rows: source.rows(&read.skipped),
-            });
+            return Err(err!(
+                "no data rows left: every row has an empty or NaN cell in {} ({rows}): nothing to fit",
+                key_list(&quantities),
+                rows = source.rows(&read.skipped)
+            ));
         }
     }
     if read.lines.is_empty() {
-        return Err(DataError::NoDataRows);
+        return Err(err!(
+            "the file has a header but no data rows: nothing to fit"
+        ));
     }
     let [speeds, friction, sigma, temperature] = read.values;
     let has = |q: Quantity| columns.iter().any(|c| c.quantity == q);

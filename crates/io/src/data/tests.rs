@@ -6,9 +6,9 @@ use super::headers;
 use super::text::parse_bytes;
 use super::*;
 use crate::chain;
-use crate::error::DataError;
+use crate::error::IoError;
 
-fn parse_str(text: &str) -> Result<DataTable, DataError> {
+fn parse_str(text: &str) -> Result<DataTable, IoError> {
     parse_bytes(text.as_bytes().to_vec())
 }
 
@@ -87,7 +87,7 @@ fn errors_name_the_line_and_column() {
 }
 
 /// Values no measurement reaches, which would overflow the weighted
-/// residuals (issue 14: μ = 1e300 and σ = 1e-300 once gave an infinite
+/// residuals (μ = 1e300 and σ = 1e-300 once gave an infinite
 /// objective and a fit.json with null in it).
 #[test]
 fn values_outside_a_rolling_measurement_are_refused() {
@@ -512,7 +512,7 @@ fn forward_output_and_time_columns() {
 
 /// Speeds in mm/s under a header without a unit read as m/s, three decades
 /// too fast: a median above 1 m/s earns a hint naming the two spellings
-/// that carry the unit, and both spellings are read as mm/s (issue 33).
+/// that carry the unit, and both spellings are read as mm/s.
 #[test]
 fn a_unitless_speed_column_with_fast_speeds_hints_at_mm_per_s() {
     let rows = "5,0.01\n20,0.02\n100,0.03\n400,0.02\n";

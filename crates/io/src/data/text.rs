@@ -12,7 +12,7 @@ use super::dialect::{self, Line, split_line};
 use super::header_row::is_header;
 use super::rows::table;
 use super::source::Source;
-use crate::error::DataError;
+use crate::error::IoError;
 
 /// Parses and checks a text measurement.
 ///
@@ -20,11 +20,13 @@ use crate::error::DataError;
 /// twice rather than collected, the second time split into cells one row
 /// at a time as the rows are read: a logger's file of a million rows then
 /// lives once as text beside its values.
-pub(super) fn parse_bytes(bytes: Vec<u8>) -> Result<DataTable, DataError> {
+pub(super) fn parse_bytes(bytes: Vec<u8>) -> Result<DataTable, IoError> {
     let mut notes = Vec::new();
     let text = decode(bytes, &mut notes)?;
     let Some(first) = dialect::lines(&text).next() else {
-        return Err(DataError::Empty);
+        return Err(err!(
+            "the file is empty: expected a header row (v, mu, optionally sigma and T) and data rows"
+        ));
     };
     let (delimiter, header) = match dialect::detect(dialect::lines(&text), is_header) {
         Some(found) => (found.delimiter, Some(found.index)),
@@ -40,13 +42,16 @@ pub(super) fn parse_bytes(bytes: Vec<u8>) -> Result<DataTable, DataError> {
 
 /// The text of `bytes`: UTF-8 (without a byte-order mark), UTF-16 with a
 /// byte-order mark, else Latin-1 (with a note).
-fn decode(bytes: Vec<u8>, notes: &mut Vec<String>) -> Result<String, DataError> {
-    let utf16 = |rest: &[u8], unit: fn([u8; 2]) -> u16| -> Result<String, DataError> {
+fn decode(bytes: Vec<u8>, notes: &mut Vec<String>) -> Result<String, IoError> {
+    let utf16 = |rest: &[u8], unit: fn([u8; 2]) -> u16| -> Result<String, IoError> {
         if !rest.len().is_multiple_of(2) {
-            return Err(DataError::OddUtf16);
+            return Err(err!(
+                "the file starts with a UTF-16 byte-order mark but has an odd number of bytes"
+            ));
         }
         let units: Vec<u16> = rest.chunks(2).map(|c| unit([c[0], c[1]])).collect();
-        String::from_utf16(&units).map_err(|source| DataError::NotUtf16 { source })
+        String::from_utf16(&units)
+            .map_err(|source| err!("the file is not valid UTF-16 text").caused_by(source))
     };
     if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
         return Ok(decode_8bit(rest.to_vec(), notes));

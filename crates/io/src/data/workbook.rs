@@ -23,7 +23,8 @@ use super::cell::{Cell, Row, is_comment_or_blank};
 use super::header_row::find_header;
 use super::rows::table;
 use super::source::Source;
-use crate::error::DataError;
+use crate::error::IoError;
+use crate::error::data::quoted_list;
 
 /// The extensions read as workbooks (compared in lower case).
 const EXTENSIONS: [&str; 6] = ["xlsx", "xlsm", "xlsb", "xls", "xla", "ods"];
@@ -53,9 +54,10 @@ pub(crate) struct Book {
 
 impl Book {
     /// The workbook `bytes`.
-    pub fn open(bytes: Vec<u8>) -> Result<Book, DataError> {
-        let sheets = calamine::open_workbook_auto_from_rs(Cursor::new(bytes))
-            .map_err(|error| DataError::NotWorkbook { error })?;
+    pub fn open(bytes: Vec<u8>) -> Result<Book, IoError> {
+        let sheets = calamine::open_workbook_auto_from_rs(Cursor::new(bytes)).map_err(|error| {
+            err!("cannot read the file as a workbook (.xlsx, .xlsm, .xlsb, .xls, .ods): {error}")
+        })?;
         Ok(Book { sheets })
     }
 
@@ -65,21 +67,15 @@ impl Book {
     }
 
     /// The sheet `wanted` (see [`choose_sheet`]) or the first.
-    pub fn choose(
-        &self,
-        wanted: Option<&str>,
-        notes: &mut Vec<String>,
-    ) -> Result<String, DataError> {
+    pub fn choose(&self, wanted: Option<&str>, notes: &mut Vec<String>) -> Result<String, IoError> {
         choose_sheet(&self.names(), wanted, notes)
     }
 
     /// The rows of the sheet `name`, numbered as the spreadsheet shows
     /// them, `#` comment rows and rows without a cell left out.
-    pub fn rows(&mut self, name: &str) -> Result<Vec<Row>, DataError> {
-        let unreadable = |error: calamine::Error| DataError::UnreadableSheet {
-            sheet: name.to_string(),
-            error,
-        };
+    pub fn rows(&mut self, name: &str) -> Result<Vec<Row>, IoError> {
+        let unreadable =
+            |error: calamine::Error| err!("sheet {sheet:?}: cannot read it: {error}", sheet = name);
         let cells = match &mut self.sheets {
             calamine::Sheets::Xlsx(book) => xlsx_cells(book, name).map_err(unreadable)?,
             calamine::Sheets::Xlsb(book) => xlsb_cells(book, name).map_err(unreadable)?,
@@ -211,7 +207,7 @@ pub(super) fn parse(
     path: &Path,
     bytes: Vec<u8>,
     wanted: Option<&str>,
-) -> Result<DataTable, DataError> {
+) -> Result<DataTable, IoError> {
     let mut notes = Vec::new();
     if !has_workbook_extension(path) {
         notes.push("the file is a workbook (by its content), read as one".to_string());
@@ -220,7 +216,11 @@ pub(super) fn parse(
     let name = book.choose(wanted, &mut notes)?;
     let rows = book.rows(&name)?;
     if rows.iter().all(Row::is_blank) {
-        return Err(DataError::EmptySheet { sheet: name });
+        return Err(err!(
+            "sheet {sheet:?} is empty: expected a header row (v, mu, optionally sigma and T) and \
+         data rows",
+            sheet = name
+        ));
     }
     let header = find_header(&rows);
     table(&Source::Sheet { name }, rows, header, notes)
@@ -233,7 +233,7 @@ fn choose_sheet(
     names: &[String],
     wanted: Option<&str>,
     notes: &mut Vec<String>,
-) -> Result<String, DataError> {
+) -> Result<String, IoError> {
     let listed = || {
         names
             .iter()
@@ -242,7 +242,10 @@ fn choose_sheet(
             .join(", ")
     };
     let Some(wanted) = wanted else {
-        let first = names.first().ok_or(DataError::NoSheets)?.clone();
+        let first = names
+            .first()
+            .ok_or(err!("the workbook has no sheets"))?
+            .clone();
         if names.len() > 1 {
             notes.push(format!(
                 "sheet {first:?}, the first of {} ({}); choose another with --sheet",
@@ -264,9 +267,11 @@ fn choose_sheet(
             _ => None,
         })
         .cloned()
-        .ok_or_else(|| DataError::NoSuchSheet {
-            wanted: wanted.to_string(),
-            sheets: names.to_vec(),
+        .ok_or_else(|| {
+            err!(
+                "no sheet {wanted:?}: the workbook has {}",
+                quoted_list(names),
+            )
         })
 }
 

@@ -71,9 +71,12 @@ pub(super) fn check_points(
     if points.is_empty() {
         let path = path.to_path_buf();
         return Err(if dropped > 0 {
-            IoError::NoUsablePoints { path, dropped }
+            err!(
+                "{}: no usable points: all {dropped} have a loss modulus ≤ 0",
+                path.display()
+            )
         } else {
-            IoError::NoDataPoints { path }
+            err!("{}: no data points", path.display())
         });
     }
     Ok((points, lines, steps))
@@ -92,57 +95,64 @@ fn check_point(
     let row = || place.row(p.line);
     let path = || place.path.to_path_buf();
     if p.omega <= 0.0 {
-        return Err(IoError::FrequencyNotPositive {
-            path: path(),
-            row: row(),
-            column: names.omega.clone(),
-            value: p.omega,
-        });
+        return Err(err!(
+            "{}, {row}: {column}: frequency {value} is not positive",
+            path().display(),
+            column = names.omega,
+            row = row(),
+            value = p.omega
+        ));
     }
     if p.storage <= 0.0 {
-        return Err(IoError::StorageNotPositive {
-            path: path(),
-            row: row(),
-            column: names.storage.clone(),
-            value: p.storage,
-        });
+        return Err(err!(
+            "{}, {row}: {column}: storage modulus {value} is not positive",
+            path().display(),
+            column = names.storage,
+            row = row(),
+            value = p.storage
+        ));
     }
     // Far outside any DMA measurement, and beyond what the causality
     // check's τ grid and least squares can represent.
     if !(OMEGA_RANGE.0..=OMEGA_RANGE.1).contains(&p.omega) {
-        return Err(IoError::FrequencyOutOfRange {
-            path: path(),
-            row: row(),
-            column: names.omega.clone(),
-            value: p.omega,
-        });
+        return Err(err!(
+            "{}, {row}: {column}: frequency {value:e} rad/s is outside 1e-30 … 1e30 rad/s, \
+         beyond any master curve",
+            path().display(),
+            column = names.omega,
+            row = row(),
+            value = p.omega
+        ));
     }
     for (column, value) in [(&names.storage, p.storage), (&names.loss, p.loss)] {
         if factor * value > MAX_MODULUS {
-            return Err(IoError::ModulusTooLarge {
-                path: path(),
-                row: row(),
-                column: column.clone(),
-                value,
-            });
+            return Err(err!(
+                "{}, {row}: {column}: modulus {value:e} is above 1e13 Pa, stiffer than any solid \
+         (diamond: about 1.2e12 Pa); is the column in Pa?",
+                path().display(),
+                row = row()
+            ));
         }
     }
     if factor * p.storage < MIN_STORAGE {
-        return Err(IoError::StorageTooSmall {
-            path: path(),
-            row: row(),
-            column: names.storage.clone(),
-            value: p.storage,
-        });
+        return Err(err!(
+            "{}, {row}: {column}: storage modulus {value:e} is below 1e-3 Pa, softer than any \
+         solid; is the column in Pa?",
+            path().display(),
+            column = names.storage,
+            row = row(),
+            value = p.storage
+        ));
     }
     if let Some(t) = p.temperature
         && !(t > -273.15 && t <= 1000.0)
     {
-        return Err(IoError::TemperatureOutOfRange {
-            path: path(),
-            row: row(),
-            value: t,
-        });
+        return Err(err!(
+            "{}, {row}: temperature {value} °C is outside (−273.15, 1000] °C",
+            path().display(),
+            row = row(),
+            value = t
+        ));
     }
     Ok(())
 }

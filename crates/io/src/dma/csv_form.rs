@@ -29,6 +29,7 @@ use super::form::{FormRead, Place, RawPoint};
 use super::header::{self, Column, Header};
 use crate::csv_columns::LineIndex;
 use crate::data::dialect;
+use crate::error::field_count_tail;
 use crate::error::{ColumnRef, IoError};
 
 /// The columns only DMA files have, defined with the other shared names.
@@ -44,9 +45,7 @@ pub(crate) fn parse(
     // No header the vocabulary knows: the first line is read as one, for
     // the message naming what it lacks.
     let Some((delimiter, start, found)) = dialect::dialect_of(text, super::sheet::is_header) else {
-        return Err(IoError::NoHeader {
-            path: path.to_path_buf(),
-        });
+        return Err(err!("{}: empty: no header line", path.display()));
     };
     if found.is_none()
         && let Some(read) = parse_aligned(path, text, told)
@@ -59,18 +58,19 @@ pub(crate) fn parse(
     let mut reader = crate::csv_columns::reader_with(body, false, true, delimiter);
     let lines = LineIndex::new(text);
     let line_of = |position: Option<&csv::Position>| lines.csv_line_after(start, position);
-    let not_csv = |e: csv::Error| IoError::NotCsv {
-        path: path.to_path_buf(),
-        line: line_of(e.position()),
-        error: e,
+    let not_csv = |e: csv::Error| {
+        err!(
+            "{}, line {line}: not CSV: {error}",
+            path.display(),
+            error = e,
+            line = line_of(e.position())
+        )
     };
     let mut records = reader.records();
     let (header_line, names): (usize, Vec<String>) = loop {
         match records.next() {
             None => {
-                return Err(IoError::NoHeader {
-                    path: path.to_path_buf(),
-                });
+                return Err(err!("{}: empty: no header line", path.display()));
             }
             Some(Err(e)) => return Err(not_csv(e)),
             Some(Ok(r)) if r.iter().all(str::is_empty) => continue,
@@ -252,19 +252,18 @@ fn row(
     } else if record.len() > width && empty_beyond {
         ragged.trailing.get_or_insert((line, 0)).1 += 1;
     } else if record.len() != width {
-        let missing = header.names[record.len().min(width)..]
+        let missing: Vec<ColumnRef> = header.names[record.len().min(width)..]
             .iter()
             .enumerate()
             .map(|(i, n)| ColumnRef::numbered(record.len() + i + 1, n))
             .collect();
-        return Err(IoError::FieldCount {
-            path: path.to_path_buf(),
-            line,
-            found: record.len(),
-            expected: width,
-            missing,
-            cut: last_and_cut,
-        });
+        return Err(err!(
+            "{}, line {line}: {found} fields, but the header has {expected} columns{}",
+            path.display(),
+            field_count_tail(&missing, last_and_cut),
+            expected = width,
+            found = record.len()
+        ));
     }
     if last_and_cut {
         warnings.push(format!(

@@ -124,12 +124,14 @@ fn utf16(path: &Path, bytes: &[u8], little: bool) -> Result<(String, bool), IoEr
                 unit += c.len_utf16();
             }
             Err(e) => {
-                return Err(IoError::UnpairedSurrogate {
-                    path: path.to_path_buf(),
-                    line: text.matches('\n').count() + 1,
-                    unit: e.unpaired_surrogate(),
-                    offset: 2 + 2 * unit,
-                });
+                return Err(err!(
+                    "{}, line {line}: not UTF-16 although the file starts with a UTF-16 byte-order mark: \
+         unpaired surrogate 0x{unit:04X} at byte offset {offset}",
+                    path.display(),
+                    line = text.matches('\n').count() + 1,
+                    offset = 2 + 2 * unit,
+                    unit = e.unpaired_surrogate()
+                ));
             }
         }
     }
@@ -138,12 +140,14 @@ fn utf16(path: &Path, bytes: &[u8], little: bool) -> Result<(String, bool), IoEr
         return Ok((text, true));
     }
     if odd {
-        return Err(IoError::OddUtf16Length {
-            path: path.to_path_buf(),
-            line: text.matches('\n').count() + 1,
-            length: bytes.len(),
-            offset: bytes.len() - 1,
-        });
+        return Err(err!(
+            "{}, line {line}: UTF-16 file (byte-order mark) with an odd number of bytes ({length}): \
+         the last character is cut off at byte offset {offset}; the file looks truncated",
+            path.display(),
+            length = bytes.len(),
+            line = text.matches('\n').count() + 1,
+            offset = bytes.len() - 1
+        ));
     }
     Ok((text, false))
 }

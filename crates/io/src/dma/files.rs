@@ -21,7 +21,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use super::{DmaData, DmaOptions, DmaWlf, ModulusKind};
-use crate::error::{DmaMasterError, IoError};
+use crate::error::IoError;
 
 /// The file extensions read from a folder of DMA files.
 pub const DATA_EXTENSIONS: [&str; 9] = [
@@ -152,20 +152,19 @@ pub fn expand(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, IoError> {
             files.push(input.clone());
             continue;
         }
-        let read = std::fs::read_dir(input).map_err(|source| IoError::Read {
-            path: input.clone(),
-            source,
-        })?;
+        let read = std::fs::read_dir(input)
+            .map_err(|source| err!("{}: {source}", input.display()).system(source))?;
         let mut found: Vec<PathBuf> = read
             .filter_map(Result::ok)
             .map(|entry| entry.path())
             .filter(|p| p.is_file() && is_data_file(p))
             .collect();
         if found.is_empty() {
-            return Err(DmaMasterError::EmptyFolder {
-                path: input.clone(),
-            }
-            .into());
+            return Err(err!(
+                "DMA folder {}: no data file in it (read: {})",
+                input.display(),
+                crate::dma::files::DATA_EXTENSIONS.join(", ")
+            ));
         }
         found.sort();
         files.extend(found);
@@ -200,11 +199,12 @@ pub fn read_files(
     if let Some(given) = given
         && given.len() != paths.len()
     {
-        return Err(DmaMasterError::TemperatureCount {
-            given: given.len(),
-            files: paths.len(),
-        }
-        .into());
+        return Err(err!(
+            "{given} temperatures given for {files} DMA files: give one per file, in the order of \
+         the files",
+            files = paths.len(),
+            given = given.len()
+        ));
     }
     let mut all: Option<DmaData> = None;
     for (k, path) in paths.iter().enumerate() {
@@ -214,16 +214,19 @@ pub fn read_files(
         }
         let untold = |f: &DmaFile| f.temperature == TemperatureOrigin::None;
         if paths.len() > 1 && data.files.iter().any(untold) {
-            return Err(DmaMasterError::FileWithoutTemperature { path: path.clone() }.into());
+            return Err(err!(
+                "DMA file {}: no temperature: the file has no T column, no line above its header \
+         states one (`Temperature: 20 °C`) and its name carries none (`…_20C.csv`); give \
+         --temperatures T1,T2,… in the order of the files",
+                path.display()
+            ));
         }
         all = Some(match all {
             None => data,
             Some(so_far) => join(so_far, data),
         });
     }
-    let mut data = all.ok_or_else(|| IoError::NoDataPoints {
-        path: PathBuf::new(),
-    })?;
+    let mut data = all.ok_or_else(|| err!("{}: no data points", (PathBuf::new()).display()))?;
     if paths.len() > 1 {
         data.path = common_folder(paths);
     }

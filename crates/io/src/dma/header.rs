@@ -32,7 +32,7 @@ pub use super::vocabulary::modulus_unit;
 use super::vocabulary::{Quantity, classify};
 use crate::csv_columns::dma_number;
 use crate::data::cell::{Cell, parse_number};
-use crate::error::{ColumnRef, Contradiction, DmaUnknownUnit, DuplicateQuantity, IoError};
+use crate::error::{ColumnRef, Contradiction, IoError};
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE};
 
 use crate::columns::{G_LOSS, G_STORAGE};
@@ -115,9 +115,7 @@ impl Header {
         mut warnings: Vec<String>,
     ) -> Result<FormRead, IoError> {
         if points.is_empty() {
-            return Err(IoError::NoRows {
-                path: path.to_path_buf(),
-            });
+            return Err(err!("{}: no data rows below the header", path.display()));
         }
         for p in &mut points {
             (p.storage, p.loss) = self.moduli.convert(p.omega, p.storage, p.loss);
@@ -219,12 +217,14 @@ pub(super) fn columns(
     let mut unitless: Vec<Quantity> = Vec::new();
     for (index, name) in names.iter().enumerate() {
         if let Some(contradiction) = Contradiction::of(name) {
-            return Err(IoError::ContradictoryUnit {
-                path: place.path.to_path_buf(),
-                line: place.row(row),
-                number: index + 1,
-                contradiction,
-            });
+            return Err(err!(
+                "{}, {line}: column {number} ({}): {contradiction}: name it f_Hz if it holds hertz \
+         or omega_rad_s if it holds rad/s",
+                place.path.display(),
+                contradiction.column(),
+                line = place.row(row),
+                number = index + 1
+            ));
         }
         let Some((quantity, unit)) = classify(name) else {
             continue;
@@ -234,14 +234,13 @@ pub(super) fn columns(
             (!written.is_empty() && written != "-").then_some((units_row, written))
         });
         let unknown = |cell, unit: &str| {
-            IoError::DmaUnknownUnit(Box::new(DmaUnknownUnit {
-                path: place.path.to_path_buf(),
-                cell,
-                column: name.clone(),
-                quantity: quantity.unit_kind(),
-                unit: unit.to_string(),
-                known: quantity.known(),
-            }))
+            err!(
+                "{}, {cell}: column {column:?}: unit {unit:?} not known for {quantity}; known: {known}",
+                place.path.display(),
+                column = name,
+                known = quantity.known(),
+                quantity = quantity.unit_kind(),
+            )
         };
         let (factor, offset) = match (unit, from_row) {
             (Some(Ok(unit)), _) => unit,
@@ -332,21 +331,30 @@ fn assemble(
                 ));
                 Ok(Some((*a).clone()))
             }
-            [a, b, ..] => Err(IoError::DuplicateQuantity(Box::new(DuplicateQuantity {
-                path: place.path.to_path_buf(),
-                line: place.row(row),
-                quantity: label,
-                first: a.reference.clone(),
-                second: b.reference.clone(),
-            }))),
+            [a, b, ..] => Err(err!(
+                "{}, {line}: two {quantity} columns, {first} and {second}: keep one{}",
+                place.path.display(),
+                if label == "frequency" {
+                    " (f in Hz or omega in rad/s)"
+                } else {
+                    ""
+                },
+                first = a.reference,
+                line = place.row(row),
+                quantity = label,
+                second = b.reference
+            )),
             _ => Ok(all.first().map(|c| (*c).clone())),
         }
     };
     let Some(omega) = one("frequency", &[Quantity::Omega, Quantity::Frequency])? else {
-        return Err(IoError::NoFrequencyColumn {
-            path: place.path.to_path_buf(),
-            header: names,
-        });
+        return Err(err!(
+            "{}: no frequency column: need `omega` (rad/s) or `f` (Hz), optionally with a unit \
+         suffix such as omega_rad_s or f_Hz (the header has: {}); stress-relaxation data (`t` \
+         and `E_relax` or `G_relax`) are read by `rollfit master` and `rollfit compare`",
+            place.path.display(),
+            names.join(", ")
+        ));
     };
     let young = (
         one(E_STORAGE, &[Quantity::Storage(Some(Young))])?,
@@ -440,11 +448,13 @@ fn no_moduli(
     } else {
         format!("{E_STORAGE} and {E_LOSS} (or {G_STORAGE} and {G_LOSS})")
     };
-    IoError::NoModulusColumns {
-        path: place.path.to_path_buf(),
-        missing,
-        header: names,
-    }
+    err!(
+        "{}: no {missing} column: need storage and loss moduli as E_storage, E_loss (Young's) or \
+         G_storage, G_loss (shear), in Pa or with a unit suffix such as G_storage_Pa (the header \
+         has: {})",
+        place.path.display(),
+        names.join(", ")
+    )
 }
 
 /// A modulus pair the header gives: the kind its names say (None: they do

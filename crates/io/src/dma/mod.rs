@@ -54,7 +54,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::error::{DmaSheetError, IoError};
+use crate::error::IoError;
 
 mod blocks;
 mod checks;
@@ -133,9 +133,11 @@ impl DmaData {
         sheet: Option<&str>,
     ) -> Result<DmaData, IoError> {
         // Not the DMA file's fault: said as the number's own.
-        rollfit_model::check_poisson(poisson).map_err(|problem| IoError::DmaPoisson {
-            path: path.to_path_buf(),
-            problem,
+        rollfit_model::check_poisson(poisson).map_err(|problem| {
+            err!(
+                "{problem} (converting shear moduli of {} to Young's)",
+                path.display()
+            )
         })?;
         let (reads, format, sheet, notes) = read_form(path, options, sheet)?;
         let blocks = reads.len() > 1;
@@ -147,9 +149,7 @@ impl DmaData {
                 Some(so_far) => files::join(so_far, data),
             });
         }
-        let mut data = all.ok_or_else(|| IoError::NoDataPoints {
-            path: path.to_path_buf(),
-        })?;
+        let mut data = all.ok_or_else(|| err!("{}: no data points", path.display()))?;
         data.notes.splice(0..0, notes);
         Ok(data)
     }
@@ -292,19 +292,18 @@ type Form = (Vec<FormRead>, &'static str, Option<String>, Vec<String>);
 /// Reads `path` in its form: a workbook's sheet `sheet`, else decoded
 /// text as TRIOS LIMS or CSV.
 fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<Form, IoError> {
-    let bytes = crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
-        path: path.to_path_buf(),
-        source,
+    let bytes = crate::input_file::read_input(path, "DMA file", |source| {
+        err!("{}: {source}", path.display()).system(source)
     })?;
     let (mut reads, format, sheet, notes) = if is_workbook(path, &bytes) {
         let (read, name, notes) = sheet::parse(path, bytes, sheet, told(options))?;
         (vec![read], "workbook", Some(name), notes)
     } else if let Some(sheet) = sheet {
-        return Err(DmaSheetError::SheetOfText {
-            path: path.to_path_buf(),
-            sheet: sheet.to_string(),
-        }
-        .into());
+        return Err(err!(
+            "{}: a sheet ({sheet:?}) was given, but the DMA file is text, not a workbook (.xlsx, \
+         .xlsm, .xlsb, .xls, .ods)",
+            path.display(),
+        ));
     } else {
         let (text, decoded) = decode::decode_noted(path, &bytes)?;
         if trios::is_lims(&text) {

@@ -51,7 +51,8 @@ use super::point::ModulusKind;
 use super::time_isotherms::check_isotherms;
 use crate::columns::{D_CREEP, E_RELAX, G_RELAX, J_CREEP, TIME};
 use crate::csv_columns::LineIndex;
-use crate::error::{ColumnRef, IoError, RelaxationError};
+use crate::error::field_count_tail;
+use crate::error::{ColumnRef, IoError};
 
 /// Accepted times since the step of strain, s: the reciprocal of the
 /// frequency form's accepted ω (1e-30 … 1e30 rad/s).
@@ -211,7 +212,7 @@ struct Header {
 
 /// The header's relaxation columns; None when it is not a relaxation
 /// header (no time column, or a frequency column).
-fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, RelaxationError> {
+fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, IoError> {
     if names.iter().any(|n| is_frequency(n)) {
         return Ok(None);
     }
@@ -229,15 +230,15 @@ fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, 
             ));
         }
     }
-    let one = |which: &[Quantity], what: &'static str| -> Result<Option<Column>, RelaxationError> {
+    let one = |which: &[Quantity], what: &'static str| -> Result<Option<Column>, IoError> {
         let mut of = found.iter().filter(|(q, _)| which.contains(q));
         match (of.next(), of.next()) {
-            (Some(a), Some(b)) => Err(RelaxationError::TwoColumns {
-                path: path.to_path_buf(),
-                line,
-                quantity: what,
-                columns: Box::new((a.1.reference.clone(), b.1.reference.clone())),
-            }),
+            (Some(a), Some(b)) => Err(err!(
+                "{}, line {line}: two {what} columns, {} and {}: keep one",
+                path.display(),
+                a.1.reference,
+                b.1.reference
+            )),
             (a, _) => Ok(a.map(|c| c.1.clone())),
         }
     };
@@ -251,19 +252,25 @@ fn header(path: &Path, line: usize, names: &[String]) -> Result<Option<Header>, 
     let value = match (modulus, compliance) {
         (Some(a), Some(b)) => {
             let (a, b) = if a.index < b.index { (a, b) } else { (b, a) };
-            return Err(RelaxationError::TwoColumns {
-                path: path.to_path_buf(),
-                line,
-                quantity: "relaxation modulus or creep compliance",
-                columns: Box::new((a.reference, b.reference)),
-            });
+            return Err(err!(
+                "{}, line {line}: two {quantity} columns, {} and {}: keep one",
+                path.display(),
+                a.reference,
+                b.reference,
+                quantity = "relaxation modulus or creep compliance"
+            ));
         }
         (Some(value), None) | (None, Some(value)) => value,
         (None, None) => {
-            return Err(RelaxationError::NoModulusColumn {
-                path: path.to_path_buf(),
-                header: names.to_vec(),
-            });
+            return Err(err!(
+                "{}: a time column but no relaxation modulus: need E_relax (Young's) or G_relax \
+         (shear), also spelled E(t), E_t, E, G(t), G_t, G, in Pa or with a unit such as \
+         E_relax_MPa or \"E(t) (MPa)\"; or a creep compliance, J(t) or \"Creep Compliance\" \
+         (shear), D(t) or \"Tensile Creep Compliance\" (tensile), in 1/Pa or with a unit \
+         such as \"J (1/MPa)\" (the header has: {})",
+                path.display(),
+                names.to_vec().join(", ")
+            ));
         }
     };
     let quantity = found
@@ -339,9 +346,8 @@ pub fn is_relaxation(text: &str) -> bool {
 /// Whether the file at `path` is a relaxation file; false where it cannot
 /// be read (the frequency form's reader then says why).
 pub fn is_relaxation_file(path: &Path) -> bool {
-    crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
-        path: path.to_path_buf(),
-        source,
+    crate::input_file::read_input(path, "DMA file", |source| {
+        err!("{}: {source}", path.display()).system(source)
     })
     .ok()
     .and_then(|bytes| super::decode::decode(path, &bytes).ok())
@@ -363,13 +369,14 @@ impl RelaxationData {
         poisson: f64,
         kind: Option<ModulusKind>,
     ) -> Result<RelaxationData, IoError> {
-        rollfit_model::check_poisson(poisson).map_err(|problem| IoError::DmaPoisson {
-            path: path.to_path_buf(),
-            problem,
+        rollfit_model::check_poisson(poisson).map_err(|problem| {
+            err!(
+                "{problem} (converting shear moduli of {} to Young's)",
+                path.display()
+            )
         })?;
-        let bytes = crate::input_file::read_input(path, "DMA file", |source| IoError::Read {
-            path: path.to_path_buf(),
-            source,
+        let bytes = crate::input_file::read_input(path, "DMA file", |source| {
+            err!("{}: {source}", path.display()).system(source)
         })?;
         let text = super::decode::decode(path, &bytes)?;
         parse(path, &text, poisson, kind)
@@ -384,14 +391,16 @@ pub fn parse(
     poisson: f64,
     kind: Option<ModulusKind>,
 ) -> Result<RelaxationData, IoError> {
-    let (line, names, delimiter, start) = header_row(text).ok_or_else(|| IoError::NoHeader {
-        path: path.to_path_buf(),
-    })?;
+    let (line, names, delimiter, start) =
+        header_row(text).ok_or_else(|| err!("{}: empty: no header line", path.display()))?;
     let Some(header) = header(path, line, &names)? else {
-        return Err(IoError::NoFrequencyColumn {
-            path: path.to_path_buf(),
-            header: names,
-        });
+        return Err(err!(
+            "{}: no frequency column: need `omega` (rad/s) or `f` (Hz), optionally with a unit \
+         suffix such as omega_rad_s or f_Hz (the header has: {}); stress-relaxation data (`t` \
+         and `E_relax` or `G_relax`) are read by `rollfit master` and `rollfit compare`",
+            path.display(),
+            names.join(", ")
+        ));
     };
     let (quantity, kind) = match (header.quantity, kind) {
         (Quantity::Shear, _) => (TimeQuantity::Relaxation, ModulusKind::Shear),
@@ -416,10 +425,12 @@ pub fn parse(
     let index = LineIndex::new(text);
     let decimal_comma = crate::data::dialect::decimal_comma(delimiter);
     for record in reader.records() {
-        let record = record.map_err(|error| IoError::NotCsv {
-            path: path.to_path_buf(),
-            line: index.csv_line_after(start, error.position()),
-            error,
+        let record = record.map_err(|error| {
+            err!(
+                "{}, line {line}: not CSV: {error}",
+                path.display(),
+                line = index.csv_line_after(start, error.position())
+            )
         })?;
         let at = index.csv_line_after(start, record.position());
         if at <= line || Some(at) == units_line || record.iter().all(str::is_empty) {
@@ -435,9 +446,7 @@ pub fn parse(
         lines.push(at);
     }
     if points.is_empty() {
-        return Err(IoError::NoRows {
-            path: path.to_path_buf(),
-        });
+        return Err(err!("{}: no data rows below the header", path.display()));
     }
     check_isotherms(path, (quantity, &header.value.reference), &points, &lines)?;
     let notes = match (quantity, kind) {
@@ -540,14 +549,13 @@ fn row(
     (quantity, factor): (TimeQuantity, f64),
 ) -> Result<RelaxationPoint, IoError> {
     if record.len() != header.width {
-        return Err(IoError::FieldCount {
-            path: path.to_path_buf(),
-            line,
-            found: record.len(),
-            expected: header.width,
-            missing: Vec::new(),
-            cut: false,
-        });
+        return Err(err!(
+            "{}, line {line}: {found} fields, but the header has {expected} columns{}",
+            path.display(),
+            field_count_tail(&[], false),
+            expected = header.width,
+            found = record.len()
+        ));
     }
     let value = |c: &Column| -> Result<f64, IoError> {
         let v = c.number(path, line, &record[c.index], decimal_comma)?;
@@ -555,46 +563,46 @@ fn row(
     };
     let time = value(&header.time)?;
     if time <= 0.0 {
-        return Err(RelaxationError::TimeNotPositive {
-            path: path.to_path_buf(),
-            line,
-            column: header.time.reference.clone(),
-            value: time,
-        }
-        .into());
+        return Err(err!(
+            "{}, line {line}: {column}: t = {value} s: times are counted from the step of strain \
+         and must be positive",
+            path.display(),
+            column = header.time.reference,
+            value = time
+        ));
     }
     // The frequency form's ω range turned into times: far outside any
     // relaxation test, and beyond what the τ grid of the series spans
     // (a time of 1e300 s asks for hundreds of decades of terms).
     if !(TIME_RANGE.0..=TIME_RANGE.1).contains(&time) {
-        return Err(RelaxationError::TimeOutOfRange {
-            path: path.to_path_buf(),
-            line,
-            column: header.time.reference.clone(),
-            value: time,
-        }
-        .into());
+        return Err(err!(
+            "{}, line {line}: {column}: t = {value:e} s is outside 1e-30 … 1e30 s, beyond any \
+         relaxation measurement (is the time in s, or is the column a time at all?)",
+            path.display(),
+            column = header.time.reference,
+            value = time
+        ));
     }
     let measured = value(&header.value)? * factor;
     let column = || header.value.reference.clone();
     match quantity {
         TimeQuantity::Relaxation if !(measured > 0.0 && measured <= 1e13) => {
-            return Err(RelaxationError::ModulusOutOfRange {
-                path: path.to_path_buf(),
-                line,
-                column: column(),
-                value: measured,
-            }
-            .into());
+            return Err(err!(
+                "{}, line {line}: {column}: E(t) = {value} Pa is not a modulus (it must be positive and \
+         below 1e13 Pa)",
+                path.display(),
+                column = column(),
+                value = measured
+            ));
         }
         TimeQuantity::Creep if !(measured > 0.0 && measured <= 1.0) => {
-            return Err(RelaxationError::ComplianceOutOfRange {
-                path: path.to_path_buf(),
-                line,
-                column: column(),
-                value: measured,
-            }
-            .into());
+            return Err(err!(
+                "{}, line {line}: {column}: D(t) = {value} 1/Pa (tensile) is not a creep compliance (it \
+         must be positive and below 1 1/Pa)",
+                path.display(),
+                column = column(),
+                value = measured
+            ));
         }
         _ => {}
     }
@@ -602,12 +610,11 @@ fn row(
     if let Some(t) = temperature
         && !(t > -273.15 && t <= 1000.0)
     {
-        return Err(RelaxationError::TemperatureOutOfRange {
-            path: path.to_path_buf(),
-            line,
-            value: t,
-        }
-        .into());
+        return Err(err!(
+            "{}, line {line}: temperature {value} °C is out of range",
+            path.display(),
+            value = t
+        ));
     }
     Ok(RelaxationPoint {
         time,

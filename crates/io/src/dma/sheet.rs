@@ -29,7 +29,7 @@ use super::header::{self, Column, Header};
 use crate::data::cell::{Cell, NotNumber, Row, parse_number};
 use crate::data::dialect::header_index;
 use crate::data::workbook::{Book, has_workbook_extension};
-use crate::error::{DataError, DmaSheetError, IoError, RowsRef};
+use crate::error::{IoError, RowsRef};
 
 /// The points of the sheet `wanted` (default: the first) of the workbook
 /// `bytes`, the sheet's name, and notes on how it was read.
@@ -39,13 +39,7 @@ pub(super) fn parse(
     wanted: Option<&str>,
     told: header::Told,
 ) -> Result<(FormRead, String, Vec<String>), IoError> {
-    let workbook = |error: DataError| -> IoError {
-        DmaSheetError::Workbook {
-            path: path.to_path_buf(),
-            error: Box::new(error),
-        }
-        .into()
-    };
+    let workbook = |error: IoError| -> IoError { err!("{}: {error}", path.display()) };
     let mut notes = Vec::new();
     if !has_workbook_extension(path) {
         notes.push("the file is a workbook (by its content), read as one".to_string());
@@ -152,7 +146,7 @@ fn header_like(rows: &[Row]) -> Vec<String> {
 /// The error of a sheet without DMA columns: the header cells found on
 /// every sheet of the workbook.
 fn no_columns(path: &Path, sheet: &str, book: &mut Book) -> IoError {
-    let found = book
+    let found: Vec<(String, Vec<String>)> = book
         .names()
         .into_iter()
         .map(|name| {
@@ -163,12 +157,13 @@ fn no_columns(path: &Path, sheet: &str, book: &mut Book) -> IoError {
             (name, cells)
         })
         .collect();
-    DmaSheetError::NoColumns {
-        path: path.to_path_buf(),
-        sheet: sheet.to_string(),
-        found,
-    }
-    .into()
+    err!(
+        "{}: sheet {sheet:?}: no header row naming a frequency (f [Hz], omega [rad/s]), a storage \
+         and a loss modulus (E', E'' or E_storage, E_loss; shear G', G'' or G_storage, G_loss), \
+         each with its unit in the name or in a units row below; {}",
+        path.display(),
+        sheets_found(&found),
+    )
 }
 
 /// The points of `rows`, the rows below the header (and units row).
@@ -253,29 +248,43 @@ fn value(place: &Place, row: &Row, number: usize, c: &Column) -> Result<Option<f
     let column = c.reference.clone();
     match parse_number(cell, true) {
         Ok(number) => Ok(number.map(|n| c.convert(n.value))),
-        Err(NotNumber::Formula(formula)) => Err(DmaSheetError::FormulaWithoutValue {
-            path,
-            cell: at,
-            column,
-            formula,
-        }
-        .into()),
-        Err(NotNumber::NotFinite(text)) => Err(IoError::NotFinite {
-            path,
-            cell: at,
-            column,
-            text,
-        }),
+        Err(NotNumber::Formula(formula)) => Err(err!(
+            "{}, {cell}: {column}: the cell holds a formula (={formula}) the file saved no result \
+         for; open it in Excel or LibreOffice and save, so its value is stored",
+            path.display(),
+            cell = at
+        )),
+        Err(NotNumber::NotFinite(text)) => Err(err!(
+            "{}, {cell}: {column}: {text} is not a finite number",
+            path.display(),
+            cell = at
+        )),
         Err(
             NotNumber::Other(text)
             | NotNumber::AmbiguousComma(text)
             | NotNumber::Thousands(text)
             | NotNumber::Text(text),
-        ) => Err(IoError::NotANumber {
-            path,
-            cell: at,
-            column,
-            text,
-        }),
+        ) => Err(err!(
+            "{}, {cell}: {column}: \"{text}\" is not a number",
+            path.display(),
+            cell = at
+        )),
     }
+}
+
+/// The header cells found on each sheet of a workbook: `sheet "A" has
+/// "f", "x"; sheet "B" is empty`.
+fn sheets_found(found: &[(String, Vec<String>)]) -> String {
+    let sheets: Vec<String> = found
+        .iter()
+        .map(|(sheet, cells)| {
+            if cells.is_empty() {
+                format!("sheet {sheet:?} has no header cells")
+            } else {
+                let cells: Vec<String> = cells.iter().map(|c| format!("{c:?}")).collect();
+                format!("sheet {sheet:?} has {}", cells.join(", "))
+            }
+        })
+        .collect();
+    format!("found: {}", sheets.join("; "))
 }

@@ -12,7 +12,7 @@ use std::path::Path;
 
 use rollfit_fit::master::relaxation::TimeQuantity;
 
-use crate::error::{ColumnRef, RelaxationError};
+use crate::error::{ColumnRef, IoError};
 
 /// The largest fall of a creep compliance below an earlier value of its
 /// isotherm that is read as scatter: 20 %, twenty times a DMA's per cent
@@ -40,14 +40,16 @@ pub(super) fn check_isotherms(
     (quantity, column): (TimeQuantity, &ColumnRef),
     points: &[RelaxationPoint],
     lines: &[usize],
-) -> Result<(), RelaxationError> {
+) -> Result<(), IoError> {
     let with_t = points.iter().filter(|p| p.temperature.is_some()).count();
     if with_t > 0 && with_t < points.len() {
-        return Err(RelaxationError::TemperatureMissing {
-            path: path.to_path_buf(),
-            missing: points.len() - with_t,
-            total: points.len(),
-        });
+        return Err(err!(
+            "{}: {missing} of {total} rows have no temperature: cannot tell which isotherm they \
+         belong to",
+            path.display(),
+            missing = points.len() - with_t,
+            total = points.len()
+        ));
     }
     for (temperature, indices) in groups(points) {
         // Equal times are rounded stamps, averaged by the master curve
@@ -57,13 +59,23 @@ pub(super) fn check_isotherms(
             .position(|w| points[w[1]].time < points[w[0]].time);
         if let Some(k) = falls.map(|j| j + 1) {
             let (a, b) = (indices[k - 1], indices[k]);
-            return Err(RelaxationError::NotIncreasing {
-                path: path.to_path_buf(),
-                quantity,
-                temperature,
-                lines: (lines[a], lines[b]),
-                times: (points[a].time, points[b].time),
-            });
+            return Err(err!(
+                "{}: the {} isotherm at {temperature:.2} °C has times that do not increase: \
+         line {} (t = {:e} s) is followed by line {} (t = {:e} s); a {} run's times \
+         increase from the step of {}, and a repeated run is another isotherm",
+                path.display(),
+                quantity.name(),
+                lines[a],
+                points[a].time,
+                lines[b],
+                points[b].time,
+                quantity.name(),
+                if quantity == TimeQuantity::Creep {
+                    "stress"
+                } else {
+                    "strain"
+                }
+            ));
         }
         if quantity == TimeQuantity::Creep {
             check_rising(path, column, temperature, (points, lines), &indices)?;
@@ -81,19 +93,24 @@ fn check_rising(
     temperature: f64,
     (points, lines): (&[RelaxationPoint], &[usize]),
     indices: &[usize],
-) -> Result<(), RelaxationError> {
+) -> Result<(), IoError> {
     let mut highest: Option<usize> = None;
     for &i in indices {
         let value = points[i].value;
         match highest {
             Some(h) if value < (1.0 - COMPLIANCE_FALL) * points[h].value => {
-                return Err(RelaxationError::ComplianceFalls {
-                    path: path.to_path_buf(),
-                    column: column.clone(),
-                    temperature,
-                    lines: (lines[h], lines[i]),
-                    values: (points[h].value, value),
-                });
+                return Err(err!(
+                    "{}: column {column}: the creep isotherm at {temperature:.2} °C falls with time: line {} \
+         (D = {:e} 1/Pa) is followed at a later time by line {} (D = {:e} 1/Pa), {:.0} % lower; \
+         a creep compliance never decreases with time (it rises from the step of stress), so \
+         this column is not a creep compliance (a modulus or a stress?)",
+                    path.display(),
+                    lines[h],
+                    points[h].value,
+                    lines[i],
+                    value,
+                    100.0 * (1.0 - value / points[h].value),
+                ));
             }
             Some(h) if value <= points[h].value => {}
             _ => highest = Some(i),

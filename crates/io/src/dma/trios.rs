@@ -44,7 +44,8 @@ use std::path::Path;
 
 use super::form::{FieldNames, FormRead, RawPoint};
 use super::point::{DmaOptions, ModulusKind};
-use crate::error::{CellRef, ColumnRef, IoError, SkippedStep, StepRef, TriosError, UnknownUnit};
+use crate::error::parts::count_mismatch;
+use crate::error::{CellRef, ColumnRef, IoError, SkippedStep, StepRef};
 
 /// Units of a quantity: (name in the file, factor, offset) to SI.
 type Units = [(&'static str, f64, f64)];
@@ -151,11 +152,19 @@ pub(crate) fn parse(path: &Path, text: &str, options: &DmaOptions) -> Result<For
     let Some(names) = names else {
         let path = path.to_path_buf();
         return Err(if skipped.is_empty() {
-            TriosError::TriosWithoutPoints { path }
+            err!("{}: TRIOS export without data points", path.display())
         } else {
-            TriosError::NoUsableStep { path, skipped }
-        }
-        .into());
+            err!(
+                "{}: no step has the variables needed (Angular frequency or Frequency, Storage modulus, \
+         Loss modulus): {}",
+                path.display(),
+                skipped
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            )
+        });
     };
     for s in skipped {
         warnings.push(format!(
@@ -210,11 +219,13 @@ fn scan<'a>(path: &Path, text: &'a str) -> Result<Scan<'a>, IoError> {
             "Data point" => step.rows.push((line, fields)),
             "Number of points" => {
                 let value = fields.get(1).map_or("", |s| s.trim());
-                let count = value.parse().map_err(|_| TriosError::StepCountNotANumber {
-                    path: path.to_path_buf(),
-                    line,
-                    step: step.label(),
-                    text: value.to_string(),
+                let count = value.parse().map_err(|_| {
+                    err!(
+                        "{}, line {line}: {step}: Number of points \"{text}\" is not a count",
+                        path.display(),
+                        step = step.label(),
+                        text = value
+                    )
                 })?;
                 step.declared = Some((line, count));
             }
@@ -237,28 +248,26 @@ fn check_whole(path: &Path, text: &str, scan: &Scan) -> Result<(), IoError> {
                 (Some((first, _)), Some((last, _))) => Some((*first, *last)),
                 _ => None,
             };
-            return Err(TriosError::StepCountMismatch {
-                path: path.to_path_buf(),
-                line,
-                step: step.label(),
-                declared,
-                found,
-                rows,
-                last_line: scan.last_line,
-            }
-            .into());
+            return Err(err!(
+                "{}, line {line}: {step}: Number of points says {declared}, but {}",
+                path.display(),
+                count_mismatch(declared, found, rows, scan.last_line),
+                step = step.label()
+            ));
         }
     }
     let cut =
         !text.ends_with(['\n', '\r']) && text.lines().last().is_some_and(|l| !l.trim().is_empty());
     if scan.in_step && cut {
         let step = scan.steps.last().expect("in a step");
-        return Err(TriosError::CutInStep {
-            path: path.to_path_buf(),
-            line: scan.last_line,
-            step: step.label(),
-        }
-        .into());
+        return Err(err!(
+            "{}, line {line}: the file ends inside {step} without a line break after this line: the \
+         export looks cut off in the middle of it (a row or a number may be incomplete); if the \
+         file is complete, end it with a line break",
+            path.display(),
+            line = scan.last_line,
+            step = step.label()
+        ));
     }
     Ok(())
 }
@@ -270,12 +279,12 @@ type StepRead = Result<(Vec<RawPoint>, FieldNames), SkippedStep>;
 /// The points of a step with data (see [`StepRead`]).
 fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
     let (Some(vars), Some(units)) = (&step.variables, &step.units) else {
-        return Err(TriosError::StepWithoutVariables {
-            path: path.to_path_buf(),
-            line: step.line,
-            step: step.label(),
-        }
-        .into());
+        return Err(err!(
+            "{}, line {line}: {step} has data points but no Variables and Units lines",
+            path.display(),
+            line = step.line,
+            step = step.label()
+        ));
     };
     let omega = step.variable(&["Angular frequency"]).map(|i| (i, true));
     let omega = omega.or_else(|| step.variable(&["Frequency"]).map(|i| (i, false)));
@@ -297,16 +306,16 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
                 factor: t.1,
                 offset: t.2,
             }),
-            None => Err(TriosError::UnknownUnit(Box::new(UnknownUnit {
-                path: path.to_path_buf(),
-                line: units.0,
-                step: step.label(),
-                quantity,
-                variable: name,
-                number: i + 1,
-                unit: unit.to_string(),
-                known: table.iter().map(|t| t.0).collect(),
-            }))),
+            None => Err(err!(
+                "{}, line {line}: {step}: {quantity} variable \"{variable}\" (column {number}) has unit \
+     \"{unit}\"; known units: {}",
+                path.display(),
+                table.iter().map(|t| t.0).collect::<Vec<_>>().join(", "),
+                line = units.0,
+                number = i + 1,
+                step = step.label(),
+                variable = name
+            )),
         }
     };
     let frequency_units = if angular {
@@ -348,19 +357,21 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
 /// The value of field `f` in the `Data point` row on line `line`, in SI.
 fn cell(path: &Path, line: usize, row: &[&str], f: &Field) -> Result<f64, IoError> {
     let text = row.get(f.index).map_or("", |s| s.trim());
-    let v: f64 = text.parse().map_err(|_| IoError::NotANumber {
-        path: path.to_path_buf(),
-        cell: Box::new(CellRef::line(line)),
-        column: f.reference(),
-        text: text.to_string(),
+    let v: f64 = text.parse().map_err(|_| {
+        err!(
+            "{}, {cell}: {column}: \"{text}\" is not a number",
+            path.display(),
+            cell = CellRef::line(line),
+            column = f.reference(),
+        )
     })?;
     if !v.is_finite() {
-        return Err(IoError::NotFinite {
-            path: path.to_path_buf(),
-            cell: Box::new(CellRef::line(line)),
-            column: f.reference(),
-            text: text.to_string(),
-        });
+        return Err(err!(
+            "{}, {cell}: {column}: {text} is not a finite number",
+            path.display(),
+            cell = CellRef::line(line),
+            column = f.reference(),
+        ));
     }
     Ok(v * f.factor + f.offset)
 }
@@ -388,11 +399,12 @@ fn decide_kind(
     }
     let instrument_note = instrument.map_or(String::new(), |i| format!("; instrument type {i}"));
     let Some((kind, why)) = kind_of(steps, instrument) else {
-        return Err(TriosError::ModulusKindUnknown {
-            path: path.to_path_buf(),
-            instrument: instrument.map(str::to_string),
-        }
-        .into());
+        return Err(err!(
+            "{}: cannot tell whether Storage and Loss modulus are shear (G) or tensile (E): no \
+             torque or Oscillation force variable{instrument_note}; give --dma-modulus shear or \
+             --dma-modulus young",
+            path.display()
+        ));
     };
     warnings.push(format!(
         "{file}: Storage and Loss modulus read as {} moduli ({why}{instrument_note}); give --dma-modulus {} if they are not",

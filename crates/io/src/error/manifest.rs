@@ -1,16 +1,9 @@
-//! The errors of a batch manifest ([`ManifestError`], reached as
-//! [`super::IoError::Manifest`]; read by [`crate::manifest`],
-//! docs/ARCHITECTURE.md, "Contract", "Commands"). Every cause names the
-//! entry ([`EntryRef`]) and, where one is at fault, the line; the manifest
-//! itself is named by [`ManifestError::InFile`], printed before its
-//! source by `{:#}`.
+//! How a batch manifest's messages name an entry ([`EntryRef`]), where a
+//! TOML error lies ([`TomlPlace`]) and what is wrong with an entry
+//! ([`EntryProblem`]).
 
 use std::fmt;
 use std::path::PathBuf;
-
-use thiserror::Error;
-
-use super::IoError;
 
 /// An `[[entry]]` as messages name it: `entry "NAME" (K of N, line L)`,
 /// `entry K of N (line L)` without a name.
@@ -130,46 +123,8 @@ impl fmt::Display for EntryProblem {
     }
 }
 
-/// Why a batch manifest cannot be read.
-#[derive(Debug, Error)]
-pub enum ManifestError {
-    /// What is wrong inside the manifest (the source).
-    #[error("manifest {}", path.display())]
-    InFile {
-        path: PathBuf,
-        source: Box<ManifestError>,
-    },
-    /// TOML syntax, an unknown key, a value of the wrong type or a setting
-    /// refused as it was read: toml's message (line, column and the line),
-    /// after the entry or table it lies in.
-    #[error(
-        "{}{}",
-        place.as_ref().map_or(String::new(), |p| format!("{p}: ")),
-        error.to_string().trim_end()
-    )]
-    Toml {
-        place: Option<TomlPlace>,
-        error: Box<toml::de::Error>,
-    },
-    /// No `[[entry]]`.
-    #[error(
-        "no entries: list each fit as an [[entry]] with a name, a scene and a data file (see the \
-         docs/user-guide.md, \"Batches\")"
-    )]
-    NoEntries,
-    /// What is wrong with the entries, one line each.
-    #[error("{}", list(problems))]
-    Entries { problems: Vec<EntryProblem> },
-}
-
-impl From<ManifestError> for IoError {
-    fn from(e: ManifestError) -> Self {
-        IoError::Manifest(Box::new(e))
-    }
-}
-
 /// One problem a line.
-fn list(problems: &[EntryProblem]) -> String {
+pub(crate) fn problem_list(problems: &[EntryProblem]) -> String {
     let lines: Vec<String> = problems.iter().map(EntryProblem::to_string).collect();
     lines.join("\n")
 }

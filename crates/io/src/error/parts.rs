@@ -152,7 +152,7 @@ impl fmt::Display for Contradiction {
 }
 
 /// `path` or `path, line N`.
-pub(super) fn place(path: &Path, line: Option<usize>) -> String {
+pub(crate) fn place(path: &Path, line: Option<usize>) -> String {
     match line {
         Some(line) => format!("{}, line {line}", path.display()),
         None => path.display().to_string(),
@@ -160,14 +160,14 @@ pub(super) fn place(path: &Path, line: Option<usize>) -> String {
 }
 
 /// `byte 0xXX` or `the end of the file`.
-pub(super) fn found_byte(found: Option<u8>) -> String {
+pub(crate) fn found_byte(found: Option<u8>) -> String {
     found.map_or("the end of the file".to_string(), |b| {
         format!("byte 0x{b:02X}")
     })
 }
 
 /// What a null stands where serde expected `expected`.
-pub(super) fn null_expected(expected: &str) -> String {
+pub(crate) fn null_expected(expected: &str) -> String {
     match expected {
         "f64" => "a number is required (a NaN or infinity written as null?)".to_string(),
         "usize" | "u64" => "a count is required".to_string(),
@@ -177,7 +177,7 @@ pub(super) fn null_expected(expected: &str) -> String {
 
 /// The end of a field-count message: the columns without a value and
 /// whether the row looks cut off.
-pub(super) fn field_count_tail(missing: &[ColumnRef], cut: bool) -> String {
+pub(crate) fn field_count_tail(missing: &[ColumnRef], cut: bool) -> String {
     let mut tail = String::new();
     if !missing.is_empty() {
         let names: Vec<String> = missing.iter().map(ToString::to_string).collect();
@@ -190,7 +190,7 @@ pub(super) fn field_count_tail(missing: &[ColumnRef], cut: bool) -> String {
 }
 
 /// What a TRIOS step's rows are against its `Number of points`.
-pub(super) fn count_mismatch(
+pub(crate) fn count_mismatch(
     declared: usize,
     found: usize,
     rows: Option<(usize, usize)>,
@@ -211,7 +211,7 @@ pub(super) fn count_mismatch(
 }
 
 /// ` (pid N, …)` for the running holders of a lock, or nothing.
-pub(super) fn holders_note(holders: &[u32]) -> String {
+pub(crate) fn holders_note(holders: &[u32]) -> String {
     match holders {
         [] => String::new(),
         pids => format!(
@@ -226,7 +226,7 @@ pub(super) fn holders_note(holders: &[u32]) -> String {
 
 /// A folder's files for a message: "fit.json, mu.csv", the first six and
 /// how many more.
-pub(super) fn files_list(files: &[String]) -> String {
+pub(crate) fn files_list(files: &[String]) -> String {
     const SHOWN: usize = 6;
     let mut text = files
         .iter()

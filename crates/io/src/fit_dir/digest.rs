@@ -57,17 +57,18 @@ impl Digest {
     /// read (the batch then counts the entry as failed).
     pub fn read(dir: &Path) -> Result<Digest, IoError> {
         let path = dir.join(FIT_JSON);
-        let unreadable = |source: std::io::Error| IoError::ResultUnreadable {
-            path: path.clone(),
-            cause: source.to_string(),
-        };
+        // The cause the batch summary shows: what the system said, why
+        // the file was refused, or what serde_json said.
+        let unreadable = |source: std::io::Error| err!("{source}").system(source);
         let report: Value = crate::input_file::read_input(&path, "result", unreadable)
-            .map_err(|e| match e {
-                IoError::ResultUnreadable { cause, .. } => cause,
-                refused => refused.to_string(),
-            })
+            .map_err(|e| e.to_string())
             .and_then(|bytes| serde_json::from_slice(&bytes).map_err(|e| e.to_string()))
-            .map_err(|cause| IoError::ResultUnreadable { path, cause })?;
+            .map_err(|cause| {
+                err!(
+                    "cannot read the result {}: {cause} (remove it or give --force to refit)",
+                    path.display()
+                )
+            })?;
         let number = |v: &Value| v.as_f64();
         let text = |v: &Value| v.as_str().map(str::to_string);
         Ok(Digest {

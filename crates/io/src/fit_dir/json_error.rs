@@ -7,6 +7,7 @@
 use std::path::Path;
 
 use crate::error::IoError;
+use crate::error::null_expected;
 
 /// A serde error of fit.json with the key it is about: the line, the
 /// column, the key's path (`model.H[3]`) and what is wrong, a null where a
@@ -35,27 +36,28 @@ pub(super) fn json_error(path: &Path, text: &str, e: &serde_json::Error) -> IoEr
         || ["NaN", "Infinity", "-Infinity"].into_iter().any(literal);
     let path = path.to_path_buf();
     match (message.strip_prefix("invalid type: null, expected "), key) {
-        (Some(expected), Some(key)) => IoError::FitJsonNull {
-            path,
-            line,
-            column,
-            key,
-            expected: expected.to_string(),
-        },
-        (None, Some(key)) if non_finite => IoError::FitJsonNonFinite {
-            path,
-            line,
-            column,
-            key,
-            message: message.to_string(),
-        },
-        (_, key) => IoError::FitJsonDecode {
-            path,
-            line,
-            column,
-            key,
-            message: message.to_string(),
-        },
+        (Some(expected), Some(key)) => err!(
+            "{}, line {line}: column {column}: not a rollfit fit.json: `{key}` is null where {}",
+            path.display(),
+            null_expected(expected)
+        ),
+        (None, Some(key)) if non_finite => err!(
+            "{}, line {line}: column {column}: not a rollfit fit.json: `{key}`: {message}: a number \
+         must be finite (JSON has no NaN or infinity)",
+            path.display(),
+        ),
+        (_, key) => {
+            let path = &path;
+            let line = &line;
+            let column = &column;
+            let key = &key;
+            let message = &message.to_string();
+            err!(
+                "{}, line {line}: column {column}: not a rollfit fit.json: {}{message}",
+                path.display(),
+                key.as_ref().map_or(String::new(), |k| format!("`{k}`: "))
+            )
+        }
     }
 }
 

@@ -62,9 +62,10 @@ impl FitDir {
     /// Reads DIR/fit.json, DIR/mu.csv and DIR/modulus.csv.
     pub fn read(dir: &Path) -> Result<FitDir, IoError> {
         if !dir.is_dir() {
-            return Err(IoError::NotFitFolder {
-                dir: dir.to_path_buf(),
-            });
+            return Err(err!(
+                "{}: not a fit directory (run `rollfit fit SCENE DATA -o DIR` first)",
+                dir.display()
+            ));
         }
         let json_path = dir.join(columns::FIT_JSON);
         let text = read_utf8_file(&json_path)?;
@@ -72,27 +73,27 @@ impl FitDir {
             .map_err(|e| json_error::json_error(&json_path, &text, &e))?;
         summary.check(&json_path, &text)?;
         if summary.model.kind != "prony" {
-            return Err(IoError::NotProny {
-                path: json_path,
-                kind: summary.model.kind,
-            });
+            return Err(err!(
+                "{}: model.kind = \"{kind}\": only \"prony\" master curves can be reported",
+                json_path.display(),
+                kind = summary.model.kind
+            ));
         }
         let master_curve = Prony::new(
             summary.model.glassy_modulus,
             summary.model.strengths.clone(),
             summary.model.tau.clone(),
         )
-        .map_err(|source| IoError::FitModel {
-            path: json_path.clone(),
-            source,
-        })?;
+        .map_err(|source| err!("{}: model: {source}", json_path.display()).caused_by(source))?;
         let window = summary.window;
         if !(window.omega_min > 0.0 && window.omega_max > window.omega_min) {
-            return Err(IoError::BadWindow {
-                path: json_path,
-                omega_min: window.omega_min,
-                omega_max: window.omega_max,
-            });
+            return Err(err!(
+                "{}: window: omega_min = {omega_min}, omega_max = {omega_max}: need 0 < omega_min < \
+         omega_max",
+                json_path.display(),
+                omega_max = window.omega_max,
+                omega_min = window.omega_min
+            ));
         }
         let friction = read::read_friction(&dir.join(columns::MU_CSV))?;
         let modulus = read::read_modulus(&dir.join(columns::MODULUS_CSV))?;

@@ -17,7 +17,7 @@ use super::columns::{
     EXACT_CORRECTION, LOG_AT, MU_FIT, MU_MEASURED, RESIDUAL, SIGMA, T, V, V_REDUCED,
 };
 use crate::csv_text::number;
-use crate::error::{Fault, IoError};
+use crate::error::IoError;
 use crate::output::FileContent;
 
 /// The measured data of a fit, which mu.csv repeats row by row in the
@@ -131,11 +131,11 @@ impl<'a> MuCsv<'a> {
             .flatten()
         {
             if fitted.len() != points {
-                return Err(Fault::FittedCount {
-                    fitted: fitted.len(),
-                    points,
-                }
-                .into());
+                return Err(err!(
+                    "the fit returned {fitted} fitted values for {points} data points",
+                    fitted = fitted.len()
+                )
+                .internal());
             }
         }
         let header = self.header();
@@ -143,11 +143,13 @@ impl<'a> MuCsv<'a> {
         for i in 0..points {
             self.row(i, &mut row);
             if let Some(k) = row.iter().position(|v| !v.is_finite()) {
-                return Err(IoError::NonFiniteCell {
-                    row: i + 1,
-                    column: header[k].to_string(),
-                    value: number(row[k]),
-                });
+                return Err(err!(
+                    "the output's row {row} has {column} = {value}: not a finite number (refused rather than \
+         written)",
+                    column = header[k],
+                    row = i + 1,
+                    value = number(row[k])
+                ));
             }
         }
         Ok(())
@@ -158,7 +160,7 @@ impl<'a> MuCsv<'a> {
         self.check()?;
         let mut bytes = Vec::new();
         self.write_to(&mut bytes)
-            .map_err(|source| IoError::from(Fault::CsvEncode(source.into())))?;
+            .map_err(|source| IoError::from(csv::Error::from(source)))?;
         Ok(bytes)
     }
 }

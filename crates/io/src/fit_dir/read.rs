@@ -10,6 +10,7 @@ use super::columns::{
     SIGMA, T, TAN_DELTA, TAN_DELTA_SIGMA, V, V_REDUCED,
 };
 use crate::csv_columns::LineIndex;
+use crate::error::field_count_tail;
 use crate::error::{CellRef, ColumnRef, IoError};
 use crate::text_file::read_utf8_file;
 
@@ -67,12 +68,13 @@ pub(super) fn read_friction(path: &Path) -> Result<Vec<FrictionRow>, IoError> {
         .iter()
         .map(|(line, row)| {
             if row[v] <= 0.0 {
-                return Err(IoError::SpeedNotPositive {
-                    column: V,
-                    path: path.to_path_buf(),
-                    line: *line,
-                    value: row[v],
-                });
+                return Err(err!(
+                    "{}, line {line}: column {column}: {value} is not a positive speed",
+                    path.display(),
+                    column = V,
+                    line = *line,
+                    value = row[v]
+                ));
             }
             Ok(FrictionRow {
                 speed: row[v],
@@ -103,12 +105,8 @@ pub(super) fn read_modulus(path: &Path) -> Result<Vec<ModulusRow>, IoError> {
         .iter()
         .map(|(line, row)| {
             if row[omega] <= previous {
-                return Err(IoError::OmegaNotIncreasing {
-                    column: OMEGA,
-                    path: path.to_path_buf(),
-                    line: *line,
-                    value: row[omega],
-                });
+                return Err(err!("{}, line {line}: column {column}: {value} does not increase (frequencies must be \
+         positive and ascending)", path.display(), column = OMEGA, line = *line, value = row[omega]));
             }
             previous = row[omega];
             Ok(ModulusRow {
@@ -144,10 +142,12 @@ impl Table {
         let mut header: Option<Vec<String>> = None;
         let mut rows = Vec::new();
         for record in reader.records() {
-            let record = record.map_err(|error| IoError::NotCsv {
-                path: path.to_path_buf(),
-                line: lines.csv_line(error.position()),
-                error,
+            let record = record.map_err(|error| {
+                err!(
+                    "{}, line {line}: not CSV: {error}",
+                    path.display(),
+                    line = lines.csv_line(error.position())
+                )
             })?;
             let line = lines.csv_line(record.position());
             if record.iter().all(str::is_empty) {
@@ -160,14 +160,10 @@ impl Table {
             rows.push((line, Table::row(path, line, names, &record)?));
         }
         let Some(header) = header else {
-            return Err(IoError::NoHeader {
-                path: path.to_path_buf(),
-            });
+            return Err(err!("{}: empty: no header line", path.display()));
         };
         if rows.is_empty() {
-            return Err(IoError::NoRows {
-                path: path.to_path_buf(),
-            });
+            return Err(err!("{}: no data rows below the header", path.display()));
         }
         Ok(Table {
             path: path.to_path_buf(),
@@ -184,30 +180,33 @@ impl Table {
         record: &csv::StringRecord,
     ) -> Result<Vec<f64>, IoError> {
         if record.len() != names.len() {
-            return Err(IoError::FieldCount {
-                path: path.to_path_buf(),
-                line,
-                found: record.len(),
-                expected: names.len(),
-                missing: Vec::new(),
-                cut: false,
-            });
+            return Err(err!(
+                "{}, line {line}: {found} fields, but the header has {expected} columns{}",
+                path.display(),
+                field_count_tail(&[], false),
+                expected = names.len(),
+                found = record.len()
+            ));
         }
         let mut values = Vec::with_capacity(record.len());
         for (name, field) in names.iter().zip(record.iter()) {
-            let value: f64 = field.parse().map_err(|_| IoError::NotANumber {
-                path: path.to_path_buf(),
-                cell: Box::new(CellRef::line(line)),
-                column: ColumnRef::named(name),
-                text: field.to_string(),
+            let value: f64 = field.parse().map_err(|_| {
+                err!(
+                    "{}, {cell}: {column}: \"{text}\" is not a number",
+                    path.display(),
+                    cell = CellRef::line(line),
+                    column = ColumnRef::named(name),
+                    text = field
+                )
             })?;
             if !value.is_finite() {
-                return Err(IoError::NotFinite {
-                    path: path.to_path_buf(),
-                    cell: Box::new(CellRef::line(line)),
-                    column: ColumnRef::named(name),
-                    text: field.to_string(),
-                });
+                return Err(err!(
+                    "{}, {cell}: {column}: {text} is not a finite number",
+                    path.display(),
+                    cell = CellRef::line(line),
+                    column = ColumnRef::named(name),
+                    text = field
+                ));
             }
             values.push(value);
         }
@@ -221,10 +220,12 @@ impl Table {
 
     /// The index of column `name`, or an error naming the header.
     fn require(&self, name: &'static str) -> Result<usize, IoError> {
-        self.find(name).ok_or_else(|| IoError::MissingColumn {
-            path: self.path.clone(),
-            name,
-            header: self.header.clone(),
+        self.find(name).ok_or_else(|| {
+            err!(
+                "{}: no column `{name}` (the header has: {})",
+                self.path.display(),
+                self.header.clone().join(", ")
+            )
         })
     }
 }

@@ -18,6 +18,7 @@ use rollfit_model::modulus::Arrhenius;
 use super::json_error::line_of_key;
 use super::quality::{CondensedSummary, QualitySummary, ScaleSummary};
 use crate::error::IoError;
+use crate::error::place;
 
 /// fit.json, the keys the report uses.
 #[derive(Debug, Clone, Deserialize)]
@@ -223,11 +224,7 @@ impl FitSummary {
         let at = |key: &str| (path.to_path_buf(), line_of_key(text, key));
         if let Err(problem) = rollfit_model::check_poisson(self.poisson) {
             let (path, line) = at("poisson");
-            return Err(IoError::PoissonOutOfRange {
-                path,
-                line,
-                problem,
-            });
+            return Err(err!("{}: {problem}", place(&path, line)));
         }
         let Some(shift) = &self.shift else {
             return Ok(());
@@ -237,7 +234,10 @@ impl FitSummary {
             ("wlf", c1, _) => {
                 let (path, line) = at("shift.model");
                 let key = if c1.is_none() { "C1" } else { "C2" };
-                Err(IoError::WlfKeyMissing { path, line, key })
+                Err(err!(
+                    "{}: shift.model = \"wlf\" needs the key shift.{key}",
+                    place(&path, line)
+                ))
             }
             ("arrhenius", None, None) => match shift.activation_energy {
                 Some(e) if e > 0.0 => Ok(()),
@@ -247,35 +247,54 @@ impl FitSummary {
                     } else {
                         "shift.model"
                     });
-                    Err(IoError::ArrheniusEnergy { path, line, value })
+                    Err({
+                        let path = &path;
+                        let line = &line;
+                        let value = &value;
+                        err!(
+                            "{}: shift.model = \"arrhenius\" needs a positive shift.E_a (J/mol){}",
+                            place(path, *line),
+                            value.map_or_else(String::new, |v| format!(", got {v}"))
+                        )
+                    })
                 }
             },
             ("arrhenius", c1, _) => {
                 let key = if c1.is_some() { "C1" } else { "C2" };
                 let (path, line) = at(&format!("shift.{key}"));
-                Err(IoError::ArrheniusWithWlfKey { path, line, key })
+                Err(err!(
+                    "{}: shift.{key} does not belong to shift.model = \"arrhenius\" (it takes T_ref, E_a \
+         and log_aT)",
+                    place(&path, line)
+                ))
             }
             ("free", None, None) if shift.activation_energy.is_none() => Ok(()),
             ("free", None, None) => {
                 let (path, line) = at("shift.E_a");
-                Err(IoError::FreeShiftWithWlfKey {
-                    path,
-                    line,
-                    key: "E_a",
-                })
+                Err(err!(
+                    "{}: shift.{key} does not belong to shift.model = \"free\" (it takes T_ref and log_aT; a \
+         WLF shift is model \"wlf\", an Arrhenius one \"arrhenius\")",
+                    place(&path, line),
+                    key = "E_a"
+                ))
             }
             ("free", c1, _) => {
                 let key = if c1.is_some() { "C1" } else { "C2" };
                 let (path, line) = at(&format!("shift.{key}"));
-                Err(IoError::FreeShiftWithWlfKey { path, line, key })
+                Err(err!(
+                    "{}: shift.{key} does not belong to shift.model = \"free\" (it takes T_ref and log_aT; a \
+         WLF shift is model \"wlf\", an Arrhenius one \"arrhenius\")",
+                    place(&path, line)
+                ))
             }
             (other, _, _) => {
                 let (path, line) = at("shift.model");
-                Err(IoError::UnknownShiftModel {
-                    path,
-                    line,
-                    model: other.to_string(),
-                })
+                Err(err!(
+                    "{}: shift.model = \"{model}\": unknown shift model; allowed: \"wlf\", \"arrhenius\", \
+         \"free\"",
+                    place(&path, line),
+                    model = other
+                ))
             }
         }
     }
@@ -291,33 +310,33 @@ fn check_wlf(
 ) -> Result<(), IoError> {
     if c1 <= 0.0 {
         let (path, line) = at("shift.C1");
-        return Err(IoError::WlfC1NotPositive {
-            path,
-            line,
-            value: c1,
-        });
+        return Err(err!(
+            "{}: shift.C1 = {value}: the WLF constant C1 must be > 0",
+            place(&path, line),
+            value = c1
+        ));
     }
     if c2 <= 0.0 {
         let (path, line) = at("shift.C2");
-        return Err(IoError::WlfC2NotPositive {
-            path,
-            line,
-            value: c2,
-        });
+        return Err(err!(
+            "{}: shift.C2 = {value}: the WLF constant C2 must be > 0 K",
+            place(&path, line),
+            value = c2
+        ));
     }
     for (index, s) in shift.log_shift.iter().enumerate() {
         let denominator = c2 + s.temperature - shift.t_ref;
         if denominator <= 0.0 {
             let (path, line) = at(&format!("shift.log_aT[{index}].T"));
-            return Err(IoError::WlfPole {
-                path,
-                line,
-                index,
-                temperature: s.temperature,
-                denominator,
-                c2,
-                t_ref: shift.t_ref,
-            });
+            return Err(err!(
+                "{}: shift.log_aT[{index}].T = {temperature} °C: C2 + T − T_ref = {denominator} K is not \
+         positive (C2 = {c2} K, T_ref = {t_ref} °C): the WLF shift diverges at T_ref − C2 = {} °C \
+         and means nothing below",
+                place(&path, line),
+                shift.t_ref - c2,
+                t_ref = shift.t_ref,
+                temperature = s.temperature
+            ));
         }
     }
     Ok(())

@@ -82,7 +82,7 @@ fn the_unedited_fit_json_reads() {
     assert_eq!(fit.summary.iterations, 3);
 }
 
-/// Issue 14, hole 5: an unknown shift model was read as WLF.
+/// An unknown shift model was read as WLF.
 #[test]
 fn unknown_or_incomplete_shift_models_are_refused() {
     let e = edited("foo", r#""model": "wlf""#, r#""model": "foo""#).error();
@@ -123,7 +123,7 @@ fn unknown_or_incomplete_shift_models_are_refused() {
     );
 }
 
-/// Issue 31: an Arrhenius shift reads back with its law (log10 a_T at any
+/// An Arrhenius shift reads back with its law (log10 a_T at any
 /// temperature from E_a), a null σ reads as NaN, and an Arrhenius record
 /// without a positive E_a or with a WLF constant is refused.
 #[test]
@@ -160,7 +160,7 @@ fn arrhenius_shifts_and_null_sigmas_read() {
     );
 }
 
-/// Issue 14, hole 5: ν and WLF constants outside their range were
+/// Ν and WLF constants outside their range were
 /// accepted, and a bad ν was blamed on the DMA file later.
 #[test]
 fn poisson_and_wlf_constants_out_of_range_are_refused_naming_fit_json() {
@@ -201,7 +201,7 @@ fn poisson_and_wlf_constants_out_of_range_are_refused_naming_fit_json() {
     );
 }
 
-/// Issue 14, hole 5: null (a NaN as serde_json writes it) or a
+/// Null (a NaN as serde_json writes it) or a
 /// non-finite number where a number belongs: the key, not only
 /// "invalid type: null".
 #[test]
@@ -255,7 +255,7 @@ fn null_and_non_finite_numbers_are_refused_naming_the_key() {
     assert_contains(&e, &["fit.json, line 2", "`model`", "missing field `E1`"]);
 }
 
-/// Issue 14, hole 4: "stream did not contain valid UTF-8" said neither
+/// "stream did not contain valid UTF-8" said neither
 /// where nor which byte.
 #[test]
 fn invalid_utf8_in_a_fit_folder_is_located_by_line_and_offset() {
@@ -367,7 +367,7 @@ fn small_setup() -> rollfit_fit::RollingSetup {
     crate::scene::parse(scene).unwrap().fit_setup().unwrap().0
 }
 
-/// Issue 17: a fit with `physics = "exact"` writes fit.json's `physics`
+/// A fit with `physics = "exact"` writes fit.json's `physics`
 /// and mu.csv's `exact_correction`, and the reader reads back what the
 /// writer wrote; the approximate fit of the same data writes neither.
 #[test]
@@ -403,7 +403,7 @@ fn exact_physics_round_trips_through_the_fit_folder() {
     }
 }
 
-/// Issue 32: fit.json's `fit_quality` and `scale` read back as written,
+/// Fit.json's `fit_quality` and `scale` read back as written,
 /// the scale absent, undetermined with both ends open (null), or
 /// determined with both ends; the "invalid" verdict reads as not good. A
 /// fit.json without them (another program's) reads with neither.

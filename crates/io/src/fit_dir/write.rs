@@ -14,7 +14,7 @@ use super::columns::{
 };
 use super::mu_csv::{Measured, MuCsv};
 use crate::csv_text::csv_bytes;
-use crate::error::{Fault, IoError};
+use crate::error::IoError;
 use crate::output::FileContent;
 
 /// A column of modulus.csv and its value in a curve point.
@@ -113,9 +113,10 @@ fn fit_json(report: &FitReport, input: &FitInput) -> Result<Vec<u8>, IoError> {
         },
         rollfit_version: input.rollfit_version,
     };
-    let mut bytes = serde_json::to_vec_pretty(&value).map_err(|source| Fault::JsonEncode {
-        what: "fit report",
-        source,
+    let mut bytes = serde_json::to_vec_pretty(&value).map_err(|source| {
+        err!("cannot encode the fit report")
+            .caused_by(source)
+            .internal()
     })?;
     bytes.push(b'\n');
     Ok(bytes)

@@ -44,10 +44,7 @@ fn sizes_read_as_bytes_and_binary_units() {
 fn a_folder_is_refused_unopened_and_a_missing_file_keeps_the_readers_words() {
     let dir = std::env::temp_dir().join(format!("rollfit-input-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let unreadable = |source| IoError::Read {
-        path: dir.join("x"),
-        source,
-    };
+    let unreadable = |source| err!("{}: {source}", dir.join("x").display()).system(source);
     let m = read_input(&dir, "data file", unreadable)
         .unwrap_err()
         .to_string();
@@ -56,7 +53,7 @@ fn a_folder_is_refused_unopened_and_a_missing_file_keeps_the_readers_words() {
         "{m}"
     );
     let e = read_input(&dir.join("absent.csv"), "data file", unreadable).unwrap_err();
-    assert!(matches!(e, IoError::Read { .. }), "{e:?}");
+    assert_eq!(e.kind(), crate::error::ErrorKind::System, "{e:?}");
     std::fs::write(dir.join("a.csv"), "v,mu\n").unwrap();
     assert_eq!(
         read_input(&dir.join("a.csv"), "data file", unreadable).unwrap(),
@@ -68,9 +65,8 @@ fn a_folder_is_refused_unopened_and_a_missing_file_keeps_the_readers_words() {
 #[cfg(unix)]
 #[test]
 fn an_endless_device_is_refused_unopened() {
-    let m = read_input(Path::new("/dev/zero"), "DMA file", |source| IoError::Read {
-        path: "/dev/zero".into(),
-        source,
+    let m = read_input(Path::new("/dev/zero"), "DMA file", |source| {
+        err!("/dev/zero: {source}").system(source)
     })
     .unwrap_err()
     .to_string();

@@ -12,9 +12,10 @@ use crate::error::IoError;
 /// Checks that `path` can name an output file (it is not a folder).
 pub fn check_target(path: &Path) -> Result<(), IoError> {
     if path.is_dir() {
-        return Err(IoError::OutputIsFolder {
-            path: path.to_path_buf(),
-        });
+        return Err(err!(
+            "output {} is a folder; give a file name for the output",
+            path.display()
+        ));
     }
     Ok(())
 }
@@ -28,9 +29,7 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
     create_folder(&parent)?;
     check_target(path)?;
     if path.file_name().is_none() {
-        return Err(IoError::NotAFileName {
-            path: path.to_path_buf(),
-        });
+        return Err(err!("{} does not name a file", path.display()));
     }
 
     let (temporary, mut file) = create_temporary(&parent)?;
@@ -43,10 +42,7 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
         });
     if let Err(source) = written {
         let _ = fs::remove_file(&temporary);
-        return Err(IoError::Write {
-            path: path.to_path_buf(),
-            source,
-        });
+        return Err(err!("cannot write {}", path.display()).system(source));
     }
     Ok(())
 }

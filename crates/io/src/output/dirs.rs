@@ -14,8 +14,6 @@ pub(super) fn parent_of(path: &Path) -> PathBuf {
 
 /// Makes `folder` and its missing parents.
 pub(super) fn create_folder(folder: &Path) -> Result<(), IoError> {
-    std::fs::create_dir_all(folder).map_err(|source| IoError::CreateFolder {
-        path: folder.to_path_buf(),
-        source,
-    })
+    std::fs::create_dir_all(folder)
+        .map_err(|source| err!("cannot create the folder {}", folder.display()).system(source))
 }

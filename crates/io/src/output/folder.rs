@@ -13,7 +13,8 @@ use super::content::FileContent;
 use super::dirs::{create_folder, parent_of};
 use super::record::{self, Occupant, RECORD_FILE, Writer};
 use super::temporary::{TEMPORARY_PREFIX, loop_temporary, remove_stale, temporary_pid};
-use crate::error::{FolderError, IoError};
+use crate::error::IoError;
+use crate::error::files_list;
 
 /// Checks, before a long computation, that `writer` may replace `dir` by
 /// [`replace_folder`]: it is a folder or absent, not the current folder
@@ -38,32 +39,38 @@ fn check_occupant<'a>(
     names: impl IntoIterator<Item = &'a str>,
 ) -> Result<Option<Occupant>, IoError> {
     if dir.exists() && !dir.is_dir() {
-        return Err(IoError::OutputNotFolder {
-            dir: dir.to_path_buf(),
-        });
+        return Err(err!(
+            "output {} exists and is not a folder; give a folder for the results",
+            dir.display()
+        ));
     }
     if writer != Writer::Batch && holds_working_folder(dir) {
-        return Err(IoError::from(FolderError::OutputHoldsWorkingFolder {
-            dir: dir.to_path_buf(),
-        }));
+        return Err(err!(
+            "output {} is the current folder (or holds it), which cannot be replaced while in use; \
+         give a folder inside it, such as -o results",
+            dir.display()
+        ));
     }
     let occupant = Occupant::of(dir);
     if let Some(found) = occupant.as_ref().filter(|o| o.writer != writer && !force) {
-        return Err(IoError::from(FolderError::OtherCommandsFolder {
-            dir: dir.to_path_buf(),
-            found: found.writer.command(),
-            files: found.files.clone(),
-            ours: writer.command(),
-        }));
+        return Err(err!(
+            "output {} holds the results of `{found}` ({}); `{ours}` does not replace them: give \
+         another folder, or --force to replace them (files rollfit did not write there stay)",
+            dir.display(),
+            files_list(&found.files.clone()),
+            found = found.writer.command(),
+            ours = writer.command()
+        ));
     }
     let owned = |name: &str| occupant.as_ref().is_some_and(|o| o.owns(name));
     for name in names {
         if dir.join(name).exists() && !owned(name) && !only_leftovers(&dir.join(name)) {
-            return Err(IoError::from(FolderError::NotOurFile {
-                dir: dir.to_path_buf(),
-                name: name.to_string(),
-                ours: writer.command(),
-            }));
+            return Err(err!(
+                "output {} holds {name}, which rollfit did not write there; `{ours}` would overwrite \
+         it: move it away or give another folder",
+                dir.display(),
+                ours = writer.command()
+            ));
         }
     }
     if writer != Writer::Batch
@@ -72,10 +79,11 @@ fn check_occupant<'a>(
         for entry in entries.flatten() {
             let name = entry.file_name().to_string_lossy().into_owned();
             if entry.path().is_dir() && temporary_pid(&name).is_none() && !owned(&name) {
-                return Err(IoError::from(FolderError::ForeignFolder {
-                    dir: dir.to_path_buf(),
-                    name,
-                }));
+                return Err(err!(
+                    "output {} holds the folder {name}, which rollfit did not write; give an empty folder or \
+         a previous fit's",
+                    dir.display()
+                ));
             }
         }
     }
@@ -147,10 +155,7 @@ pub fn replace_folder_with(
     let result = fill_and_swap(dir, &stage, occupant.as_ref(), writer, files);
     // After a swap the temporary name holds the previous folder.
     let _ = fs::remove_dir_all(&stage);
-    result.map_err(|source| IoError::WriteResults {
-        dir: dir.to_path_buf(),
-        source,
-    })
+    result.map_err(|source| err!("cannot write the results to {}", dir.display()).system(source))
 }
 
 /// Adds `files` to the result folder `dir` of `writer` (`rollfit report`'s
@@ -198,7 +203,7 @@ pub fn claim_folder(
                     io::ErrorKind::NotFound => Ok(()),
                     _ => Err(e),
                 }) {
-                    return Err(IoError::Write { path, source });
+                    return Err(err!("cannot write {}", path.display()).system(source));
                 }
             }
         }
@@ -216,12 +221,11 @@ pub fn check_free_file(path: &Path) -> Result<(), IoError> {
         return Ok(());
     };
     match Occupant::of(&parent_of(path)) {
-        Some(o) if o.owns(&name) || name == RECORD_FILE => {
-            Err(IoError::from(FolderError::WrittenByAnother {
-                path: path.to_path_buf(),
-                found: o.writer.command(),
-            }))
-        }
+        Some(o) if o.owns(&name) || name == RECORD_FILE => Err(err!(
+            "{} is a file `{found}` wrote (its folder's record says so); give another output file",
+            path.display(),
+            found = o.writer.command()
+        )),
         _ => Ok(()),
     }
 }

@@ -8,6 +8,7 @@ use std::path::Path;
 use super::dirs::create_folder;
 use super::temporary::{TEMPORARY_PREFIX, alive};
 use crate::error::IoError;
+use crate::error::holders_note;
 
 /// An advisory lock on a folder, held until dropped: the lock file
 /// `.rollfit-<what>.lock` in it, locked exclusively (or shared), holding
@@ -28,9 +29,12 @@ impl FolderLock {
             .create(true)
             .truncate(false)
             .open(&path)
-            .map_err(|source| IoError::CreateLock {
-                path: path.clone(),
-                source,
+            .map_err(|source| {
+                err!(
+                    "cannot create the lock file {} (is the folder writable?)",
+                    path.display()
+                )
+                .system(source)
             })?;
         let taken = if exclusive {
             file.try_lock()
@@ -40,13 +44,15 @@ impl FolderLock {
         match taken {
             Ok(()) => {}
             Err(fs::TryLockError::WouldBlock) => {
-                return Err(IoError::Locked {
-                    dir: dir.to_path_buf(),
-                    holders: holders(dir),
-                });
+                return Err(err!(
+                    "{} is being written by another rollfit run{}; wait for it to finish or give another \
+         output folder",
+                    dir.display(),
+                    holders_note(&holders(dir))
+                ));
             }
             Err(fs::TryLockError::Error(source)) => {
-                return Err(IoError::Lock { path, source });
+                return Err(err!("cannot lock {}", path.display()).system(source));
             }
         }
         if exclusive {

@@ -39,10 +39,11 @@ pub(super) fn loop_temporary<T>(
             Ok(made) => return Ok((candidate, made)),
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists && n < 1000 => continue,
             Err(source) => {
-                return Err(IoError::CreateTemporary {
-                    folder: folder.to_path_buf(),
-                    source,
-                });
+                return Err(err!(
+                    "cannot create a temporary file in {} (is the folder writable?)",
+                    folder.display()
+                )
+                .system(source));
             }
         }
     }

@@ -17,11 +17,12 @@ use serde::de::{Deserializer, MapAccess, Visitor};
 
 use super::fit_settings::{Key, TableSettings};
 use super::material::MaterialSection;
+use super::messages::section_of;
 use super::setup::ContactName;
 use super::shift::ShiftKind;
 use super::values::{Real, require_positive};
 use super::{InSection, SceneFile};
-use crate::error::{IoError, SceneError};
+use crate::error::IoError;
 
 /// The keys of `[fit]`: the scale anchors, then the fit settings
 /// ([`rollfit_fit::settings::SETTING_KEYS`], in the order messages have
@@ -122,7 +123,7 @@ const WLF_ARRHENIUS_SUBSTITUTE: &str = "the fit's shift laws are WLF, Arrhenius 
 impl FitSection {
     /// Checks the scale anchors: each positive, at most one, and below
     /// `E1_max`. The settings were checked as they were read.
-    pub(super) fn check(&self) -> Result<(), SceneError> {
+    pub(super) fn check(&self) -> Result<(), IoError> {
         if let Some(Real(e0)) = self.e0 {
             require_positive("E0", e0)?;
         }
@@ -137,7 +138,9 @@ impl FitSection {
         if let (Some(e1_max), Some(Real(e0))) = (self.settings.e1_max, self.e0)
             && e1_max <= e0
         {
-            return Err(SceneError::GlassyBelowStatic { e1_max, e0 });
+            return Err(err!(
+                "E1_max = {e1_max} must exceed the known static modulus E0 = {e0}"
+            ));
         }
         let anchors: Vec<&'static str> = [
             ("`E0`", self.e0.is_some()),
@@ -148,7 +151,10 @@ impl FitSection {
         .filter_map(|(key, present)| present.then_some(key))
         .collect();
         if anchors.len() > 1 {
-            return Err(SceneError::SeveralAnchors { anchors });
+            return Err(err!(
+                "more than one scale anchor ({}): give at most one of E0, E_at and contact_radius",
+                anchors.join(", ")
+            ));
         }
         Ok(())
     }
@@ -156,11 +162,11 @@ impl FitSection {
     /// The fit parameters the section asks for: its anchor and settings
     /// over the defaults of [`FitParams`].
     pub fn params(&self) -> Result<FitParams, IoError> {
-        Ok(self.fit_params()?)
+        self.fit_params()
     }
 
     /// [`Self::params`], with the scene's own error.
-    fn fit_params(&self) -> Result<FitParams, SceneError> {
+    fn fit_params(&self) -> Result<FitParams, IoError> {
         let anchor = match (self.e0, self.e_at, self.contact_radius) {
             (Some(Real(e0)), None, None) => Some(ScaleAnchor::StaticModulus(e0)),
             (None, Some(a), None) => Some(ScaleAnchor::ModulusAt {
@@ -172,7 +178,11 @@ impl FitSection {
                 radius: a.r.0,
             }),
             (None, None, None) => None,
-            _ => return Err(SceneError::AnchorConflict),
+            _ => {
+                return Err(err!(
+                    "give at most one scale anchor (E0, E_at or contact_radius)"
+                ));
+            }
         };
         let mut params = FitParams {
             anchor,
@@ -201,21 +211,28 @@ impl SceneFile {
     /// used. The fit checks the whole against the set-up with
     /// [`FitParams::check`].
     pub fn fit_setup(&self) -> Result<(RollingSetup, FitParams), IoError> {
-        Ok(self.inverse_setup()?)
+        self.inverse_setup()
     }
 
     /// [`Self::fit_setup`], with the scene's own error.
-    fn inverse_setup(&self) -> Result<(RollingSetup, FitParams), SceneError> {
+    fn inverse_setup(&self) -> Result<(RollingSetup, FitParams), IoError> {
         match self.contact.size {
-            Some(ContactName::Exact) => return Err(SceneError::ExactNotForFit),
+            Some(ContactName::Exact) => {
+                return Err(err!(
+                    "[contact]: size = \"exact\" is a forward-only reference (its μ has no fast gradient); \
+         fit with size = \"dynamic\" (the paper's) or \"static\""
+                ));
+            }
             Some(name @ (ContactName::LowSpeed | ContactName::Auto)) => {
-                return Err(SceneError::ForwardOnly {
-                    size: if name == ContactName::Auto {
+                return Err(err!(
+                    "[contact]: size = \"{size}\" is for rollfit forward only (a fit needs one model with a \
+         gradient at every speed); fit with size = \"dynamic\" (the paper's) or \"static\"",
+                    size = if name == ContactName::Auto {
                         "auto"
                     } else {
                         "low-speed"
-                    },
-                });
+                    }
+                ));
             }
             _ => {}
         }
@@ -223,17 +240,14 @@ impl SceneFile {
         // The model owns the ranges of the set-up; a placeholder material
         // lets it check them before any fitting starts.
         let placeholder =
-            StandardLinearSolid::new(1.0, 2.0, 1.0).map_err(|error| SceneError::Model { error })?;
+            StandardLinearSolid::new(1.0, 2.0, 1.0).map_err(|error| err!("{error}"))?;
         let scene = Scene::new(setup.geometry, setup.substrate, setup.contact, placeholder)
-            .map_err(|error| SceneError::SetUp { error })?;
+            .map_err(|error| err!("{}{error}", section_of(&error)))?;
         let fit = self.fit.clone().unwrap_or_default();
         let mut params = fit.fit_params().section("[fit]")?;
         scene
             .with_tolerance(params.model_tolerance)
-            .map_err(|error| SceneError::SectionModel {
-                section: "[fit]",
-                error,
-            })?;
+            .map_err(|error| err!("{section}: {error}", section = "[fit]"))?;
         params.start = self.material.as_ref().and_then(MaterialSection::start);
         // A scene's shift gives a temperature set its reference temperature,
         // its law (instead of "auto": the scene has said which law the

@@ -12,12 +12,13 @@ use rollfit_model::exact::{ExactRolling, ExactSettings, RollingCylinder, Rolling
 use rollfit_model::{Prony, Scene, Shifted, ViscoelasticModulus};
 
 use super::material::MaterialSection;
+use super::messages::section_of;
 use super::setup::{ContactName, DEFAULT_ACCURACY, ShapeName};
 use super::sweep::temperature_without_shift;
 use super::values::Real;
 use super::vertical;
 use super::{DynScene, InSection, SceneFile};
-use crate::error::{IoError, SceneError};
+use crate::error::IoError;
 
 /// How `rollfit forward` computes μ for a block.
 pub enum ForwardRung {
@@ -77,7 +78,7 @@ impl SceneFile {
         scene_path: &Path,
         note: &dyn Fn(&str),
     ) -> Result<ForwardSetup, IoError> {
-        Ok(self.forward_blocks(scene_path, note)?)
+        self.forward_blocks(scene_path, note)
     }
 
     /// [`Self::forward_setup`], with the scene's own error.
@@ -85,9 +86,13 @@ impl SceneFile {
         &self,
         scene_path: &Path,
         note: &dyn Fn(&str),
-    ) -> Result<ForwardSetup, SceneError> {
-        let material_section = self.material.as_ref().ok_or(SceneError::NeedsMaterial)?;
-        let sweep = self.sweep.as_ref().ok_or(SceneError::NeedsSweep)?;
+    ) -> Result<ForwardSetup, IoError> {
+        let material_section = self.material.as_ref().ok_or(err!(
+            "forward needs a [material] section (the modulus to predict μ(v) from)"
+        ))?;
+        let sweep = self.sweep.as_ref().ok_or(err!(
+            "forward needs a [sweep] section (v_min, v_max, count or v = [..])"
+        ))?;
         let speeds = sweep.check_speeds().section("[sweep]")?;
 
         let base_dir = scene_path.parent().unwrap_or(Path::new(""));
@@ -111,9 +116,12 @@ impl SceneFile {
                     let reference: Arc<dyn ViscoelasticModulus> = Arc::from(material);
                     let mut materials = Vec::new();
                     for (i, &temperature) in temperatures.values().iter().enumerate() {
-                        let at = |e| SceneError::ShiftAt {
-                            entry: temperatures.entry(i),
-                            source: Box::new(e),
+                        let at = |e| {
+                            err!(
+                                "[material.shift] at [sweep] {entry} °C",
+                                entry = temperatures.entry(i)
+                            )
+                            .caused_by(e)
                         };
                         let log10_a_t = rule.log10_shift(temperature).map_err(at)?;
                         let log10_b_t = match &vertical {
@@ -122,9 +130,8 @@ impl SceneFile {
                         };
                         let shifted = Shifted::new(Arc::clone(&reference), log10_a_t)
                             .and_then(|s| s.with_vertical(log10_b_t))
-                            .map_err(|error| SceneError::SectionModel {
-                                section: "[material.shift]",
-                                error,
+                            .map_err(|error| {
+                                err!("{section}: {error}", section = "[material.shift]")
                             })?;
                         let applied = ShiftApplied {
                             temperature,
@@ -148,15 +155,11 @@ impl SceneFile {
         let mut blocks = Vec::with_capacity(materials.len());
         for (material, shift) in materials {
             let mut scene = Scene::new(geometry, substrate, contact, material)
-                .map_err(|error| SceneError::SetUp { error })?;
+                .map_err(|error| err!("{}{error}", section_of(&error)))?;
             if let Some(Real(tolerance)) = sweep.tolerance {
-                scene =
-                    scene
-                        .with_tolerance(tolerance)
-                        .map_err(|error| SceneError::SectionModel {
-                            section: "[sweep]",
-                            error,
-                        })?;
+                scene = scene
+                    .with_tolerance(tolerance)
+                    .map_err(|error| err!("{section}: {error}", section = "[sweep]"))?;
             }
             let rung = match self.contact.size {
                 Some(ContactName::Exact) => {
@@ -197,7 +200,7 @@ impl SceneFile {
         base_dir: &Path,
         shift: Option<ShiftApplied>,
         note: &dyn Fn(&str),
-    ) -> Result<Box<dyn ExactRolling>, SceneError> {
+    ) -> Result<Box<dyn ExactRolling>, IoError> {
         let factors = shift.map(|s| (s.log10_a_t, s.log10_b_t));
         let prony = self.exact_material_for(material, base_dir, factors, true, note)?;
         self.exact_body_with(&prony)
@@ -205,7 +208,7 @@ impl SceneFile {
 
     /// The exact rolling cylinder or sphere of this scene for `prony`, with
     /// the default discretisation.
-    fn exact_body_with(&self, prony: &Prony) -> Result<Box<dyn ExactRolling>, SceneError> {
+    fn exact_body_with(&self, prony: &Prony) -> Result<Box<dyn ExactRolling>, IoError> {
         Ok(match self.rolling_setup().geometry.shape {
             Shape::Cylinder => Box::new(self.exact_with(prony, ExactSettings::default())?),
             Shape::Sphere => {
@@ -217,10 +220,7 @@ impl SceneFile {
                         setup.geometry.radius,
                         setup.geometry.load,
                     )
-                    .map_err(|error| SceneError::SectionModel {
-                        section: "[contact] exact",
-                        error,
-                    })?,
+                    .map_err(|error| err!("{section}: {error}", section = "[contact] exact"))?,
                 )
             }
         })
@@ -238,10 +238,13 @@ impl SceneFile {
     ) -> Result<Prony, IoError> {
         // The callers build the exact cylinder from it.
         if self.geometry.shape != ShapeName::Cylinder {
-            return Err(SceneError::ExactNeedsCylinder.into());
+            return Err(err!(
+                "[contact]: this needs shape = \"cylinder\": the reference is the plane-strain exact \
+         rolling cylinder"
+            ));
         }
         let factors = log10_a_t.map(|a| (a, 0.0));
-        Ok(self.exact_material_for(material, base_dir, factors, true, note)?)
+        self.exact_material_for(material, base_dir, factors, true, note)
     }
 
     /// As [`Self::exact_material`], shifted by `factors` = (log10 a_T,
@@ -254,21 +257,24 @@ impl SceneFile {
         factors: Option<(f64, f64)>,
         refuse_film: bool,
         note: &dyn Fn(&str),
-    ) -> Result<Prony, SceneError> {
+    ) -> Result<Prony, IoError> {
         if refuse_film && self.substrate.thickness.is_some() {
-            return Err(SceneError::ExactNeedsHalfSpace);
+            return Err(err!(
+                "[contact]: size = \"exact\" is for a half-space; remove [substrate] thickness (films use \
+         size = \"dynamic\" or \"static\")"
+            ));
         }
         let Some(prony) = material.prony(base_dir, note).section("[material]")? else {
-            return Err(SceneError::ExactNeedsProny);
+            return Err(err!(
+                "[contact]: size = \"exact\" needs [material] model = \"sls\" or \"prony\" (the exact \
+         solution works with the creep compliance of a Prony series)"
+            ));
         };
         Ok(match factors {
             Some((log10_a_t, log10_b_t)) => prony
                 .shifted(log10_a_t)
                 .and_then(|p| p.scaled(log10_b_t))
-                .map_err(|error| SceneError::SectionModel {
-                    section: "[material.shift]",
-                    error,
-                })?,
+                .map_err(|error| err!("{section}: {error}", section = "[material.shift]"))?,
             None => prony,
         })
     }
@@ -280,7 +286,7 @@ impl SceneFile {
         prony: &Prony,
         settings: ExactSettings,
     ) -> Result<RollingCylinder, IoError> {
-        Ok(self.exact_with(prony, settings)?)
+        self.exact_with(prony, settings)
     }
 
     /// [`Self::exact_cylinder_with`], with the scene's own error.
@@ -288,7 +294,7 @@ impl SceneFile {
         &self,
         prony: &Prony,
         settings: ExactSettings,
-    ) -> Result<RollingCylinder, SceneError> {
+    ) -> Result<RollingCylinder, IoError> {
         let setup = self.rolling_setup();
         RollingCylinder::with_settings(
             prony,
@@ -297,9 +303,6 @@ impl SceneFile {
             setup.geometry.load,
             settings,
         )
-        .map_err(|error| SceneError::SectionModel {
-            section: "[contact] exact",
-            error,
-        })
+        .map_err(|error| err!("{section}: {error}", section = "[contact] exact"))
     }
 }

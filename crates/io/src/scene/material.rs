@@ -2,7 +2,7 @@
 //! per model, and what the fit and the exact solution take from it
 //! (docs/ARCHITECTURE.md, "Contract", "Scene file"). A `table` is read by
 //! [`crate::table`], a `dma` file made a master curve by
-//! [`crate::dma_master`]; what they say is a [`SceneError::File`].
+//! [`crate::dma_master`]; what they say is passed on as it is.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -16,12 +16,13 @@ use rollfit_model::{
 use serde::Deserialize;
 
 use super::InSection;
+use super::messages::quoted_or;
 use super::setup::DEFAULT_POISSON;
 use super::shift::{ShiftRule, ShiftSection};
 use super::values::{Real, RealOrList, reals};
 use super::vertical;
 use crate::dma_master::{self, DmaMaster};
-use crate::error::{IoError, SceneError};
+use crate::error::IoError;
 use crate::table;
 
 /// Material model names as written in the file.
@@ -197,7 +198,7 @@ impl fmt::Debug for DmaCache {
 
 impl MaterialSection {
     /// Checks that exactly the keys of the chosen model are present.
-    pub(super) fn check_keys(&self) -> Result<(), SceneError> {
+    pub(super) fn check_keys(&self) -> Result<(), IoError> {
         let kind = self.model;
         let present = [
             ("E0", self.e0.is_some()),
@@ -245,32 +246,54 @@ impl MaterialSection {
         ];
         for (key, is_present, models) in optional {
             if is_present && !models.contains(&kind) {
-                return Err(SceneError::KeyOfOtherModels {
-                    key,
-                    model: kind.name(),
-                    takes: kind.keys(),
-                    models: models.iter().map(|m| m.name()).collect(),
-                });
+                let models: Vec<&str> = models.iter().map(|m| m.name()).collect();
+                return Err(err!(
+                    "[material]: key `{key}` does not belong to model \"{}\" (it takes {}); \
+                     `{key}` is for model {}",
+                    kind.name(),
+                    kind.keys(),
+                    quoted_or(&models)
+                ));
             }
         }
         if kind == MaterialKind::Dma && self.shift.is_some() {
-            return Err(SceneError::ShiftWithDma);
+            return Err(err!(
+                "[material.shift] does not go with model = \"dma\": the shift factors come from the \
+         isotherms themselves (`shift_law` chooses \"wlf\", \"free\" or \"arrhenius\"); remove \
+         [material.shift]"
+            ));
         }
         for (key, is_present) in present {
             let wanted = needed.contains(&key);
             let (model, takes) = (kind.name(), kind.keys());
             if wanted && !is_present {
-                return Err(SceneError::MissingKey { key, model, takes });
+                return Err(err!(
+                    "[material]: model \"{model}\" needs the key `{key}` (it takes {takes})"
+                ));
             }
             if !wanted && is_present {
-                return Err(SceneError::ForeignKey { key, model, takes });
+                return Err(err!(
+                    "[material]: key `{key}` does not belong to model \"{model}\" (it takes {takes}){}",
+                    if model == "prony" && key == "E0" {
+                        "; the static modulus of a Prony series is E0 = E1 - sum(H)"
+                    } else {
+                        ""
+                    }
+                ));
             }
         }
         match (kind, &self.tau) {
             (MaterialKind::Sls | MaterialKind::HavriliakNegami, Some(RealOrList::List(_))) => {
-                Err(SceneError::TauNotNumber { model: kind.name() })
+                Err(err!(
+                    "[material]: model \"{model}\" takes one relaxation time: `tau` must be a number, not an \
+         array",
+                    model = kind.name()
+                ))
             }
-            (MaterialKind::Prony, Some(RealOrList::One(_))) => Err(SceneError::TauNotList),
+            (MaterialKind::Prony, Some(RealOrList::One(_))) => Err(err!(
+                "[material]: model \"prony\" takes one relaxation time per term: `tau` must be an array \
+         like H"
+            )),
             _ => Ok(()),
         }
     }
@@ -282,7 +305,7 @@ impl MaterialSection {
         base_dir: &Path,
         note: &dyn Fn(&str),
     ) -> Result<Box<dyn ViscoelasticModulus>, IoError> {
-        Ok(self.make_modulus(base_dir, note)?)
+        self.make_modulus(base_dir, note)
     }
 
     /// [`Self::build`], with the scene's own error.
@@ -290,10 +313,10 @@ impl MaterialSection {
         &self,
         base_dir: &Path,
         note: &dyn Fn(&str),
-    ) -> Result<Box<dyn ViscoelasticModulus>, SceneError> {
+    ) -> Result<Box<dyn ViscoelasticModulus>, IoError> {
         self.check_keys()?;
         let value = |r: Option<Real>| r.map_or(f64::NAN, |r| r.0);
-        let model = |error: ModelError| SceneError::Model { error };
+        let model = |error: ModelError| err!("{error}");
         Ok(match self.model {
             MaterialKind::Sls => {
                 let tau = match self.tau {
@@ -336,10 +359,7 @@ impl MaterialSection {
                 }
                 let rows = table.omega.len();
                 let modulus = TabulatedModulus::new(table.omega, table.storage, table.loss)
-                    .map_err(|error| SceneError::TableModel {
-                        path: path.clone(),
-                        error,
-                    })?;
+                    .map_err(|error| err!("modulus table {}: {error}", path.display()))?;
                 let (storage, loss) = modulus.interpolation_error_estimate();
                 note(&format!(
                     "{}: {rows} rows; between the rows the interpolation is estimated to err by \
@@ -358,9 +378,13 @@ impl MaterialSection {
     /// path.
     pub fn read_table(&self, base_dir: &Path) -> Result<(PathBuf, table::ModulusTable), IoError> {
         let file = match &self.file {
-            None => return Err(SceneError::NeedsFile { model: "table" }.into()),
+            None => return Err(err!("model \"{model}\" needs `file`", model = "table")),
             Some(Files::One(file)) => file,
-            Some(Files::Many(_)) => return Err(SceneError::TableFiles.into()),
+            Some(Files::Many(_)) => {
+                return Err(err!(
+                    "model \"table\" reads one file: `file` is a list (several DMA files are model \"dma\")"
+                ));
+            }
         };
         let path = base_dir.join(file);
         let table = table::read_sheet(
@@ -373,14 +397,14 @@ impl MaterialSection {
     }
 
     /// The master curve of a "dma" material, built on first use.
-    fn dma_master(&self, base_dir: &Path) -> Result<Arc<DmaMaster>, SceneError> {
+    fn dma_master(&self, base_dir: &Path) -> Result<Arc<DmaMaster>, IoError> {
         if let Some(built) = self.dma.built.get() {
             return Ok(Arc::clone(built));
         }
         let file = self
             .file
             .as_ref()
-            .ok_or(SceneError::NeedsFile { model: "dma" })?;
+            .ok_or(err!("model \"{model}\" needs `file`", model = "dma"))?;
         let settings = rollfit_fit::master::MasterSettings {
             t_ref: self.t_ref.map(|r| r.0),
             law: match self.shift_law {
@@ -411,7 +435,7 @@ impl MaterialSection {
     /// The time–temperature shift of this material: `[material.shift]`, or
     /// for "dma" the master curve's own (None without either, or for one
     /// isotherm).
-    pub(crate) fn shift_rule(&self, base_dir: &Path) -> Result<Option<ShiftRule>, SceneError> {
+    pub(crate) fn shift_rule(&self, base_dir: &Path) -> Result<Option<ShiftRule>, IoError> {
         if self.model == MaterialKind::Dma {
             return ShiftRule::of_master(self.dma_master(base_dir)?.as_ref());
         }
@@ -423,10 +447,7 @@ impl MaterialSection {
 
     /// The vertical factors b_T of this material: `[material.shift]`'s, or
     /// for "dma" with `vertical = true` the master curve's (None: b_T = 1).
-    pub(crate) fn vertical_rule(
-        &self,
-        base_dir: &Path,
-    ) -> Result<Option<VerticalShift>, SceneError> {
+    pub(crate) fn vertical_rule(&self, base_dir: &Path) -> Result<Option<VerticalShift>, IoError> {
         if self.model == MaterialKind::Dma {
             return vertical::of_master(self.dma_master(base_dir)?.as_ref());
         }
@@ -440,7 +461,7 @@ impl MaterialSection {
     /// An "sls" (one term), "prony" or "dma" material as a Prony series;
     /// None for other models (the Python module's μ with its Jacobian).
     pub fn as_prony(&self, base_dir: &Path, note: &dyn Fn(&str)) -> Result<Option<Prony>, IoError> {
-        Ok(self.prony(base_dir, note)?)
+        self.prony(base_dir, note)
     }
 
     /// [`Self::as_prony`], with the scene's own error.
@@ -448,9 +469,9 @@ impl MaterialSection {
         &self,
         base_dir: &Path,
         note: &dyn Fn(&str),
-    ) -> Result<Option<Prony>, SceneError> {
+    ) -> Result<Option<Prony>, IoError> {
         let modulus = self.make_modulus(base_dir, note)?;
-        let model = |error: ModelError| SceneError::Model { error };
+        let model = |error: ModelError| err!("{error}");
         Ok(match self.model {
             MaterialKind::Sls => {
                 let tau = match self.tau {

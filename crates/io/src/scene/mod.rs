@@ -1,8 +1,9 @@
 //! The scene file (TOML; docs/ARCHITECTURE.md, "Contract", "Scene file"),
 //! read by `rollfit forward`, `fit`, `batch` and `bench`: its schema and
-//! its conversion into validated model objects. Errors are
-//! [`SceneError`]s, reached as [`IoError::Scene`]; the files a material
-//! refers to are read by [`crate::table`] and [`crate::dma_master`].
+//! its conversion into validated model objects. An error names the file
+//! ([`in_file`]) and the section ([`InSection`]) before its cause; the
+//! files a material refers to are read by [`crate::table`] and
+//! [`crate::dma_master`].
 //!
 //! Parsing happens in two steps. serde turns the text into the plain
 //! structs of the sections; type errors, unknown keys, non-finite numbers
@@ -24,17 +25,18 @@
 //!
 //! [`Scene`]: rollfit_model::Scene
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rollfit_model::{Scene, ViscoelasticModulus};
 use serde::Deserialize;
 
-use crate::error::{IoError, SceneError};
+use crate::error::IoError;
 
 mod fit;
 pub(crate) mod fit_settings;
 mod forward;
 mod material;
+mod messages;
 mod setup;
 mod shift;
 mod sweep;
@@ -83,53 +85,48 @@ pub struct SceneFile {
 /// Reads, parses and validates a scene file; every error names `path`.
 pub fn load(path: &Path) -> Result<SceneFile, IoError> {
     let text = crate::text_file::read_utf8(path, "scene file")?;
-    parse_text(&text).map_err(|e| in_file(path, e).into())
+    parse_text(&text).map_err(|e| in_file(path, e))
 }
 
 /// Parses and validates scene-file text (the sections' internal consistency;
 /// the model checks physical ranges when the scene is built).
 pub fn parse(text: &str) -> Result<SceneFile, IoError> {
-    Ok(parse_text(text)?)
+    parse_text(text)
 }
 
-/// `error` behind the scene file's name ([`SceneError::InFile`]).
-pub fn in_file(path: &Path, error: impl Into<SceneError>) -> SceneError {
-    SceneError::InFile {
-        path: PathBuf::from(path),
-        source: Box::new(error.into()),
-    }
+/// `error` behind the scene file's name: `scene file PATH: …`.
+pub fn in_file(path: &Path, error: impl Into<IoError>) -> IoError {
+    err!("scene file {}", path.display())
+        .in_file(path)
+        .caused_by(error.into())
 }
 
-/// `error` behind the section it was found in ([`SceneError::InSection`]).
+/// `error` behind the section it was found in: `[sweep]: …`.
 pub(crate) trait InSection<T> {
     /// The error behind `section` (with its brackets, `"[sweep]"`).
-    fn section(self, section: &'static str) -> Result<T, SceneError>;
+    fn section(self, section: &'static str) -> Result<T, IoError>;
 }
 
-impl<T, E: Into<SceneError>> InSection<T> for Result<T, E> {
-    fn section(self, section: &'static str) -> Result<T, SceneError> {
-        self.map_err(|e| SceneError::InSection {
-            section,
-            source: Box::new(e.into()),
-        })
+impl<T, E: Into<IoError>> InSection<T> for Result<T, E> {
+    fn section(self, section: &'static str) -> Result<T, IoError> {
+        self.map_err(|e| err!("{section}").caused_by(e.into()))
     }
 }
 
 /// [`parse`], with the scene's own error.
-fn parse_text(text: &str) -> Result<SceneFile, SceneError> {
+fn parse_text(text: &str) -> Result<SceneFile, IoError> {
     // toml's message already carries "line L, column C" and the offending line.
-    let mut file: SceneFile = toml::from_str(text).map_err(|error| SceneError::Toml {
-        error: Box::new(error),
-    })?;
+    let mut file: SceneFile =
+        toml::from_str(text).map_err(|error| err!("{}", error.to_string().trim_end()))?;
     let poisson = file.substrate.poisson.map_or(DEFAULT_POISSON, |r| r.0);
     // Checked before any material reads a file with it (a table's shear
     // moduli are converted with it), so that ν is refused as the scene's.
     rollfit_model::check_poisson(poisson)
-        .map_err(|e| SceneError::Model { error: e.into() })
+        .map_err(|e| err!("{}", rollfit_model::ModelError::from(e)))
         .section("[substrate]")?;
     if let Some(Real(thickness)) = file.substrate.thickness {
         rollfit_model::check_film_thickness(thickness)
-            .map_err(|error| SceneError::Model { error })
+            .map_err(|error| err!("{error}"))
             .section("[substrate]")?;
     }
     if let Some(material) = &mut file.material {
@@ -145,7 +142,10 @@ fn parse_text(text: &str) -> Result<SceneFile, SceneError> {
     if file.contact.size == Some(ContactName::Auto)
         && file.sweep.as_ref().is_some_and(|s| s.tolerance.is_some())
     {
-        return Err(SceneError::AutoSetsTolerance);
+        return Err(err!(
+            "[sweep]: tolerance is set by size = \"auto\" itself (a tenth of [contact] accuracy); \
+         remove it, or choose a rung with size = \"dynamic\""
+        ));
     }
     if let Some(fit) = &file.fit {
         fit.check().section("[fit]")?;

@@ -4,7 +4,7 @@ use rollfit_fit::RollingSetup;
 use rollfit_model::{ContactSize, Geometry, Shape, Substrate};
 use serde::Deserialize;
 
-use crate::error::SceneError;
+use crate::error::IoError;
 
 use super::SceneFile;
 use super::values::Real;
@@ -80,13 +80,18 @@ pub struct ContactSection {
 
 impl ContactSection {
     /// `accuracy` belongs to `size = "auto"`.
-    pub(super) fn check(&self) -> Result<(), SceneError> {
+    pub(super) fn check(&self) -> Result<(), IoError> {
         if let Some(Real(accuracy)) = self.accuracy {
             if self.size != Some(ContactName::Auto) {
-                return Err(SceneError::AccuracyWithoutAuto { accuracy });
+                return Err(err!(
+                    "[contact]: accuracy = {accuracy} is the target of size = \"auto\"; add size = \"auto\" \
+         or remove accuracy"
+                ));
             }
             if !(1e-8..=0.5).contains(&accuracy) {
-                return Err(SceneError::AccuracyOutOfRange { accuracy });
+                return Err(err!(
+                    "[contact]: accuracy = {accuracy} must lie between 1e-8 and 0.5 (relative)"
+                ));
             }
         }
         Ok(())

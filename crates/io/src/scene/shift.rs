@@ -9,7 +9,7 @@ use serde::Deserialize;
 use super::values::{Real, value_of};
 use super::vertical::{VerticalLawName, VerticalPoint};
 use crate::dma_master::DmaMaster;
-use crate::error::{Fault, SceneError};
+use crate::error::IoError;
 
 /// Shift model names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -88,48 +88,53 @@ impl ShiftRule {
     /// Arrhenius, or a free shift interpolated linearly in T between its
     /// listed temperatures (T_ref included) and never extrapolated beyond
     /// them.
-    pub fn log10_shift(&self, temperature: f64) -> Result<f64, SceneError> {
-        let model = |error| SceneError::Model { error };
+    pub fn log10_shift(&self, temperature: f64) -> Result<f64, IoError> {
+        let model = |error| err!("{error}");
         let shift = match self {
             ShiftRule::Wlf(wlf) => wlf.log10_shift(temperature).map_err(model)?,
             ShiftRule::Arrhenius(law) => law.log10_shift(temperature).map_err(model)?,
             ShiftRule::WlfArrhenius(law) => law.log10_shift(temperature).map_err(model)?,
             // The only refusal for a finite temperature is one outside the
             // list, which the file can fix.
-            ShiftRule::Free(free) => free
-                .log10_shift(temperature)
-                .map_err(|error| SceneError::FreeShiftOutside { error })?,
+            ShiftRule::Free(free) => free.log10_shift(temperature).map_err(|error| {
+                err!("{error}; add a `log_aT` entry at or beyond it, or use model = \"wlf\"")
+            })?,
         };
         if !shift.is_finite() {
-            return Err(SceneError::ShiftNotFinite { temperature, shift });
+            return Err(err!(
+                "log10 a_T at T = {temperature} °C is {shift}: the shift is not defined at this \
+         temperature"
+            ));
         }
         Ok(shift)
     }
 
     /// The rule of a master curve's shift (None for one isotherm).
-    pub(super) fn of_master(built: &DmaMaster) -> Result<Option<ShiftRule>, SceneError> {
+    pub(super) fn of_master(built: &DmaMaster) -> Result<Option<ShiftRule>, IoError> {
         use rollfit_fit::master::ShiftLaw;
         let shift = &built.master.shift;
         if shift.shifts.len() < 2 {
             return Ok(None);
         }
         let t_ref = shift.t_ref;
-        let model = |error| SceneError::MasterShift { error };
+        let model = |error| err!("the DMA master curve's shift: {error}");
         Ok(Some(match shift.law {
             ShiftLaw::Wlf => {
-                let w = shift.wlf.ok_or(Fault::LawMissing { law: "WLF" })?;
+                let w = shift
+                    .wlf
+                    .ok_or(err!("{law} fit missing", law = "WLF").internal())?;
                 ShiftRule::Wlf(Wlf::new(t_ref, w.c1, w.c2).map_err(model)?)
             }
             ShiftLaw::Arrhenius => {
                 let a = shift
                     .arrhenius
-                    .ok_or(Fault::LawMissing { law: "Arrhenius" })?;
+                    .ok_or(err!("{law} fit missing", law = "Arrhenius").internal())?;
                 ShiftRule::Arrhenius(Arrhenius::new(t_ref, a.activation_energy).map_err(model)?)
             }
             ShiftLaw::WlfArrhenius => {
-                let w = shift.wlf_arrhenius.ok_or(Fault::LawMissing {
-                    law: "WLF–Arrhenius",
-                })?;
+                let w = shift
+                    .wlf_arrhenius
+                    .ok_or(err!("{law} fit missing", law = "WLF–Arrhenius").internal())?;
                 ShiftRule::WlfArrhenius(
                     WlfArrhenius::new(t_ref, w.c1, w.c2, w.t_junction, w.activation_energy)
                         .map_err(model)?,
@@ -154,18 +159,22 @@ impl ShiftSection {
     /// Checks that exactly the keys of the chosen shift model are present
     /// and builds the model's shift from them; the model checks the values
     /// (positive WLF constants, distinct and finite free-shift entries).
-    pub(super) fn rule(&self) -> Result<ShiftRule, SceneError> {
-        let model = |error| SceneError::Model { error };
+    pub(super) fn rule(&self) -> Result<ShiftRule, IoError> {
+        let model = |error| err!("{error}");
         match self.model {
             ShiftKind::Wlf => {
                 if self.c1.is_none() || self.c2.is_none() {
-                    return Err(SceneError::WlfKeysMissing);
+                    return Err(err!(
+                        "model \"wlf\" needs the keys `C1` and `C2` (and `T_ref`)"
+                    ));
                 }
                 if self.log_at.is_some()
                     || self.activation_energy.is_some()
                     || self.t_junction.is_some()
                 {
-                    return Err(SceneError::WlfForeignKeys);
+                    return Err(err!(
+                        "keys `log_aT`, `E_a` and `T_g` do not belong to model \"wlf\" (it takes T_ref, C1, C2)"
+                    ));
                 }
                 // The model names the offending key (T_ref, C1 or C2).
                 let wlf =
@@ -178,11 +187,14 @@ impl ShiftSection {
                     || self.log_at.is_some()
                     || self.t_junction.is_some()
                 {
-                    return Err(SceneError::ArrheniusForeignKeys);
+                    return Err(err!(
+                        "keys `C1`, `C2`, `T_g` and `log_aT` do not belong to model \"arrhenius\" (it takes T_ref, \
+         E_a)"
+                    ));
                 }
-                let energy = self
-                    .activation_energy
-                    .ok_or(SceneError::ArrheniusNeedsEnergy)?;
+                let energy = self.activation_energy.ok_or(err!(
+                    "model \"arrhenius\" needs the key `E_a`, the activation energy in J/mol"
+                ))?;
                 let law = Arrhenius::new(self.t_ref.0, energy.0).map_err(model)?;
                 Ok(ShiftRule::Arrhenius(law))
             }
@@ -190,10 +202,15 @@ impl ShiftSection {
                 let (Some(c1), Some(c2), Some(t_g), Some(energy)) =
                     (self.c1, self.c2, self.t_junction, self.activation_energy)
                 else {
-                    return Err(SceneError::WlfArrheniusKeysMissing);
+                    return Err(err!(
+                        "model \"wlf-arrhenius\" needs the keys `C1`, `C2` (WLF about T_ref, above T_g), `T_g` \
+         (the junction, °C) and `E_a` (J/mol, below T_g), and `T_ref`"
+                    ));
                 };
                 if self.log_at.is_some() {
-                    return Err(SceneError::WlfArrheniusForeignKeys);
+                    return Err(err!(
+                        "key `log_aT` does not belong to model \"wlf-arrhenius\" (it takes T_ref, C1, C2, T_g, E_a)"
+                    ));
                 }
                 let law =
                     WlfArrhenius::new(self.t_ref.0, c1.0, c2.0, t_g.0, energy.0).map_err(model)?;
@@ -205,13 +222,16 @@ impl ShiftSection {
                     || self.activation_energy.is_some()
                     || self.t_junction.is_some()
                 {
-                    return Err(SceneError::FreeForeignKeys);
+                    return Err(err!(
+                        "keys `C1`, `C2`, `T_g` and `E_a` do not belong to model \"free\" (it takes T_ref, log_aT)"
+                    ));
                 }
-                let listed = self.log_at.as_deref().ok_or(SceneError::FreeNeedsList)?;
+                let listed = self.log_at.as_deref().ok_or(err!("model \"free\" needs the key `log_aT`, one entry per measured temperature, e.g. log_aT \
+         = [{{ T = 0.0, log_aT = 2.1 }}, {{ T = 40.0, log_aT = -1.3 }}]"))?;
                 let entries = listed.iter().map(|p| (p.t.0, p.log_at.0)).collect();
                 // The model's "entry i" is the i-th element of `log_aT`.
                 let free = FreeShift::new(self.t_ref.0, entries)
-                    .map_err(|error| SceneError::FreeShiftEntries { error })?;
+                    .map_err(|error| err!("`log_aT`: {error}"))?;
                 Ok(ShiftRule::Free(free))
             }
         }
@@ -219,7 +239,7 @@ impl ShiftSection {
 
     /// The section's vertical factors (None: b_T = 1), checked as
     /// [`super::vertical::rule`] says.
-    pub(crate) fn vertical_rule(&self) -> Result<Option<VerticalShift>, SceneError> {
+    pub(crate) fn vertical_rule(&self) -> Result<Option<VerticalShift>, IoError> {
         super::vertical::rule(
             self.t_ref.0,
             self.log_bt.as_deref(),
@@ -229,7 +249,7 @@ impl ShiftSection {
     }
 
     /// Checks the section by building its shift and vertical factors.
-    pub(super) fn check(&self) -> Result<(), SceneError> {
+    pub(super) fn check(&self) -> Result<(), IoError> {
         self.rule()?;
         self.vertical_rule().map(|_| ())
     }

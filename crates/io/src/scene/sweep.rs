@@ -9,7 +9,7 @@ use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
 use super::values::{Real, finite, reals, require_positive};
-use crate::error::{IoError, SceneError};
+use crate::error::IoError;
 
 /// Default number of log-spaced speeds of a `[sweep]` given by its range.
 pub const DEFAULT_SWEEP_COUNT: i64 = 61;
@@ -19,10 +19,12 @@ pub const DEFAULT_SWEEP_COUNT: i64 = 61;
 pub const MAX_SWEEP_COUNT: i64 = 1_000_000;
 
 /// The error of a `[sweep] temperature` without `[material.shift]`.
-pub(crate) fn temperature_without_shift(temperature: &SweepTemperature) -> SceneError {
-    SceneError::TemperatureWithoutShift {
-        temperature: temperature.describe(),
-    }
+pub(crate) fn temperature_without_shift(temperature: &SweepTemperature) -> IoError {
+    err!(
+        "[sweep] {temperature} is set but [material] has no [material.shift]: without a \
+         time-temperature shift the material is known only at its reference temperature",
+        temperature = temperature.describe()
+    )
 }
 
 /// `[sweep] temperature`, °C: one temperature, or a list of them (a
@@ -71,7 +73,7 @@ impl SweepTemperature {
     /// one temperature and none twice (within the model's
     /// [`FreeShift::TEMPERATURE_TOLERANCE`], the rule the fit uses to tell
     /// the temperatures of a set apart).
-    pub(super) fn check(&self) -> Result<(), SceneError> {
+    pub(super) fn check(&self) -> Result<(), IoError> {
         for (i, &t) in self.values().iter().enumerate() {
             if let Some(requirement) = column_requirement("T", t) {
                 let key = match self {
@@ -83,29 +85,35 @@ impl SweepTemperature {
                     true => format!("{t}"),
                     false => format!("{t:e}"),
                 };
-                return Err(SceneError::TemperatureOutOfRange {
-                    entry: format!("{key} = {shown}"),
-                    requirement,
-                });
+                return Err(err!(
+                    "{entry} °C {requirement}: a data file's T column is refused there, so `rollfit fit` \
+         could not read these rows back",
+                    entry = format!("{key} = {shown}")
+                ));
             }
         }
         let SweepTemperature::List(list) = self else {
             return Ok(());
         };
         if list.is_empty() {
-            return Err(SceneError::NoTemperatures);
+            return Err(err!(
+                "`temperature = []` lists no temperatures: give at least one (°C), e.g. temperature = \
+         [0.0, 20.0, 40.0], or leave the key out"
+            ));
         }
         for (j, &t) in list.iter().enumerate() {
             if let Some(i) = list[..j]
                 .iter()
                 .position(|&s| (s - t).abs() <= FreeShift::TEMPERATURE_TOLERANCE)
             {
-                return Err(SceneError::RepeatedTemperature {
-                    index: j,
-                    temperature: t,
-                    first: i,
-                    first_temperature: list[i],
-                });
+                return Err(err!(
+                    "temperature[{index}] = {temperature} repeats temperature[{first}] = {first_temperature}: \
+         list each temperature once",
+                    first = i,
+                    first_temperature = list[i],
+                    index = j,
+                    temperature = t
+                ));
             }
         }
         Ok(())
@@ -169,77 +177,94 @@ pub struct SweepSection {
 
 /// The speeds `rollfit fit` accepts ([`rollfit_fit::data::SPEED_RANGE`]),
 /// so that a synthetic measurement can be fitted back.
-fn in_speed_range(key: impl FnOnce() -> String, v: f64) -> Result<(), SceneError> {
+fn in_speed_range(key: impl FnOnce() -> String, v: f64) -> Result<(), IoError> {
     let (low, high) = rollfit_fit::data::SPEED_RANGE;
     if (low..=high).contains(&v) {
         return Ok(());
     }
-    Err(SceneError::SpeedOutOfRange {
-        key: key(),
-        value: v,
-        low,
-        high,
-    })
+    Err(err!(
+        "{key} = {value:e}: speeds must lie between {low:e} and {high:e} m/s (the range of a \
+         rolling measurement that `rollfit fit` accepts)",
+        key = key(),
+        value = v
+    ))
 }
 
 impl SweepSection {
     /// The speeds (m/s), strictly increasing: log-spaced from the range or
     /// the explicit list.
     pub fn speeds(&self) -> Result<Vec<f64>, IoError> {
-        Ok(self.check_speeds()?)
+        self.check_speeds()
     }
 
     /// [`Self::speeds`], with the scene's own error.
-    pub(super) fn check_speeds(&self) -> Result<Vec<f64>, SceneError> {
+    pub(super) fn check_speeds(&self) -> Result<Vec<f64>, IoError> {
         if let Some(list) = &self.v {
             if self.v_min.is_some() || self.v_max.is_some() || self.count.is_some() {
-                return Err(SceneError::SpeedsTwice);
+                return Err(err!(
+                    "give either `v = [..]` or `v_min`, `v_max` (and `count`), not both"
+                ));
             }
             if list.is_empty() {
-                return Err(SceneError::NoSpeedListed);
+                return Err(err!("`v` is empty: list at least one speed"));
             }
             let speeds = reals(list);
             for (i, &v) in speeds.iter().enumerate() {
                 if v <= 0.0 {
-                    return Err(SceneError::SpeedNotPositive { index: i, value: v });
+                    return Err(err!(
+                        "v[{index}] = {value}: speeds must be greater than zero",
+                        index = i,
+                        value = v
+                    ));
                 }
                 in_speed_range(|| format!("v[{i}]"), v)?;
             }
             if let Some(i) = speeds.windows(2).position(|w| w[1] <= w[0]) {
-                return Err(SceneError::SpeedsNotIncreasing {
-                    index: i + 1,
-                    value: speeds[i + 1],
-                    previous: speeds[i],
-                });
+                return Err(err!(
+                    "v[{index}] = {value} does not exceed v[{}] = {previous}: list the speeds in increasing \
+         order",
+                    &(i + 1) - 1,
+                    index = i + 1,
+                    previous = speeds[i],
+                    value = speeds[i + 1]
+                ));
             }
             return Ok(speeds);
         }
-        let v_min = self.v_min.ok_or(SceneError::NoSpeeds)?.0;
-        let v_max = self.v_max.ok_or(SceneError::NoSpeeds)?.0;
+        let v_min = self
+            .v_min
+            .ok_or(err!(
+                "needs `v_min` and `v_max` (m/s), or a list `v = [..]`"
+            ))?
+            .0;
+        let v_max = self
+            .v_max
+            .ok_or(err!(
+                "needs `v_min` and `v_max` (m/s), or a list `v = [..]`"
+            ))?
+            .0;
         require_positive("v_min", v_min)?;
         require_positive("v_max", v_max)?;
         in_speed_range(|| "v_min".into(), v_min)?;
         in_speed_range(|| "v_max".into(), v_max)?;
         if v_min >= v_max {
-            return Err(SceneError::RangeNotIncreasing { v_min, v_max });
+            return Err(err!("v_min = {v_min} must be less than v_max = {v_max}"));
         }
         let count = self.count.unwrap_or(DEFAULT_SWEEP_COUNT);
         if count < 1 {
-            return Err(SceneError::CountBelowOne { count });
+            return Err(err!("count = {count}: must be at least 1"));
         }
         if count > MAX_SWEEP_COUNT {
-            return Err(SceneError::CountTooLarge {
-                count,
-                max: MAX_SWEEP_COUNT,
-            });
+            return Err(err!(
+                "count = {count}: at most {max} speeds",
+                max = MAX_SWEEP_COUNT
+            ));
         }
         let speeds = log_spaced(v_min, v_max, count as usize);
         if !speeds.windows(2).all(|w| w[0] < w[1]) {
-            return Err(SceneError::CountTooDense {
-                count,
-                v_min,
-                v_max,
-            });
+            return Err(err!(
+                "count = {count} is too many distinct speeds between v_min = {v_min} and v_max = {v_max}"
+            ));
         }
         Ok(speeds)
     }

@@ -453,7 +453,7 @@ fn fit_settings_are_read_by_the_one_parser() {
     }
 }
 
-/// Issue 31: a temperature set's law is "auto" unless the scene says
+/// A temperature set's law is "auto" unless the scene says
 /// otherwise: `[material.shift]` gives its model as the law (its T_ref, and
 /// for WLF its constants as the start), and `[fit] shift` overrides both.
 #[test]

@@ -6,7 +6,7 @@ use std::fmt;
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
-use crate::error::SceneError;
+use crate::error::IoError;
 
 /// A finite floating-point number from the scene file.
 ///
@@ -94,10 +94,10 @@ pub(crate) fn value_of(r: Option<Real>) -> f64 {
     r.map_or(f64::NAN, |r| r.0)
 }
 
-pub(crate) fn require_positive(key: &'static str, value: f64) -> Result<(), SceneError> {
+pub(crate) fn require_positive(key: &'static str, value: f64) -> Result<(), IoError> {
     if value > 0.0 {
         Ok(())
     } else {
-        Err(SceneError::NotPositive { key, value })
+        Err(err!("{key} = {value}: must be greater than zero"))
     }
 }

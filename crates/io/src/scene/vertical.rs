@@ -19,7 +19,7 @@ use serde::Deserialize;
 
 use super::values::Real;
 use crate::dma_master::DmaMaster;
-use crate::error::SceneError;
+use crate::error::IoError;
 
 /// Vertical-factor law names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -49,23 +49,27 @@ pub(crate) fn rule(
     log_bt: Option<&[VerticalPoint]>,
     law: Option<VerticalLawName>,
     expansion: Option<f64>,
-) -> Result<Option<VerticalShift>, SceneError> {
+) -> Result<Option<VerticalShift>, IoError> {
     match (log_bt, law, expansion) {
-        (Some(_), Some(_), _) => Err(SceneError::VerticalTwoForms),
-        (Some(_), None, Some(_)) | (None, None, Some(_)) => {
-            Err(SceneError::ExpansionWithoutDensity)
-        }
+        (Some(_), Some(_), _) => Err(err!(
+            "give the vertical factors either as a table `log_bT = [{{ T = .., log_bT = .. }}, ..]` \
+         or as the law vertical = \"density\", not both"
+        )),
+        (Some(_), None, Some(_)) | (None, None, Some(_)) => Err(err!(
+            "`expansion` (the volumetric expansion coefficient, 1/K) belongs to vertical = \
+         \"density\"; add it, or remove `expansion`"
+        )),
         (Some(listed), None, None) => {
             let entries = listed.iter().map(|p| (p.t.0, p.log_bt.0)).collect();
             // The model's "entry i" is the i-th element of `log_bT`.
             VerticalShift::table(t_ref, entries)
                 .map(Some)
-                .map_err(|error| SceneError::VerticalEntries { error })
+                .map_err(|error| err!("`log_bT`: {error}"))
         }
         (None, Some(VerticalLawName::Density), expansion) => {
             VerticalShift::density(t_ref, expansion.unwrap_or(0.0))
                 .map(Some)
-                .map_err(|error| SceneError::Model { error })
+                .map_err(|error| err!("{error}"))
         }
         (None, None, None) => Ok(None),
     }
@@ -74,7 +78,7 @@ pub(crate) fn rule(
 /// The vertical factors of a DMA master curve built with `vertical = true`
 /// (None without them, or for one isotherm): its measured log10 b_T as a
 /// table about its T_ref.
-pub(super) fn of_master(built: &DmaMaster) -> Result<Option<VerticalShift>, SceneError> {
+pub(super) fn of_master(built: &DmaMaster) -> Result<Option<VerticalShift>, IoError> {
     let shift = &built.master.shift;
     if !built.settings.vertical() || shift.shifts.len() < 2 {
         return Ok(None);
@@ -86,15 +90,17 @@ pub(super) fn of_master(built: &DmaMaster) -> Result<Option<VerticalShift>, Scen
         .collect();
     VerticalShift::table(shift.t_ref, entries)
         .map(Some)
-        .map_err(|error| SceneError::MasterShift { error })
+        .map_err(|error| err!("the DMA master curve's shift: {error}"))
 }
 
 /// log10 b_T at `temperature` (°C); a temperature outside a table says
 /// which key to extend.
-pub(crate) fn log10_factor(rule: &VerticalShift, temperature: f64) -> Result<f64, SceneError> {
+pub(crate) fn log10_factor(rule: &VerticalShift, temperature: f64) -> Result<f64, IoError> {
     rule.log10_factor(temperature).map_err(|error| match rule {
-        VerticalShift::Table(_) => SceneError::VerticalOutside { error },
-        VerticalShift::Density { .. } => SceneError::Model { error },
+        VerticalShift::Table(_) => {
+            err!("{error}; add a `log_bT` entry at or beyond it, or use vertical = \"density\"")
+        }
+        VerticalShift::Density { .. } => err!("{error}"),
     })
 }
 

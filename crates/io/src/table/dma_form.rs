@@ -9,9 +9,9 @@
 use std::path::Path;
 
 use super::ModulusTable;
+use crate::columns::OMEGA_MEASURED;
 use crate::dma::{DmaData, DmaOptions, ModulusKind, isotherms};
-use crate::error::table::{celsius, in_scene_words};
-use crate::error::{IoError, TableError, TableIsotherm};
+use crate::error::IoError;
 
 /// Reads a file of the DMA forms and makes one master curve of it;
 /// `shifted_points`: the file looks like the master.csv of `rollfit
@@ -31,32 +31,35 @@ pub(super) fn read(
         ..DmaOptions::default()
     };
     let data = DmaData::read_sheet(path, if usable { poisson } else { 0.5 }, &options, sheet)
-        .map_err(|e| TableError::Dma { error: Box::new(e) })?;
+        .map_err(|e| err!("modulus table {}", in_scene_words(&e.to_string())))?;
     if !usable && data.kind == ModulusKind::Shear {
-        return Err(TableError::ShearWithoutPoisson {
-            path: path.to_path_buf(),
-            poisson,
-        }
-        .into());
+        return Err(err!(
+            "modulus table {}: holds shear moduli G′, G″; converting them to Young's moduli \
+         (E = 2(1+ν)G) needs [substrate] poisson in [0, 0.5], not {poisson}",
+            path.display()
+        ));
     }
     let isotherms = isotherms(&data.points);
     if isotherms.len() > 1 {
-        return Err(TableError::SeveralTemperatures {
-            path: path.to_path_buf(),
-            isotherms: isotherms
-                .iter()
-                .map(|i| {
-                    let lines = i.points.iter().map(|&k| data.lines[k]);
-                    TableIsotherm {
-                        temperature: i.temperature,
-                        points: i.points.len(),
-                        lines: (lines.clone().min().unwrap_or(0), lines.max().unwrap_or(0)),
-                    }
-                })
-                .collect(),
-            shifted_points,
-        }
-        .into());
+        let isotherms: Vec<TableIsotherm> = isotherms
+            .iter()
+            .map(|i| {
+                let lines = i.points.iter().map(|&k| data.lines[k]);
+                TableIsotherm {
+                    temperature: i.temperature,
+                    points: i.points.len(),
+                    lines: (lines.clone().min().unwrap_or(0), lines.max().unwrap_or(0)),
+                }
+            })
+            .collect();
+        return Err(err!(
+            "modulus table {}: {} temperatures: {}; a table is one master curve at one \
+             temperature. {}",
+            path.display(),
+            isotherms.len(),
+            list_isotherms(&isotherms),
+            advice(path, shifted_points)
+        ));
     }
 
     // How the file was read first, then what was left out.
@@ -82,25 +85,100 @@ pub(super) fn read(
 
 /// The points of `data` in increasing frequency; refused with a frequency
 /// twice or fewer than two points.
-fn sorted(path: &Path, data: &DmaData) -> Result<Vec<usize>, TableError> {
+fn sorted(path: &Path, data: &DmaData) -> Result<Vec<usize>, IoError> {
     let mut order: Vec<usize> = (0..data.points.len()).collect();
     order.sort_by(|&a, &b| data.points[a].omega.total_cmp(&data.points[b].omega));
     for pair in order.windows(2) {
         let (a, b) = (&data.points[pair[0]], &data.points[pair[1]]);
         if b.omega <= a.omega {
             let (first, second) = (data.lines[pair[0]], data.lines[pair[1]]);
-            return Err(TableError::RepeatedFrequency {
-                path: path.to_path_buf(),
-                lines: (first.min(second), first.max(second)),
-                omega: a.omega,
-            });
+            return Err(err!(
+                "modulus table {}, lines {} and {}: the same frequency ω = {omega} rad/s twice; a master \
+         curve has one modulus per frequency: remove or average the repeated rows",
+                path.display(),
+                first.min(second),
+                first.max(second),
+                omega = a.omega
+            ));
         }
     }
     if order.len() < 2 {
-        return Err(TableError::TooFewPoints {
-            path: path.to_path_buf(),
-            rows: order.len(),
-        });
+        return Err(err!(
+            "modulus table {}: the table has {rows} usable data row(s): at least two frequencies \
+         are needed to interpolate",
+            path.display(),
+            rows = order.len()
+        ));
     }
     Ok(order)
+}
+
+/// One temperature of a table that holds several: its (mean) temperature,
+/// points and first and last line.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct TableIsotherm {
+    /// °C.
+    temperature: f64,
+    /// Points at it.
+    points: usize,
+    /// The first and last file line of its points.
+    lines: (usize, usize),
+}
+
+/// A message of the DMA reader in the words of a scene file: the DMA
+/// reader serves `rollfit compare` and `report`, where ν is the fit's and
+/// the modulus kind a command-line flag; here they are `[substrate]
+/// poisson` and `[material] modulus`. (A rewording the DMA reader's text
+/// no longer matches is left as it is: still true, in the other words.)
+fn in_scene_words(message: &str) -> String {
+    message
+        .replace("(the fit's)", "([substrate] poisson)")
+        .replace("--dma-modulus shear", "[material] modulus = \"shear\"")
+        .replace("--dma-modulus young", "[material] modulus = \"young\"")
+}
+
+/// A temperature as a message shows it: to 0.1 K (an isotherm's mean,
+/// within a controller's scatter), without trailing zeros.
+fn celsius(t: f64) -> String {
+    // + 0.0: −0.02 °C shows as 0, not −0.
+    format!("{} °C", (t * 10.0).round() / 10.0 + 0.0)
+}
+
+/// With a few isotherms each with its points and lines; a whole
+/// temperature programme by its temperatures.
+fn list_isotherms(isotherms: &[TableIsotherm]) -> String {
+    let listed: Vec<String> = if isotherms.len() <= 6 {
+        isotherms
+            .iter()
+            .map(|i| {
+                format!(
+                    "{} ({} point(s), lines {}–{})",
+                    celsius(i.temperature),
+                    i.points,
+                    i.lines.0,
+                    i.lines.1
+                )
+            })
+            .collect()
+    } else {
+        isotherms.iter().map(|i| celsius(i.temperature)).collect()
+    };
+    listed.join(", ")
+}
+
+/// What to do with a table of several temperatures.
+fn advice(path: &std::path::Path, shifted_points: bool) -> String {
+    if shifted_points {
+        format!(
+            "This looks like the master.csv of `rollfit master` (column {OMEGA_MEASURED}): its \
+             points scatter where the isotherms overlap; give the smooth master curve beside it, \
+             modulus.csv, as the table instead"
+        )
+    } else {
+        format!(
+            "Use [material] model = \"dma\", file = \"…\" to shift the isotherms into a master \
+             curve, or build one with `rollfit master {}`",
+            path.display()
+        )
+    }
 }

@@ -29,7 +29,7 @@
 //!   [`ModulusTable::notes`] with its line.
 //!
 //! The model checks the same things again; checking here as well is what
-//! lets an error ([`crate::error::TableError`]) name the line of the file.
+//! lets an error name the line of the file.
 //! [`explain_contact_map`] turns the model's contact-map error into the
 //! table lines that cause it. Column names come from
 //! [`crate::fit_dir::columns`] and [`crate::columns`], where their writers
@@ -44,7 +44,7 @@ use std::path::Path;
 
 use crate::columns::{F, G_LOSS, G_STORAGE, OMEGA_MEASURED};
 use crate::dma::ModulusKind;
-use crate::error::{IoError, TableError};
+use crate::error::IoError;
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA, T};
 
 pub use contact_map::explain_contact_map;
@@ -101,11 +101,7 @@ fn read_form(
     sheet: Option<&str>,
 ) -> Result<ModulusTable, IoError> {
     let bytes = crate::input_file::read_input(path, "modulus table", |source| {
-        TableError::Read {
-            path: path.to_path_buf(),
-            source,
-        }
-        .into()
+        err!("cannot read modulus table {}", path.display()).system(source)
     })?;
     if sheet.is_some() || crate::data::workbook::is_workbook(path, &bytes) {
         return dma_form::read(path, poisson, kind, sheet, false);
@@ -117,11 +113,9 @@ fn read_form(
         && is_plain(text)
     {
         return parse(text).map_err(|e| {
-            TableError::Plain {
-                path: path.to_path_buf(),
-                source: Box::new(e),
-            }
-            .into()
+            err!("modulus table {}", path.display())
+                .in_file(path)
+                .caused_by(e)
         });
     }
     // master.csv of `rollfit master`: every DMA point moved to the

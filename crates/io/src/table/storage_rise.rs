@@ -16,29 +16,35 @@
 use std::path::Path;
 
 use super::ModulusTable;
-use crate::error::TableError;
+use crate::error::IoError;
 
 /// The relative fall of E′ below its running maximum that is refused.
 pub(super) const FALL_TOLERANCE: f64 = 0.2;
 
 /// Refuses `table` (read from `path`) at its first row whose E′ lies more
 /// than [`FALL_TOLERANCE`] below the largest E′ before it, naming both rows.
-pub(super) fn check(path: &Path, table: &ModulusTable) -> Result<(), TableError> {
+pub(super) fn check(path: &Path, table: &ModulusTable) -> Result<(), IoError> {
     let mut peak = 0;
     for (row, &storage) in table.storage.iter().enumerate() {
         if storage > table.storage[peak] {
             peak = row;
         } else if storage < (1.0 - FALL_TOLERANCE) * table.storage[peak] {
             let line = |i: usize| table.lines.get(i).copied().unwrap_or(i + 1);
-            return Err(TableError::StorageFalls {
-                path: path.to_path_buf(),
-                line: line(row),
-                omega: table.omega[row],
-                storage,
-                peak_line: line(peak),
-                peak_omega: table.omega[peak],
-                peak_storage: table.storage[peak],
-            });
+            return Err(err!(
+                "modulus table {}, line {line}: E_storage = {storage:.4e} Pa at ω = {omega:.4e} rad/s is \
+         {:.0} % below E_storage = {peak_storage:.4e} Pa at line {peak_line} (ω = \
+         {peak_omega:.4e} rad/s): the storage modulus of a viscoelastic solid rises with \
+         frequency (every relaxation term adds H ω²τ²/(1+ω²τ²)), and a fall of more than 20 % is \
+         no measurement scatter; check that the columns are E_storage and E_loss, the \
+         frequencies in the unit the header names, and the rows one material at one temperature",
+                path.display(),
+                100.0 * (1.0 - storage / table.storage[peak]),
+                line = line(row),
+                omega = table.omega[row],
+                peak_line = line(peak),
+                peak_omega = table.omega[peak],
+                peak_storage = table.storage[peak]
+            ));
         }
     }
     Ok(())

@@ -593,7 +593,7 @@ fn the_explanation_places_any_frequency() {
     );
 }
 
-/// Issue 36, item 8: a table whose E′ falls as ω rises is no modulus and
+/// A table whose E′ falls as ω rises is no modulus and
 /// is refused at its first row beyond scatter, naming both rows; scatter
 /// of a few per cent is read.
 #[test]

@@ -218,7 +218,7 @@ fn column_letters() {
     );
 }
 
-/// Issue 36, item 5: a formula whose result the file does not hold is a
+/// A formula whose result the file does not hold is a
 /// value the user means: refused, naming the cell and the formula, not
 /// skipped as an empty cell.
 #[test]
