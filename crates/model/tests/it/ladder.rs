@@ -6,7 +6,7 @@
 //! where that is safe; a sphere near its friction maximum is reported as
 //! not meeting a tight accuracy instead of being claimed to.
 
-mod common;
+use crate::common;
 
 use common::{Lcg, random_prony, scene};
 use rollfit_model::exact::{

@@ -22,7 +22,7 @@
 //! It shares nothing with the library's product integration on the σ grid;
 //! its own accuracy is checked by refinement (panels halved, X_c ×3).
 
-mod common;
+use crate::common;
 
 use std::num::NonZeroUsize;
 

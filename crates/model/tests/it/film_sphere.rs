@@ -14,7 +14,7 @@
 //! It shares neither the product integration nor the adaptive
 //! Gauss–Kronrod code with the library.
 
-mod common;
+use crate::common;
 
 use common::{assert_matches_difference, perturbed};
 use rollfit_model::film::film_factor;

@@ -26,7 +26,7 @@
 //! tolerance 1e-6; the ignored `scan_film_cylinder_error` is the full study
 //! (command in its doc and in BENCHMARKS.md, "Cylinder films").
 
-mod common;
+use crate::common;
 
 use std::num::NonZeroUsize;
 

@@ -4,7 +4,7 @@
 //! from deep in the low-speed tail (where the oscillatory kernel tails
 //! matter most) to well above the friction peak.
 
-mod common;
+use crate::common;
 
 use common::{Lcg, ball_or_roller, random_prony};
 use rollfit_model::{ContactSize, Prony, Scene, Shape};

@@ -7,7 +7,7 @@
 //! with E1 and every H_k multiplied by b — so the test checks the wrapper
 //! against an independent construction as well as the physics.
 
-mod common;
+use crate::common;
 
 use rollfit_model::exact::RollingCylinder;
 use rollfit_model::{ContactSize, Prony, Scene, Shape, Shifted, ViscoelasticModulus};

@@ -1,6 +1,6 @@
 //! Analytic limits of μ(v): each is independent of the quadrature.
 
-mod common;
+use crate::common;
 
 use rollfit_model::{ContactSize, Prony, Scene, Shape, StandardLinearSolid};
 

@@ -1,7 +1,7 @@
 //! ∂μ/∂(E1, H_k) from the one-pass Jacobian against central finite
 //! differences, on fixed random Prony series (seeded LCG, no extra crates).
 
-mod common;
+use crate::common;
 
 use common::{Lcg, assert_matches_difference, ball_or_roller, perturbed, random_prony};
 use rollfit_model::{ContactSize, Prony, Scene, Shape};

@@ -4,7 +4,7 @@
 //! 17) the graded mesh for stiff solids against the semi-analytic solution
 //! written out below (`semi_analytic`).
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

@@ -12,7 +12,7 @@ struct Case {
 }
 
 fn cases() -> Vec<Case> {
-    let text = include_str!("fixtures/forward_reference.json");
+    let text = include_str!("../fixtures/forward_reference.json");
     let records: Vec<Value> = serde_json::from_str(text).unwrap();
     records
         .iter()

@@ -72,7 +72,7 @@
 //!   Academic Press 1984 (composite Gauss rules, smooth truncation of
 //!   oscillatory tails).
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 use std::num::NonZeroUsize;
