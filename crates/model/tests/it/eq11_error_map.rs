@@ -1,5 +1,5 @@
 //! The error map of Persson's Eq. (11) against the exact rolling cylinder
-//! (issue 6): standard linear solids with E1/E0 = 2, 10, 100, 1000, speeds
+//!: standard linear solids with E1/E0 = 2, 10, 100, 1000, speeds
 //! vτ/a0 = 1e-3 … 1e3 (quarter decades), the paper's cylinder (R = 1 cm,
 //! f_N = 100 N/m, E0 = 1 MPa, τ = 1 s, ν = 0), Eq. (11) with the dynamic
 //! contact size (the paper's) and with the static one.

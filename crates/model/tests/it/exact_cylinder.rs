@@ -1,33 +1,26 @@
 //! The exact steady rolling cylinder (crates/model/src/exact): checks
 //! against Hertz, the load, the creep compliance, the speed limits, grid
-//! convergence and Persson's Eq. (11) (dynamic contact size); and (issue
-//! 17) the graded mesh for stiff solids against the semi-analytic solution
+//! convergence and Persson's Eq. (11) (dynamic contact size); and the
+//! graded mesh for stiff solids against the semi-analytic solution
 //! written out below (`semi_analytic`).
 
-use crate::common;
+use rollfit_testkit::{materials, scenes};
 
 use std::f64::consts::PI;
 
 use rollfit_model::exact::{
     CreepCompliance, ExactMethod, ExactSettings, GRADED_ERROR, GRADED_FLOOR, RollingCylinder,
 };
-use rollfit_model::{ContactSize, Prony, Shape, StandardLinearSolid, ViscoelasticModulus};
+use rollfit_model::{ContactSize, Prony, Shape, ViscoelasticModulus};
+use rollfit_testkit::materials::{rippled_prony, sls};
 use semi_analytic::Reference;
 
 const RADIUS: f64 = 0.01;
 const LOAD: f64 = 100.0;
 
-fn sls(ratio: f64) -> StandardLinearSolid {
-    StandardLinearSolid::new(1e6, ratio * 1e6, 1.0).unwrap()
-}
-
+/// A broad 15-term series, one term per decade from 1e-10 s.
 fn broad_prony() -> Prony {
-    let tau: Vec<f64> = (0..15).map(|k| 10f64.powi(k - 10)).collect();
-    let h: Vec<f64> = (0..15)
-        .map(|k| 2e6 * (1.0 + 0.3 * ((k as f64) * 0.7).sin()) * 10f64.powf(k as f64 * 0.12))
-        .collect();
-    let e1 = 2e6 + h.iter().sum::<f64>();
-    Prony::new(e1, h, tau).unwrap()
+    rippled_prony(15, -10, 0.12)
 }
 
 fn cylinder(material: &Prony, terms: Option<usize>) -> RollingCylinder {
@@ -126,7 +119,7 @@ fn pressure_integrates_to_the_load() {
 fn speed_limits_agree_with_eq11() {
     for material in [sls(10.0).to_prony(), broad_prony()] {
         let cyl = cylinder(&material, None);
-        let scene = common::scene(
+        let scene = scenes::scene(
             Shape::Cylinder,
             RADIUS,
             LOAD,
@@ -222,12 +215,15 @@ fn grid_convergence() {
 /// say so.
 #[test]
 fn grid_convergence_at_large_ratios() {
-    let mut rng = common::Lcg(99);
+    let mut rng = materials::Lcg(99);
     let solids = [
         ("SLS 100", sls(100.0).to_prony()),
         ("SLS 1000", sls(1000.0).to_prony()),
         ("SLS 1e4", sls(1e4).to_prony()),
-        ("random Prony", common::random_prony(&mut rng, 6, -3.0, 0.5)),
+        (
+            "random Prony",
+            materials::random_prony(&mut rng, 6, -3.0, 0.5),
+        ),
     ];
     for (name, material) in solids {
         let default_cyl = cylinder(&material, None);
@@ -262,12 +258,15 @@ fn grid_convergence_at_large_ratios() {
 /// accuracy) stays within the error it claims, against 192 terms.
 #[test]
 fn coarser_resolutions_meet_their_claimed_error() {
-    let mut rng = common::Lcg(5);
+    let mut rng = materials::Lcg(5);
     let solids = [
         ("SLS 2", sls(2.0).to_prony()),
         ("SLS 10", sls(10.0).to_prony()),
         ("SLS 1000", sls(1000.0).to_prony()),
-        ("random Prony", common::random_prony(&mut rng, 5, -3.0, 0.5)),
+        (
+            "random Prony",
+            materials::random_prony(&mut rng, 5, -3.0, 0.5),
+        ),
     ];
     for (name, material) in solids {
         let reference_cyl = cylinder(&material, Some(192));
@@ -339,7 +338,7 @@ fn sls_maximum_against_eq11() {
     }
     let x_exact = (0.5 * (lo + hi)).exp();
     let mu_exact = exact(x_exact);
-    let scene = common::scene(
+    let scene = scenes::scene(
         Shape::Cylinder,
         RADIUS,
         LOAD,
@@ -363,7 +362,7 @@ fn sls_maximum_against_eq11() {
     assert!(x_exact > x11 && x_exact < 3.0 * x11);
 }
 
-/// Issue 17: stiff standard linear solids below the friction maximum and at
+/// Stiff standard linear solids below the friction maximum and at
 /// low speed, where 128 Chebyshev terms leave the edge layers (v τE0/E1
 /// wide) unresolved — μ was off by up to 5.4 % at E1/E0 = 1e4, vτ/a0 = 0.3,
 /// and by 2.8 % at 0.1 while claiming 1.3 % — now on the graded mesh,
@@ -419,7 +418,7 @@ fn stiff_low_speed_approaches_the_asymptote() {
     let prony = material.to_prony();
     let cyl = cylinder(&prony, None);
     let reference = Reference::new(&prony, 0.5, RADIUS, LOAD);
-    let scene = common::scene(
+    let scene = scenes::scene(
         Shape::Cylinder,
         RADIUS,
         LOAD,
@@ -469,11 +468,14 @@ fn three_term_solid_matches_the_semi_analytic_solution() {
 /// agree to 3e-12 at the random Prony's speeds).
 #[test]
 fn graded_mesh_agrees_with_chebyshev_where_both_resolve() {
-    let mut rng = common::Lcg(42);
+    let mut rng = materials::Lcg(42);
     for (name, material) in [
         ("SLS 10", sls(10.0).to_prony()),
         ("SLS 1000", sls(1000.0).to_prony()),
-        ("random Prony", common::random_prony(&mut rng, 5, -3.0, 0.5)),
+        (
+            "random Prony",
+            materials::random_prony(&mut rng, 5, -3.0, 0.5),
+        ),
     ] {
         let chebyshev = cylinder(&material, None);
         let graded = RollingCylinder::with_settings(
@@ -759,8 +761,7 @@ mod semi_analytic {
     }
 }
 
-/// The issue-17 study (slow, `cargo test --release -p rollfit-model --test
-/// exact_cylinder -- --ignored --nocapture stiff_study`): standard linear
+/// The stiff-solid study (slow, `cargo test --release -p rollfit-model --test it -- --ignored --nocapture exact_cylinder::stiff_study`): standard linear
 /// solids E1/E0 = 1e3 and 1e4 and a broad series (nine relaxation times
 /// 1e-8 … 1 s, E1/E0 = 1e4) from vτ/a0 = 1e-4 to 1e2 (τ = 1 s, the SLS's
 /// retardation time and the series' longest relaxation time): μ, the

@@ -3,7 +3,7 @@
 //! sphere's own memory recursion, contact set, load balance, three grids
 //! and extrapolation) against the exact rolling cylinder
 //! (`RollingCylinder`, Hunter 1961 by Chebyshev series and graded mesh: an
-//! independent method, accurate to ~1e-8) — issue 17's check "the same
+//! independent method, accurate to ~1e-8) — the check "the same
 //! code in plane strain equals the exact cylinder"; and the elastic limits
 //! (Hertz line contact) at both speed ends.
 
@@ -17,7 +17,7 @@ const RADIUS: f64 = 0.01;
 const LOAD: f64 = 100.0;
 
 /// A standard linear solid E0 = 1 MPa, E1 = ratio · E0 with relaxation
-/// time τ = 1 s (issue 17's convention: speeds as vτ/a0 with τ the
+/// time τ = 1 s (the exact solvers' convention: speeds as vτ/a0 with τ the
 /// relaxation time).
 fn relaxing(ratio: f64) -> Prony {
     Prony::new(ratio * 1e6, vec![(ratio - 1.0) * 1e6], vec![1.0]).unwrap()
@@ -207,7 +207,7 @@ fn elastic_limits_are_hertz_line_contact() {
 /// 0.01 … 100 in half decades, 96 and 144 strips. Prints the table the
 /// docs/validation.md quotes; asserts nothing beyond the solves succeeding.
 ///
-/// `cargo test --release -p rollfit-model --test exact_plane_strain -- --ignored --nocapture`
+/// `cargo test --release -p rollfit-model --test it exact_plane_strain:: -- --ignored --nocapture`
 #[test]
 #[ignore]
 fn plane_strain_table() {

@@ -71,9 +71,9 @@ fn elastic_limits_are_hertz() {
 /// vτ/r0 = 0.02 the curve has begun to bend below it (by about 1.5 % for
 /// E1/E0 = 10, the slope between vτ/r0 = 0.02 and 0.04 extrapolated to
 /// v = 0 lands on it): checked to the solver's own error estimate plus the
-/// bend. E1/E0 = 100 is checked as well (before issue 17 its active-set
-/// iteration cycled there: the glassy edge layer, width vτE0/E1, is far
-/// below a cell).
+/// bend. E1/E0 = 100 is checked as well: there the glassy edge layer,
+/// width vτE0/E1, is far below a cell, where an active-set iteration can
+/// cycle.
 #[test]
 fn low_speed_limit_is_eq18() {
     for ratio in [10.0, 100.0] {
@@ -106,15 +106,15 @@ fn low_speed_limit_is_eq18() {
 }
 
 /// A standard linear solid E0 = 1 MPa, E1 = ratio · E0 with relaxation
-/// time 1 s (retardation time `ratio` s): the convention of issue 17's
+/// time 1 s (retardation time `ratio` s): the convention of the exact solvers'
 /// targets, vτ/r0 with τ the relaxation time.
 fn relaxing(ratio: f64) -> Prony {
     Prony::new(ratio * 1e6, vec![(ratio - 1.0) * 1e6], vec![1.0]).unwrap()
 }
 
 /// The stiff solid E1/E0 = 100 at vτ/r0 = 0.01 (τ the relaxation time),
-/// where the active-set iteration cycled before issue 17 (the glassy layer
-/// at the leading edge, width ≈ vτ, is half a cell): it settles, and the
+/// where an active-set iteration can cycle (the glassy layer at the
+/// leading edge, width ≈ vτ, is half a cell): it settles, and the
 /// solutions of 96 and 144 cells agree within their estimates (measured:
 /// 3.7e-5 apart, estimates 5.6e-5 and 1.6e-5).
 #[test]
@@ -168,7 +168,7 @@ fn error_estimate_is_within_three_of_the_true_error() {
 /// friction maximum of Eq. (17), dynamic and static contact size. Prints a
 /// table; asserts nothing beyond the solves succeeding.
 ///
-/// `cargo test --release -p rollfit-model --test exact_sphere -- --ignored --nocapture eq17_error_map`
+/// `cargo test --release -p rollfit-model --test it -- --ignored --nocapture exact_sphere::eq17_error_map`
 #[test]
 #[ignore]
 fn eq17_error_map() {

@@ -1,5 +1,5 @@
 //! An independent oracle for the exact rolling sphere
-//! (crates/model/src/exact/sphere), issue 17: "the Fig. 2 sphere (SLS,
+//! (crates/model/src/exact/sphere), to the target "the Fig. 2 sphere (SLS,
 //! E1/E0 = 10, ν = 0) and a stiffer one (E1/E0 = 100) reproduced by an
 //! independent solver to 1e-3 relative or better over vτ/r0 = 0.01 … 100".
 //!
@@ -74,7 +74,7 @@
 //! - Y. Saad, M.H. Schultz, SIAM J. Sci. Stat. Comput. 7 (1986) 856–869.
 //!
 //! The study (the full table, a few minutes):
-//! `cargo test --release -p rollfit-model --test exact_sphere_oracle -- --ignored --nocapture`
+//! `cargo test --release -p rollfit-model --test it exact_sphere_oracle:: -- --ignored --nocapture`
 
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -760,13 +760,13 @@ fn production_matches_oracle() {
     println!("{:.1} s", start.elapsed().as_secs_f64());
 }
 
-/// The full table of issue 17: E1/E0 = 10 and 100 at vτ/r0 = 0.01 … 100.
+/// The full table of the sphere's target: E1/E0 = 10 and 100 at vτ/r0 = 0.01 … 100.
 /// Prints every point, including production failures, then asserts.
 ///
-/// `cargo test --release -p rollfit-model --test exact_sphere_oracle -- --ignored --nocapture`
+/// `cargo test --release -p rollfit-model --test it exact_sphere_oracle:: -- --ignored --nocapture`
 #[test]
 #[ignore]
-fn issue17_table() {
+fn sphere_table() {
     let start = Instant::now();
     header();
     let mut rows = Vec::new();

@@ -1,4 +1,4 @@
-//! Warm starts of the exact solves (issue 34, `ExactRolling::
+//! Warm starts of the exact solves (`ExactRolling::
 //! exact_friction_from`): a solve started from where a solve at the same
 //! speed ended for a nearby modulus — as a fit's refits change it — gives
 //! the cold solve's μ and error estimate, with fewer iterations.

@@ -1,4 +1,4 @@
-//! Extremes (issue 6): films from 1e-3 to 1e3 contact sizes, ν = 0.5,
+//! Extremes: films from 1e-3 to 1e3 contact sizes, ν = 0.5,
 //! speeds from 1e-12 to 1e6 times the natural speed a0/τ, E1/E0 up to 1e4.
 //! Every result is finite and accurate, or clearly refused: never a NaN, a
 //! negative μ or a silent wrong number. Printed with --nocapture: the

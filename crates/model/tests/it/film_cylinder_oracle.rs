@@ -22,18 +22,18 @@
 //! Its own accuracy is checked by refinement (panel widths halved, Y
 //! doubled) and against a 25-digit mpmath quadrature at one point.
 //!
-//! `film_cylinder_meets_its_tolerance` is the CI check of issue 19 at
+//! `film_cylinder_meets_its_tolerance` is the CI check at
 //! tolerance 1e-6; the ignored `scan_film_cylinder_error` is the full study
 //! (command in its doc and in BENCHMARKS.md, "Cylinder films").
 
-use crate::common;
+use rollfit_testkit::materials::sls;
+use rollfit_testkit::scenes::scene;
 
 use std::num::NonZeroUsize;
 
-use common::scene;
 use gauss_quad::legendre::GaussLegendre;
 use rollfit_model::film::film_factor;
-use rollfit_model::{ContactSize, Prony, Shape, StandardLinearSolid, ViscoelasticModulus};
+use rollfit_model::{ContactSize, Prony, Shape, ViscoelasticModulus};
 
 const RADIUS: f64 = 0.01;
 const LOAD: f64 = 100.0;
@@ -177,10 +177,6 @@ impl<'m, M: ViscoelasticModulus> Oracle<'m, M> {
     }
 }
 
-fn fig2_sls() -> StandardLinearSolid {
-    StandardLinearSolid::new(1e6, 1e7, 1.0).unwrap()
-}
-
 /// A broad solid: four decades of relaxation times, E0 = 1 MPa,
 /// E1 = 101 MPa.
 fn broad_prony() -> Prony {
@@ -194,7 +190,7 @@ fn broad_prony() -> Prony {
 /// v = a₀/τ.
 #[test]
 fn oracle_matches_mpmath_reference() {
-    let sls = fig2_sls();
+    let sls = sls(10.0);
     let oracle = Oracle::new(&sls, 0.0, 1e-4, true, BASE);
     let v = oracle.size(0.0) / 1.0;
     let mu = oracle.mu(v);
@@ -208,7 +204,7 @@ fn oracle_matches_mpmath_reference() {
 /// extreme speeds, films and Poisson ratios.
 #[test]
 fn oracle_is_converged() {
-    let sls = fig2_sls();
+    let sls = sls(10.0);
     let prony = broad_prony();
     let fine = Resolution {
         points: 30,
@@ -287,7 +283,7 @@ impl Case {
         let dynamic = self.contact == ContactSize::Dynamic;
         // An infinitely thick film is the half-space: S(∞) = 1.
         let d = self.d.unwrap_or(f64::INFINITY);
-        let (sls, prony) = (fig2_sls(), broad_prony());
+        let (sls, prony) = (sls(10.0), broad_prony());
         let one = |v: f64| match self.material {
             Material::Sls => Oracle::new(&sls, self.nu, d, dynamic, BASE).mu(v),
             Material::Prony => Oracle::new(&prony, self.nu, d, dynamic, BASE).mu(v),
@@ -304,7 +300,7 @@ impl Case {
     /// rollfit's μ at each speed, one sweep at `tolerance`.
     fn rollfit(&self, speeds: &[f64], tolerance: f64) -> Vec<f64> {
         match self.material {
-            Material::Sls => sweep(self, fig2_sls(), speeds, tolerance),
+            Material::Sls => sweep(self, sls(10.0), speeds, tolerance),
             Material::Prony => sweep(self, broad_prony(), speeds, tolerance),
         }
     }
@@ -403,7 +399,7 @@ fn film_cylinder_meets_its_tolerance() {
 /// `ROLLFIT_SCAN_PER_DECADE` a decade (default 10) over 1e-8 … 10 m/s.
 /// One line per scene: the worst relative error at each tolerance (and its
 /// speed) and how many speeds exceed that tolerance.
-/// `cargo test --release -p rollfit-model --test film_cylinder_oracle scan -- --ignored --nocapture`
+/// `cargo test --release -p rollfit-model --test it film_cylinder_oracle::scan -- --ignored --nocapture`
 /// (about 8 minutes on two cores).
 #[test]
 #[ignore = "study: a scan, minutes in release"]

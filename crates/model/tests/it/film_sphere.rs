@@ -14,12 +14,14 @@
 //! It shares neither the product integration nor the adaptive
 //! Gauss–Kronrod code with the library.
 
-use crate::common;
+use rollfit_testkit::jacobian::{assert_matches_difference, perturbed};
+use rollfit_testkit::scenes;
 
-use common::{assert_matches_difference, perturbed};
+use rayon::prelude::*;
 use rollfit_model::film::film_factor;
 use rollfit_model::kernel::sphere;
 use rollfit_model::{ContactSize, Prony, Scene, Shape, StandardLinearSolid, ViscoelasticModulus};
+use rollfit_testkit::materials::{prony3, sls};
 
 /// 8-point Gauss–Legendre on [−1, 1]: (node, weight), positive half.
 const GL8: [(f64, f64); 4] = [
@@ -51,7 +53,7 @@ fn sphere_scene<M: ViscoelasticModulus>(
     film: Option<f64>,
     contact: ContactSize,
 ) -> Scene<M> {
-    common::scene(Shape::Sphere, radius, load, nu, film, contact, material)
+    scenes::scene(Shape::Sphere, radius, load, nu, film, contact, material)
 }
 
 /// G_film(x, z) by brute force.
@@ -122,14 +124,6 @@ fn slow_mu<M: ViscoelasticModulus>(scene: &Scene<M>, v: f64) -> f64 {
     18.0 * load / (std::f64::consts::PI.powi(2)) * (body + tail)
 }
 
-fn sls() -> StandardLinearSolid {
-    StandardLinearSolid::new(1e6, 1e7, 1.0).unwrap()
-}
-
-fn prony3() -> Prony {
-    Prony::new(1e8, vec![5e7, 3e7, 1.5e7], vec![1e-4, 1e-2, 1.0]).unwrap()
-}
-
 #[test]
 fn gauss_rule_is_right() {
     // Exact to degree 15.
@@ -139,31 +133,39 @@ fn gauss_rule_is_right() {
 
 #[test]
 fn agrees_with_brute_force_sls() {
-    let material = sls();
+    let material = sls(10.0);
     let half = sphere_scene(material, 0.01, 0.15, 0.5, None, ContactSize::Dynamic);
     let r0 = half.static_contact_size();
     // vτ/r0 from 1e-3 to 10 and films from a tenth to ten contact radii;
     // and a film of 1000 r0 at vτ/r0 = 1000, where long waves in the loss
     // peak still carry 1.3e-4 of the half-space μ (tests/limits.rs).
-    for &(vt, ratio) in &[
+    // The brute-force integrals are independent: on every core, then
+    // checked in order.
+    let cases = [
         (1e-3, 0.1),
         (1.0, 0.1),
         (0.1, 1.0),
         (3.0, 10.0),
         (1e-2, 3.0),
         (1e3, 1e3),
-    ] {
+    ];
+    let results: Vec<(f64, f64)> = cases
+        .par_iter()
+        .map(|&(vt, ratio)| {
+            let v = vt * r0;
+            let film = sphere_scene(
+                sls(10.0),
+                0.01,
+                0.15,
+                0.5,
+                Some(ratio * r0),
+                ContactSize::Dynamic,
+            );
+            (film.friction(v).unwrap(), slow_mu(&film, v))
+        })
+        .collect();
+    for (&(vt, ratio), &(fast, slow)) in cases.iter().zip(&results) {
         let v = vt * r0;
-        let film = sphere_scene(
-            sls(),
-            0.01,
-            0.15,
-            0.5,
-            Some(ratio * r0),
-            ContactSize::Dynamic,
-        );
-        let fast = film.friction(v).unwrap();
-        let slow = slow_mu(&film, v);
         let err = (fast / slow - 1.0).abs();
         eprintln!("sls vτ/r0={vt} d/r0={ratio}: fast {fast:.12e} slow {slow:.12e} rel {err:.2e}");
         assert!(err < 1e-6, "vτ/r0={vt} d/r0={ratio}: {fast} vs {slow}");
@@ -178,16 +180,22 @@ fn agrees_with_brute_force_sls() {
 fn agrees_with_brute_force_prony() {
     let half = sphere_scene(prony3(), 0.005, 0.5, 0.5, None, ContactSize::Dynamic);
     let r0 = half.static_contact_size();
-    for &(v, ratio, nu, contact) in &[
+    // Independent brute-force integrals: on every core, checked in order.
+    let cases = [
         (1e-5, 0.1, 0.5, ContactSize::Dynamic),
         (1e-2, 0.1, 0.5, ContactSize::Dynamic),
         (1.0, 1.0, 0.5, ContactSize::Dynamic),
         (1e-3, 0.5, 0.3, ContactSize::Dynamic),
         (0.1, 0.3, 0.5, ContactSize::Static),
-    ] {
-        let film = sphere_scene(prony3(), 0.005, 0.5, nu, Some(ratio * r0), contact);
-        let fast = film.friction(v).unwrap();
-        let slow = slow_mu(&film, v);
+    ];
+    let results: Vec<(f64, f64)> = cases
+        .par_iter()
+        .map(|&(v, ratio, nu, contact)| {
+            let film = sphere_scene(prony3(), 0.005, 0.5, nu, Some(ratio * r0), contact);
+            (film.friction(v).unwrap(), slow_mu(&film, v))
+        })
+        .collect();
+    for (&(v, ratio, nu, contact), &(fast, slow)) in cases.iter().zip(&results) {
         let err = (fast / slow - 1.0).abs();
         eprintln!(
             "prony3 v={v} d/r0={ratio} nu={nu} {contact:?}: fast {fast:.12e} slow {slow:.12e} rel {err:.2e}"
@@ -357,16 +365,16 @@ fn thin_films_are_computed() {
 /// finite, non-negative μ not above the half-space, or an error.
 #[test]
 fn extreme_inputs_give_a_number_or_an_error() {
-    let half = sphere_scene(sls(), 0.01, 0.15, 0.5, None, ContactSize::Dynamic);
+    let half = sphere_scene(sls(10.0), 0.01, 0.15, 0.5, None, ContactSize::Dynamic);
     let r0 = half.static_contact_size();
     for &v in &[1e-30, 1e-12, 1e3, 1e12] {
         for &d in &[1e-300, 1e-9 * r0, 0.7 * r0, 1e7 * r0, 1e300] {
             for &nu in &[0.0, 0.5] {
                 for contact in [ContactSize::Dynamic, ContactSize::Static] {
-                    let film = sphere_scene(sls(), 0.01, 0.15, nu, Some(d), contact);
+                    let film = sphere_scene(sls(10.0), 0.01, 0.15, nu, Some(d), contact);
                     let res = film.friction(v);
                     if let Ok(mu) = res {
-                        let half = sphere_scene(sls(), 0.01, 0.15, nu, None, contact)
+                        let half = sphere_scene(sls(10.0), 0.01, 0.15, nu, None, contact)
                             .friction(v)
                             .unwrap();
                         assert!(
@@ -413,18 +421,25 @@ impl ViscoelasticModulus for Opaque {
 
 #[test]
 fn sampled_loss_bound_agrees_with_brute_force() {
-    let r0 = sphere_scene(sls(), 0.01, 0.15, 0.5, None, ContactSize::Dynamic).static_contact_size();
+    let r0 =
+        sphere_scene(sls(10.0), 0.01, 0.15, 0.5, None, ContactSize::Dynamic).static_contact_size();
     let film = sphere_scene(
-        Opaque(sls()),
+        Opaque(sls(10.0)),
         0.01,
         0.15,
         0.5,
         Some(0.5 * r0),
         ContactSize::Dynamic,
     );
-    for vt in [1e-2, 1.0] {
-        let v = vt * r0;
-        let (fast, slow) = (film.friction(v).unwrap(), slow_mu(&film, v));
+    let speeds = [1e-2, 1.0];
+    let results: Vec<(f64, f64)> = speeds
+        .par_iter()
+        .map(|&vt| {
+            let v = vt * r0;
+            (film.friction(v).unwrap(), slow_mu(&film, v))
+        })
+        .collect();
+    for (vt, (fast, slow)) in speeds.into_iter().zip(results) {
         assert!(
             (fast / slow - 1.0).abs() < 1e-6,
             "vτ/r0={vt}: {fast} vs {slow}"
@@ -441,15 +456,22 @@ fn sampled_loss_bound_agrees_with_brute_force() {
 #[test]
 fn thick_film_is_the_half_space_at_every_step() {
     let half = |tol: f64| {
-        sphere_scene(sls(), 0.01, 0.15, 0.5, None, ContactSize::Dynamic)
+        sphere_scene(sls(10.0), 0.01, 0.15, 0.5, None, ContactSize::Dynamic)
             .with_tolerance(tol)
             .unwrap()
     };
     let r0 = half(1e-6).static_contact_size();
     for tol in [1e-3, 1e-6, 1e-9] {
-        let film = sphere_scene(sls(), 0.01, 0.15, 0.5, Some(1e8 * r0), ContactSize::Dynamic)
-            .with_tolerance(tol)
-            .unwrap();
+        let film = sphere_scene(
+            sls(10.0),
+            0.01,
+            0.15,
+            0.5,
+            Some(1e8 * r0),
+            ContactSize::Dynamic,
+        )
+        .with_tolerance(tol)
+        .unwrap();
         let speeds: Vec<f64> = [1e-2, 1.0, 1e3].iter().map(|vt| vt * r0).collect();
         let want = half(1e-10).friction_sweep(&speeds).unwrap();
         let half_space = half(tol).friction_sweep(&speeds).unwrap();

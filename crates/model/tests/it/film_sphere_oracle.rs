@@ -1,5 +1,5 @@
 //! An independent oracle for μ(v) of a sphere rolling on a film bonded to a
-//! rigid base (issue 19, part 1): Persson's Eq. (17) with the film factor,
+//! rigid base: Persson's Eq. (17) with the film factor,
 //! integrated as written over the wavevector plane.
 //!
 //! # Formula
@@ -72,15 +72,17 @@
 //!   Academic Press 1984 (composite Gauss rules, smooth truncation of
 //!   oscillatory tails).
 
-use crate::common;
+use rollfit_testkit::scenes;
 
 use std::f64::consts::PI;
 use std::num::NonZeroUsize;
 
 use gauss_quad::legendre::GaussLegendre;
+use rayon::prelude::*;
 use rollfit_model::ViscoelasticModulus;
 use rollfit_model::film::film_factor;
-use rollfit_model::{ContactSize, Prony, Scene, Shape, StandardLinearSolid};
+use rollfit_model::{ContactSize, Scene, Shape};
+use rollfit_testkit::materials::{prony3, sls};
 
 /// The accuracy the library's half-space sphere μ is documented to (its
 /// `HALF_SPACE_ACCURACY`, measured floor ~4e-9 at low speed).
@@ -311,15 +313,8 @@ fn oracle_mu_with<M: ViscoelasticModulus>(
     18.0 * load / (PI * PI) * outer
 }
 
-fn sls() -> StandardLinearSolid {
-    StandardLinearSolid::new(1e6, 1e7, 1.0).unwrap()
-}
-
-fn prony3() -> Prony {
-    Prony::new(1e8, vec![5e7, 3e7, 1.5e7], vec![1e-4, 1e-2, 1.0]).unwrap()
-}
-
-/// Film thicknesses of the issue's targets, in static contact radii.
+/// Film thicknesses of the targets (thin to thick against the contact), in
+/// static contact radii.
 const THICKNESS_RATIOS: [f64; 5] = [1e-3, 1e-2, 0.1, 1.0, 10.0];
 
 /// A case: material name, scene, speed (m/s).
@@ -334,10 +329,10 @@ fn cases(ratio: Option<f64>) -> Vec<Case> {
     for nu in [0.49, 0.5] {
         for name in ["sls", "prony3"] {
             let (material, radius, load): (Box<dyn ViscoelasticModulus>, f64, f64) = match name {
-                "sls" => (Box::new(sls()), 0.01, 0.15),
+                "sls" => (Box::new(sls(10.0)), 0.01, 0.15),
                 _ => (Box::new(prony3()), 0.005, 0.5),
             };
-            let half = common::scene(
+            let half = scenes::scene(
                 Shape::Sphere,
                 radius,
                 load,
@@ -349,10 +344,10 @@ fn cases(ratio: Option<f64>) -> Vec<Case> {
             let r0 = half.static_contact_size();
             for vt in [1e-2, 1.0] {
                 let material: Box<dyn ViscoelasticModulus> = match name {
-                    "sls" => Box::new(sls()),
+                    "sls" => Box::new(sls(10.0)),
                     _ => Box::new(prony3()),
                 };
-                let scene = common::scene(
+                let scene = scenes::scene(
                     Shape::Sphere,
                     radius,
                     load,
@@ -390,19 +385,30 @@ fn oracle_matches_half_space() {
 /// 1e-6.
 #[test]
 fn film_code_matches_oracle() {
-    let mut worst = 0.0f64;
-    for ratio in [1e-3, 1e-2, 0.02, 0.05, 0.1, 1.0, 10.0] {
-        for (name, scene, v) in cases(Some(ratio)) {
+    // The 56 oracle quadratures are independent: computed on every core
+    // (each case's scene is built in its worker, a boxed modulus is not
+    // Send), then printed and checked in order.
+    let ratios = [1e-3, 1e-2, 0.02, 0.05, 0.1, 1.0, 10.0];
+    let per_ratio = cases(None).len();
+    let results: Vec<_> = (0..ratios.len() * per_ratio)
+        .into_par_iter()
+        .map(|k| {
+            let ratio = ratios[k / per_ratio];
+            let (name, scene, v) = cases(Some(ratio)).swap_remove(k % per_ratio);
             let nu = scene.substrate().poisson;
             let fast = scene.friction(v).unwrap();
             let slow = oracle_mu(&scene, v, STANDARD);
-            let err = (fast / slow - 1.0).abs();
-            eprintln!(
-                "d/r0={ratio} {name} ν={nu} v={v:.3e}: library {fast:.12e} oracle {slow:.12e} rel {err:.2e}"
-            );
-            worst = worst.max(err);
-            assert!(err < 1e-6, "d/r0={ratio} {name} ν={nu} v={v}");
-        }
+            (ratio, name, nu, v, fast, slow)
+        })
+        .collect();
+    let mut worst = 0.0f64;
+    for (ratio, name, nu, v, fast, slow) in results {
+        let err = (fast / slow - 1.0).abs();
+        eprintln!(
+            "d/r0={ratio} {name} ν={nu} v={v:.3e}: library {fast:.12e} oracle {slow:.12e} rel {err:.2e}"
+        );
+        worst = worst.max(err);
+        assert!(err < 1e-6, "d/r0={ratio} {name} ν={nu} v={v}");
     }
     eprintln!("worst {worst:.2e}");
 }

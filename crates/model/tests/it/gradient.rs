@@ -1,9 +1,10 @@
 //! ∂μ/∂(E1, H_k) from the one-pass Jacobian against central finite
 //! differences, on fixed random Prony series (seeded LCG, no extra crates).
 
-use crate::common;
+use rollfit_testkit::jacobian::{assert_matches_difference, perturbed};
+use rollfit_testkit::materials::{Lcg, random_prony};
+use rollfit_testkit::scenes::ball_or_roller;
 
-use common::{Lcg, assert_matches_difference, ball_or_roller, perturbed, random_prony};
 use rollfit_model::{ContactSize, Prony, Scene, Shape};
 
 fn build(shape: Shape, contact: ContactSize, film: Option<f64>, p: Prony) -> Scene<Prony> {

@@ -6,9 +6,9 @@
 //! where that is safe; a sphere near its friction maximum is reported as
 //! not meeting a tight accuracy instead of being claimed to.
 
-use crate::common;
+use rollfit_testkit::materials::{Lcg, random_prony};
+use rollfit_testkit::scenes::scene;
 
-use common::{Lcg, random_prony, scene};
 use rollfit_model::exact::{
     CreepCompliance, ExactSettings, RollingCylinder, RollingSphere, SphereSettings,
 };
@@ -388,7 +388,7 @@ fn bad_requests_are_refused() {
     assert_eq!(s.material().static_modulus(), 1e6);
 }
 
-/// Extremes (issue 6): E1/E0 = 1e4 from 1e-12 to 1e6 natural speeds a0/τ.
+/// Extremes: E1/E0 = 1e4 from 1e-12 to 1e6 natural speeds a0/τ.
 /// Every μ is finite and positive with a finite estimate; the slowest
 /// speeds are the asymptote's; where even the exact cylinder cannot be
 /// resolved (the stiff solid near its maximum) the result says NOT MET
@@ -434,7 +434,7 @@ fn ball(material: Prony, poisson: f64) -> Scene<Prony> {
 /// supremum (they measure the exact sphere, not Eq. (17)). Prints the
 /// table the module documentation of `ladder::model_error` quotes.
 ///
-/// `cargo test --release -p rollfit-model --test ladder -- --ignored --nocapture eq17_model_error_factor`
+/// `cargo test --release -p rollfit-model --test it -- --ignored --nocapture ladder::eq17_model_error_factor`
 #[test]
 #[ignore = "study, about 11 minutes"]
 fn eq17_model_error_factor() {

@@ -1,8 +1,9 @@
 //! Analytic limits of μ(v): each is independent of the quadrature.
 
-use crate::common;
+use rollfit_testkit::scenes;
 
 use rollfit_model::{ContactSize, Prony, Scene, Shape, StandardLinearSolid};
+use rollfit_testkit::materials::rippled_prony;
 
 fn scene(
     shape: Shape,
@@ -12,7 +13,7 @@ fn scene(
     film: Option<f64>,
     material: Prony,
 ) -> Scene<Prony> {
-    common::scene(
+    scenes::scene(
         shape,
         radius,
         load,
@@ -23,14 +24,9 @@ fn scene(
     )
 }
 
+/// A broad 15-term series, one term per decade from 1e-10 s.
 fn broad_prony() -> Prony {
-    // A broad 15-term series, one term per decade (fixed, not random).
-    let tau: Vec<f64> = (0..15).map(|k| 10f64.powi(k - 10)).collect();
-    let h: Vec<f64> = (0..15)
-        .map(|k| 2e6 * (1.0 + 0.3 * ((k as f64) * 0.7).sin()) * 10f64.powf(k as f64 * 0.12))
-        .collect();
-    let e1 = 2e6 + h.iter().sum::<f64>();
-    Prony::new(e1, h, tau).unwrap()
+    rippled_prony(15, -10, 0.12)
 }
 
 /// μ/μ_asymptote → 1 as v → 0: within 1e-6 at vτ/d = 1e-8.

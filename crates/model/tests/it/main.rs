@@ -3,7 +3,6 @@
 //! dependencies once; a file under tests/it that no `mod` line here declares
 //! is reported by .ci/structure.py, so none can silently go unrun.
 
-mod common;
 mod eq11_error_map;
 mod exact_cylinder;
 mod exact_plane_strain;

@@ -22,11 +22,11 @@
 //! It shares nothing with the library's product integration on the σ grid;
 //! its own accuracy is checked by refinement (panels halved, X_c ×3).
 
-use crate::common;
+use rollfit_testkit::materials;
+use rollfit_testkit::scenes::scene;
 
 use std::num::NonZeroUsize;
 
-use common::scene;
 use gauss_quad::legendre::GaussLegendre;
 use num_complex::Complex64;
 use rollfit_model::kernel::{cylinder, sphere};
@@ -231,8 +231,8 @@ fn materials() -> Vec<(&'static str, Prony, (f64, f64))> {
         vec![1e-1, 1e-3, 1e-5],
     )
     .unwrap();
-    let mut rng = common::Lcg(7);
-    let prony15 = common::random_prony(&mut rng, 15, -10.0, 0.5);
+    let mut rng = materials::Lcg(7);
+    let prony15 = materials::random_prony(&mut rng, 15, -10.0, 0.5);
     vec![
         ("sls E1/E0=10", sls, (-3.0, 7.0)),
         ("sls E1/E0=1e3", sls3, (-3.0, 10.0)),
@@ -257,7 +257,7 @@ fn scene_of<M: ViscoelasticModulus>(
 
 /// The study behind the module doc of `modulus/table.rs`: (a) and (b) for
 /// every material, table density, shape, contact rule and tolerance.
-/// `cargo test --release -p rollfit-model --test table_friction -- --ignored --nocapture study`
+/// `cargo test --release -p rollfit-model --test it -- --ignored --nocapture table_friction::study`
 #[test]
 #[ignore = "study, about a minute in release"]
 fn study() {
@@ -346,7 +346,7 @@ fn oracle_converges() {
 /// 10, τ = 10 ms) under both bodies: below, at and above it.
 const CI_SPEEDS: [f64; 3] = [1e-4, 1e-3, 1e-2];
 
-/// The target: μ of a table within 10 × tolerance of μ of the
+/// The target: μ of a table within 10 × tolerance of μ of the
 /// modulus it was sampled from, at tolerances 1e-3 … 1e-6, for tables dense
 /// enough that their own interpolation error is below that — 20 rows a
 /// decade (μ then differs by 6e-7 at most, see the study).

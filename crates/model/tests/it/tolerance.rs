@@ -4,9 +4,9 @@
 //! from deep in the low-speed tail (where the oscillatory kernel tails
 //! matter most) to well above the friction peak.
 
-use crate::common;
+use rollfit_testkit::materials::{Lcg, random_prony};
+use rollfit_testkit::scenes::ball_or_roller;
 
-use common::{Lcg, ball_or_roller, random_prony};
 use rollfit_model::{ContactSize, Prony, Scene, Shape};
 
 fn scene(shape: Shape, contact: ContactSize, material: Prony, tolerance: f64) -> Scene<Prony> {
@@ -29,7 +29,7 @@ fn requested_tolerance_is_met() {
                 let natural = scene(shape, contact, material.clone(), 1e-6).static_contact_size()
                     / material.relaxation_times().last().unwrap();
                 let speeds: Vec<f64> = (0..13)
-                    .map(|i| natural * 10f64.powf(-9.0 + i as f64 + 0.3 * rng.next()))
+                    .map(|i| natural * 10f64.powf(-9.0 + i as f64 + 0.3 * rng.uniform()))
                     .collect();
                 let exact = scene(shape, contact, material.clone(), 1e-12)
                     .friction_sweep(&speeds)

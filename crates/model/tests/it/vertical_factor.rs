@@ -1,5 +1,5 @@
 //! The vertical factor of time–temperature superposition against the
-//! identity it rests on (`modulus::shift`, issue 31): with ν fixed, a
+//! identity it rests on (`modulus::shift`): with ν fixed, a
 //! modulus b E* under load F gives the same μ(v) as E* under F/b, for the
 //! sphere and the cylinder, the dynamic and the static contact size, on a
 //! half-space and on a film, and for the exact rolling cylinder. The scaled
@@ -7,19 +7,15 @@
 //! with E1 and every H_k multiplied by b — so the test checks the wrapper
 //! against an independent construction as well as the physics.
 
-use crate::common;
+use rollfit_testkit::scenes;
 
 use rollfit_model::exact::RollingCylinder;
 use rollfit_model::{ContactSize, Prony, Scene, Shape, Shifted, ViscoelasticModulus};
+use rollfit_testkit::materials::rippled_prony;
 
 /// A broad 12-term series, one term per decade (fixed).
 fn broad_prony() -> Prony {
-    let tau: Vec<f64> = (0..12).map(|k| 10f64.powi(k - 8)).collect();
-    let h: Vec<f64> = (0..12)
-        .map(|k| 2e6 * (1.0 + 0.3 * (f64::from(k) * 0.7).sin()) * 10f64.powf(f64::from(k) * 0.15))
-        .collect();
-    let e1 = 2e6 + h.iter().sum::<f64>();
-    Prony::new(e1, h, tau).unwrap()
+    rippled_prony(12, -8, 0.15)
 }
 
 fn scene<M: ViscoelasticModulus>(
@@ -29,7 +25,7 @@ fn scene<M: ViscoelasticModulus>(
     contact: ContactSize,
     material: M,
 ) -> Scene<M> {
-    common::scene(shape, 0.005, load, 0.5, film, contact, material)
+    scenes::scene(shape, 0.005, load, 0.5, film, contact, material)
         .with_tolerance(1e-10)
         .unwrap()
 }
