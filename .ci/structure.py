@@ -10,11 +10,17 @@
   path (also inside `use` groups), comments ignored; an edge between a
   module and its own parent or child is not counted (a parent declares its
   children, a child may use its parent's items).
+- Integration tests, one binary a crate: every .rs file under a `tests/it`
+  tree (crates/*/tests/it and the workspace's tests/it) is declared by a
+  `mod` line of its parent module, and no other .rs file lies under a
+  tests folder: cargo builds each loose tests/*.rs as a binary of its own,
+  and silently never compiles a file under tests/it that no `mod` declares.
 
 Prints what breaks a limit and exits 1; prints nothing when all hold.
 Run from the repository root: python3 .ci/structure.py
 `--root DIR` checks DIR/crates instead; `--self-test` plants a circle of each
-kind of edge in a scratch tree and fails unless both are found.
+kind of edge, an undeclared test module and a loose test file in scratch
+trees and fails unless all are found.
 """
 import os
 import re
@@ -172,6 +178,45 @@ def circles(g):
     return out
 
 
+def test_trees(root):
+    """Findings of the one-binary test layout: `TEST-LOOSE path` for a .rs
+    file under a tests folder but outside tests/it, `TEST-UNDECLARED path`
+    for a file under tests/it that its parent module does not declare."""
+    dirs = [os.path.join(root, 'tests')]
+    crates = os.path.join(root, 'crates')
+    if os.path.isdir(crates):
+        dirs += [os.path.join(crates, c, 'tests') for c in sorted(os.listdir(crates))]
+    out = []
+    for tests in dirs:
+        if not os.path.isdir(tests):
+            continue
+        it = os.path.join(tests, 'it')
+        for top, _, files in sorted(os.walk(tests)):
+            for f in sorted(files):
+                if not f.endswith('.rs'):
+                    continue
+                p = os.path.join(top, f)
+                rel = os.path.relpath(p, root)
+                if not (top == it or top.startswith(it + os.sep)):
+                    out.append(f'TEST-LOOSE {rel}')
+                    continue
+                if p == os.path.join(it, 'main.rs'):
+                    continue
+                if f == 'mod.rs':
+                    name, parent_dir = os.path.basename(top), os.path.dirname(top)
+                else:
+                    name, parent_dir = f[:-3], top
+                if parent_dir == it:
+                    parents = [os.path.join(it, 'main.rs')]
+                else:
+                    parents = [os.path.join(parent_dir, 'mod.rs'), parent_dir + '.rs']
+                decl = re.compile(r'(?m)^\s*(pub(\([^)]*\))?\s+)?mod\s+' + name + r'\s*;')
+                if not any(os.path.isfile(q) and decl.search(open(q, encoding='utf-8').read())
+                           for q in parents):
+                    out.append(f'TEST-UNDECLARED {rel}')
+    return out
+
+
 def check(root):
     """The findings as printable lines."""
     big, fns = long_files_and_functions(root)
@@ -183,7 +228,7 @@ def check(root):
         if os.path.isdir(src):
             for c in circles(module_graph(crate_modules(src))):
                 lines.append(f'CIRCLE {crate} {c}')
-    return lines
+    return lines + test_trees(root)
 
 
 def self_test():
@@ -214,6 +259,25 @@ def self_test():
         found = check(root)
         if found != ["CIRCLE demo ['a', 'b']"]:
             return f'crate:: circle: expected one circle of a and b; found {found}'
+    with tempfile.TemporaryDirectory() as root:
+        it = os.path.join(root, 'crates', 'demo', 'tests', 'it')
+        os.makedirs(os.path.join(it, 'common'))
+        files = {
+            'main.rs': '//! mod forgotten;\nmod common;\nmod declared;\n',
+            'declared.rs': '',
+            'forgotten.rs': '',
+            'common/mod.rs': 'pub mod fixtures;\n',
+            'common/fixtures.rs': '',
+            '../loose.rs': '',
+        }
+        for name, text in files.items():
+            with open(os.path.join(it, name), 'w') as f:
+                f.write(text)
+        found = check(root)
+        expected = ['TEST-LOOSE crates/demo/tests/loose.rs',
+                    'TEST-UNDECLARED crates/demo/tests/it/forgotten.rs']
+        if sorted(found) != expected:
+            return f'test layout: expected {expected}; found {found}'
     return None
 
 
@@ -223,7 +287,7 @@ if __name__ == '__main__':
         if err:
             print('structure.py self-test failed:', err)
             sys.exit(1)
-        print('structure.py self-test: planted circles found')
+        print('structure.py self-test: planted circles and test files found')
         sys.exit(0)
     root = '.'
     if '--root' in sys.argv:

@@ -18,10 +18,11 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use rollfit_model::{HavriliakNegami, ViscoelasticModulus};
+use rollfit_model::ViscoelasticModulus;
+use rollfit_testkit::materials::hn_rubber;
 
 fn isotherms_csv(path: &Path) {
-    let master = HavriliakNegami::new(2e6, 2e9, 1e-3, 0.55, 0.4).unwrap();
+    let master = hn_rubber();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let normal = Normal::new(0.0, 0.01).unwrap();
     let mut out = String::from("T,omega,G_storage,G_loss\n");
@@ -44,7 +45,7 @@ fn isotherms_csv(path: &Path) {
 /// The logger's file of `points` frequencies per isotherm (module doc).
 fn large_csv(path: &Path, points: usize) {
     use std::io::Write;
-    let master = HavriliakNegami::new(2e6, 2e9, 1e-3, 0.55, 0.4).unwrap();
+    let master = hn_rubber();
     let mut rng = ChaCha8Rng::seed_from_u64(36);
     let normal = Normal::new(0.0, 0.01).unwrap();
     let mut out = std::io::BufWriter::new(std::fs::File::create(path).unwrap());

@@ -19,10 +19,8 @@ use rollfit_fit::{
 };
 use std::hint::black_box;
 
-#[path = "../tests/common/mod.rs"]
-mod common;
-
-use common::{hn_rubber, setup, synthetic, temperature_set};
+use rollfit_testkit::materials::hn_rubber;
+use rollfit_testkit::rolling::{setup, synthetic, temperature_set};
 
 const FITS: u64 = 100;
 

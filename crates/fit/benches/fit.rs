@@ -43,12 +43,10 @@ use rollfit_fit::{
 use rollfit_model::ViscoelasticModulus;
 use std::hint::black_box;
 
-#[path = "../tests/common/mod.rs"]
-mod common;
-
-use common::{
-    broad_rubber, exact_and_approximate, exact_cylinder_setup, hn_rubber, setup, sparse, synthetic,
-    temperature_set, with_noise,
+use rollfit_testkit::materials::{hn_rubber, rubber_200};
+use rollfit_testkit::rolling::{
+    self, exact_and_approximate, exact_cylinder_setup, setup, sparse, synthetic, temperature_set,
+    with_noise,
 };
 
 fn benches(c: &mut Criterion) {
@@ -105,12 +103,12 @@ fn benches(c: &mut Criterion) {
     }
     // Issue 34's set: 7 temperatures × 21 speeds, WLF and free shifts, the
     // joint fit alone (its evaluation counts: tests/fit_cost.rs).
-    let set = common::set_7x21(1);
+    let set = rolling::set_7x21(1);
     for (name, kind) in [
         ("joint_7x21_wlf", ShiftKind::Wlf),
         ("joint_7x21_free", ShiftKind::Free),
     ] {
-        let params = common::set_7x21_params(kind);
+        let params = rolling::set_7x21_params(kind);
         group.bench_function(name, |b| b.iter(|| fit(black_box(&set), &params).unwrap()));
     }
     group.finish();
@@ -165,9 +163,8 @@ fn exact_physics(c: &mut Criterion) {
         let mut data = None;
         group.bench_function(name, |b| {
             let measured = data.get_or_insert_with(|| {
-                let truth = truth.get_or_init(|| {
-                    exact_and_approximate(setup, &broad_rubber(), accuracy).unwrap()
-                });
+                let truth = truth
+                    .get_or_init(|| exact_and_approximate(setup, &rubber_200(), accuracy).unwrap());
                 with_noise(&truth.speeds, &truth.exact, noise, 1)
             });
             b.iter(|| fit(black_box(&*measured), &params).unwrap())
@@ -177,7 +174,7 @@ fn exact_physics(c: &mut Criterion) {
 }
 
 fn joint_benches(c: &mut Criterion) {
-    use common::joint_case::{dma_isotherms, rolling, truth};
+    use rollfit_testkit::joint_case::{dma_isotherms, rolling, truth};
     let truth = truth();
     let isotherms = dma_isotherms(&truth, 0.01, 1);
     let rows = rolling(&truth, 1.0, 101);

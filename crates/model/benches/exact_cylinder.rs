@@ -24,26 +24,10 @@
 //! per panel).
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use rollfit_model::StandardLinearSolid;
 use rollfit_model::exact::RollingCylinder;
-use rollfit_model::{Prony, StandardLinearSolid};
+use rollfit_testkit::materials::rubber_200;
 use std::hint::black_box;
-
-/// The issue-14 rubber: 200 relaxation times log-spaced over 1e-12 … 1e8 s,
-/// the strengths a log-normal bump around 1e-5 s on a floor.
-fn rubber_200() -> Prony {
-    let n = 200;
-    let tau: Vec<f64> = (0..n)
-        .map(|k| 10f64.powf(-12.0 + 20.0 * k as f64 / (n - 1) as f64))
-        .collect();
-    let w: Vec<f64> = tau
-        .iter()
-        .map(|t| (-0.5 * ((t.log10() + 5.0) / 3.0).powi(2)).exp() + 1e-3)
-        .collect();
-    let total: f64 = w.iter().sum();
-    let (e0, e1) = (2e6, 2e9);
-    let h = w.iter().map(|x| (e1 - e0) * x / total).collect();
-    Prony::new(e1, h, tau).unwrap()
-}
 
 fn benches(c: &mut Criterion) {
     let sls = StandardLinearSolid::new(1e6, 1e7, 1.0).unwrap().to_prony();

@@ -1,5 +1,5 @@
-"""The command line's bounds and messages at the Python entry points
-(issue 36, item 9; the scene bounds of item 4): complex arrays, speeds
+"""The command line's bounds and messages at the Python entry points, so
+that one input gets one answer from both: complex arrays, speeds
 outside the data reader's range, copies of rows without sigma, absurd
 loads, films and E1_max."""
 

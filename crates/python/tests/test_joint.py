@@ -1,4 +1,4 @@
-"""The joint fit of DMA isotherms and rolling friction (issue 35) from
+"""The joint fit of DMA isotherms and rolling friction from
 Python: the keyword `dma` and a scene file's `[fit] dma` give the fit
 `rollfit fit` gives with `--dma` and with the same scene, fit.json's
 `joint` record is the result's `joint`, and the joint settings without DMA

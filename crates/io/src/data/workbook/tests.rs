@@ -1,5 +1,5 @@
 //! Workbooks are written here, in the tests, with the zip crate
-//! (`tests/support/workbook.rs`, shared with the DMA and command-line
+//! (rollfit-testkit's `workbook`, shared with the DMA and command-line
 //! tests): the few XML parts calamine needs, no binary fixtures.
 
 use std::path::PathBuf;
@@ -9,9 +9,7 @@ use crate::chain;
 use crate::data::{read, read_sheet};
 use crate::error::column_letter;
 
-#[path = "../../../tests/support/workbook.rs"]
-mod writer;
-use writer::{X, ods, xlsx};
+use rollfit_testkit::workbook::{X, ods, xlsx};
 
 /// A fresh temporary folder for one test.
 fn temp_dir(test: &str) -> PathBuf {
