@@ -1,11 +1,11 @@
 //! Speed of `rollfit master`, timed as a user meets it: the whole process,
 //! from reading the DMA file to the written folder with its picture.
 //!
-//! - `20_isotherms_x_30_points` (issue 15's target: at most 1 s): a broad
+//! - `20_isotherms_x_30_points` (target: at most 1 s): a broad
 //!   rubber (Havriliak–Negami) under WLF C1 = 9, C2 = 110 K, −30…65 °C
 //!   every 5 K, 30 frequencies over 0.1…100 rad/s each, 1 % noise, shear
 //!   moduli.
-//! - `large/10MB` and `large/50MB` (issue 36's targets: at most 15 s and
+//! - `large/10MB` and `large/50MB` (targets: at most 15 s and
 //!   60 s): the same rubber under WLF 8.86/101.6 K as logged by an
 //!   instrument that writes every reading, 60 isotherms −40…107.5 °C
 //!   every 2.5 K with 3600 and 18 000 frequencies over 0.1…100 Hz each,

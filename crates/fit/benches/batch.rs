@@ -1,6 +1,6 @@
 //! Speed of a batch (`rollfit batch`): 100 independent single-temperature
 //! fits on a rayon pool of one thread and of two; and eight fits of the
-//! bundled temperature set on two threads (issue 34's throughput). The issue's target: on 2
+//! bundled temperature set on two threads (throughput). The target: on 2
 //! cores the batch is at least 1.8× faster than on one, and its results are
 //! identical to running the fits one by one.
 //!
@@ -78,7 +78,7 @@ fn benches(c: &mut Criterion) {
     temperature_sets(c);
 }
 
-/// Issue 34's throughput: fits per minute of the bundled temperature set
+/// The throughput: fits per minute of the bundled temperature set
 /// (data/hn-rubber-tset.toml: 5 temperatures × 41 speeds, WLF about
 /// 20 °C, |E| at 10 rad/s, the cross-check on, as `rollfit batch` fits
 /// it), eight noise seeds on a pool of two threads. Fits per minute =

@@ -10,17 +10,17 @@
 //! decade over the combined ~16 decades, 48 terms), C1 and C2 fitted; with
 //! and without the single-temperature cross-check.
 //!
-//! And laboratory-shaped data (issue 13): 15 speeds over 5 decades of the
+//! And laboratory-shaped data 15 speeds over 5 decades of the
 //! bundled rubber under its ball, 3 % noise, no sigma column (λ by the
 //! marginal likelihood), |E| at the middle speed's contact frequency as the
 //! anchor; and the same sweep logged as 10 000 rows (condensed to bins of
 //! 1/20 decade before the fit).
 //!
-//! And issue 34's temperature set: 7 temperatures (−25 … 65 °C) × 21 speeds
+//! And a temperature set: 7 temperatures (−25 … 65 °C) × 21 speeds
 //! (1e-8 … 1 m/s), 1 % noise, σ known, |E| at 10 rad/s as the anchor, the
 //! joint fit with WLF and with free shifts, without the cross-check.
 //!
-//! And `physics = "exact"` (issue 17): 41 speeds over 8 decades around the
+//! And `physics = "exact"` 41 speeds over 8 decades around the
 //! friction maximum of a broad rubber (200-term smooth spectrum,
 //! E1/E0 = 1000) under a 5 mm cylinder at 1000 N/m, μ of the exact
 //! contact with 1 % noise (seed 1), E0 anchored; defect correction with
@@ -28,7 +28,7 @@
 //! under a 5 mm ball at 1 N with 1 % and 0.1 % noise. Run alone:
 //! `cargo bench -p rollfit-fit --bench fit -- exact_physics`.
 //!
-//! And issue 35's joint fit of DMA isotherms and rolling friction: the
+//! And the joint fit of DMA isotherms and rolling friction: the
 //! two-process truth of tests/joint.rs, six isotherms × ten frequencies
 //! (1 % noise) and four temperatures × twelve speeds (2 % noise, no σ
 //! column, no anchor), `shift = "auto"` at 20 °C, with κ = 1 and with κ
@@ -101,7 +101,7 @@ fn benches(c: &mut Criterion) {
         .unwrap();
         group.bench_function(name, |b| b.iter(|| fit(black_box(&set), &params).unwrap()));
     }
-    // Issue 34's set: 7 temperatures × 21 speeds, WLF and free shifts, the
+    // The temperature set: 7 temperatures × 21 speeds, WLF and free shifts, the
     // joint fit alone (its evaluation counts: tests/fit_cost.rs).
     let set = rolling::set_7x21(1);
     for (name, kind) in [
@@ -116,7 +116,7 @@ fn benches(c: &mut Criterion) {
 }
 
 /// The defect-corrected fit of 41 points of exact-contact data at σ = 1 %
-/// and, for the sphere, 0.1 % (issue 17's cost targets: at most 5 s for a
+/// and, for the sphere, 0.1 % (cost targets: at most 5 s for a
 /// cylinder, 60 s for a sphere). The data are made only when a bench is
 /// selected, once per body: the exact truth costs about 5 s (cylinder) and
 /// a few minutes (sphere) itself.

@@ -1,23 +1,20 @@
-//! Speed of the exact rolling-cylinder solution (issue 6 target: one point
-//! in under 50 ms at default settings): the paper's Fig. 2 cylinder
+//! Speed of the exact rolling-cylinder solution (target: one point in
+//! under 50 ms at default settings): the paper's Fig. 2 cylinder
 //! (R = 1 cm, f_N = 100 N/m, standard linear solid E0 = 1 MPa, E1 = 10 MPa,
 //! τ = 1 s, ν = 0) at four speeds: vτ/a0 = 0.001 (thin edge layers, more
 //! than the 128 terms of the cap would be needed: the graded mesh, also
 //! timed with the a-posteriori error estimate, which adds a solve on a
-//! finer mesh; before issue 17 128 terms and a 96-term solve) and 0.01 (105
+//! finer mesh) and 0.01 (105
 //! terms), 1 (near the friction maximum) and 100 (24 terms each); and the stiff
 //! solid E1/E0 = 1000 at vτ/a0 = 1 (its edge layers follow the relaxation
 //! time τE0/E1: 106 terms).
 //!
-//! Issue 14 target (one point with a 200-term Prony series in ≤ 0.5 s; it
-//! took 15 s): `prony200_v*`, a broad rubber (relaxation times log-spaced
-//! over 1e-12 … 1e8 s, E0 = 2 MPa, E1 = 2 GPa, ν = 0.5) under the same
-//! cylinder at 1e-6, 1e-3 and 1 m/s (before issue 17 128 Chebyshev terms,
-//! its glassy time being far below a microsecond; now the graded mesh,
+//! Target: one point with a 200-term Prony series in ≤ 0.5 s:
+//! `prony200_v*`, a broad rubber (relaxation times log-spaced over 1e-12 … 1e8 s, E0 = 2 MPa, E1 = 2 GPa, ν = 0.5) under the same
+//! cylinder at 1e-6, 1e-3 and 1 m/s (the graded mesh,
 //! 190 … 330 nodes).
 //!
-//! Issue 17 (stiff solids at low speed: the cost per speed on the graded
-//! mesh): `sls1e4_v1e-4` and `sls1e4_v0.3`, the same cylinder on a standard
+//! Stiff solids at low speed (the cost per speed on the graded mesh): `sls1e4_v1e-4` and `sls1e4_v0.3`, the same cylinder on a standard
 //! linear solid E0 = 1 MPa, E1 = 10 GPa, τ = 1 s at vτ/a0 = 1e-4 (200
 //! nodes) and 0.3 (a decade below the friction maximum, 128 nodes), plain
 //! and with the a-posteriori error estimate (a second solve on q + 2 nodes

@@ -1,4 +1,4 @@
-//! Speed of the exact rolling sphere (issue 17 target: ≤ 1 s per speed at
+//! Speed of the exact rolling sphere (target: ≤ 1 s per speed at
 //! a requested accuracy of 1e-3, ≤ 10 s at 1e-4, on one core): Persson's
 //! Fig. 2 sphere (R = 1 cm, F = 0.15 N, standard linear solid E0 = 1 MPa,
 //! E1 = 10 MPa, τ = 1 s, ν = 0) at vτ/r0 = 1 (near the friction maximum)

@@ -4,9 +4,9 @@
 //! 15-term Prony series, dynamic contact, default tolerance 1e-6, one core.
 //! The cylinder's 41-point sweep also runs on a film 0.1 mm thick (ν = ½,
 //! about 0.15 static contact half-widths), to time the film's own grid
-//! step (issue 19, BENCHMARKS.md "Cylinder films").
-//! The sphere's sweep also runs on films d/r0 = 1e-3 … 10 (issue 19,
-//! BENCHMARKS.md "Films under a ball").
+//! step (BENCHMARKS.md "Cylinder films").
+//! The sphere's sweep also runs on films d/r0 = 1e-3 … 10 (BENCHMARKS.md
+//! "Films under a ball").
 //! Then the same series as a table of 10 rows a decade (the knot-splitting
 //! quadrature of `friction/knots.rs`): one μ and a 41-point sweep.
 
@@ -125,7 +125,7 @@ fn benches(c: &mut Criterion) {
     c.bench_function("sweep4001_sphere", |b| {
         b.iter(|| sphere.friction_sweep(black_box(&dense)).unwrap())
     });
-    // Films under the ball (issue 19): the same 41-speed sweep on films
+    // Films under the ball: the same 41-speed sweep on films
     // d/r0 = 1e-3 … 10 thick, against `sweep41_sphere`. The film kernel's
     // rows are built by the warm-up (once per process), as the half-space
     // tables are above.
