@@ -26,9 +26,12 @@
 //!    that describes the shifts, else the measured shifts themselves
 //!    ("free", interpolated linearly in T). The measured shifts are
 //!    anchored at T_ref: by the law's offset, or for "free" by
-//!    interpolation at T_ref. Undetermined isotherms take the law's value
-//!    (for "free", the place where they overlap their neighbour best),
-//!    marked as such.
+//!    interpolation at T_ref. Undetermined isotherms between determined
+//!    ones take the law's value (for "free", the place where they overlap
+//!    their neighbour best), marked as such; beyond the determined range,
+//!    where the law would be an extrapolation, each step outward is the
+//!    pair's overlap where its profile is bounded and the law's step only
+//!    across a plateau.
 //! 4. The data are shifted with the applied a_T (so that the Prony series
 //!    at T_ref and the law together reproduce every isotherm, as a scene
 //!    will use them) and the measured b_T.

@@ -395,3 +395,75 @@ fn big_steps_on_narrow_windows_are_measured() {
     }
     assert!(covered >= 9, "2σ covers the truth in {covered} of 10");
 }
+
+/// A study of the mismatch targets of the held-out real sets, asked of
+/// the β replica: the mean neighbour-pair mismatch of log E′ under the
+/// applied shifts against 1.5× that of a tool superposing E′ alone (each
+/// pair at its own best E′ shift, the least any such tool reaches), and
+/// that of log tan δ against the E′ tool's. Printed, not asserted: the
+/// log E′ target is not met (BENCHMARKS.md, "Master curves of real DMA
+/// files"), since where superposition fails the pair's shift follows
+/// tan δ. `cargo test --release -p rollfit-fit --lib study_beta_replica
+/// -- --ignored --nocapture`.
+#[test]
+#[ignore = "a study: prints the mismatch against an E′-only tool's"]
+fn study_beta_replica_mismatch() {
+    let (material, temps, log_alpha, log_beta) = eplexor_like();
+    let shifts = |k: usize| (log_alpha[k], log_beta[k]);
+    for seed in 0..8 {
+        let isotherms = replica(&material, &temps, &shifts, (10, 3.0), 0.01, 40 + seed);
+        let valid = MasterSettings::default().check(&isotherms).unwrap();
+        let factors = shift_factors(&isotherms, &valid).unwrap();
+        // The applied increments, in the oracle's convention: isotherm k + 1
+        // at log ω + log a_T(k + 1) meets isotherm k at log ω + log a_T(k).
+        let increment = |k: usize| factors.shifts[k + 1].log_shift - factors.shifts[k].log_shift;
+        let (mut ours, mut theirs) = ([0.0; 2], [0.0; 2]);
+        for k in 0..20 {
+            let (lower, upper) = (&isotherms[k], &isotherms[k + 1]);
+            let best_e = oracle_shift(lower, upper, 0);
+            for q in 0..2 {
+                ours[q] += mismatch(lower, upper, q, increment(k)) / 20.0;
+                theirs[q] += mismatch(lower, upper, q, best_e) / 20.0;
+            }
+        }
+        eprintln!(
+            "seed {seed}: mean pair mismatch log E′ {:.4} (E′ tool {:.4}), log tan δ {:.4} \
+             (E′ tool {:.4})",
+            ours[0], theirs[0], ours[1], theirs[1]
+        );
+        eprintln!(
+            "seed {seed}: ratios log E′ {:.2} (target ≤ 1.5), log tan δ {:.2} (target ≤ 1)",
+            ours[0] / theirs[0],
+            ours[1] / theirs[1]
+        );
+    }
+}
+
+/// The RMS difference, over the overlap, of log E′ (q = 0) or log tan δ
+/// (1) between `upper` and `lower` shifted by `s` decades (the oracle's
+/// convention: curve_upper(x) against curve_lower(x + s)), interpolated
+/// linearly in log ω.
+fn mismatch(lower: &Isotherm, upper: &Isotherm, q: usize, s: f64) -> f64 {
+    let y = |iso: &Isotherm, i: usize| {
+        if q == 0 {
+            iso.storage[i].log10()
+        } else {
+            (iso.loss[i] / iso.storage[i]).log10()
+        }
+    };
+    let x: Vec<f64> = lower.omega.iter().map(|w| w.log10()).collect();
+    let mut sum = 0.0;
+    let mut n = 0;
+    for i in 0..upper.omega.len() {
+        let at = upper.omega[i].log10() + s;
+        let Some(j) = (1..x.len()).find(|&j| x[j] >= at && x[j - 1] <= at) else {
+            continue;
+        };
+        let w = (at - x[j - 1]) / (x[j] - x[j - 1]);
+        let d = y(upper, i) - (y(lower, j - 1) * (1.0 - w) + y(lower, j) * w);
+        sum += d * d;
+        n += 1;
+    }
+    assert!(n > 0, "no overlap at shift {s}");
+    (sum / n as f64).sqrt()
+}

@@ -454,7 +454,8 @@ struct Placed {
 /// doc of [`super`], step 3): the anchor a·x is the law's offset (the mean
 /// of x − L over the determined isotherms), or for "free" the measured
 /// shifts interpolated at T_ref. Undetermined isotherms take the law's
-/// value; without a law, the neighbour overlaps chained from the nearest
+/// value between determined ones and [`beyond_determined`] outside their
+/// range; without a law, the neighbour overlaps chained from the nearest
 /// determined isotherm.
 fn place(
     factors: &ShiftFactors,
@@ -538,6 +539,10 @@ fn place(
             // isotherm the data cannot tell, so its value is the law's
             // assumption and carries no σ.
             (Some(values), Some(_)) => (values[i], factors.law_sigma_at(temps[i])),
+            (Some(values), None) if !members.is_empty() && !within(&members, i) => (
+                beyond_determined(values, &found.pairs, nearest_determined(i), i),
+                f64::INFINITY,
+            ),
             (Some(values), None) => (values[i], f64::INFINITY),
             (None, Some(m)) => m,
             (None, None) => {
@@ -560,6 +565,37 @@ fn place(
         law_rms,
         warnings,
     })
+}
+
+/// Whether isotherm `i` lies between the coldest and the warmest of the
+/// determined isotherms `members` (ascending indices).
+fn within(members: &[usize], i: usize) -> bool {
+    members.first().is_some_and(|&lo| lo <= i) && members.last().is_some_and(|&hi| i <= hi)
+}
+
+/// An undetermined isotherm `i` beyond the determined isotherms' range,
+/// placed step by step outward from the nearest determined isotherm `k`:
+/// a law fitted inside the range is an extrapolation there, so each
+/// neighbour step is what the pair's data say where they say something (a
+/// bounded profile, or, where superposition fails, the modulus's own
+/// bounded shift) and the law's step only where they do not (a plateau,
+/// too few points).
+fn beyond_determined(law_values: &[f64], pairs: &[PairShift], k: usize, i: usize) -> f64 {
+    let step = |j: usize| {
+        let data = pairs
+            .iter()
+            .find(|p| p.lower == j && p.upper == j + 1)
+            .filter(|p| {
+                matches!(p.cause, PairCause::Measured | PairCause::Wide)
+                    || (p.tts_fails && p.curve_bounded[0])
+            });
+        data.map_or(law_values[j + 1] - law_values[j], |p| p.shift)
+    };
+    if i > k {
+        law_values[k] + (k..i).map(step).sum::<f64>()
+    } else {
+        law_values[k] - (i..k).map(step).sum::<f64>()
+    }
 }
 
 /// The applied law's RMS scatter of the measured shifts about it.
