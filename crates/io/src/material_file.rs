@@ -11,7 +11,6 @@
 
 use std::path::Path;
 
-use rollfit_fit::master::pipeline::Built;
 use rollfit_fit::master::relaxation::RelaxationMaster;
 use rollfit_fit::master::{MasterCurve, ShiftFactors, ShiftLaw, ValidMasterSettings};
 use rollfit_model::{Prony, ViscoelasticModulus};
@@ -89,32 +88,41 @@ struct Source<'a> {
 }
 
 /// The file's text, with a comment header saying where it came from
-/// (`path`, the DMA file or the folder of several).
-pub fn encode(path: &Path, built: &Built<MasterCurve>) -> Result<Vec<u8>, IoError> {
+/// (`path`, the DMA file or the folder of several), of the master curve
+/// built with `settings`.
+pub fn encode(
+    path: &Path,
+    master: &MasterCurve,
+    settings: &ValidMasterSettings,
+) -> Result<Vec<u8>, IoError> {
     encode_source(&Source {
         path,
         isotherms: "isotherms",
         also: " (or use the DMA file itself: [material] model = \"dma\")",
-        points: built.master.points.len(),
-        shift: &built.master.shift,
-        prony: &built.master.fit.prony,
-        settings: &built.settings,
-        window: built.master.determined_window,
+        points: master.points.len(),
+        shift: &master.shift,
+        prony: &master.fit.prony,
+        settings,
+        window: master.determined_window,
     })
 }
 
 /// The file of a relaxation master curve: the same tables (the series is
 /// one object in time and frequency, `rollfit_fit::master::relaxation`).
-pub fn encode_relaxation(path: &Path, built: &Built<RelaxationMaster>) -> Result<Vec<u8>, IoError> {
+pub fn encode_relaxation(
+    path: &Path,
+    master: &RelaxationMaster,
+    settings: &ValidMasterSettings,
+) -> Result<Vec<u8>, IoError> {
     encode_source(&Source {
         path,
         isotherms: "relaxation isotherms",
         // A scene's `model = "dma"` reads frequency sweeps only.
         also: "",
-        points: built.master.points.len(),
-        shift: &built.master.shift,
-        prony: &built.master.fit.prony,
-        settings: &built.settings,
+        points: master.points.len(),
+        shift: &master.shift,
+        prony: &master.fit.prony,
+        settings,
         window: None,
     })
 }

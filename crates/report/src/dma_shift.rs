@@ -24,7 +24,7 @@
 //!    error asking for `--dma-wlf`: without a shift they do not form one
 //!    curve.
 //!
-//! Points are grouped into isotherms ([`rollfit_io::dma::isotherm`]; the
+//! Points are grouped into isotherms ([`rollfit_fit::master::grouping`]; the
 //! points of a temperature ramp by exact temperature) and
 //! each isotherm is shifted rigidly with its mean temperature: a
 //! controller's ±0.02 K scatter should not bend an isotherm, and "the

@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use rollfit_fit::master::pipeline::{self, Built};
+use rollfit_fit::master::pipeline;
 use rollfit_fit::master::{MasterCurve, MasterSettings, ValidMasterSettings};
 use rollfit_io::dma::{
     DmaData, DmaInput, DmaOptions, ModulusKind, group_isotherms, master_refused,
@@ -795,12 +795,8 @@ fn master_of(path: &Path, settings: &MasterSettings) -> Result<Mastered, IoError
 
 /// material.toml without its comment header (which names the file).
 fn material_body(built: &Mastered) -> String {
-    let built_curve = Built {
-        settings: built.settings.clone(),
-        master: built.master.clone(),
-    };
-    let text =
-        String::from_utf8(material_file::encode(&built.data.path, &built_curve).unwrap()).unwrap();
+    let encoded = material_file::encode(&built.data.path, &built.master, &built.settings);
+    let text = String::from_utf8(encoded.unwrap()).unwrap();
     text.lines()
         .filter(|l| !l.starts_with('#'))
         .collect::<Vec<_>>()

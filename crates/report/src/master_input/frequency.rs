@@ -12,7 +12,7 @@
 //! noted. Nothing is written here: `rollfit master` writes the folder,
 //! [`rollfit_io::material_file`] its material.toml.
 
-use rollfit_fit::master::pipeline::{self, Built};
+use rollfit_fit::master::pipeline;
 use rollfit_fit::master::{MasterCurve, MasterSettings, ValidMasterSettings};
 pub use rollfit_io::dma::DmaInput;
 use rollfit_io::dma::{DmaData, group_isotherms, master_refused};
@@ -37,11 +37,7 @@ pub struct DmaMaster {
 impl DmaMaster {
     /// Its material.toml ([`material_file::encode`]).
     pub fn material_file(&self) -> Result<Vec<u8>, IoError> {
-        let built = Built {
-            settings: self.settings.clone(),
-            master: self.master.clone(),
-        };
-        material_file::encode(&self.data.path, &built)
+        material_file::encode(&self.data.path, &self.master, &self.settings)
     }
 }
 

@@ -9,7 +9,7 @@
 //! D(t)). `rollfit master` writes the folder,
 //! [`rollfit_io::material_file`] its material.toml in the same form.
 
-use rollfit_fit::master::pipeline::{self, Built};
+use rollfit_fit::master::pipeline;
 use rollfit_fit::master::relaxation::RelaxationMaster;
 use rollfit_fit::master::{DEFAULT_T_REF, MasterSettings, ValidMasterSettings};
 use rollfit_io::dma::relaxation::{RelaxationData, time_isotherms};
@@ -32,11 +32,7 @@ pub struct RelaxationBuilt {
 impl RelaxationBuilt {
     /// Its material.toml ([`material_file::encode_relaxation`]).
     pub fn material_file(&self) -> Result<Vec<u8>, IoError> {
-        let built = Built {
-            settings: self.settings.clone(),
-            master: self.master.clone(),
-        };
-        material_file::encode_relaxation(&self.data.path, &built)
+        material_file::encode_relaxation(&self.data.path, &self.master, &self.settings)
     }
 }
 
