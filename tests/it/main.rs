@@ -26,6 +26,7 @@ mod master_pictures_cli;
 mod messages;
 mod negative_numbers_cli;
 mod pressure_map_cli;
+mod relaxation_files_cli;
 mod reliability_cli;
 mod report_cli;
 mod talk_cli;

@@ -4,11 +4,7 @@
 //! - [`scene`]: the scene file of `forward`, `fit` and `bench`, its
 //!   sections checked and turned into the model's objects;
 //! - [`manifest`]: the batch manifest of `rollfit batch`;
-//! - [`dma_master`]: a DMA file made a master curve (`rollfit master`, a
-//!   scene's `model = "dma"`), [`dma_joint`]: a DMA file as the isotherms
-//!   of a joint fit (`dma = FILE`), [`relaxation_master`]: a relaxation
-//!   file made a master curve, and [`material_file`]: the material.toml
-//!   `rollfit master` writes;
+//! - [`material_file`]: the material.toml `rollfit master` writes;
 //! - [`data`]: measured rolling friction, text (`,`, `;` or tab, decimal
 //!   commas, any common encoding) or a workbook, with header aliases and
 //!   units converted to SI;
@@ -19,7 +15,10 @@
 //!   and read back by one module with its names defined once
 //!   ([`fit_dir::columns`]);
 //! - [`dma`]: DMA files, the CSV form and the TRIOS LIMS export, as Young's
-//!   moduli grouped into isotherms;
+//!   moduli, and relaxation and creep files; their points grouped into
+//!   isotherms by the fit library's rule, each refusal naming its line
+//!   (building master curves from them is the report crate's
+//!   `master_input`, where commands are assembled);
 //! - [`columns`]: column names shared by a writer and its readers beyond
 //!   the fit folder's;
 //! - [`pressure_map`]: the pressure maps of the exact rolling contact that
@@ -47,15 +46,12 @@ pub mod csv_columns;
 pub mod csv_text;
 pub mod data;
 pub mod dma;
-pub mod dma_joint;
-pub mod dma_master;
 pub mod fit_dir;
 pub mod input_file;
 pub mod manifest;
 pub mod material_file;
 pub mod output;
 pub mod pressure_map;
-pub mod relaxation_master;
 pub mod scene;
 pub mod table;
 pub mod text_file;

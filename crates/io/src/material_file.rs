@@ -11,13 +11,12 @@
 
 use std::path::Path;
 
-use rollfit_fit::master::{ShiftFactors, ShiftLaw, ValidMasterSettings};
+use rollfit_fit::master::relaxation::RelaxationMaster;
+use rollfit_fit::master::{MasterCurve, ShiftFactors, ShiftLaw, ValidMasterSettings};
 use rollfit_model::{Prony, ViscoelasticModulus};
 use serde::Serialize;
 
-use crate::dma_master::DmaMaster;
 use crate::error::IoError;
-use crate::relaxation_master::RelaxationBuilt;
 
 #[derive(Serialize)]
 struct MaterialFile {
@@ -88,32 +87,42 @@ struct Source<'a> {
     window: Option<[f64; 2]>,
 }
 
-/// The file's text, with a comment header saying where it came from.
-pub fn encode(built: &DmaMaster) -> Result<Vec<u8>, IoError> {
+/// The file's text, with a comment header saying where it came from
+/// (`path`, the DMA file or the folder of several), of the master curve
+/// built with `settings`.
+pub fn encode(
+    path: &Path,
+    master: &MasterCurve,
+    settings: &ValidMasterSettings,
+) -> Result<Vec<u8>, IoError> {
     encode_source(&Source {
-        path: &built.data.path,
+        path,
         isotherms: "isotherms",
         also: " (or use the DMA file itself: [material] model = \"dma\")",
-        points: built.master.points.len(),
-        shift: &built.master.shift,
-        prony: &built.master.fit.prony,
-        settings: &built.settings,
-        window: built.master.determined_window,
+        points: master.points.len(),
+        shift: &master.shift,
+        prony: &master.fit.prony,
+        settings,
+        window: master.determined_window,
     })
 }
 
 /// The file of a relaxation master curve: the same tables (the series is
 /// one object in time and frequency, `rollfit_fit::master::relaxation`).
-pub fn encode_relaxation(built: &RelaxationBuilt) -> Result<Vec<u8>, IoError> {
+pub fn encode_relaxation(
+    path: &Path,
+    master: &RelaxationMaster,
+    settings: &ValidMasterSettings,
+) -> Result<Vec<u8>, IoError> {
     encode_source(&Source {
-        path: &built.data.path,
+        path,
         isotherms: "relaxation isotherms",
         // A scene's `model = "dma"` reads frequency sweeps only.
         also: "",
-        points: built.master.points.len(),
-        shift: &built.master.shift,
-        prony: &built.master.fit.prony,
-        settings: &built.settings,
+        points: master.points.len(),
+        shift: &master.shift,
+        prony: &master.fit.prony,
+        settings,
         window: None,
     })
 }

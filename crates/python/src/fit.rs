@@ -20,7 +20,7 @@
 //! With DMA isotherms (the keyword `dma`, a path relative to the current
 //! folder, or the scene file's `[fit] dma`, relative to its folder) the fit
 //! is the joint fit of both: the file is read by
-//! `rollfit_io::dma_joint::read`, as `rollfit fit --dma` reads it, and the
+//! `rollfit_report::master_input::joint::read`, as `rollfit fit --dma` reads it, and the
 //! result's `joint` is fit.json's `joint` record.
 //!
 //! The result keeps the report and the fit folder's three files encoded
@@ -323,7 +323,7 @@ fn with_dma(
             path.display()
         )));
     }
-    let read = rollfit_io::dma_joint::read(&path, scene.setup.substrate.poisson, t_ref)
+    let read = rollfit_report::master_input::joint::read(&path, scene.setup.substrate.poisson, t_ref)
         .map_err(|e| io_error(&e))?;
     valid.with_dma(read.rows).map_err(|e| value_error(&e))
 }

@@ -24,7 +24,7 @@
 //!    error asking for `--dma-wlf`: without a shift they do not form one
 //!    curve.
 //!
-//! Points are grouped into isotherms ([`rollfit_io::dma::isotherm`]; the
+//! Points are grouped into isotherms ([`rollfit_fit::master::grouping`]; the
 //! points of a temperature ramp by exact temperature) and
 //! each isotherm is shifted rigidly with its mean temperature: a
 //! controller's ±0.02 K scatter should not bend an isotherm, and "the
@@ -32,8 +32,9 @@
 
 use std::path::Path;
 
+use rollfit_fit::master::grouping::{Group, ISOTHERM_TOLERANCE};
 use rollfit_io::FitDir;
-use rollfit_io::dma::{DmaData, DmaOptions, DmaPoint, DmaWlf, ISOTHERM_TOLERANCE, Isotherm};
+use rollfit_io::dma::{DmaData, DmaOptions, DmaPoint, DmaWlf};
 use rollfit_io::fit_dir::ShiftSummary;
 
 use crate::error::ReportError;
@@ -118,7 +119,7 @@ fn to_reference(
 /// frequency sweeps and relaxation runs (`crate::relaxation_compare`).
 pub(crate) fn isotherm_shifts(
     path: &Path,
-    isotherms: &[Isotherm],
+    isotherms: &[Group],
     fit: &FitDir,
     options: &DmaOptions,
 ) -> Result<Shifts, ReportError> {
@@ -133,7 +134,7 @@ pub(crate) fn isotherm_shifts(
 /// Rule 1: the DMA's own WLF, towards the fit's T_ref (or its own).
 fn dma_wlf_shifts(
     path: &Path,
-    isotherms: &[Isotherm],
+    isotherms: &[Group],
     wlf: &DmaWlf,
     fit_shift: Option<&ShiftSummary>,
 ) -> Result<Shifts, ReportError> {
@@ -163,7 +164,7 @@ fn dma_wlf_shifts(
 /// Rule 2: the fit's own shift (a temperature set).
 fn fit_shifts(
     path: &Path,
-    isotherms: &[Isotherm],
+    isotherms: &[Group],
     shift: &ShiftSummary,
 ) -> Result<Shifts, ReportError> {
     let file = path.display();
@@ -229,7 +230,7 @@ fn fit_shifts(
 }
 
 /// Rule 3: no shift; one temperature (or none) as measured.
-fn as_measured(path: &Path, isotherms: &[Isotherm]) -> Result<Shifts, ReportError> {
+fn as_measured(path: &Path, isotherms: &[Group]) -> Result<Shifts, ReportError> {
     match isotherms {
         [] => Ok((Vec::new(), Vec::new())),
         [only] => Ok((

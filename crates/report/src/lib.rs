@@ -19,6 +19,7 @@ pub mod dma_shift;
 mod error;
 pub mod fitted_friction;
 pub mod html;
+pub mod master_input;
 pub mod plot;
 pub mod relaxation_compare;
 

@@ -40,10 +40,10 @@
 use serde::Serialize;
 
 use rollfit_fit::compare::time_errors;
+use rollfit_fit::master::grouping::group_temperatures;
 use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_io::FitDir;
 use rollfit_io::dma::DmaOptions;
-use rollfit_io::dma::group_temperatures;
 use rollfit_io::dma::relaxation::RelaxationData;
 
 use crate::compare::IsothermShift;

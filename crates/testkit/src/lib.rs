@@ -27,6 +27,7 @@
 pub mod broad_polymer;
 pub mod contract;
 pub mod csv;
+pub mod eplexor;
 pub mod files;
 pub mod jacobian;
 pub mod joint_case;

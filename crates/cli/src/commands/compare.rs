@@ -178,8 +178,18 @@ pub fn comparison(dir: &std::path::Path, dma: &[PathBuf], flags: &DmaFlags) -> R
     compare(&fit, &data, &options).context("cannot compare the fit with the DMA data")
 }
 
+/// Whether the DMA input `dma` (files or folders) holds relaxation or
+/// creep data: whether its first file does (`rollfit master` reads
+/// several such files as one data set).
+pub fn is_relaxation_data(dma: &[PathBuf]) -> Result<bool> {
+    let files = rollfit_io::dma::files::expand(dma)?;
+    Ok(files
+        .first()
+        .is_some_and(|first| rollfit_io::dma::relaxation::is_relaxation_file(first)))
+}
+
 /// Whether the DMA input `dma` is a stress-relaxation file; several
-/// files of which the first is one are refused.
+/// files of which the first is one are refused (a comparison reads one).
 pub fn is_relaxation(dma: &[PathBuf]) -> Result<bool> {
     let first = &dma[0];
     if !rollfit_io::dma::relaxation::is_relaxation_file(first) {

@@ -42,15 +42,15 @@ use rollfit_fit::master::quality::{Floors, MasterQuality, Misfits};
 use rollfit_fit::master::{MasterSettings, ShiftFactors, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
 use rollfit_io::dma::{DmaFile, TemperatureOrigin};
-use rollfit_io::dma_master::{self, DmaMaster};
 use rollfit_io::fit_dir::columns::{
     E_LOSS, E_STORAGE, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
 };
-use rollfit_io::{csv_text, material_file, output};
+use rollfit_io::{csv_text, output};
 use rollfit_model::ViscoelasticModulus;
+use rollfit_report::master_input::frequency::{self, DmaMaster};
 use serde::Serialize;
 
-use crate::commands::compare::{DmaFileFlags, DmaModulus, is_relaxation, poisson_source};
+use crate::commands::compare::{DmaFileFlags, DmaModulus, is_relaxation_data, poisson_source};
 use crate::{hints, progress, stdout};
 
 mod pictures;
@@ -163,7 +163,7 @@ pub fn run(args: &Args) -> Result<()> {
         vertical: args.vertical,
     };
     let first = &args.dma[0];
-    if is_relaxation(&args.dma)? {
+    if is_relaxation_data(&args.dma)? {
         return relaxation::run(args, &settings);
     }
     let (poisson, whose) = poisson_source(args.poisson);
@@ -184,7 +184,7 @@ pub fn run(args: &Args) -> Result<()> {
             }
         });
     };
-    let built = dma_master::build_told(&input, poisson, &settings, on_read).map_err(Into::into);
+    let built = frequency::build_told(&input, poisson, &settings, on_read).map_err(Into::into);
     let hint = || hints::for_dma(first, "rollfit master DMA.csv");
     let built = hints::with_hint(built, hint);
     let causal = built.as_ref().ok().map(causal_floor);
@@ -418,7 +418,7 @@ fn encode(
         &MODULUS_COLUMNS[..4],
         curve.iter().map(|&(w, s, l)| vec![w, s, l, l / s]),
     )?;
-    let material = material_file::encode(built)?;
+    let material = built.material_file()?;
     let mut json = serde_json::to_vec_pretty(&Summary::of(built, causal, poisson, quality))
         .context("cannot format master.json")?;
     json.push(b'\n');

@@ -50,23 +50,26 @@
 pub mod condense;
 mod creep_prony;
 mod creep_rows;
+pub mod grouping;
 pub(crate) mod horizontal;
 mod isotherm;
 pub mod law_choice;
 mod network;
 pub mod pairwise;
+pub mod pipeline;
 pub mod prony_fit;
 pub mod quality;
 pub mod reach;
 pub mod relaxation;
 mod relaxation_prony;
+pub mod repeats;
 mod scale;
 mod shift_profile;
 mod shifts;
 pub mod temperature_law;
 pub mod van_gurp_palmen;
 
-pub use isotherm::Isotherm;
+pub use isotherm::{Isotherm, Sweep};
 pub use prony_fit::{PronyFit, TAU_PER_DECADE, fit_prony, tau_grid};
 pub use shifts::{IsothermShift, ShiftFactors, shift_factors};
 pub use temperature_law::{ArrheniusFit, LawTest, WlfArrheniusFit, WlfFit};

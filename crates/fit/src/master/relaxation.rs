@@ -52,6 +52,8 @@ pub use super::creep_prony::{CREEP_METHOD, fit_creep_prony};
 pub use super::relaxation_prony::{RELAXATION_METHOD, RelaxationFit, fit_relaxation_prony};
 
 use super::horizontal::{Domain, Superposable};
+use super::isotherm::Sweep;
+use super::repeats::Averaged;
 use super::shifts::{ShiftFactors, superpose};
 use super::{MasterSettings, ValidMasterSettings, series_warnings};
 use crate::error::FitError;
@@ -123,6 +125,16 @@ pub struct RelaxationIsotherm {
     /// The quantity at each time: E(t) (Young's), Pa, or D(t) (tensile),
     /// 1/Pa.
     pub value: Vec<f64>,
+}
+
+impl Sweep for RelaxationIsotherm {
+    fn from_averaged(temperature: f64, averaged: Averaged) -> Self {
+        RelaxationIsotherm {
+            temperature,
+            time: averaged.abscissa,
+            value: averaged.quantities.into_iter().next().unwrap_or_default(),
+        }
+    }
 }
 
 /// One time-domain point on the master curve.

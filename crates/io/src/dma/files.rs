@@ -14,7 +14,7 @@
 //! The points are then concatenated in file order; a file's own steps are
 //! kept (numbered apart from the other files') when every file has a step
 //! column, else the isotherms are found from the temperatures as in one
-//! file ([`super::isotherm`]).
+//! file ([`super::isotherms`]).
 
 use std::fmt;
 use std::ops::Range;
@@ -196,16 +196,7 @@ pub fn read_files(
     sheet: Option<&str>,
     given: Option<&[f64]>,
 ) -> Result<DmaData, IoError> {
-    if let Some(given) = given
-        && given.len() != paths.len()
-    {
-        return Err(err!(
-            "{given} temperatures given for {files} DMA files: give one per file, in the order of \
-         the files",
-            files = paths.len(),
-            given = given.len()
-        ));
-    }
+    check_given(given, paths.len())?;
     let mut all: Option<DmaData> = None;
     for (k, path) in paths.iter().enumerate() {
         let mut data = DmaData::read_sheet(path, poisson, options, sheet)?;
@@ -231,6 +222,21 @@ pub fn read_files(
         data.path = common_folder(paths);
     }
     Ok(data)
+}
+
+/// Refuses temperatures given (`--temperatures`) that are not one per
+/// file.
+pub(super) fn check_given(given: Option<&[f64]>, files: usize) -> Result<(), IoError> {
+    if let Some(given) = given
+        && given.len() != files
+    {
+        return Err(err!(
+            "{given} temperatures given for {files} DMA files: give one per file, in the order of \
+         the files",
+            given = given.len()
+        ));
+    }
+    Ok(())
 }
 
 /// Gives the file `data` the temperature `t` (°C) when it states none;
@@ -297,7 +303,7 @@ pub(super) fn join(mut a: DmaData, b: DmaData) -> DmaData {
 
 /// The folder holding all of `paths` (their first's parent when they
 /// share none).
-fn common_folder(paths: &[PathBuf]) -> PathBuf {
+pub(super) fn common_folder(paths: &[PathBuf]) -> PathBuf {
     let parent = |p: &PathBuf| p.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut common = parent(&paths[0]);
     for p in &paths[1..] {

@@ -63,24 +63,24 @@ pub mod decode;
 pub mod files;
 mod form;
 mod header;
-pub mod isotherm;
+pub mod isotherms;
 mod moduli;
 mod point;
 pub mod relaxation;
 mod sheet;
 pub mod stated_temperature;
+pub mod time_files;
 mod time_isotherms;
 pub mod trios;
 mod vocabulary;
+
+use rollfit_fit::master::grouping::{Grouping, group, group_steps};
 
 use crate::data::workbook::is_workbook;
 pub use files::{DmaFile, DmaInput, TemperatureOrigin, read_files};
 use form::{FormRead, Place};
 pub use header::modulus_unit;
-pub use isotherm::{
-    Grouping, ISOTHERM_GAP, ISOTHERM_SPAN, ISOTHERM_TOLERANCE, Isotherm, Ramp, group, group_steps,
-    group_temperatures, isotherms, range,
-};
+pub use isotherms::{DmaIsotherms, group_isotherms, master_refused};
 pub use point::{DmaOptions, DmaPoint, DmaWlf, ModulusKind, WLF_USAGE};
 
 /// A DMA file read, its moduli as Young's moduli in Pa.
@@ -217,16 +217,18 @@ impl DmaData {
 
     /// The points grouped into isotherms, by step where the file has a
     /// step column, else by the gaps between their temperatures, and the
-    /// temperature ramp that formed none, if any (the rule: [`isotherm`]).
+    /// temperature ramp that formed none, if any (the rule:
+    /// [`rollfit_fit::master::grouping`]).
     pub fn grouping(&self) -> Grouping {
         match &self.steps {
-            Some(steps) => {
-                let temperatures: Vec<Option<f64>> =
-                    self.points.iter().map(|p| p.temperature).collect();
-                group_steps(&temperatures, steps)
-            }
+            Some(steps) => group_steps(&self.temperatures_of_points(), steps),
             None => group(self.points.iter().map(|p| p.temperature)),
         }
+    }
+
+    /// The temperature of each point (°C), in file order.
+    pub fn temperatures_of_points(&self) -> Vec<Option<f64>> {
+        self.points.iter().map(|p| p.temperature).collect()
     }
 
     /// The file the point `index` of [`DmaData::points`] was read from.

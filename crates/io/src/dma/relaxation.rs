@@ -44,7 +44,7 @@ use std::path::{Path, PathBuf};
 
 use rollfit_fit::master::relaxation::TimeQuantity;
 
-pub use super::time_isotherms::{COMPLIANCE_FALL, RelaxationPoint, groups};
+pub use super::time_isotherms::{COMPLIANCE_FALL, RelaxationPoint, groups, time_isotherms};
 
 use super::header::Column;
 use super::point::ModulusKind;

@@ -10,7 +10,10 @@
 
 use std::path::Path;
 
-use rollfit_fit::master::relaxation::TimeQuantity;
+use rollfit_fit::master::Sweep;
+use rollfit_fit::master::grouping::in_measured_order;
+use rollfit_fit::master::relaxation::{RelaxationIsotherm, TimeQuantity};
+use rollfit_fit::master::repeats::average_repeats;
 
 use crate::error::{ColumnRef, IoError};
 
@@ -52,8 +55,8 @@ pub(super) fn check_isotherms(
         ));
     }
     for (temperature, indices) in groups(points) {
-        // Equal times are rounded stamps, averaged by the master curve
-        // (`crate::relaxation_master`); a time that falls is a new run.
+        // Equal times are rounded stamps, averaged by [`time_isotherms`];
+        // a time that falls is a new run.
         let falls = indices
             .windows(2)
             .position(|w| points[w[1]].time < points[w[0]].time);
@@ -121,19 +124,40 @@ fn check_rising(
 
 /// The isotherms of `points` as (temperature °C, indices in file order);
 /// one at NaN when the file has no temperatures (a master curve puts it at
-/// T_ref).
+/// T_ref). The rule: [`rollfit_fit::master::grouping`].
 pub fn groups(points: &[RelaxationPoint]) -> Vec<(f64, Vec<usize>)> {
-    if points.iter().all(|p| p.temperature.is_none()) {
-        return vec![(f64::NAN, (0..points.len()).collect())];
+    let temperatures: Vec<Option<f64>> = points.iter().map(|p| p.temperature).collect();
+    in_measured_order(&temperatures)
+}
+
+/// The isotherms of the points of the file `path` (grouped as [`groups`]
+/// does), each run of points at one time averaged into one point
+/// ([`rollfit_fit::master::repeats`]: time stamps printed with too few
+/// digits repeat; the reader refused times that fall), each average noted
+/// in `notes`. A file without temperatures is one isotherm at `untimed`.
+pub fn time_isotherms(
+    path: &Path,
+    points: &[RelaxationPoint],
+    notes: &mut Vec<String>,
+    untimed: f64,
+) -> Vec<RelaxationIsotherm> {
+    let mut isotherms = Vec::new();
+    for (temperature, indices) in groups(points) {
+        let temperature = if temperature.is_nan() {
+            untimed
+        } else {
+            temperature
+        };
+        let averaged = average_repeats(&indices, |i| points[i].time, &[&|i| points[i].value]);
+        if averaged.merged_any() {
+            notes.push(format!(
+                "{}: isotherm at {temperature:.2} °C: {} points at repeated times averaged into {}",
+                path.display(),
+                averaged.repeated_points,
+                averaged.repeated_runs
+            ));
+        }
+        isotherms.push(RelaxationIsotherm::from_averaged(temperature, averaged));
     }
-    super::group_temperatures(points.iter().map(|p| p.temperature))
-        .into_iter()
-        .map(|iso| {
-            // File order: the grouping sorts by temperature, and a
-            // controller's scatter would shuffle a run.
-            let mut indices = iso.points;
-            indices.sort_unstable();
-            (iso.temperature, indices)
-        })
-        .collect()
+    isotherms
 }

@@ -197,7 +197,7 @@ impl SceneFile {
     /// The DMA file of a joint fit, `[fit] dma`, resolved against
     /// `base_dir` (the scene file's folder, as a `table` material's file
     /// is); None without one. [`FitSettings::apply`] leaves it out of the
-    /// fit parameters: the command reads it ([`crate::dma_joint::read`])
+    /// fit parameters: the command reads it (the report crate's `master_input::joint::read`)
     /// and hands the isotherms to `ValidFitParams::with_dma`.
     pub fn dma_file(&self, base_dir: &Path) -> Option<PathBuf> {
         let dma = self.fit.as_ref()?.settings.dma.as_deref()?;

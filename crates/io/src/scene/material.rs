@@ -1,14 +1,18 @@
 //! `[material]`: the modulus E*(ω) at the reference temperature, its keys
 //! per model, and what the fit and the exact solution take from it
 //! (docs/ARCHITECTURE.md, "Contract", "Scene file"). A `table` is read by
-//! [`crate::table`], a `dma` file made a master curve by
-//! [`crate::dma_master`]; what they say is passed on as it is.
+//! [`crate::table`], a `dma` file read by [`crate::dma`] and made a master
+//! curve by the fit library's pipeline
+//! ([`rollfit_fit::master::pipeline`]); what they say is passed on as it
+//! is.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use rollfit_fit::StartMaterial;
+use rollfit_fit::master::MasterCurve;
+use rollfit_fit::master::pipeline::{self, Built};
 use rollfit_model::{
     HavriliakNegami, ModelError, Prony, StandardLinearSolid, TabulatedModulus, VerticalShift,
     ViscoelasticModulus,
@@ -21,7 +25,7 @@ use super::setup::DEFAULT_POISSON;
 use super::shift::{ShiftRule, ShiftSection};
 use super::values::{Real, RealOrList, reals};
 use super::vertical;
-use crate::dma_master::{self, DmaMaster};
+use crate::dma::{DmaInput, group_isotherms};
 use crate::error::IoError;
 use crate::table;
 
@@ -184,7 +188,7 @@ impl ModulusName {
 pub(crate) struct DmaCache {
     /// [substrate] poisson (set when the scene is parsed).
     pub(super) poisson: Option<f64>,
-    built: std::sync::OnceLock<Arc<DmaMaster>>,
+    built: std::sync::OnceLock<Arc<Built<MasterCurve>>>,
 }
 
 impl fmt::Debug for DmaCache {
@@ -397,7 +401,7 @@ impl MaterialSection {
     }
 
     /// The master curve of a "dma" material, built on first use.
-    fn dma_master(&self, base_dir: &Path) -> Result<Arc<DmaMaster>, IoError> {
+    fn dma_master(&self, base_dir: &Path) -> Result<Arc<Built<MasterCurve>>, IoError> {
         if let Some(built) = self.dma.built.get() {
             return Ok(Arc::clone(built));
         }
@@ -416,18 +420,23 @@ impl MaterialSection {
             },
             vertical: self.vertical.unwrap_or(false),
         };
-        let input = dma_master::DmaInput {
+        let input = DmaInput {
             files: file.paths().iter().map(|f| base_dir.join(f)).collect(),
             sheet: self.sheet.clone(),
             kind: self.modulus.map(ModulusName::kind),
             temperatures: (self.temperatures.as_ref()).map(|t| t.iter().map(|r| r.0).collect()),
             modulus_unit: None,
         };
-        let built = Arc::new(dma_master::build(
-            &input,
-            self.dma.poisson.unwrap_or(DEFAULT_POISSON),
-            &settings,
-        )?);
+        let data = input
+            .read(self.dma.poisson.unwrap_or(DEFAULT_POISSON), None)
+            .map_err(|e| err!("{error}", error = e))?;
+        // No temperatures: the file is one curve, taken at T_ref.
+        let untimed = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
+        let read = group_isotherms(data, Some(untimed))?;
+        let path = read.data.path.as_path();
+        let built = pipeline::build(&read.isotherms, (), &settings)
+            .map_err(|error| crate::dma::master_refused(path, error))?;
+        let built = Arc::new(built);
         let _ = self.dma.built.set(Arc::clone(&built));
         Ok(built)
     }

@@ -3,7 +3,7 @@
 //! its conversion into validated model objects. An error names the file
 //! ([`in_file`]) and the section ([`InSection`]) before its cause; the
 //! files a material refers to are read by [`crate::table`] and
-//! [`crate::dma_master`].
+//! [`crate::dma`].
 //!
 //! Parsing happens in two steps. serde turns the text into the plain
 //! structs of the sections; type errors, unknown keys, non-finite numbers

@@ -8,8 +8,9 @@ use serde::Deserialize;
 
 use super::values::{Real, value_of};
 use super::vertical::{VerticalLawName, VerticalPoint};
-use crate::dma_master::DmaMaster;
 use crate::error::IoError;
+use rollfit_fit::master::MasterCurve;
+use rollfit_fit::master::pipeline::Built;
 
 /// Shift model names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -110,7 +111,7 @@ impl ShiftRule {
     }
 
     /// The rule of a master curve's shift (None for one isotherm).
-    pub(super) fn of_master(built: &DmaMaster) -> Result<Option<ShiftRule>, IoError> {
+    pub(super) fn of_master(built: &Built<MasterCurve>) -> Result<Option<ShiftRule>, IoError> {
         use rollfit_fit::master::ShiftLaw;
         let shift = &built.master.shift;
         if shift.shifts.len() < 2 {

@@ -18,8 +18,9 @@ use rollfit_model::VerticalShift;
 use serde::Deserialize;
 
 use super::values::Real;
-use crate::dma_master::DmaMaster;
 use crate::error::IoError;
+use rollfit_fit::master::MasterCurve;
+use rollfit_fit::master::pipeline::Built;
 
 /// Vertical-factor law names as written in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -78,7 +79,7 @@ pub(crate) fn rule(
 /// The vertical factors of a DMA master curve built with `vertical = true`
 /// (None without them, or for one isotherm): its measured log10 b_T as a
 /// table about its T_ref.
-pub(super) fn of_master(built: &DmaMaster) -> Result<Option<VerticalShift>, IoError> {
+pub(super) fn of_master(built: &Built<MasterCurve>) -> Result<Option<VerticalShift>, IoError> {
     let shift = &built.master.shift;
     if !built.settings.vertical() || shift.shifts.len() < 2 {
         return Ok(None);

@@ -10,7 +10,9 @@ use std::path::Path;
 
 use super::ModulusTable;
 use crate::columns::OMEGA_MEASURED;
-use crate::dma::{DmaData, DmaOptions, ModulusKind, isotherms};
+use rollfit_fit::master::grouping::group_temperatures;
+
+use crate::dma::{DmaData, DmaOptions, ModulusKind};
 use crate::error::IoError;
 
 /// Reads a file of the DMA forms and makes one master curve of it;
@@ -39,7 +41,7 @@ pub(super) fn read(
             path.display()
         ));
     }
-    let isotherms = isotherms(&data.points);
+    let isotherms = group_temperatures(data.points.iter().map(|p| p.temperature));
     if isotherms.len() > 1 {
         let isotherms: Vec<TableIsotherm> = isotherms
             .iter()

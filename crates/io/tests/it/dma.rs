@@ -11,10 +11,14 @@ use std::f64::consts::PI;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use rollfit_fit::master::MasterSettings;
-use rollfit_io::dma::{DmaData, DmaOptions, ModulusKind};
-use rollfit_io::{IoError, chain, dma_joint, dma_master, material_file};
+use rollfit_fit::master::pipeline;
+use rollfit_fit::master::{MasterCurve, MasterSettings, ValidMasterSettings};
+use rollfit_io::dma::{
+    DmaData, DmaInput, DmaOptions, ModulusKind, group_isotherms, master_refused,
+};
+use rollfit_io::{IoError, chain, material_file};
 
+use rollfit_testkit::eplexor::{eplexor_csv, eplexor_points, eplexor_rows};
 use rollfit_testkit::files::TempDir;
 use rollfit_testkit::materials::hn_rubber;
 use rollfit_testkit::run::assert_contains;
@@ -768,71 +772,31 @@ fn csv_errors_name_the_right_line_below_comments_blank_lines_and_in_crlf_files()
 
 // ---------------------------------------------------------------- workbooks
 
-/// Isotherms of the broad rubber as an Eplexor measures them: (T °C, f Hz,
-/// E′ MPa, E″ MPa), WLF about 20 °C, each sweep running down in frequency.
-fn eplexor_points(temperatures: &[f64]) -> Vec<(f64, f64, f64, f64)> {
-    let series = Series::broad_rubber();
-    let mut points = Vec::new();
-    for &t in temperatures {
-        let a = 10f64.powf(wlf(t, 20.0, 8.86, 101.6));
-        for i in (0..9).rev() {
-            let f = 0.1 * 10f64.powf(3.0 * f64::from(i) / 8.0);
-            let (storage, loss) = series.at(2.0 * PI * f * a);
-            points.push((t, f, storage / 1e6, loss / 1e6));
-        }
-    }
-    points
+/// A DMA file read, grouped and made a master curve by the fit library's
+/// pipeline, as `rollfit master` does.
+struct Mastered {
+    data: DmaData,
+    settings: ValidMasterSettings,
+    master: MasterCurve,
 }
 
-/// The Eplexor "Excel Export" layout: title and metadata rows, a names row,
-/// a units row, then the points, with the instrument's other columns
-/// (time, tan δ, |E*|) beside them. `g`: shear moduli (G′, G″).
-fn eplexor_rows(points: &[(f64, f64, f64, f64)], g: bool) -> Vec<Vec<X<'static>>> {
-    use X::*;
-    let (storage, loss) = if g { ("G'", "G''") } else { ("E'", "E''") };
-    let mut rows = vec![
-        vec![S("EPLEXOR Excel Export")],
-        vec![
-            S("Sample"),
-            S("HN rubber"),
-            E,
-            S("Thickness"),
-            N(2.0),
-            S("mm"),
-        ],
-        vec![],
-        texts(&["No.", "t", "T", "f", storage, loss, "tan delta", "|E*|"]),
-        texts(&[
-            "[-]", "[s]", "[°C]", "[Hz]", "[MPa]", "[MPa]", "[-]", "[MPa]",
-        ]),
-    ];
-    for (i, &(t, f, s, l)) in points.iter().enumerate() {
-        rows.push(vec![
-            N(i as f64 + 1.0),
-            N(60.0 * i as f64),
-            N(t),
-            N(f),
-            N(s),
-            N(l),
-            N(l / s),
-            N(s.hypot(l)),
-        ]);
-    }
-    rows
-}
-
-/// The same numbers as a CSV with the CSV reader's unit-suffixed names.
-fn eplexor_csv(points: &[(f64, f64, f64, f64)]) -> String {
-    let mut text = String::from("T_C,f_Hz,E_storage_MPa,E_loss_MPa\n");
-    for &(t, f, s, l) in points {
-        text += &format!("{t:e},{f:e},{s:e},{l:e}\n");
-    }
-    text
+fn master_of(path: &Path, settings: &MasterSettings) -> Result<Mastered, IoError> {
+    let data = DmaInput::file(path).read(0.5, None)?;
+    let untimed = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
+    let read = group_isotherms(data, Some(untimed))?;
+    let built = pipeline::build(&read.isotherms, (), settings)
+        .map_err(|error| master_refused(&read.data.path, error))?;
+    Ok(Mastered {
+        data: read.data,
+        settings: built.settings,
+        master: built.master,
+    })
 }
 
 /// material.toml without its comment header (which names the file).
-fn material_body(built: &dma_master::DmaMaster) -> String {
-    let text = String::from_utf8(material_file::encode(built).unwrap()).unwrap();
+fn material_body(built: &Mastered) -> String {
+    let encoded = material_file::encode(&built.data.path, &built.master, &built.settings);
+    let text = String::from_utf8(encoded.unwrap()).unwrap();
     text.lines()
         .filter(|l| !l.starts_with('#'))
         .collect::<Vec<_>>()
@@ -851,10 +815,10 @@ fn eplexor_workbook_gives_the_csv_master_curve_to_the_last_digit() {
     let xlsx_path = dir.write("sweep.xlsx", &book);
     let ods_path = dir.write("sweep.ods", ods("Messung", eplexor_rows(&points, false)));
     let settings = MasterSettings::default();
-    let from_csv = dma_master::build(&dma_master::DmaInput::file(&csv), 0.5, &settings).unwrap();
+    let from_csv = master_of(&csv, &settings).unwrap();
     assert_eq!(from_csv.data.format, "csv");
     for path in [&xlsx_path, &ods_path] {
-        let built = dma_master::build(&dma_master::DmaInput::file(path), 0.5, &settings)
+        let built = master_of(path, &settings)
             .unwrap_or_else(|e| panic!("{}: {}", path.display(), chain(&e)));
         assert_eq!(built.data.format, "workbook");
         // Bit for bit: the points, every shifted point, the series, the
@@ -1073,65 +1037,6 @@ fn one_isotherm_workbook_is_a_modulus_table() {
             .any(|n| n.contains("all points at 25 °C")),
         "{:?}",
         table.notes
-    );
-}
-
-/// A joint fit's DMA file is read and grouped as `rollfit
-/// master` reads it, from a CSV and a workbook alike; a file without
-/// temperatures is one isotherm at T_ref, refused without one; a point the
-/// fit library refuses is named by its line.
-#[test]
-fn a_joint_fits_dma_file_is_read_as_the_master_curve_reads_it() {
-    let dir = TempDir::new("joint");
-    let points = eplexor_points(&[0.0, 20.0, 40.0, 60.0]);
-    let csv = dir.write("sweep.csv", eplexor_csv(&points));
-    let book = dir.write(
-        "sweep.xlsx",
-        xlsx(&[("Sheet1", eplexor_rows(&points, false))]),
-    );
-    let grouped = dma_master::read_isotherms(&dma_master::DmaInput::file(&csv), 0.5, None).unwrap();
-    assert_eq!(grouped.isotherms.len(), 4);
-    for path in [&csv, &book] {
-        let joint = dma_joint::read(path, 0.5, None)
-            .unwrap_or_else(|e| panic!("{}: {}", path.display(), chain(&e)));
-        assert_eq!(joint.rows.source(), path.display().to_string());
-        assert_eq!(joint.rows.isotherms(), &grouped.isotherms[..]);
-        assert_eq!(joint.rows.len(), points.len());
-    }
-
-    // Without temperatures: one isotherm at T_ref, or refused.
-    let mut untimed = String::from("f_Hz,E_storage_MPa,E_loss_MPa\n");
-    for &(_, f, s, l) in points.iter().filter(|p| p.0 == 20.0) {
-        untimed += &format!("{f:e},{s:e},{l:e}\n");
-    }
-    let untimed = dir.write("untimed.csv", untimed);
-    let joint = dma_joint::read(&untimed, 0.5, Some(20.0)).unwrap();
-    assert_eq!(joint.rows.temperatures(), [20.0]);
-    let err = chain(&dma_joint::read(&untimed, 0.5, None).unwrap_err());
-    assert_contains(
-        &err,
-        &["untimed.csv", "no point has a temperature", "`T_ref`"],
-    );
-
-    // E′ in MPa read as Pa: below the library's 1 Pa, named by its line.
-    let text = fs::read_to_string(&csv).unwrap();
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    let fields: Vec<&str> = lines[3].split(',').collect();
-    lines[3] = format!("{},{},5e-7,{}", fields[0], fields[1], fields[3]);
-    let small = dir.write("small.csv", lines.join("\n") + "\n");
-    let err = chain(&dma_joint::read(&small, 0.5, None).unwrap_err());
-    assert_contains(
-        &err,
-        &["DMA file", "small.csv", "line 4", "E′", "1 … 1e13 Pa"],
-    );
-
-    // An isotherm of one point: the line of that point.
-    let single = dir.write("single.csv", format!("{}\n80,1,3,0.5\n", text.trim_end()));
-    let err = chain(&dma_joint::read(&single, 0.5, None).unwrap_err());
-    let last = text.lines().count() + 1;
-    assert_contains(
-        &err,
-        &["single.csv", &format!("line {last}"), "at least two"],
     );
 }
 

@@ -8,6 +8,7 @@ mod dma;
 mod fitted_friction;
 mod forward_master_pictures;
 mod joint;
+mod master_input;
 mod pictures;
 mod pressure_map_picture;
 mod verdict;

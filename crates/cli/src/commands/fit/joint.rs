@@ -7,7 +7,6 @@ use std::path::{Path, PathBuf};
 use anyhow::{Result, anyhow, bail};
 use rollfit_fit::{FitSettings, JointRecord, ValidFitParams};
 use rollfit_io::dma::DmaInput;
-use rollfit_io::dma_joint;
 use rollfit_io::manifest::Entry;
 use rollfit_io::scene::SceneFile;
 
@@ -57,7 +56,7 @@ pub fn with_dma(
         files: paths,
         ..how.clone()
     };
-    let read = dma_joint::read_input(&input, poisson, t_ref)?;
+    let read = rollfit_report::master_input::joint::read_input(&input, poisson, t_ref)?;
     for note in &read.notes {
         log(&format!("note: {note}"));
     }

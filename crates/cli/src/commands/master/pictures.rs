@@ -16,8 +16,8 @@ use rollfit_fit::master::quality::MasterQuality;
 use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_fit::master::{ShiftFactors, ShiftLaw};
 use rollfit_io::dma::ModulusKind;
-use rollfit_io::dma_master::DmaMaster;
-use rollfit_io::relaxation_master::RelaxationBuilt;
+use rollfit_report::master_input::frequency::DmaMaster;
+use rollfit_report::master_input::time::RelaxationBuilt;
 use rollfit_report::plot::dma_master::{
     DmaMasterFigure, MasterCurveFit, ShiftMarker, ShiftedPoint, Verdict,
 };

@@ -33,9 +33,9 @@ use rollfit_fit::master::quality::MasterQuality;
 use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_io::columns::{D_CREEP, E_RELAX, TIME, TIME_MEASURED};
 use rollfit_io::fit_dir::columns::{MODULUS_COLUMNS, MODULUS_CSV, T};
-use rollfit_io::relaxation_master::{self, RelaxationBuilt};
-use rollfit_io::{csv_text, material_file, output};
+use rollfit_io::{csv_text, output};
 use rollfit_model::ViscoelasticModulus;
+use rollfit_report::master_input::time::{self, RelaxationBuilt};
 use serde::Serialize;
 
 use super::shift_out::{ShiftJson, headline, shift_csv, shift_text};
@@ -45,10 +45,8 @@ use crate::stdout;
 /// Runs `rollfit master` on a relaxation file (DIR already checked).
 pub(super) fn run(args: &Args, settings: &rollfit_fit::master::MasterSettings) -> Result<()> {
     let (poisson, whose) = crate::commands::compare::poisson_source(args.poisson);
-    let kind = args
-        .dma_modulus
-        .map(crate::commands::compare::DmaModulus::kind);
-    let built = relaxation_master::build(&args.dma[0], poisson, kind, settings)?;
+    let input = args.files.input(&args.dma, None, args.dma_modulus);
+    let built = time::build(&input, poisson, settings)?;
     let creep = built.data.quantity == TimeQuantity::Creep;
     if args.dma_modulus.is_some() && !creep {
         eprintln!(
@@ -144,7 +142,7 @@ fn encode(
         ("shift.csv", shift_csv(&master.shift)?),
         ("relaxation.csv", relaxation_csv),
         (MODULUS_CSV, modulus_csv),
-        ("material.toml", material_file::encode_relaxation(built)?),
+        ("material.toml", built.material_file()?),
         ("master.json", json),
     ]
     .into_iter()
@@ -264,6 +262,7 @@ fn summary(built: &RelaxationBuilt) -> String {
         built.data.kind.name(),
         headline(&m.shift, m.points.len(), &built.settings, " (t/a_T)")
     );
+    out += &super::temperature_sources(&built.files);
     out += &shift_text(&m.shift);
     out += &super::shift_out::window_text(&m.shift, None, "", "");
     out += &format!(

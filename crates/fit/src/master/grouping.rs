@@ -1,6 +1,6 @@
-//! DMA points grouped into isotherms (docs/ARCHITECTURE.md, "Data flow",
-//! `master`): the points of one frequency sweep at one set temperature,
-//! whose temperature is their mean. A controller's ±0.1 K scatter should
+//! Measured points grouped into isotherms (docs/ARCHITECTURE.md, "Data
+//! flow", `master`): the points of one frequency sweep, relaxation or
+//! creep run at one set temperature, whose temperature is their mean. A controller's ±0.1 K scatter should
 //! not split an isotherm, and "the 150 °C isotherm" is what a user names.
 //!
 //! The rule, in order:
@@ -23,15 +23,13 @@
 //!    isotherms); where each point can be shifted alone (`rollfit
 //!    compare`) its points are grouped by exact temperature instead.
 //!
-//! Isotherms are ascending in temperature; each lists its points in the
+//! Groups are ascending in temperature; each lists its points in the
 //! order [`group_temperatures`] met them (ascending temperature, file
 //! order among equal ones) or, by step, in file order.
 //!
 //! # References
 //! - J.D. Ferry, *Viscoelastic Properties of Polymers*, 3rd ed., Wiley
 //!   1980, Ch. 11 (isothermal frequency sweeps for reduced variables).
-
-use super::point::DmaPoint;
 
 /// How far a DMA isotherm may lie from a temperature a free shift lists
 /// and still take its shift (K).
@@ -43,12 +41,12 @@ pub const ISOTHERM_GAP: f64 = 1.0;
 /// The widest an isotherm may span, max − min (K); wider is a ramp.
 pub const ISOTHERM_SPAN: f64 = 2.0;
 
-/// One isotherm of a DMA file.
+/// One isotherm: the points measured at one set temperature.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Isotherm {
+pub struct Group {
     /// Mean temperature, °C.
     pub temperature: f64,
-    /// Indices of its points in `DmaData::points`.
+    /// Indices of its points in the sequence grouped.
     pub points: Vec<usize>,
 }
 
@@ -70,18 +68,13 @@ pub struct Ramp {
 pub struct Grouping {
     /// Ascending in temperature; a ramp's points grouped by exact
     /// temperature.
-    pub isotherms: Vec<Isotherm>,
+    pub isotherms: Vec<Group>,
     pub ramp: Option<Ramp>,
-}
-
-/// The isotherms of `points` (those with a temperature), ascending.
-pub fn isotherms(points: &[DmaPoint]) -> Vec<Isotherm> {
-    group_temperatures(points.iter().map(|p| p.temperature))
 }
 
 /// The isotherms of points with these temperatures (those with one),
 /// ascending; `points` of each index the sequence.
-pub fn group_temperatures(temperatures: impl Iterator<Item = Option<f64>>) -> Vec<Isotherm> {
+pub fn group_temperatures(temperatures: impl Iterator<Item = Option<f64>>) -> Vec<Group> {
     group(temperatures).isotherms
 }
 
@@ -134,7 +127,7 @@ pub fn group_steps(temperatures: &[Option<f64>], steps: &[u32]) -> Grouping {
         }
     }
     let mut ramp = None;
-    let mut isotherms: Vec<Isotherm> = Vec::new();
+    let mut isotherms: Vec<Group> = Vec::new();
     for (_, members) in &by_step {
         let (low, high) = members
             .iter()
@@ -158,19 +151,42 @@ pub fn group_steps(temperatures: &[Option<f64>], steps: &[u32]) -> Grouping {
 }
 
 /// The isotherm of these (index, temperature) members.
-fn isotherm(members: &[(usize, f64)]) -> Isotherm {
-    Isotherm {
+fn isotherm(members: &[(usize, f64)]) -> Group {
+    Group {
         temperature: members.iter().map(|m| m.1).sum::<f64>() / members.len() as f64,
         points: members.iter().map(|m| m.0).collect(),
     }
 }
 
-/// The lowest and highest temperature of the points `indices` of
-/// `points` (°C), for the report of an isotherm's spread.
-pub fn range(points: &[DmaPoint], indices: &[usize]) -> (f64, f64) {
+/// The groups of `temperatures` as (temperature °C, indices in the order
+/// they were measured); one at NaN when no point has a temperature (a
+/// master curve puts it at T_ref).
+pub fn in_measured_order(temperatures: &[Option<f64>]) -> Vec<(f64, Vec<usize>)> {
+    if temperatures.iter().all(Option::is_none) {
+        return vec![(f64::NAN, (0..temperatures.len()).collect())];
+    }
+    measured_order(group_temperatures(temperatures.iter().copied()))
+}
+
+/// Each group's indices in the order they were measured: the grouping
+/// sorts by temperature, and a controller's scatter would shuffle a sweep.
+pub fn measured_order(groups: Vec<Group>) -> Vec<(f64, Vec<usize>)> {
+    groups
+        .into_iter()
+        .map(|group| {
+            let mut points = group.points;
+            points.sort_unstable();
+            (group.temperature, points)
+        })
+        .collect()
+}
+
+/// The lowest and highest of `temperatures` at `indices` (°C), for the
+/// report of an isotherm's spread.
+pub fn range(temperatures: &[Option<f64>], indices: &[usize]) -> (f64, f64) {
     indices
         .iter()
-        .filter_map(|&i| points[i].temperature)
+        .filter_map(|&i| temperatures[i])
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
             (lo.min(t), hi.max(t))
         })

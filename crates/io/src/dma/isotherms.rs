@@ -1,93 +1,22 @@
-//! A DMA file, or several (one per isotherm, [`crate::dma::files`]), to a
-//! master curve: read the files (any form [`crate::dma`] accepts,
-//! docs/ARCHITECTURE.md, "Contract", "DMA files"), group their points into
-//! isotherms, and run `rollfit_fit::master` on them.
-//!
-//! Sweeps at one temperature from several files are merged into one
-//! isotherm ordered by frequency (the fit takes one isotherm per
-//! temperature), and points at a repeated frequency within an isotherm —
-//! a frequency printed with too few digits, or two sweeps merged — are
-//! averaged into one: E′ and E″ as arithmetic means, which at equal ω is
-//! what a least-squares fit through both would see. Each merge is noted. Shared by
-//! `rollfit master` and a scene's `[material] model = "dma"`, so that both
-//! give the same series. Nothing is written here: `rollfit master` writes
-//! the folder, [`crate::material_file`] its material.toml.
+//! A DMA file's points as the isotherms of a master curve or a joint fit:
+//! grouped by [`rollfit_fit::master::grouping`] (by step, else by
+//! temperature), a temperature ramp refused, sweeps at one temperature
+//! from several files or result blocks merged into one isotherm ordered
+//! by frequency, and repeated frequencies averaged
+//! ([`rollfit_fit::master::repeats`]), each merge noted. Here because
+//! only the reader knows the file and line of each point, which every
+//! refusal names.
 
 use std::fmt;
+use std::path::Path;
 
-use rollfit_fit::master::{
-    Isotherm, MasterCurve, MasterSettings, ValidMasterSettings, build_master_curve, sweep_turn,
-};
+use rollfit_fit::master::grouping::{ISOTHERM_GAP, ISOTHERM_SPAN, measured_order, range};
+use rollfit_fit::master::pipeline::PipelineError;
+use rollfit_fit::master::repeats::average_repeats;
+use rollfit_fit::master::{Isotherm, Sweep, sweep_turn};
 
-pub use crate::dma::files::DmaInput;
-use crate::dma::{DmaData, ISOTHERM_GAP, ISOTHERM_SPAN, range};
+use super::{DmaData, DmaFile};
 use crate::error::IoError;
-
-/// A master curve built from a DMA file.
-pub struct DmaMaster {
-    /// The file as read (Young's moduli).
-    pub data: DmaData,
-    /// The checked settings (T_ref resolved).
-    pub settings: ValidMasterSettings,
-    /// Shift factors, shifted points and the Prony series.
-    pub master: MasterCurve,
-    /// The lowest and highest measured temperature of each isotherm (°C,
-    /// in the order of the isotherms; empty for a file without
-    /// temperatures).
-    pub ranges: Vec<(f64, f64)>,
-    /// Sweeps at one temperature merged into one isotherm, as said.
-    pub merged: Vec<String>,
-}
-
-/// Reads `input` and builds its master curve ([`read_isotherms`], then
-/// the master-curve fit). `poisson` converts shear moduli (E = 2(1+ν)G).
-/// Errors name the file and, where one point is at fault, its line.
-pub fn build(
-    input: &DmaInput,
-    poisson: f64,
-    settings: &MasterSettings,
-) -> Result<DmaMaster, IoError> {
-    build_told(input, poisson, settings, |_| {})
-}
-
-/// [`build`], telling `on_read` the file as read (its notes and warnings:
-/// rows skipped, units converted) before the master curve is fitted, so
-/// that a refusal of the fit can be read next to the rows that explain it.
-pub fn build_told(
-    input: &DmaInput,
-    poisson: f64,
-    settings: &MasterSettings,
-    on_read: impl FnOnce(&DmaData),
-) -> Result<DmaMaster, IoError> {
-    // No temperatures: the file is one curve, taken at T_ref.
-    let untimed = settings.t_ref.unwrap_or(rollfit_fit::master::DEFAULT_T_REF);
-    let DmaIsotherms {
-        data,
-        isotherms,
-        indices,
-        merged,
-    } = read_isotherms(input, poisson, Some(untimed))?;
-    on_read(&data);
-    let path = data.path.as_path();
-    let ranges = match data.points.iter().any(|p| p.temperature.is_some()) {
-        true => indices.iter().map(|i| range(&data.points, i)).collect(),
-        false => Vec::new(),
-    };
-    let in_file = |source: IoError| err!("DMA file {}", path.display()).caused_by(source);
-    let valid = settings
-        .check(&isotherms)
-        .map_err(|error| in_file(err!("{error}")))?;
-    let master = build_master_curve(&isotherms, &valid).map_err(|error| {
-        err!("DMA file {}: master curve", path.display()).caused_by(err!("{error}"))
-    })?;
-    Ok(DmaMaster {
-        data,
-        settings: valid.resolved(&master.shift),
-        master,
-        ranges,
-        merged,
-    })
-}
 
 /// A DMA file read and grouped into isotherms.
 pub struct DmaIsotherms {
@@ -103,21 +32,13 @@ pub struct DmaIsotherms {
     pub merged: Vec<String>,
 }
 
-/// Reads `input` and groups its points into isotherms ([`crate::dma::isotherm`]: by step,
-/// else by temperature), refusing a temperature ramp and an isotherm
-/// whose frequencies do not run one way: what `rollfit master`, a scene's
-/// `model = "dma"` and a joint fit's `dma` share. `poisson` converts shear
-/// moduli (E = 2(1+ν)G). A file without temperatures is one isotherm at
-/// `untimed` (None: refused). Errors
-/// name the file and, where one point is at fault, its line.
-pub fn read_isotherms(
-    input: &DmaInput,
-    poisson: f64,
-    untimed: Option<f64>,
-) -> Result<DmaIsotherms, IoError> {
-    let mut data = input
-        .read(poisson, None)
-        .map_err(|e| err!("{error}", error = e))?;
+/// Groups the points of `data` into isotherms (module doc), refusing a
+/// temperature ramp and an isotherm whose frequencies do not run one way:
+/// what `rollfit master`, a scene's `model = "dma"` and a joint fit's
+/// `dma` share. A file without temperatures is one isotherm at `untimed`
+/// (None: refused). Errors name the file and, where one point is at
+/// fault, its line.
+pub fn group_isotherms(mut data: DmaData, untimed: Option<f64>) -> Result<DmaIsotherms, IoError> {
     let path = data.path.clone();
     let path = path.as_path();
     let with_t = data
@@ -161,17 +82,7 @@ pub fn read_isotherms(
                 widest_gap = ramp.widest_gap
             ));
         }
-        grouping
-            .isotherms
-            .into_iter()
-            .map(|iso| {
-                // File order: the grouping sorts by temperature, and a
-                // controller's scatter would shuffle a sweep.
-                let mut points = iso.points;
-                points.sort_unstable();
-                (iso.temperature, points)
-            })
-            .collect()
+        measured_order(grouping.isotherms)
     };
     let mut sets = Vec::with_capacity(groups.len());
     let mut kept = Vec::with_capacity(groups.len());
@@ -181,7 +92,7 @@ pub fn read_isotherms(
             data.notes.push(merged.clone());
             merges.push(merged);
         }
-        let (isotherm, firsts, note) = average_repeats(&data, temperature, &indices);
+        let (isotherm, firsts, note) = average_repeats_of(&data, temperature, &indices);
         data.notes.extend(note);
         check_monotone(&data, temperature, &firsts).map_err(|source| {
             err!(
@@ -201,12 +112,39 @@ pub fn read_isotherms(
     })
 }
 
+/// The pipeline's refusal of the isotherms of the DMA file `path`
+/// (frequency, relaxation or creep alike), behind the file's name.
+pub fn master_refused(path: &Path, error: PipelineError) -> IoError {
+    match error {
+        PipelineError::Settings(error) => {
+            err!("DMA file {}", path.display()).caused_by(err!("{error}"))
+        }
+        PipelineError::Build(error) => {
+            err!("DMA file {}: master curve", path.display()).caused_by(err!("{error}"))
+        }
+    }
+}
+
+impl DmaIsotherms {
+    /// The lowest and highest measured temperature of each isotherm (°C,
+    /// in the order of the isotherms; empty for a file without
+    /// temperatures).
+    pub fn ranges(&self) -> Vec<(f64, f64)> {
+        let temperatures = self.data.temperatures_of_points();
+        match temperatures.iter().any(Option::is_some) {
+            true => (self.indices.iter())
+                .map(|i| range(&temperatures, i))
+                .collect(),
+            false => Vec::new(),
+        }
+    }
+}
+
 /// Orders the points `indices` of an isotherm by frequency when they come
 /// from more than one file or result block (sweeps at one temperature
 /// merged), saying so.
 fn merge_files(data: &DmaData, temperature: f64, indices: &mut [usize]) -> Option<String> {
-    let mut from: Vec<&crate::dma::DmaFile> =
-        indices.iter().filter_map(|&i| data.source_of(i)).collect();
+    let mut from: Vec<&DmaFile> = indices.iter().filter_map(|&i| data.source_of(i)).collect();
     from.dedup();
     if from.len() < 2 {
         return None;
@@ -223,44 +161,25 @@ fn merge_files(data: &DmaData, temperature: f64, indices: &mut [usize]) -> Optio
 /// The isotherm of the points `indices` (in sweep order), each run of
 /// points at one frequency averaged into one point; the index of each
 /// run's first point; a note when any run had more than one point.
-fn average_repeats(
+fn average_repeats_of(
     data: &DmaData,
     temperature: f64,
     indices: &[usize],
 ) -> (Isotherm, Vec<usize>, Option<String>) {
-    let mut isotherm = Isotherm {
-        temperature,
-        omega: Vec::new(),
-        storage: Vec::new(),
-        loss: Vec::new(),
-    };
-    let mut firsts = Vec::new();
-    let runs = indices.chunk_by(|&a, &b| data.points[a].omega == data.points[b].omega);
-    for run in runs {
-        let mean = |f: fn(&crate::dma::DmaPoint) -> f64| {
-            run.iter().map(|&i| f(&data.points[i])).sum::<f64>() / run.len() as f64
-        };
-        isotherm.omega.push(data.points[run[0]].omega);
-        isotherm.storage.push(mean(|p| p.storage));
-        isotherm.loss.push(mean(|p| p.loss));
-        firsts.push(run[0]);
-    }
-    let note = (firsts.len() < indices.len()).then(|| {
+    let point = |i: usize| &data.points[i];
+    let averaged = average_repeats(
+        indices,
+        |i| point(i).omega,
+        &[&|i| point(i).storage, &|i| point(i).loss],
+    );
+    let note = averaged.merged_any().then(|| {
         format!(
             "isotherm at {temperature:.2} °C: {} points at repeated frequencies averaged into {}",
-            indices.len() - isotherm.omega.len() + runs_repeated(data, indices),
-            runs_repeated(data, indices)
+            averaged.repeated_points, averaged.repeated_runs
         )
     });
-    (isotherm, firsts, note)
-}
-
-/// The number of runs of more than one point at one frequency.
-fn runs_repeated(data: &DmaData, indices: &[usize]) -> usize {
-    indices
-        .chunk_by(|&a, &b| data.points[a].omega == data.points[b].omega)
-        .filter(|run| run.len() > 1)
-        .count()
+    let firsts = averaged.firsts.clone();
+    (Isotherm::from_averaged(temperature, averaged), firsts, note)
 }
 
 /// Refuses an isotherm whose frequencies neither rise nor fall

@@ -1,7 +1,7 @@
 //! The DMA file of a joint fit (`dma = FILE` in a scene's
 //! `[fit]` or a batch manifest, `rollfit fit --dma FILE...|FOLDER`, the Python
 //! module's `dma=` keyword): read and grouped into isotherms by
-//! [`crate::dma_master::read_isotherms`], as `rollfit master` reads a DMA
+//! [`rollfit_io::dma::group_isotherms`], as `rollfit master` reads a DMA
 //! file, then checked by the fit library ([`DmaRows::new`]). Where the
 //! library refuses one point, the message names its line in the file.
 
@@ -11,8 +11,9 @@ use rollfit_fit::joint::{DMA_MODULUS_RANGE, DMA_OMEGA_RANGE};
 use rollfit_fit::master::Isotherm;
 use rollfit_fit::{DmaRows, FitError};
 
-use crate::dma_master::{DmaInput, DmaIsotherms, read_isotherms};
-use crate::error::{IoError, RowRef};
+use rollfit_io::IoError;
+use rollfit_io::dma::{DmaInput, DmaIsotherms, group_isotherms};
+use rollfit_io::error::RowRef;
 
 /// The DMA isotherms of a joint fit and what reading the file said.
 #[derive(Debug, Clone)]
@@ -26,7 +27,7 @@ pub struct JointDma {
 }
 
 /// Reads the DMA file `path` for a joint fit: any form
-/// [`crate::dma::DmaData::read_sheet`] accepts (a workbook's first sheet),
+/// [`rollfit_io::dma::DmaData::read_sheet`] accepts (a workbook's first sheet),
 /// shear moduli converted with `poisson` (the scene's ν). A file without
 /// temperatures is one isotherm at `t_ref` (the fit's `T_ref`; refused
 /// without one). Errors name the file and, where one point is at fault,
@@ -36,9 +37,12 @@ pub fn read(path: &Path, poisson: f64, t_ref: Option<f64>) -> Result<JointDma, I
 }
 
 /// [`read`] of several files or folders (one isotherm per file, each
-/// file's temperature found as [`crate::dma::files`] finds it).
+/// file's temperature found as [`rollfit_io::dma::files`] finds it).
 pub fn read_input(input: &DmaInput, poisson: f64, t_ref: Option<f64>) -> Result<JointDma, IoError> {
-    let read = read_isotherms(input, poisson, t_ref)?;
+    let data = input
+        .read(poisson, None)
+        .map_err(|e| IoError::content(e.to_string()))?;
+    let read = group_isotherms(data, t_ref)?;
     let source = input.names();
     // Each isotherm alone first, so that a point the library refuses is
     // found in the isotherm it named.
@@ -64,7 +68,7 @@ fn refused(
     isotherm: Option<(&Isotherm, &Vec<usize>)>,
     error: FitError,
 ) -> IoError {
-    let source = Box::new(err!("{error}"));
+    let source = Box::new(IoError::content(error.to_string()));
     let outside = |x: f64, (lo, hi): (f64, f64)| !(x.is_finite() && x >= lo && x <= hi);
     let point = isotherm.and_then(|(iso, indices)| {
         let k = (0..iso.omega.len())
@@ -81,15 +85,15 @@ fn refused(
     let path = path.to_path_buf();
     let line = point.and_then(|i| read.data.lines.get(i).copied());
     match line {
-        Some(number) => err!(
+        Some(number) => IoError::content(format!(
             "DMA file {}, {row}",
             path.display(),
             row = RowRef {
                 sheet: read.data.sheet.clone(),
                 number: number as u64,
             }
-        )
+        ))
         .caused_by(source),
-        None => err!("DMA file {}", path.display()).caused_by(source),
+        None => IoError::content(format!("DMA file {}", path.display())).caused_by(source),
     }
 }
