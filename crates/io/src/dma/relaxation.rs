@@ -350,8 +350,8 @@ pub fn is_relaxation_file(path: &Path) -> bool {
         err!("{}: {source}", path.display()).system(source)
     })
     .ok()
-    .and_then(|bytes| super::decode::decode(path, &bytes).ok())
-    .is_some_and(|text| is_relaxation(&text))
+    .and_then(|bytes| crate::text_file::decode_file(path, bytes).ok())
+    .is_some_and(|read| is_relaxation(&read.text))
 }
 
 impl RelaxationData {
@@ -378,7 +378,7 @@ impl RelaxationData {
         let bytes = crate::input_file::read_input(path, "DMA file", |source| {
             err!("{}: {source}", path.display()).system(source)
         })?;
-        let text = super::decode::decode(path, &bytes)?;
+        let text = crate::text_file::decode_file(path, bytes)?.text;
         parse(path, &text, poisson, kind)
     }
 }

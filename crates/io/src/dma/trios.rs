@@ -30,7 +30,7 @@
 //! Q800: tensile). [`DmaOptions::kind`] overrides, and the decision is
 //! reported among the warnings so the user sees it.
 //!
-//! The text is decoded by [`super::decode`] (UTF-8, UTF-16, Latin-1).
+//! The text is decoded by [`crate::text_file`] (UTF-8, UTF-16, Latin-1).
 //!
 //! A cut-off export is refused, not read in part: each step's `Number of
 //! points` must match its `Data point` rows (a file cut between rows, or
