@@ -59,6 +59,7 @@ pub mod relaxation_master;
 pub mod scene;
 pub mod table;
 pub mod text_file;
+pub(crate) mod units;
 
 pub use data::DataTable;
 pub use error::{ErrorKind, IoError};

@@ -1,27 +1,18 @@
-//! The one decoder of input files: bytes → text, with notes on how the
-//! text was read, and errors naming the line and byte offset of what
-//! cannot be read (std's own message, "stream did not contain valid
-//! UTF-8", names neither).
-//!
-//! Two strictnesses ([`Encodings`]):
-//! - [`Encodings::Any`], for what instruments and tools export (measured
-//!   data, DMA files, modulus tables): UTF-16 when the file starts with a
-//!   byte-order mark (little- or big-endian), UTF-8 when valid (its mark
-//!   dropped), else Latin-1 when nothing in it is UTF-8 beyond ASCII (`°`
-//!   as the one byte 0xB0). A UTF-16 file with an odd number of bytes
-//!   whose text ends with a line break has one stray byte after its last
-//!   line (an export that wrote one byte too many): it is dropped. Refused:
-//!   an unpaired surrogate, an odd byte count cutting a line, and invalid
-//!   UTF-8 in a file that is UTF-8 elsewhere or says so with its mark —
-//!   damage, or two encodings spliced; read as Latin-1 it would quietly
-//!   turn every "°C" of it into "Â°C".
-//! - [`Encodings::Utf8`], for what a user writes by hand (scene file,
-//!   manifest: [`read_utf8`], which says to save it as UTF-8) and what
-//!   rollfit writes (the fit folder: `read_utf8_file`).
-//!
-//! Every reading other than plain UTF-8 is noted (a mark, Latin-1, a
-//! stray byte, lines ending with CR only), so a user sees how a file was
-//! understood (docs/ARCHITECTURE.md, "Contract", "Input files").
+//! The one decoder of input files: bytes → text, with a note on each
+//! reading other than plain UTF-8, and errors naming the line and byte
+//! offset of what cannot be read (docs/ARCHITECTURE.md, "DMA files",
+//! "Text"). Two strictnesses ([`Encodings`]):
+//! - [`Encodings::Any`], for exports (measured data, DMA files, tables):
+//!   UTF-16 after a byte-order mark, UTF-8 when valid (a mark dropped),
+//!   else Latin-1 when nothing in it is UTF-8 beyond ASCII (`°` as 0xB0).
+//!   A UTF-16 file whose text ends with a line break followed by one odd
+//!   byte (an export that wrote one byte too many) is read without it.
+//!   Refused: an unpaired surrogate, an odd byte count cutting a line, and
+//!   invalid UTF-8 in a file that is UTF-8 elsewhere or says so with its
+//!   mark — damage, or two encodings spliced, which read as Latin-1 would
+//!   quietly turn every "°C" into "Â°C".
+//! - [`Encodings::Utf8`], for what a user writes (scene file, manifest:
+//!   [`read_utf8`]) and what rollfit writes (the fit folder).
 
 use std::fmt::Display;
 use std::path::Path;
@@ -39,8 +30,7 @@ pub(crate) enum Encodings {
     Utf8,
 }
 
-/// A file's text and the notes on how it was read (without the file's
-/// name: the reader says whose they are).
+/// A file's text and the notes on how it was read (without its name).
 pub(crate) struct Text {
     pub text: String,
     pub notes: Vec<String>,
@@ -143,14 +133,12 @@ fn eight_bit(mut bytes: Vec<u8>) -> Result<(String, Vec<String>), Undecodable> {
     match std::str::from_utf8(body) {
         Ok(_) => {
             bytes.drain(..skipped);
-            let notes = if marked {
-                vec!["UTF-8 byte-order mark ignored".to_string()]
-            } else {
-                Vec::new()
-            };
+            let notes = marked.then(|| "UTF-8 byte-order mark ignored".to_string());
             // Checked just above.
-            let text = String::from_utf8(bytes).unwrap_or_default();
-            Ok((text, notes))
+            Ok((
+                String::from_utf8(bytes).unwrap_or_default(),
+                notes.into_iter().collect(),
+            ))
         }
         Err(e) => {
             let offset = skipped + e.valid_up_to();
