@@ -201,8 +201,7 @@ pub(crate) fn percent() -> Unit {
     }
 }
 
-/// Seconds per `unit` of a time: s, ms, min, h (and their spellings in
-/// [`time_unit`]).
+/// Seconds per `unit` of a time (the spellings of [`time_unit`]).
 pub(crate) fn seconds_per(unit: &str) -> Option<f64> {
     let (pow10, divisor, _) = time_unit(&unit.trim().to_lowercase())?;
     Some(10f64.powi(-pow10) * divisor)
