@@ -655,7 +655,7 @@ fn master_reads_messy_exports_with_a_note_each() {
                 b"\n",
             ]
             .concat(),
-            "not UTF-8: read as Latin-1",
+            "not UTF-8 text (line 2 is not): read as Latin-1",
         ),
         (
             "cr.csv",

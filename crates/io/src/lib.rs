@@ -55,6 +55,7 @@ pub mod pressure_map;
 pub mod scene;
 pub mod table;
 pub mod text_file;
+pub(crate) mod units;
 
 pub use data::DataTable;
 pub use error::{ErrorKind, IoError};

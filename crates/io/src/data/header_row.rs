@@ -10,9 +10,9 @@ use super::cell::{Cell, Row};
 use super::headers::{self, Header};
 use super::quantity::Quantity;
 use super::source::Source;
-use super::units::{Conversion, Unit, speed_unit};
 use crate::error::data::column_of;
 use crate::error::{ColumnName, IoError};
+use crate::units::{Conversion, Unit, speed_unit};
 
 /// What each cell of `row` names as a header.
 pub(super) fn classify(row: &Row) -> Vec<Header> {

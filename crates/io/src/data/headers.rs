@@ -16,9 +16,9 @@
 //! [`crate::fit_dir::columns`], where their writers take them.
 
 use super::quantity::Quantity;
-use super::units::{Unit, percent, speed_from_parts, speed_unit, temperature_unit, time_unit};
 use crate::columns::MU;
 use crate::fit_dir::columns::{MU_MEASURED, SIGMA, V};
+use crate::units::{Unit, percent, speed_from_parts, speed_unit, temperature_unit, time_unit};
 
 /// The names of a quantity, as [`tokens`] joins them (lower case, words
 /// joined by `_`).

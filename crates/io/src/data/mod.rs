@@ -57,7 +57,6 @@ pub(crate) mod quantity;
 mod rows;
 mod source;
 mod text;
-pub(crate) mod units;
 pub(crate) mod workbook;
 
 use std::path::Path;

@@ -14,12 +14,12 @@ use super::cell::{Cell, Row, number};
 use super::header_row::{self, Column, NamedColumns, classify};
 use super::quantity::Quantity;
 use super::source::Source;
-use super::units::Conversion;
 use crate::error::IoError;
 use crate::error::data::missing_columns;
 use crate::error::data::quoted_list;
 use crate::error::data::why_positive;
 use crate::error::data::{delimiter_name, key_list};
+use crate::units::Conversion;
 use rollfit_fit::data::SIGMA_REQUIREMENT;
 
 /// The table of `rows` with its header at position `header` (None: no

@@ -28,12 +28,12 @@ use std::path::Path;
 use super::form::{FieldNames, FormRead, Place, RawPoint};
 use super::moduli::Moduli;
 use super::point::ModulusKind::{self, Shear, Young};
-pub use super::vocabulary::modulus_unit;
 use super::vocabulary::{Quantity, classify};
 use crate::csv_columns::dma_number;
 use crate::data::cell::{Cell, parse_number};
 use crate::error::{ColumnRef, Contradiction, IoError};
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE};
+pub use crate::units::modulus_unit;
 
 use crate::columns::{G_LOSS, G_STORAGE};
 

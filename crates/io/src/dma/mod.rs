@@ -4,8 +4,8 @@
 //!
 //! Three file forms (docs/ARCHITECTURE.md, "Contract", "DMA files"), in
 //! two sources of rows:
-//! - text, decoded by [`decode`] (UTF-8, UTF-16 with a byte-order mark,
-//!   Latin-1):
+//! - text, decoded by [`crate::text_file`] (UTF-8, UTF-16 with a
+//!   byte-order mark, Latin-1):
 //!   - CSV ([`csv_form`]): a frequency column `f` (Hz) or `omega`
 //!     (rad/s), storage and loss columns `E_storage`, `E_loss` (Young's) or
 //!     `G_storage`, `G_loss` (shear), optional `T` (°C). Unit-suffixed
@@ -59,7 +59,6 @@ use crate::error::IoError;
 mod blocks;
 mod checks;
 pub mod csv_form;
-pub mod decode;
 pub mod files;
 mod form;
 mod header;
@@ -307,7 +306,10 @@ fn read_form(path: &Path, options: &DmaOptions, sheet: Option<&str>) -> Result<F
             path.display(),
         ));
     } else {
-        let (text, decoded) = decode::decode_noted(path, &bytes)?;
+        let crate::text_file::Text {
+            text,
+            notes: decoded,
+        } = crate::text_file::decode_file(path, bytes)?;
         if trios::is_lims(&text) {
             let read = trios::parse(path, &text, options)?;
             return Ok((vec![read], "trios-lims", None, decoded));

@@ -12,7 +12,7 @@
 //! | time        | `t`, `time` (any case)                       | `s`, `ms`, `min`, `h`      |
 //! | Young's     | `E_relax`, `E(t)`, `E_t`, `E`                | `Pa`, `kPa`, `MPa`, `GPa`  |
 //! | shear       | `G_relax`, `G(t)`, `G_t`, `G`                | `Pa`, `kPa`, `MPa`, `GPa`  |
-//! | shear creep | `J_creep`, `J(t)`, `J_t`, `J`, `Creep Compliance`, `Shear Creep Compliance` | `1/Pa`, `1/MPa`, `MPa^-1`, `µm²/N`, `cm²/dyn`, … ([`super::vocabulary::compliance_unit`]) |
+//! | shear creep | `J_creep`, `J(t)`, `J_t`, `J`, `Creep Compliance`, `Shear Creep Compliance` | `1/Pa`, `1/MPa`, `MPa^-1`, `µm²/N`, `cm²/dyn`, … ([`crate::units::compliance_unit`]) |
 //! | tensile creep | `D_creep`, `D(t)`, `D_t`, `D`, `Tensile Creep Compliance` | as shear creep |
 //! | temperature | `T`, `temperature` (any case), optional      | `C` (or `°C`), `K`         |
 //!
@@ -53,6 +53,7 @@ use crate::columns::{D_CREEP, E_RELAX, G_RELAX, J_CREEP, TIME};
 use crate::csv_columns::LineIndex;
 use crate::error::field_count_tail;
 use crate::error::{ColumnRef, IoError};
+use crate::units;
 
 /// Accepted times since the step of strain, s: the reciprocal of the
 /// frequency form's accepted ω (1e-30 … 1e30 rad/s).
@@ -87,21 +88,6 @@ enum Quantity {
     TensileCompliance,
     Temperature,
 }
-
-const TIME_UNITS: [(&str, f64, f64); 4] = [
-    ("s", 1.0, 0.0),
-    ("ms", 1e-3, 0.0),
-    ("min", 60.0, 0.0),
-    ("h", 3600.0, 0.0),
-];
-const MODULUS_UNITS: [(&str, f64, f64); 4] = [
-    ("Pa", 1.0, 0.0),
-    ("kPa", 1e3, 0.0),
-    ("MPa", 1e6, 0.0),
-    ("GPa", 1e9, 0.0),
-];
-const TEMPERATURE_UNITS: [(&str, f64, f64); 3] =
-    [("C", 1.0, 0.0), ("°C", 1.0, 0.0), ("K", 1.0, -273.15)];
 
 /// The spellings of each quantity: (name, case-sensitive), longest first
 /// where one is the start of another.
@@ -145,15 +131,17 @@ const SPELLINGS: [(Quantity, &[(&str, bool)]); 6] = [
 /// The factor and offset to SI (s, Pa, 1/Pa, °C) of `unit` for a column
 /// of `quantity`.
 fn unit_factor(quantity: Quantity, unit: &str) -> Option<(f64, f64)> {
-    let table: &[(&str, f64, f64)] = match quantity {
-        Quantity::Time => &TIME_UNITS,
-        Quantity::Young | Quantity::Shear => &MODULUS_UNITS,
+    let factor = |f: Option<f64>| f.map(|f| (f, 0.0));
+    match quantity {
+        Quantity::Time => factor(units::seconds_per(unit)),
+        Quantity::Young | Quantity::Shear => factor(units::modulus_unit(unit).map(|(_, pa)| pa)),
         Quantity::ShearCompliance | Quantity::TensileCompliance => {
-            return super::vocabulary::compliance_unit(unit).map(|f| (f, 0.0));
+            factor(units::compliance_unit(unit))
         }
-        Quantity::Temperature => &TEMPERATURE_UNITS,
-    };
-    table.iter().find(|u| u.0 == unit).map(|u| (u.1, u.2))
+        Quantity::Temperature => {
+            units::temperature_unit(unit).map(|u| u.conversion.factor_offset())
+        }
+    }
 }
 
 /// The unit of a name's tail after its base: "" (the default: s, Pa,
@@ -350,8 +338,8 @@ pub fn is_relaxation_file(path: &Path) -> bool {
         err!("{}: {source}", path.display()).system(source)
     })
     .ok()
-    .and_then(|bytes| super::decode::decode(path, &bytes).ok())
-    .is_some_and(|text| is_relaxation(&text))
+    .and_then(|bytes| crate::text_file::decode_file(path, bytes).ok())
+    .is_some_and(|read| is_relaxation(&read.text))
 }
 
 impl RelaxationData {
@@ -378,7 +366,7 @@ impl RelaxationData {
         let bytes = crate::input_file::read_input(path, "DMA file", |source| {
             err!("{}: {source}", path.display()).system(source)
         })?;
-        let text = super::decode::decode(path, &bytes)?;
+        let text = crate::text_file::decode_file(path, bytes)?.text;
         parse(path, &text, poisson, kind)
     }
 }

@@ -8,14 +8,17 @@
 //! 1. a key naming the temperature (`T`, `Temp`, `Temperature`, `Test
 //!    temperature`, `Set temperature`, any case) followed by `:` or `=` and
 //!    a number, with an optional unit (°C without one);
-//! 2. a number directly followed by a temperature unit (`°C`, `ºC`, `℃`,
-//!    `C`, `c`, `degC`, `K`), the unit not followed by a letter or digit
+//! 2. a number directly followed by a temperature unit of [`crate::units`]
+//!    (`°C`, `ºC`, `℃`, `C`, `c`, `degC`, `K`, `°F`; no lower-case `k`, `f`),
+//!    the unit not followed by a letter or digit
 //!    (`20C-cooling` is 20 °C, `20cm` is no temperature). A `-` before the
 //!    number is its sign only at the start or after a separator (`_-25C`,
 //!    ` -25C`), not after a word (`dma-25C` is 25 °C).
 //!
 //! A line (or name) holding two different temperatures by rule 2 states
 //! none: which one is the isotherm's is a guess.
+
+use crate::units::temperature_unit;
 
 /// A temperature stated by a line or a name, °C.
 pub fn in_text(text: &str) -> Option<f64> {
@@ -132,20 +135,24 @@ fn leading_number(text: &str) -> Option<(f64, &str)> {
     Some((number, &text[end..]))
 }
 
-/// A unit's map to °C.
-type ToCelsius = fn(f64) -> f64;
-
-/// The temperature unit at the start of `text`: its map to °C and what
-/// follows it.
-fn unit(text: &str) -> Option<(ToCelsius, &str)> {
-    const CELSIUS: [&str; 8] = ["°C", "ºC", "℃", "degC", "deg C", "° C", "C", "c"];
-    for u in CELSIUS {
-        if let Some(rest) = text.strip_prefix(u) {
-            return Some((|t| t, rest));
-        }
+/// The temperature unit at the start of `text` (its longest spelling in the
+/// one table, ending in a letter or `℃`; no `k` or `f`: `Mw=100k` is no
+/// temperature) as the function to °C, and what follows it.
+fn unit(text: &str) -> Option<(impl Fn(f64) -> f64, &str)> {
+    if text.starts_with(['k', 'f']) {
+        return None;
     }
-    text.strip_prefix('K')
-        .map(|rest| ((|t| t - 273.15) as ToCelsius, rest))
+    let (end, (factor, offset)) = text
+        .char_indices()
+        .take(12)
+        .filter(|&(_, c)| c.is_alphabetic() || c == '℃')
+        .filter_map(|(i, c)| {
+            let end = i + c.len_utf8();
+            let unit = temperature_unit(&text[..end])?;
+            Some((end, unit.conversion.factor_offset()))
+        })
+        .last()?;
+    Some((move |t: f64| t * factor + offset, &text[end..]))
 }
 
 #[cfg(test)]
@@ -172,5 +179,11 @@ mod tests {
         assert!((name("pmma_293K.txt").unwrap() - 19.85).abs() < 1e-9);
         assert_eq!(name("oscillation_ps130_data.csv"), None);
         assert_eq!(name("sweep_2.5C.csv"), Some(2.5));
+        assert_eq!(name("sweep_20C.v2.csv"), Some(20.0));
+        // °F through the one units table; `k` of a molar mass is no kelvin.
+        assert!((in_text("Temperature: 68 °F").unwrap() - 20.0).abs() < 1e-9);
+        assert!((name("pmma_68degF.csv").unwrap() - 20.0).abs() < 1e-9);
+        assert_eq!(in_text("Mw=100k;PDI=1.1"), None);
+        assert_eq!(in_text("T = 20 °C (set)"), Some(20.0));
     }
 }

@@ -30,7 +30,7 @@
 //! Q800: tensile). [`DmaOptions::kind`] overrides, and the decision is
 //! reported among the warnings so the user sees it.
 //!
-//! The text is decoded by [`super::decode`] (UTF-8, UTF-16, Latin-1).
+//! The text is decoded by [`crate::text_file`] (UTF-8, UTF-16, Latin-1).
 //!
 //! A cut-off export is refused, not read in part: each step's `Number of
 //! points` must match its `Data point` rows (a file cut between rows, or
@@ -39,31 +39,13 @@
 //! step has no line break is taken as cut inside that line (TRIOS ends
 //! every line with one; a number cut short still parses).
 
-use std::f64::consts::PI;
 use std::path::Path;
 
 use super::form::{FieldNames, FormRead, RawPoint};
 use super::point::{DmaOptions, ModulusKind};
+use super::vocabulary::Quantity;
 use crate::error::parts::count_mismatch;
 use crate::error::{CellRef, ColumnRef, IoError, SkippedStep, StepRef};
-
-/// Units of a quantity: (name in the file, factor, offset) to SI.
-type Units = [(&'static str, f64, f64)];
-
-const ANGULAR_FREQUENCY_UNITS: &Units = &[("rad/s", 1.0, 0.0), ("Hz", 2.0 * PI, 0.0)];
-const FREQUENCY_UNITS: &Units = &[("Hz", 2.0 * PI, 0.0), ("rad/s", 1.0, 0.0)];
-const MODULUS_UNITS: &Units = &[
-    ("Pa", 1.0, 0.0),
-    ("kPa", 1e3, 0.0),
-    ("MPa", 1e6, 0.0),
-    ("GPa", 1e9, 0.0),
-];
-const TEMPERATURE_UNITS: &Units = &[
-    ("°C", 1.0, 0.0),
-    ("C", 1.0, 0.0),
-    ("K", 1.0, -273.15),
-    ("°F", 5.0 / 9.0, -32.0 * 5.0 / 9.0),
-];
 
 /// Whether `text` is a LIMS export: its first non-blank line is
 /// `[Version]` or names the LIMS export format.
@@ -296,21 +278,21 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
             variables: vars.1[1..].iter().map(|v| v.to_string()).collect(),
         }));
     };
-    let field = |i: usize, table: &Units, quantity: &'static str| {
+    let field = |i: usize, quantity: Quantity, name_of: &'static str| {
         let name = vars.1[i].trim().to_string();
         let unit = units.1.get(i).map_or("", |u| u.trim());
-        match table.iter().find(|t| t.0 == unit) {
-            Some(t) => Ok(Field {
+        match quantity.unit(unit) {
+            Some((factor, offset)) => Ok(Field {
                 index: i,
                 name,
-                factor: t.1,
-                offset: t.2,
+                factor,
+                offset,
             }),
             None => Err(err!(
-                "{}, line {line}: {step}: {quantity} variable \"{variable}\" (column {number}) has unit \
+                "{}, line {line}: {step}: {name_of} variable \"{variable}\" (column {number}) has unit \
      \"{unit}\"; known units: {}",
                 path.display(),
-                table.iter().map(|t| t.0).collect::<Vec<_>>().join(", "),
+                quantity.known(),
                 line = units.0,
                 number = i + 1,
                 step = step.label(),
@@ -318,17 +300,17 @@ fn read_step(path: &Path, step: &Step) -> Result<StepRead, IoError> {
             )),
         }
     };
-    let frequency_units = if angular {
-        ANGULAR_FREQUENCY_UNITS
+    let frequency = if angular {
+        Quantity::Omega
     } else {
-        FREQUENCY_UNITS
+        Quantity::Frequency
     };
-    let omega = field(omega, frequency_units, "frequency")?;
-    let storage = field(storage, MODULUS_UNITS, "storage")?;
-    let loss = field(loss, MODULUS_UNITS, "loss")?;
+    let omega = field(omega, frequency, "frequency")?;
+    let storage = field(storage, Quantity::Storage(None), "storage")?;
+    let loss = field(loss, Quantity::Loss(None), "loss")?;
     let temperature = step
         .variable(&["Temperature"])
-        .map(|i| field(i, TEMPERATURE_UNITS, "temperature"))
+        .map(|i| field(i, Quantity::Temperature, "temperature"))
         .transpose()?;
     let step_temperature = step.name.and_then(temperature_in_name);
     let mut points = Vec::with_capacity(step.rows.len());

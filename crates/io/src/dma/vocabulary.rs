@@ -21,6 +21,11 @@
 
 use std::f64::consts::PI;
 
+use crate::units::{
+    ANGLE_UNITS, FREQUENCY_UNITS, MODULUS_UNITS, TEMPERATURE_UNITS, VISCOSITY_UNITS, angle_unit,
+    frequency_unit, modulus_unit, temperature_unit, viscosity_unit,
+};
+
 use super::point::ModulusKind::{self, Shear, Young};
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA, T};
 
@@ -82,16 +87,14 @@ impl Quantity {
     /// The units known, for messages.
     pub(super) fn known(self) -> &'static str {
         match self {
-            Quantity::Omega | Quantity::Frequency => "Hz, kHz, mHz, rad/s",
-            Quantity::Storage(_) | Quantity::Loss(_) | Quantity::Complex(_) => {
-                "Pa, kPa, MPa, GPa, N/mm²"
-            }
-            Quantity::Phase => "°, deg, rad",
+            Quantity::Omega | Quantity::Frequency => FREQUENCY_UNITS,
+            Quantity::Storage(_) | Quantity::Loss(_) | Quantity::Complex(_) => MODULUS_UNITS,
+            Quantity::Phase => ANGLE_UNITS,
             Quantity::TanDelta => "-, 1",
             Quantity::ViscosityStorage | Quantity::ViscosityLoss | Quantity::ViscosityComplex => {
-                "Pa·s, mPa·s, kPa·s, MPa·s"
+                VISCOSITY_UNITS
             }
-            Quantity::Temperature => "°C, K, °F",
+            Quantity::Temperature => TEMPERATURE_UNITS,
             Quantity::Step => "none",
         }
     }
@@ -106,83 +109,26 @@ impl Quantity {
     }
 
     /// The factor and offset to SI (rad/s, Pa, °C) of `unit` as written
-    /// in brackets, a units row or (`rad_s`) a CSV suffix.
+    /// in brackets, a units row or (`rad_s`) a CSV suffix, from the one
+    /// table of units ([`crate::units`]).
     pub(super) fn unit(self, unit: &str) -> Option<(f64, f64)> {
-        let unit = unit.trim();
-        let hertz = |scale: f64| Some((2.0 * PI * scale, 0.0));
+        let factor = |f: Option<f64>| f.map(|f| (f, 0.0));
         match self {
-            Quantity::Omega | Quantity::Frequency => match unit {
-                "Hz" | "hz" => hertz(1.0),
-                "kHz" | "khz" => hertz(1e3),
-                "mHz" => hertz(1e-3),
-                "rad/s" | "rad_s" | "rad s-1" | "rad·s⁻¹" | "rad s^-1" => Some((1.0, 0.0)),
-                // Cycles per second for f, radians per second for ω.
-                "1/s" | "s-1" | "s^-1" | "s⁻¹" => Some(self.default_unit()),
-                _ => None,
-            },
+            Quantity::Omega => factor(frequency_unit(unit, true)),
+            Quantity::Frequency => factor(frequency_unit(unit, false)),
             Quantity::Storage(_) | Quantity::Loss(_) | Quantity::Complex(_) => {
-                modulus_unit(unit).map(|(_, pascals)| (pascals, 0.0))
+                factor(modulus_unit(unit).map(|(_, pascals)| pascals))
             }
-            Quantity::Phase => match unit {
-                "°" | "deg" | "degree" | "degrees" | "º" => Some((PI / 180.0, 0.0)),
-                "rad" => Some((1.0, 0.0)),
-                _ => None,
-            },
-            Quantity::TanDelta => matches!(unit, "-" | "1" | "").then_some((1.0, 0.0)),
+            Quantity::Phase => factor(angle_unit(unit)),
+            Quantity::TanDelta => matches!(unit.trim(), "-" | "1" | "").then_some((1.0, 0.0)),
             Quantity::ViscosityStorage | Quantity::ViscosityLoss | Quantity::ViscosityComplex => {
-                let pascal_seconds = unit
-                    .strip_suffix('s')?
-                    .trim_end_matches(['·', ' ', '.', '*', '⋅']);
-                modulus_unit(pascal_seconds).map(|(_, pascals)| (pascals, 0.0))
+                factor(viscosity_unit(unit))
             }
-            Quantity::Temperature => {
-                crate::data::units::temperature_unit(unit).map(|u| u.conversion.factor_offset())
-            }
+            Quantity::Temperature => temperature_unit(unit).map(|u| u.conversion.factor_offset()),
             // A label; whatever a units row writes above it.
             Quantity::Step => Some((1.0, 0.0)),
         }
     }
-}
-
-/// Pascals per `unit` of a modulus (`Pa`, `kPa`, `MPa`, `GPa`, `N/mm²`):
-/// the one table of modulus units, which `--units` reads too.
-pub fn modulus_unit(unit: &str) -> Option<(&'static str, f64)> {
-    match unit.trim() {
-        "Pa" | "N/m²" | "N/m2" | "N/m^2" => Some(("Pa", 1.0)),
-        "kPa" => Some(("kPa", 1e3)),
-        "MPa" | "N/mm²" | "N/mm2" | "N/mm^2" => Some(("MPa", 1e6)),
-        "GPa" => Some(("GPa", 1e9)),
-        _ => None,
-    }
-}
-
-/// 1/Pa per `unit` of a compliance: the reciprocal of a modulus unit
-/// (`1/MPa`, `MPa^-1`, `MPa⁻¹`, `MPa-1`) or an area per force (`m²/N`,
-/// `mm²/N`, `µm²/N`, and `cm²/dyn`, the CGS unit of the classic creep
-/// literature: 1 dyn/cm² = 0.1 Pa). The table of creep-compliance units.
-pub fn compliance_unit(unit: &str) -> Option<f64> {
-    let unit = unit.trim();
-    let per = |modulus: &str| modulus_unit(modulus).map(|(_, pascals)| 1.0 / pascals);
-    if let Some(modulus) = unit.strip_prefix("1/") {
-        return per(modulus);
-    }
-    for power in ["^-1", "⁻¹", "-1"] {
-        if let Some(modulus) = unit.strip_suffix(power) {
-            return per(modulus);
-        }
-    }
-    let area = unit
-        .strip_suffix("/N")
-        .map(|a| (a, 1.0))
-        .or_else(|| unit.strip_suffix("/dyn").map(|a| (a, 1e5)))?;
-    let square = match area.0.trim_end_matches(['²', '2', '^']) {
-        "m" => 1.0,
-        "cm" => 1e-4,
-        "mm" => 1e-6,
-        "µm" | "μm" | "um" => 1e-12,
-        _ => return None,
-    };
-    Some(square * area.1)
 }
 
 /// The canonical (CSV) names, each with its unit suffixes: the name
@@ -332,36 +278,5 @@ fn split_unit(raw: &str) -> (&str, Option<&str>) {
             Some(raw[start + 1..raw.len() - 1].trim()),
         ),
         _ => (raw, None),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::compliance_unit;
-
-    /// Each spelling of a compliance unit against its value in 1/Pa worked
-    /// out by hand; a modulus unit or nonsense is none.
-    #[test]
-    fn compliance_units_in_reciprocal_pascals() {
-        for (unit, per_pascal) in [
-            ("1/Pa", 1.0),
-            ("1/kPa", 1e-3),
-            ("1/MPa", 1e-6),
-            ("MPa^-1", 1e-6),
-            ("GPa⁻¹", 1e-9),
-            ("Pa-1", 1.0),
-            ("m²/N", 1.0),
-            ("mm²/N", 1e-6),
-            ("µm²/N", 1e-12),
-            ("um2/N", 1e-12),
-            // 1 dyn = 1e-5 N, 1 cm² = 1e-4 m².
-            ("cm²/dyn", 10.0),
-        ] {
-            let found = compliance_unit(unit).unwrap_or_else(|| panic!("{unit}"));
-            assert!((found / per_pascal - 1.0).abs() < 1e-15, "{unit}: {found}");
-        }
-        for unit in ["MPa", "Pa", "1/s", "km²/N", ""] {
-            assert_eq!(compliance_unit(unit), None, "{unit}");
-        }
     }
 }

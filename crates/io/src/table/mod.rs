@@ -46,6 +46,7 @@ use crate::columns::{F, G_LOSS, G_STORAGE, OMEGA_MEASURED};
 use crate::dma::ModulusKind;
 use crate::error::IoError;
 use crate::fit_dir::columns::{E_LOSS, E_STORAGE, OMEGA, T};
+use crate::text_file::{Encodings, decode};
 
 pub use contact_map::explain_contact_map;
 pub use plain::parse;
@@ -107,8 +108,9 @@ fn read_form(
         return dma_form::read(path, poisson, kind, sheet, false);
     }
     // Text that is not UTF-8 (a Latin-1 or UTF-16 export) is the DMA
-    // reader's: it decodes both.
-    let text = std::str::from_utf8(&bytes).ok();
+    // reader's: it reads all the encodings, with notes.
+    let decoded = decode(bytes, Encodings::Utf8).ok();
+    let text = decoded.as_ref().map(|read| read.text.as_str());
     if let Some(text) = text
         && is_plain(text)
     {

@@ -1242,3 +1242,61 @@ fn workbook_error_cells_are_named_and_formulas_without_results_refused() {
         "{m}"
     );
 }
+
+/// One units table for every reader: the same temperatures written in °F
+/// read as in °C, in a TRIOS export and in a relaxation file (whose own
+/// table, before the one table, had no °F).
+#[test]
+fn fahrenheit_reads_the_same_in_trios_and_relaxation_files() {
+    let dir = TempDir::new("fahrenheit");
+    let fahrenheit = |c: f64| format!("{}", c * 9.0 / 5.0 + 32.0);
+
+    // TRIOS: the Temperature variable of every step in °F.
+    let celsius = fs::read_to_string(fixture("trios_tensile.txt")).unwrap();
+    let mut in_data = false;
+    let lines: Vec<String> = celsius
+        .lines()
+        .map(|line| {
+            if line.starts_with("Units\t°C") {
+                in_data = true;
+                return line.replacen("°C", "°F", 1);
+            }
+            let mut cells: Vec<String> = line.split('\t').map(str::to_string).collect();
+            match cells.get(1).map(|t| t.parse::<f64>()) {
+                Some(Ok(t)) if in_data && cells[0] == "Data point" => {
+                    cells[1] = fahrenheit(t);
+                    cells.join("\t")
+                }
+                _ => line.to_string(),
+            }
+        })
+        .collect();
+    let path = dir.path().join("trios_F.txt");
+    fs::write(&path, lines.join("\n") + "\n").unwrap();
+    let options = DmaOptions::default();
+    let expected = DmaData::read(&fixture("trios_tensile.txt"), 0.5, &options).unwrap();
+    let read = DmaData::read(&path, 0.5, &options).unwrap();
+    assert_eq!(read.points.len(), expected.points.len());
+    for (p, q) in read.points.iter().zip(&expected.points) {
+        assert!((p.temperature.unwrap() - q.temperature.unwrap()).abs() < 1e-9);
+        assert_eq!((p.omega, p.storage, p.loss), (q.omega, q.storage, q.loss));
+    }
+
+    // A relaxation file with `T [°F]`.
+    let rows = [(1.0, 2e7, 20.0), (10.0, 1e7, 20.0), (1.0, 5e6, 40.0)];
+    let write = |name: &str, header: &str, t: &dyn Fn(f64) -> String| {
+        let body: Vec<String> = rows
+            .iter()
+            .map(|(time, e, c)| format!("{time},{e},{}", t(*c)))
+            .collect();
+        let path = dir.path().join(name);
+        fs::write(&path, format!("{header}\n{}\n", body.join("\n"))).unwrap();
+        rollfit_io::dma::relaxation::RelaxationData::read(&path, 0.5).unwrap()
+    };
+    let celsius = write("relax_C.csv", "t,E_relax,T", &|c| c.to_string());
+    let read = write("relax_F.csv", "t,E_relax,T [°F]", &fahrenheit);
+    for (p, q) in read.points.iter().zip(&celsius.points) {
+        assert!((p.temperature.unwrap() - q.temperature.unwrap()).abs() < 1e-9);
+        assert_eq!((p.time, p.value), (q.time, q.value));
+    }
+}

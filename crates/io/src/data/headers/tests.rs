@@ -1,7 +1,7 @@
 //! Which quantity and unit header cells name.
 
 use super::*;
-use crate::data::units::Conversion;
+use crate::units::Conversion;
 
 fn column(raw: &str) -> (Quantity, Option<(String, Conversion)>) {
     match classify(raw) {
