@@ -14,6 +14,7 @@ use rollfit_fit::{
 use rollfit_model::{Prony, ViscoelasticModulus};
 
 use joint_case::{dma_isotherms, rolling, sampled_isotherms, truth};
+use rayon::prelude::*;
 
 /// Settings at T_ref = 20 °C, `shift = "auto"`.
 fn params(friction_factor: FrictionFactor) -> ValidFitParams {
@@ -88,10 +89,11 @@ fn case(seed: u64) -> Case {
     let isotherms = dma_isotherms(&truth, 0.01, seed);
     let rows = rolling(&truth, 1.0, seed + 100);
     let dma = DmaRows::new(isotherms.clone(), "synthetic").unwrap();
-    let joint =
-        rollfit_fit::fit(&rows, &params(FrictionFactor::One).with_dma(dma).unwrap()).unwrap();
-    let alone_params = params(FrictionFactor::One);
-    let rolling_alone = rollfit_fit::fit(&rows, &alone_params).unwrap();
+    // The joint fit and the rolling fit alone are independent: one core each.
+    let (joint, rolling_alone) = rayon::join(
+        || rollfit_fit::fit(&rows, &params(FrictionFactor::One).with_dma(dma).unwrap()).unwrap(),
+        || rollfit_fit::fit(&rows, &params(FrictionFactor::One)).unwrap(),
+    );
     let settings = MasterSettings {
         t_ref: Some(20.0),
         ..MasterSettings::default()
@@ -207,14 +209,16 @@ fn inflated(seed: u64, factor: f64) -> (FitReport, FitReport) {
     let isotherms = dma_isotherms(&truth, 0.01, seed);
     let rows = rolling(&truth, factor, seed + 100);
     let dma = || DmaRows::new(isotherms.clone(), "synthetic").unwrap();
-    let one =
-        rollfit_fit::fit(&rows, &params(FrictionFactor::One).with_dma(dma()).unwrap()).unwrap();
-    let free = rollfit_fit::fit(
-        &rows,
-        &params(FrictionFactor::Free).with_dma(dma()).unwrap(),
+    rayon::join(
+        || rollfit_fit::fit(&rows, &params(FrictionFactor::One).with_dma(dma()).unwrap()).unwrap(),
+        || {
+            rollfit_fit::fit(
+                &rows,
+                &params(FrictionFactor::Free).with_dma(dma()).unwrap(),
+            )
+            .unwrap()
+        },
     )
-    .unwrap();
-    (one, free)
 }
 
 /// The second target (inconsistent sources detected), printed for seeds 1 … SEEDS (default 10).
@@ -273,8 +277,12 @@ fn worst_shift_error(report: &FitReport) -> f64 {
 /// decade, its parts compatible, and its evaluations bounded.
 #[test]
 fn joint_fit_beats_either_part_alone() {
-    for seed in 1..=3 {
-        let c = case(seed);
+    // The seeds are independent fits: computed on every core, asserted in order.
+    let cases: Vec<(u64, Case)> = (1..=3u64)
+        .into_par_iter()
+        .map(|seed| (seed, case(seed)))
+        .collect();
+    for (seed, c) in cases {
         let [joint, _dma_alone, rolling_alone] = c.errors;
         let (inside, beyond, union) = (joint[0], joint[1], joint[2]);
         assert!(
@@ -317,8 +325,12 @@ fn joint_fit_beats_either_part_alone() {
 fn extra_dissipation_is_found_and_measured() {
     let truth = truth();
     let (mut covered, mut compatible) = (0, 0);
-    for seed in 1..=10 {
-        let (one, free) = inflated(seed, 1.3);
+    // The seeds are independent fits: computed on every core, asserted in order.
+    let fits: Vec<(u64, (FitReport, FitReport))> = (1..=10u64)
+        .into_par_iter()
+        .map(|seed| (seed, inflated(seed, 1.3)))
+        .collect();
+    for (seed, (one, free)) in fits {
         let j1 = one.joint.as_ref().unwrap();
         assert!(
             !j1.compatibility.compatible,

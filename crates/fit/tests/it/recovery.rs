@@ -8,6 +8,7 @@ use rollfit_testkit::materials::hn_rubber;
 use rollfit_testkit::rolling::{setup, synthetic, window_errors};
 use rollfit_testkit::{materials, rolling};
 
+use rayon::prelude::*;
 use rollfit_fit::{FitParams, FitReport, ScaleAnchor, fit};
 use rollfit_model::ViscoelasticModulus;
 
@@ -176,9 +177,27 @@ fn prony15() -> rollfit_model::Prony {
 fn prony_data_are_fitted_back_to_the_noise_floor() {
     use rollfit_fit::Method;
     let mut lbfgs_stalls = 0;
-    for seed in 0..5 {
-        let data = synthetic(prony15(), 0.01, 100 + seed);
-        let report = fit(&data, &anchored(ScaleAnchor::StaticModulus(2e6))).unwrap();
+    // The seeds are independent: each seed's two fits (L-BFGS at the
+    // main fit's λ) on every core, printed and asserted in order.
+    let fits: Vec<_> = (0..5u64)
+        .into_par_iter()
+        .map(|seed| {
+            let data = synthetic(prony15(), 0.01, 100 + seed);
+            let report = fit(&data, &anchored(ScaleAnchor::StaticModulus(2e6))).unwrap();
+            let lbfgs = FitParams {
+                anchor: Some(ScaleAnchor::StaticModulus(2e6)),
+                method: Method::Lbfgs,
+                lambda: rollfit_fit::Lambda::Fixed(report.lambda.value),
+                starts: 1,
+                ..FitParams::default()
+            }
+            .check(setup())
+            .unwrap();
+            let r = fit(&data, &lbfgs).unwrap();
+            (seed, report, r)
+        })
+        .collect();
+    for (seed, report, r) in fits {
         eprintln!(
             "seed {seed}: χ²/N {:.3} λ {:.3e} converged {} ({} evaluations, {:.3} s)",
             report.misfit_per_point,
@@ -199,16 +218,6 @@ fn prony_data_are_fitted_back_to_the_noise_floor() {
             "χ²/N = {}",
             report.misfit_per_point
         );
-        let lbfgs = FitParams {
-            anchor: Some(ScaleAnchor::StaticModulus(2e6)),
-            method: Method::Lbfgs,
-            lambda: rollfit_fit::Lambda::Fixed(report.lambda.value),
-            starts: 1,
-            ..FitParams::default()
-        }
-        .check(setup())
-        .unwrap();
-        let r = fit(&data, &lbfgs).unwrap();
         eprintln!(
             "  L-BFGS: χ²/N {:.3} converged {} ({}), {:.2} s",
             r.misfit_per_point, r.converged, r.stop_reason, r.wall_time_s

@@ -9,6 +9,7 @@ use rollfit_testkit::rolling::{setup, synthetic, window_errors};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Uniform};
+use rayon::prelude::*;
 use rollfit_fit::{
     FitParams, Lambda, Measurements, Method, ScaleAnchor, StartMaterial, TermRule, fit,
 };
@@ -42,6 +43,7 @@ fn tan_delta_spread_over_noise_seeds_with_and_without_regularisation() {
         for (name, lambda) in [("auto", Lambda::Auto), ("none", Lambda::Fixed(0.0))] {
             let valid = FitParams { lambda, ..params() }.check(setup()).unwrap();
             let errors: Vec<f64> = (0..10)
+                .into_par_iter()
                 .map(|seed| {
                     let report = fit(&synthetic(hn_rubber(), noise, seed), &valid).unwrap();
                     window_errors(&report, &truth).0
@@ -107,18 +109,24 @@ fn nelder_mead_and_lbfgs_from_the_same_starts() {
     ] {
         let mut converged = 0;
         let mut errors = Vec::new();
-        for start in &starts {
-            let valid = FitParams {
-                method,
-                lambda: Lambda::Fixed(lambda),
-                starts: 1,
-                max_evaluations: Some(3000),
-                start: Some(start.clone()),
-                ..params()
-            }
-            .check(setup())
-            .unwrap();
-            let report = fit(&data, &valid).unwrap();
+        // The starts are independent fits: computed on every core.
+        let reports: Vec<_> = starts
+            .par_iter()
+            .map(|start| {
+                let valid = FitParams {
+                    method,
+                    lambda: Lambda::Fixed(lambda),
+                    starts: 1,
+                    max_evaluations: Some(3000),
+                    start: Some(start.clone()),
+                    ..params()
+                }
+                .check(setup())
+                .unwrap();
+                fit(&data, &valid).unwrap()
+            })
+            .collect();
+        for report in reports {
             if report.converged {
                 converged += 1;
             } else {

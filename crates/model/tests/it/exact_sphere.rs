@@ -5,6 +5,7 @@
 
 use std::f64::consts::PI;
 
+use rayon::prelude::*;
 use rollfit_model::exact::{RollingSphere, SphereSettings};
 use rollfit_model::{ContactSize, Geometry, Prony, Scene, Shape, StandardLinearSolid, Substrate};
 
@@ -76,17 +77,26 @@ fn elastic_limits_are_hertz() {
 /// cycle.
 #[test]
 fn low_speed_limit_is_eq18() {
-    for ratio in [10.0, 100.0] {
-        let material = sls(ratio).to_prony();
-        let body = sphere(&material, 96);
-        let r0 = body.static_contact_radius();
+    let (a, b) = (0.02, 0.04);
+    // The four solves are independent: computed on every core, asserted in order.
+    let solved: Vec<_> = [10.0, 100.0]
+        .into_par_iter()
+        .map(|ratio| {
+            let body = sphere(&sls(ratio).to_prony(), 96);
+            let r0 = body.static_contact_radius();
+            let (sa, sb) = rayon::join(
+                || {
+                    body.solve(a * r0)
+                        .map_err(|e| format!("E1/E0 {ratio}: {e}"))
+                        .unwrap()
+                },
+                || body.solve(b * r0).unwrap(),
+            );
+            (ratio, r0, sa, sb)
+        })
+        .collect();
+    for (ratio, r0, sa, sb) in solved {
         let linear = |x: f64| (1.0 - 1.0 / ratio) * x * r0 / RADIUS;
-        let (a, b) = (0.02, 0.04);
-        let sa = body
-            .solve(a * r0)
-            .map_err(|e| format!("E1/E0 {ratio}: {e}"))
-            .unwrap();
-        let sb = body.solve(b * r0).unwrap();
         let (ra, rb) = (sa.mu / linear(a), sb.mu / linear(b));
         let at_zero = ra - (rb - ra) * a / (b - a);
         println!(
@@ -121,8 +131,11 @@ fn relaxing(ratio: f64) -> Prony {
 fn stiff_solid_at_low_speed() {
     let material = relaxing(100.0);
     let r0 = sphere(&material, 96).static_contact_radius();
-    let coarse = sphere(&material, 96).solve(0.01 * r0).unwrap();
-    let fine = sphere(&material, 144).solve(0.01 * r0).unwrap();
+    // The two grids are independent solves: one core each.
+    let (coarse, fine) = rayon::join(
+        || sphere(&material, 96).solve(0.01 * r0).unwrap(),
+        || sphere(&material, 144).solve(0.01 * r0).unwrap(),
+    );
     let difference = (coarse.mu / fine.mu - 1.0).abs();
     println!(
         "μR/r0 {:.7} (±{:.1e}, defect {:.1e}) vs {:.7} (±{:.1e}, defect {:.1e}): {difference:.1e}",
@@ -149,9 +162,18 @@ fn stiff_solid_at_low_speed() {
 fn error_estimate_is_within_three_of_the_true_error() {
     let material = relaxing(10.0);
     let r0 = sphere(&material, 96).static_contact_radius();
-    for x in [0.01, 0.1] {
-        let solution = sphere(&material, 96).solve(x * r0).unwrap();
-        let reference = sphere(&material, 216).solve(x * r0).unwrap();
+    // The four solves are independent: computed on every core, asserted in order.
+    let solved: Vec<_> = [0.01, 0.1]
+        .into_par_iter()
+        .map(|x| {
+            let (solution, reference) = rayon::join(
+                || sphere(&material, 96).solve(x * r0).unwrap(),
+                || sphere(&material, 216).solve(x * r0).unwrap(),
+            );
+            (x, solution, reference)
+        })
+        .collect();
+    for (x, solution, reference) in solved {
         let error = (solution.mu / reference.mu - 1.0).abs();
         let ratio = solution.error_estimate / error;
         println!(

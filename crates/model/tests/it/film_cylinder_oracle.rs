@@ -31,6 +31,8 @@ use rollfit_testkit::scenes::scene;
 
 use std::num::NonZeroUsize;
 
+use rayon::prelude::*;
+
 use gauss_quad::legendre::GaussLegendre;
 use rollfit_model::film::film_factor;
 use rollfit_model::{ContactSize, Prony, Shape, ViscoelasticModulus};
@@ -212,16 +214,23 @@ fn oracle_is_converged() {
         period_fraction: 0.125,
         y_cut: 8000.0,
     };
-    for &(nu, d, dynamic, v) in &[
+    let points = [
         (0.0, 1e-4, true, 1e-8),
         (0.5, 1e-6, true, 10.0),
         (0.49, 1e-1, false, 1e-5),
         (0.3, 1e-5, true, 1e-3),
         (0.5, 1e-4, false, 8.9e-5),
         (0.5, 3e-4, true, 2.24e-4),
-    ] {
-        for material in [0, 1] {
-            let (a, b) = if material == 0 {
+    ];
+    let pairs: Vec<_> = points
+        .iter()
+        .flat_map(|&point| [0, 1].map(|material| (point, material)))
+        .collect();
+    // The 12 comparisons are independent: computed on every core, asserted in order.
+    let results: Vec<_> = pairs
+        .into_par_iter()
+        .map(|((nu, d, dynamic, v), material)| {
+            let mu = if material == 0 {
                 (
                     Oracle::new(&sls, nu, d, dynamic, BASE).mu(v),
                     Oracle::new(&sls, nu, d, dynamic, fine).mu(v),
@@ -232,15 +241,16 @@ fn oracle_is_converged() {
                     Oracle::new(&prony, nu, d, dynamic, fine).mu(v),
                 )
             };
-            let err = (a / b - 1.0).abs();
-            println!(
-                "material {material} nu {nu} d {d:e} dynamic {dynamic} v {v:e}: rel {err:.2e}"
-            );
-            assert!(
-                err < 1e-9,
-                "material {material} nu {nu} d {d} dynamic {dynamic} v {v}: {a:e} vs {b:e} ({err:e})"
-            );
-        }
+            ((nu, d, dynamic, v), material, mu)
+        })
+        .collect();
+    for ((nu, d, dynamic, v), material, (a, b)) in results {
+        let err = (a / b - 1.0).abs();
+        println!("material {material} nu {nu} d {d:e} dynamic {dynamic} v {v:e}: rel {err:.2e}");
+        assert!(
+            err < 1e-9,
+            "material {material} nu {nu} d {d} dynamic {dynamic} v {v}: {a:e} vs {b:e} ({err:e})"
+        );
     }
 }
 
@@ -378,12 +388,19 @@ fn film_cylinder_meets_its_tolerance() {
         cases.push((case, &spread));
     }
     let mut failures = Vec::new();
-    for (case, speeds) in cases {
-        let (v, rel) = worst(
-            speeds,
-            &case.rollfit(speeds, tolerance),
-            &case.oracle(speeds),
-        );
+    // The cases are independent: computed on every core, reported in order.
+    let results: Vec<_> = cases
+        .into_par_iter()
+        .map(|(case, speeds)| {
+            let worst = worst(
+                speeds,
+                &case.rollfit(speeds, tolerance),
+                &case.oracle(speeds),
+            );
+            (case, worst)
+        })
+        .collect();
+    for (case, (v, rel)) in results {
         println!("{}: worst {rel:+.2e} at v = {v:.3e}", case.label());
         if rel.abs() > tolerance {
             failures.push(format!("{} at v = {v:e}: {rel:e}", case.label()));

@@ -368,11 +368,19 @@ fn cases(ratio: Option<f64>) -> Vec<Case> {
 /// formula, prefactor, contact radius and cut-off.
 #[test]
 fn oracle_matches_half_space() {
-    for (name, scene, v) in cases(None) {
-        let fast = scene.friction(v).unwrap();
-        let slow = oracle_mu(&scene, v, STANDARD);
+    // The cases are independent quadratures: computed on every core (each
+    // case's scene is built in its worker), printed and checked in order.
+    let results: Vec<_> = (0..cases(None).len())
+        .into_par_iter()
+        .map(|k| {
+            let (name, scene, v) = cases(None).swap_remove(k);
+            let fast = scene.friction(v).unwrap();
+            let slow = oracle_mu(&scene, v, STANDARD);
+            (name, scene.substrate().poisson, v, fast, slow)
+        })
+        .collect();
+    for (name, nu, v, fast, slow) in results {
         let err = (fast / slow - 1.0).abs();
-        let nu = scene.substrate().poisson;
         eprintln!(
             "half-space {name} ν={nu} v={v:.3e}: library {fast:.12e} oracle {slow:.12e} rel {err:.2e}"
         );
@@ -443,10 +451,13 @@ fn oracle_converges() {
 /// a constant γ/β ≤ 16 and the logarithm ln(r/d) ≈ 7).
 #[test]
 fn oracle_approaches_thin_layer_law() {
+    // The cases are independent quadratures: computed on every core (each
+    // case's scene is built in its worker, a boxed modulus is not Send).
     let errors = |ratio: f64| -> Vec<f64> {
-        cases(Some(ratio))
-            .into_iter()
-            .map(|(name, scene, v)| {
+        (0..cases(None).len())
+            .into_par_iter()
+            .map(|k| {
+                let (name, scene, v) = cases(Some(ratio)).swap_remove(k);
                 let nu = scene.substrate().poisson;
                 let film = oracle_mu(&scene, v, STANDARD);
                 let thin = oracle_mu_with(&scene, v, STANDARD, Law::ThinLayer);
@@ -456,8 +467,7 @@ fn oracle_approaches_thin_layer_law() {
             })
             .collect()
     };
-    let thick = errors(1e-3);
-    let thin = errors(1e-4);
+    let (thick, thin) = rayon::join(|| errors(1e-3), || errors(1e-4));
     for (a, b) in thick.iter().zip(&thin) {
         assert!(*a < 1e-4, "thin-layer law off by {a:e} at d/r0 = 1e-3");
         assert!(

@@ -29,6 +29,7 @@ use std::num::NonZeroUsize;
 
 use gauss_quad::legendre::GaussLegendre;
 use num_complex::Complex64;
+use rayon::prelude::*;
 use rollfit_model::kernel::{cylinder, sphere};
 use rollfit_model::{
     ContactSize, Prony, Scene, Shape, StandardLinearSolid, TabulatedModulus, ViscoelasticModulus,
@@ -382,24 +383,32 @@ fn table_matches_its_analytic_modulus_at_every_tolerance() {
 /// product integration of an analytic modulus this was up to 1.3e-3 off.
 #[test]
 fn sparse_table_meets_the_tolerance_against_the_oracle() {
+    let mut cases = Vec::new();
     for (name, prony, (lo, hi)) in materials().into_iter().take(3).skip(1) {
-        let table = sampled(&prony, &log_grid(lo, hi, 10.0, 0.37));
-        let knots: Vec<f64> = table.omega().iter().map(|w| w.ln()).collect();
         for shape in [Shape::Sphere, Shape::Cylinder] {
             for contact in [ContactSize::Dynamic, ContactSize::Static] {
-                let s = scene_of(shape, contact, table.clone(), 1e-6);
-                let mu = s.friction_sweep(&CI_SPEEDS).unwrap();
-                let oracle = Oracle::new(&s, &table, knots.clone(), BASE);
-                for (&v, m) in CI_SPEEDS.iter().zip(&mu) {
-                    let error = (m / oracle.mu(v) - 1.0).abs();
-                    assert!(
-                        error <= 1e-6,
-                        "{name} {shape:?} {contact:?} v {v:e}: {error:e}"
-                    );
-                }
+                cases.push((name, prony.clone(), (lo, hi), shape, contact));
             }
         }
     }
+    // The eight scenes are independent: checked on every core (a failed
+    // assertion in a worker fails the test with its message).
+    cases
+        .into_par_iter()
+        .for_each(|(name, prony, (lo, hi), shape, contact)| {
+            let table = sampled(&prony, &log_grid(lo, hi, 10.0, 0.37));
+            let knots: Vec<f64> = table.omega().iter().map(|w| w.ln()).collect();
+            let s = scene_of(shape, contact, table.clone(), 1e-6);
+            let mu = s.friction_sweep(&CI_SPEEDS).unwrap();
+            let oracle = Oracle::new(&s, &table, knots, BASE);
+            for (&v, m) in CI_SPEEDS.iter().zip(&mu) {
+                let error = (m / oracle.mu(v) - 1.0).abs();
+                assert!(
+                    error <= 1e-6,
+                    "{name} {shape:?} {contact:?} v {v:e}: {error:e}"
+                );
+            }
+        });
 }
 
 /// The table's error estimates, from its rows alone, against the true
