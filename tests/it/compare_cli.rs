@@ -248,6 +248,53 @@ fn relaxation_data_compare_as_e_of_t() {
     }
 }
 
+/// Several relaxation files, one per temperature with the temperature in
+/// the name, compare exactly as one file holding the same points with a T
+/// column: the same compare.json but for the input's name.
+#[test]
+fn relaxation_files_compare_as_one_file() {
+    let dir = TempDir::new("relaxation-files");
+    let fit = copy_fit(&dir, "hn-rubber-tset");
+    let series = rollfit_io::FitDir::read(&fit).unwrap().master_curve;
+    let rows = |t_celsius: f64| -> Vec<(f64, f64)> {
+        (0..=40)
+            .map(|j| {
+                let t = 10f64.powf(-6.0 + 0.15 * j as f64);
+                (
+                    t,
+                    series.relaxation_modulus(t * (1.0 + 0.01 * t_celsius)) / 1e6,
+                )
+            })
+            .collect()
+    };
+    let mut one = String::from("t_s,E_relax_MPa,T\n");
+    fs::create_dir_all(dir.path().join("parts")).unwrap();
+    for temperature in [20.0, 40.0] {
+        let mut own = String::from("t_s,E_relax_MPa\n");
+        for (t, e) in rows(temperature) {
+            one += &format!("{t:e},{e:e},{temperature}\n");
+            own += &format!("{t:e},{e:e}\n");
+        }
+        dir.write(&format!("parts/relax_{temperature}C.csv"), &own);
+    }
+    let single = dir.write("relax_all.csv", &one);
+    let compared = |data: &Path| -> serde_json::Value {
+        let out = rollfit(&[OsStr::new("compare"), fit.as_os_str(), data.as_os_str()]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        // Each names its own input; the rest must agree.
+        let named = fs::read_to_string(fit.join("compare.json"))
+            .unwrap()
+            .replace(&data.display().to_string(), "DATA");
+        let mut json: serde_json::Value = serde_json::from_str(&named).unwrap();
+        json.as_object_mut().unwrap().remove("dma_file");
+        json
+    };
+    let from_one = compared(&single);
+    let from_parts = compared(&dir.path().join("parts"));
+    assert!(from_one["n_points"].as_u64().unwrap() > 10, "{from_one}");
+    assert_eq!(from_one, from_parts);
+}
+
 /// A creep file against a fit: the fit's series is
 /// converted to its exact creep compliance D(t) (retardation times from
 /// the zeros of its Laplace transform) and compared over the times its

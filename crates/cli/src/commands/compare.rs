@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_io::FitDir;
-use rollfit_io::dma::relaxation::RelaxationData;
+use rollfit_io::dma::time_files::read_time_files;
 use rollfit_io::dma::{DmaInput, DmaOptions, DmaWlf, ModulusKind, WLF_USAGE};
 use rollfit_io::output;
 use rollfit_report::compare::{Comparison, compare};
@@ -188,26 +188,9 @@ pub fn is_relaxation_data(dma: &[PathBuf]) -> Result<bool> {
         .is_some_and(|first| rollfit_io::dma::relaxation::is_relaxation_file(first)))
 }
 
-/// Whether the DMA input `dma` is a stress-relaxation file; several
-/// files of which the first is one are refused (a comparison reads one).
-pub fn is_relaxation(dma: &[PathBuf]) -> Result<bool> {
-    let first = &dma[0];
-    if !rollfit_io::dma::relaxation::is_relaxation_file(first) {
-        return Ok(false);
-    }
-    if dma.len() > 1 || first.is_dir() {
-        anyhow::bail!(
-            "relaxation file {}: several relaxation files are not read together yet; put \
-             their isotherms in one file with a T column",
-            first.display()
-        );
-    }
-    Ok(true)
-}
-
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
-    if is_relaxation(&args.dma)? {
+    if is_relaxation_data(&args.dma)? {
         return run_relaxation(args);
     }
     let result = comparison(&args.dir, &args.dma, &args.flags)?;
@@ -276,8 +259,13 @@ pub fn table(c: &Comparison) -> String {
 fn run_relaxation(args: &Args) -> Result<()> {
     let fit = FitDir::read(&args.dir).context("cannot read the fit")?;
     let kind = args.flags.dma_modulus.map(DmaModulus::kind);
-    let data = RelaxationData::read_as(&args.dma[0], fit.summary.poisson, kind)
-        .context("cannot read the relaxation file")?;
+    // Several files (or a folder) are one data set, each file's
+    // temperature from its T column, its name or --temperatures, as
+    // `rollfit master` reads them.
+    let temperatures = args.flags.files.temperatures.as_deref();
+    let data = read_time_files(&args.dma, fit.summary.poisson, kind, temperatures)
+        .context("cannot read the relaxation file")?
+        .data;
     let c = compare_relaxation(&fit, &data, &args.flags.options())
         .context("cannot compare the fit with the relaxation data")?;
     let mut json = serde_json::to_vec_pretty(&c).context("cannot format compare.json")?;
