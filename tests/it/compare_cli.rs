@@ -291,6 +291,17 @@ fn relaxation_files_compare_as_one_file() {
     };
     let from_one = compared(&single);
     let from_parts = compared(&dir.path().join("parts"));
+    // Each file's temperature, and where it came from, is said.
+    let out = rollfit(&[
+        OsStr::new("compare"),
+        fit.as_os_str(),
+        dir.path().join("parts").as_os_str(),
+    ]);
+    let said = text(&out.stderr);
+    assert!(
+        said.contains("relax_40C.csv: 41 points, 40 °C, from the file name"),
+        "{said}"
+    );
     assert!(from_one["n_points"].as_u64().unwrap() > 10, "{from_one}");
     assert_eq!(from_one, from_parts);
 }

@@ -15,7 +15,9 @@ use anyhow::{Context, Result};
 use rollfit_fit::master::relaxation::TimeQuantity;
 use rollfit_io::FitDir;
 use rollfit_io::dma::time_files::read_time_files;
-use rollfit_io::dma::{DmaInput, DmaOptions, DmaWlf, ModulusKind, WLF_USAGE};
+use rollfit_io::dma::{
+    DmaFile, DmaInput, DmaOptions, DmaWlf, ModulusKind, TemperatureOrigin, WLF_USAGE,
+};
 use rollfit_io::output;
 use rollfit_report::compare::{Comparison, compare};
 use rollfit_report::relaxation_compare::compare_relaxation;
@@ -188,6 +190,28 @@ pub fn is_relaxation_data(dma: &[PathBuf]) -> Result<bool> {
         .is_some_and(|first| rollfit_io::dma::relaxation::is_relaxation_file(first)))
 }
 
+/// Where each file's temperature came from, one line per file, when the
+/// data are several files or one whose temperature is not a T column.
+pub(crate) fn temperature_sources(files: &[DmaFile]) -> String {
+    let stated = |f: &DmaFile| f.temperature != TemperatureOrigin::Column;
+    if files.len() < 2 && !files.iter().any(stated) {
+        return String::new();
+    }
+    let mut out = String::new();
+    for f in files {
+        let origin = match &f.temperature {
+            TemperatureOrigin::Given(t) => format!("{t} °C, from --temperatures"),
+            other => other.to_string(),
+        };
+        out += &format!(
+            "  {}: {} points, {origin}\n",
+            f.path.display(),
+            f.points.len()
+        );
+    }
+    out
+}
+
 /// Runs the command.
 pub fn run(args: &Args) -> Result<()> {
     if is_relaxation_data(&args.dma)? {
@@ -263,9 +287,9 @@ fn run_relaxation(args: &Args) -> Result<()> {
     // temperature from its T column, its name or --temperatures, as
     // `rollfit master` reads them.
     let temperatures = args.flags.files.temperatures.as_deref();
-    let data = read_time_files(&args.dma, fit.summary.poisson, kind, temperatures)
-        .context("cannot read the relaxation file")?
-        .data;
+    let read = read_time_files(&args.dma, fit.summary.poisson, kind, temperatures)
+        .context("cannot read the relaxation file")?;
+    let data = read.data;
     let c = compare_relaxation(&fit, &data, &args.flags.options())
         .context("cannot compare the fit with the relaxation data")?;
     let mut json = serde_json::to_vec_pretty(&c).context("cannot format compare.json")?;
@@ -274,6 +298,20 @@ fn run_relaxation(args: &Args) -> Result<()> {
     output::add_files(&args.dir, output::Writer::Fit, &[("compare.json", &json)])?;
     for note in &c.notes {
         eprintln!("note: {note}");
+    }
+    // Where each file's temperature came from, as `rollfit master` says,
+    // where there are several or one took it from its name or the flag
+    // (one file without a temperature is at the fit's reference state).
+    let told = |f: &DmaFile| {
+        !matches!(
+            f.temperature,
+            TemperatureOrigin::None | TemperatureOrigin::Column
+        )
+    };
+    if read.files.len() > 1 || read.files.iter().any(told) {
+        for line in temperature_sources(&read.files).lines() {
+            eprintln!("note: {}", line.trim_start());
+        }
     }
     for warning in &c.warnings {
         eprintln!("warning: {warning}");

@@ -41,7 +41,6 @@ use rollfit_fit::master::pairwise::DETERMINED_SIGMA;
 use rollfit_fit::master::quality::{Floors, MasterQuality, Misfits};
 use rollfit_fit::master::{MasterSettings, ShiftFactors, ShiftLaw};
 use rollfit_io::columns::OMEGA_MEASURED;
-use rollfit_io::dma::{DmaFile, TemperatureOrigin};
 use rollfit_io::fit_dir::columns::{
     E_LOSS, E_STORAGE, MODULUS_COLUMNS, MODULUS_CSV, OMEGA, T, TAN_DELTA,
 };
@@ -50,7 +49,9 @@ use rollfit_model::ViscoelasticModulus;
 use rollfit_report::master_input::frequency::{self, DmaMaster};
 use serde::Serialize;
 
-use crate::commands::compare::{DmaFileFlags, DmaModulus, is_relaxation_data, poisson_source};
+use crate::commands::compare::{
+    DmaFileFlags, DmaModulus, is_relaxation_data, poisson_source, temperature_sources,
+};
 use crate::{hints, progress, stdout};
 
 mod pictures;
@@ -316,28 +317,6 @@ pub(super) fn strict_gate(shift: &ShiftFactors, args: &Args) -> Result<()> {
 /// The DMA files as messages name them: the one file, or every one.
 fn dma_name(args: &Args) -> String {
     rollfit_io::dma::files::names(&args.dma)
-}
-
-/// Where each file's temperature came from, one line per file, when the
-/// data are several files or one whose temperature is not a T column.
-fn temperature_sources(files: &[DmaFile]) -> String {
-    let stated = |f: &DmaFile| f.temperature != TemperatureOrigin::Column;
-    if files.len() < 2 && !files.iter().any(stated) {
-        return String::new();
-    }
-    let mut out = String::new();
-    for f in files {
-        let origin = match &f.temperature {
-            TemperatureOrigin::Given(t) => format!("{t} °C, from --temperatures"),
-            other => other.to_string(),
-        };
-        out += &format!(
-            "  {}: {} points, {origin}\n",
-            f.path.display(),
-            f.points.len()
-        );
-    }
-    out
 }
 
 /// The best causal fit of the shifted points (the causality check of
