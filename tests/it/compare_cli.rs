@@ -304,6 +304,15 @@ fn relaxation_files_compare_as_one_file() {
     );
     assert!(from_one["n_points"].as_u64().unwrap() > 10, "{from_one}");
     assert_eq!(from_one, from_parts);
+    // A frequency sweep among them is named as what it is.
+    dir.write(
+        "parts/sweep_60C.csv",
+        "f,E_storage,E_loss\n1,1e6,1e5\n10,2e6,2e5\n",
+    );
+    assert_failure(
+        &run(&fit, &dir.path().join("parts"), &[]),
+        &["sweep_60C.csv", "not relaxation or creep data"],
+    );
 }
 
 /// A creep file against a fit: the fit's series is

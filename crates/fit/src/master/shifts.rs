@@ -576,10 +576,11 @@ fn within(members: &[usize], i: usize) -> bool {
 /// An undetermined isotherm `i` beyond the determined isotherms' range,
 /// placed step by step outward from the nearest determined isotherm `k`:
 /// a law fitted inside the range is an extrapolation there, so each
-/// neighbour step is what the pair's data say where they say something (a
-/// bounded profile, or, where superposition fails, the modulus's own
-/// bounded shift) and the law's step only where they do not (a plateau,
-/// too few points).
+/// neighbour step is the pair's shift where its data say something (a
+/// bounded profile, or a pair where superposition fails whose modulus
+/// fixes a shift of its own: the pair's shift then lies between the two
+/// quantities') and the law's step only where they do not (a plateau, too
+/// few points).
 fn beyond_determined(law_values: &[f64], pairs: &[PairShift], k: usize, i: usize) -> f64 {
     let step = |j: usize| {
         let data = pairs

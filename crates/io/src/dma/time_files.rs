@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 
 use super::files::{DmaFile, TemperatureOrigin, check_given, common_folder, expand};
 use super::point::ModulusKind;
-use super::relaxation::{RelaxationData, groups};
+use super::relaxation::{RelaxationData, groups, is_relaxation_file};
 use super::stated_temperature::in_file_name;
 use crate::error::IoError;
 
@@ -48,7 +48,21 @@ pub fn read_time_files(
     check_given(given, paths.len())?;
     let mut all: Option<TimeFiles> = None;
     for (k, path) in paths.iter().enumerate() {
-        let mut data = RelaxationData::read_as(path, poisson, kind)?;
+        let mut data = RelaxationData::read_as(path, poisson, kind).map_err(|error| {
+            // A frequency sweep among time-domain files is a mix-up, not a
+            // relaxation file without its time column (looked at again
+            // only on this error path).
+            if k > 0 && !is_relaxation_file(path) {
+                err!(
+                    "{}: not relaxation or creep data (no time column), unlike {}: give \
+                     frequency sweeps and time-domain files to separate runs",
+                    path.display(),
+                    paths[0].display()
+                )
+            } else {
+                error
+            }
+        })?;
         let origin = temperature_of(&mut data, given.map(|g| g[k]));
         if paths.len() > 1 && origin == TemperatureOrigin::None {
             return Err(err!(
